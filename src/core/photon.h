@@ -1,0 +1,39 @@
+// Photon records as stored in the maps. Compact on purpose: 5M photons per map,
+// and the normal/direction are octahedral-encoded into 32 bits each.
+#pragma once
+#include "core/math.h"
+#include <cstdint>
+#include <vector>
+
+namespace penumbra {
+
+// Octahedral unit-vector encoding (Cigolle et al. 2014), 16 bits per axis:
+// worst-case angular error ~0.005 degrees, plenty for a "same side" test.
+uint32_t encodeOctahedral(const Vec3& unit);
+Vec3 decodeOctahedral(uint32_t code);
+
+// A hit along a shadow photon's line: the first is Direct, every later one Shadow.
+struct ShadowPhoton {
+  Vec3 position;
+  uint32_t normal;  // octahedral, geometric normal facing the light's side of the surface
+  uint16_t light;   // index into Scene::lights
+  uint8_t shadow;   // 0 = direct, 1 = shadow
+  uint8_t pad = 0;
+};
+
+// An indirect-map photon: stored at every surface hit of a bouncing path.
+struct IndirectPhoton {
+  Vec3 position;
+  Color power;
+  uint32_t direction;  // octahedral, incoming direction of travel
+  uint32_t normal;     // octahedral, surface normal facing the incoming photon
+};
+
+struct PhotonMaps {
+  std::vector<ShadowPhoton> shadow;
+  std::vector<IndirectPhoton> indirect;
+  uint64_t emittedShadow = 0;
+  uint64_t emittedIndirect = 0;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,106 @@
+// The scene as plain data: what io fills in and every stage reads. No behaviour
+// lives here; quads, boxes, OBJ files and teapots all arrive as TriangleMesh.
+#pragma once
+#include "core/math.h"
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct Camera {
+  Vec3 position{0.0f, 0.0f, 5.0f};
+  Vec3 lookAt{0.0f};
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  float fovY = 45.0f;  // vertical field of view, degrees
+  int width = 640;
+  int height = 480;
+  int spp = 1;  // samples per pixel; 1 = pixel centre, >1 = stratified jitter
+};
+
+enum class LightType { Point, Directional };
+
+struct Light {
+  LightType type = LightType::Point;
+  Vec3 position{0.0f};              // point lights
+  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional: the way the light travels (unit)
+  Color color{1.0f};
+  float intensity = 1.0f;
+  Color radiance() const { return color * intensity; }
+};
+
+enum class TextureBlend { Multiply, Add };
+
+struct Material {
+  std::string name;
+  Color ambient{0.1f};
+  Color diffuse{0.8f};
+  Color specular{0.0f};
+  float shininess = 32.0f;
+  float kr = 0.0f;  // mirror reflection weight (opaque materials)
+  bool transparent = false;  // transparent: Fresnel decides kr, kt = 1 - kr
+  float ior = 1.5f;
+  Color tint{1.0f};  // transmission filter colour
+  float pR = 0.0f;   // photon Russian roulette: reflect with pR,
+  float pT = 0.0f;   // transmit with pT, absorb otherwise
+  int texture = -1;  // index into Scene::textures, -1 = none
+  TextureBlend textureBlend = TextureBlend::Multiply;
+};
+
+struct Sphere {
+  Vec3 center{0.0f};
+  float radius = 1.0f;
+  int material = 0;
+};
+
+struct TriangleMesh {
+  std::string name;
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;  // per vertex, empty = flat shading
+  std::vector<Vec2> uvs;      // per vertex, empty = spherical mapping
+  std::vector<std::array<uint32_t, 3>> triangles;
+  int material = 0;
+};
+
+struct Texture {
+  std::string path;  // absolute, resolved against the scene file's folder
+};
+
+struct RenderSettings {
+  int maxDepth = 4;
+  Color background{0.0f};
+  Color ambient{1.0f};     // global ambient light, multiplies Material::ambient
+  float minWeight = 1e-3f;  // recursion stops when the path weight falls below
+  uint64_t seed = 1;
+};
+
+enum class IndirectEstimator { Classic, Density };
+enum class HemisphereSampling { Uniform, Cosine };
+
+struct PhotonSettings {
+  uint64_t shadowPhotons = 5'000'000;
+  uint64_t indirectPhotons = 0;  // 0 = no indirect map, the ambient term stays
+  int kShadow = 50;
+  int kIndirect = 50;
+  float maxRadius = 0.0f;  // 0 = unlimited
+  IndirectEstimator estimator = IndirectEstimator::Classic;
+  HemisphereSampling sampling = HemisphereSampling::Uniform;
+  int maxBounces = 16;
+  bool gate = true;  // false = cast every shadow ray (--no-gate)
+};
+
+struct Scene {
+  std::string name;
+  std::string file;  // the scene file it came from, for messages and metadata
+  Camera camera;
+  std::vector<Light> lights;
+  std::vector<Material> materials;
+  std::vector<Sphere> spheres;
+  std::vector<TriangleMesh> meshes;
+  std::vector<Texture> textures;
+  RenderSettings render;
+  PhotonSettings photons;
+};
+
+}  // namespace penumbra

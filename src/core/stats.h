@@ -1,0 +1,57 @@
+// Render statistics as plain counters. Parallel phases keep one RayCounts per
+// thread (tbb::enumerable_thread_specific) and add them up afterwards.
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace penumbra {
+
+struct RayCounts {
+  uint64_t camera = 0, shadow = 0, reflection = 0, refraction = 0;
+  // Ambiguity gate (one query per shading point and light).
+  uint64_t gateQueries = 0, gateLit = 0, gateShadowed = 0, gateMixed = 0;
+  uint64_t shadowRaysAvoided = 0;
+  // Indirect gather.
+  uint64_t gatherQueries = 0, gatherNeighbours = 0;
+
+  RayCounts& operator+=(const RayCounts& o) {
+    camera += o.camera; shadow += o.shadow; reflection += o.reflection; refraction += o.refraction;
+    gateQueries += o.gateQueries; gateLit += o.gateLit; gateShadowed += o.gateShadowed;
+    gateMixed += o.gateMixed; shadowRaysAvoided += o.shadowRaysAvoided;
+    gatherQueries += o.gatherQueries; gatherNeighbours += o.gatherNeighbours;
+    return *this;
+  }
+};
+
+struct Timings {
+  double load = 0, buildBvh = 0, emit = 0, buildMaps = 0, render = 0, write = 0, total = 0;
+};
+
+struct RenderStats {
+  std::string scene;
+  int width = 0, height = 0, spp = 1, threads = 1;
+  uint64_t seed = 0;
+  Timings time;
+  RayCounts rays;
+  uint64_t emittedShadow = 0, emittedIndirect = 0, storedShadow = 0, storedIndirect = 0;
+  uint64_t photonMapBytes = 0;
+  uint64_t peakRssBytes = 0;
+};
+
+// Wall-clock stopwatch in seconds.
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Peak resident set size of this process (VmHWM), 0 if unknown.
+uint64_t peakRssBytes();
+
+}  // namespace penumbra

@@ -1,0 +1,19 @@
+// Writes framebuffers through OpenImageIO: PNG (8-bit sRGB) or EXR (linear half),
+// chosen by extension, via a temporary file renamed into place.
+#pragma once
+#include "core/image.h"
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+
+// Throws InputError for an unsupported extension or an unwritable path.
+void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {});
+
+// Reads any OIIO-readable image as linear RGB (sRGB PNG/JPEG are linearised).
+Image readImage(const std::string& path);
+
+}  // namespace penumbra
