@@ -15,7 +15,7 @@ Vec3 decodeOctahedral(uint32_t code);
 // A hit along a shadow photon's line: the first is Direct, every later one Shadow.
 struct ShadowPhoton {
   Vec3 position;
-  uint32_t normal;  // octahedral, geometric normal facing the light's side of the surface
+  uint32_t normal;  // octahedral geometric normal, flipped to face where the photon came from
   uint16_t light;   // index into Scene::lights
   uint8_t shadow;   // 0 = direct, 1 = shadow
   uint8_t pad = 0;
@@ -26,7 +26,7 @@ struct IndirectPhoton {
   Vec3 position;
   Color power;
   uint32_t direction;  // octahedral, incoming direction of travel
-  uint32_t normal;     // octahedral, surface normal facing the incoming photon
+  uint32_t normal;     // octahedral geometric normal, flipped to face where the photon came from
 };
 
 struct PhotonMaps {
