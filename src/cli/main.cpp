@@ -1,1 +1,95 @@
-int main() { return 0; }
+// The penumbra command line: a thin shell over the pipeline. Exit codes:
+// 0 ok, 2 bad input (one-line message), 1 internal error.
+#include "cli/pipeline.h"
+#include "cli/progress_bar.h"
+#include "core/error.h"
+#include "io/report_json.h"
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+
+using namespace penumbra;
+
+namespace {
+
+int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std::string& tracePixelArg,
+                     bool quiet) {
+  if (!tracePixelArg.empty()) {
+    int x = 0, y = 0;
+    char tail = 0;
+    if (std::sscanf(tracePixelArg.c_str(), "%d,%d%c", &x, &y, &tail) != 2) {
+      throw InputError("--trace-pixel: expected X,Y, got '" + tracePixelArg + "'");
+    }
+    req.tracePixel = std::make_pair(x, y);
+  }
+  ProgressBar bar(!quiet);
+  req.progress = [&bar](double f) { bar.update(f); };
+  RenderResult result = runRender(req);
+  bar.finish();
+  if (req.tracePixel) {
+    std::string json = rayTreeToJson(result.rayTree, req.tracePixel->first, req.tracePixel->second);
+    if (req.outputPath.empty() || req.outputPath == "-") std::cout << json;
+    else writeTextFile(req.outputPath, json);
+  }
+  if (!statsPath.empty()) writeTextFile(statsPath, statsToJson(result.stats));
+  if (!quiet) {
+    for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
+    std::cerr << statsSummary(result.stats);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"penumbra: a CPU photon-mapping renderer (Whitted core + shadow and indirect photon maps)"};
+  app.require_subcommand(1);
+
+  RenderRequest req;
+  std::string statsPath, tracePixelArg;
+  bool quiet = false, noGate = false;
+  std::optional<uint64_t> seed;
+  std::optional<int> spp;
+  CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
+  render->add_option("scene", req.scenePath, "Scene file (JSON, see docs/scene-format.md)")->required();
+  render->add_option("-o,--output", req.outputPath,
+                     "Output image: .png (8-bit sRGB) or .exr (linear half); with --trace-pixel, "
+                     "the JSON file (default stdout)");
+  render->add_option("--threads", req.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  render->add_option("--seed", seed, "Random seed (overrides render.seed)");
+  render->add_option("--spp", spp, "Samples per pixel (overrides camera.spp)")->check(CLI::Range(1, 4096));
+  render->add_option("--set", req.overrides,
+                     "Override a scene value, e.g. --set render.max_depth=8 --set objects[0].radius=2")
+      ->take_all()
+      ->allow_extra_args(false);
+  render->add_option("--stats", statsPath, "Write render statistics as JSON to this file");
+  render->add_option("--aov", req.aov, "What to render: beauty (default), depth, normal, indirect");
+  render->add_flag("--no-gate", noGate, "Cast every shadow ray instead of asking the shadow photon map");
+  render->add_option("--trace-pixel", tracePixelArg,
+                     "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
+  render->add_flag("-q,--quiet", quiet, "No progress bar and no summary on stderr");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    if (*render) {
+      if (req.outputPath.empty() && tracePixelArg.empty()) throw InputError("render: -o OUT is required");
+      if (seed) req.overrides.push_back("render.seed=" + std::to_string(*seed));
+      if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
+      if (noGate) req.overrides.push_back("photons.gate=false");
+      return runRenderCommand(req, statsPath, tracePixelArg, quiet);
+    }
+  } catch (const InputError& e) {
+    std::cerr << "penumbra: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "penumbra: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,33 @@
+// The whole render, wired once: io -> emit -> gather -> trace -> io.
+#pragma once
+#include "core/image.h"
+#include "core/ray_record.h"
+#include "core/stats.h"
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+struct RenderRequest {
+  std::string scenePath;
+  std::string outputPath;               // empty: keep the image in memory only
+  std::vector<std::string> overrides;   // --set k=v, applied in order
+  int threads = 0;                      // 0 = all cores
+  std::string aov = "beauty";
+  std::optional<std::pair<int, int>> tracePixel;  // record this pixel's ray tree instead
+  std::function<void(double)> progress;
+};
+
+struct RenderResult {
+  Image image;
+  RenderStats stats;
+  RayTree rayTree;  // filled for tracePixel requests
+  std::vector<std::string> notes;  // things the user should know ("no point lights: ...")
+};
+
+RenderResult runRender(const RenderRequest& request);
+
+}  // namespace penumbra

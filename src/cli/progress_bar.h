@@ -1,0 +1,44 @@
+// A progress bar on stderr, shown only on a terminal and only once a render
+// has taken over a second (short renders stay quiet).
+#pragma once
+#include "core/stats.h"
+#include <atomic>
+#include <cstdio>
+#include <mutex>
+#include <unistd.h>
+
+namespace penumbra {
+
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
+  ~ProgressBar() { finish(); }
+
+  void update(double fraction) {
+    if (!enabled_ || clock_.seconds() < 1.0) return;
+    int percent = static_cast<int>(fraction * 100.0);
+    if (percent <= shown_.load()) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (percent <= shown_) return;
+    shown_ = percent;
+    const int width = 40;
+    int filled = percent * width / 100;
+    std::fprintf(stderr, "\r[%.*s%*s] %3d%%", filled, "########################################",
+                 width - filled, "", percent);
+    std::fflush(stderr);
+    drawn_ = true;
+  }
+  void finish() {
+    if (drawn_) std::fputc('\n', stderr);
+    drawn_ = false;
+  }
+
+ private:
+  bool enabled_;
+  Stopwatch clock_;
+  std::atomic<int> shown_{-1};
+  std::mutex mutex_;
+  bool drawn_ = false;
+};
+
+}  // namespace penumbra

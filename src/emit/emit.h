@@ -1,0 +1,24 @@
+// The photon pass: point lights shoot shadow photons (kept along their whole
+// line) and indirect photons (bounced by Russian roulette) through the tracer's
+// Embree scene, in fixed-size batches scheduled by oneTBB.
+#pragma once
+#include "core/photon.h"
+#include "core/scene.h"
+#include "trace/trace_scene.h"
+
+namespace penumbra {
+
+struct EmitOptions {
+  uint32_t batchSize = 4096;  // photons per task; each batch owns one random stream
+  int maxHitsPerLine = 64;    // shadow photons kept per line at most
+};
+
+// Splits each budget across point lights by luminous intensity (largest
+// remainder, so the counts add up exactly). The result is identical for any
+// thread count: batches are merged in batch order.
+PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options = {});
+
+// Photons per light for a budget, proportional to each point light's power.
+std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total);
+
+}  // namespace penumbra

@@ -1,0 +1,101 @@
+// Serialises render statistics and ray trees with nlohmann::json.
+#include "io/report_json.h"
+#include "core/error.h"
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace penumbra {
+namespace {
+nlohmann::json vec(const Vec3& v) { return {v.x, v.y, v.z}; }
+}  // namespace
+
+std::string statsToJson(const RenderStats& s) {
+  nlohmann::json j;
+  j["scene"] = s.scene;
+  j["image"] = {{"width", s.width}, {"height", s.height}, {"spp", s.spp}};
+  j["threads"] = s.threads;
+  j["seed"] = s.seed;
+  j["time_s"] = {{"load", s.time.load},           {"build_bvh", s.time.buildBvh},
+                 {"emit", s.time.emit},           {"build_maps", s.time.buildMaps},
+                 {"render", s.time.render},       {"write", s.time.write},
+                 {"total", s.time.total}};
+  const RayCounts& r = s.rays;
+  j["rays"] = {{"camera", r.camera}, {"shadow", r.shadow}, {"reflection", r.reflection},
+               {"refraction", r.refraction}};
+  j["photons"] = {{"emitted_shadow", s.emittedShadow}, {"emitted_indirect", s.emittedIndirect},
+                  {"stored_shadow", s.storedShadow}, {"stored_indirect", s.storedIndirect}};
+  j["gate"] = {{"queries", r.gateQueries},      {"lit", r.gateLit},
+               {"shadowed", r.gateShadowed},    {"mixed", r.gateMixed},
+               {"shadow_rays_cast", r.shadow},  {"shadow_rays_avoided", r.shadowRaysAvoided}};
+  j["gather"] = {{"queries", r.gatherQueries},
+                 {"mean_neighbours", r.gatherQueries ? double(r.gatherNeighbours) / r.gatherQueries : 0.0}};
+  j["memory"] = {{"photon_maps_bytes", s.photonMapBytes}};
+  j["peak_rss_bytes"] = s.peakRssBytes;
+  return j.dump(2) + "\n";
+}
+
+std::string rayTreeToJson(const RayTree& tree, int x, int y) {
+  nlohmann::json rays = nlohmann::json::array();
+  for (size_t i = 0; i < tree.size(); ++i) {
+    const RayRecord& r = tree[i];
+    nlohmann::json n = {{"id", i}, {"kind", r.kind}, {"parent", r.parent}, {"depth", r.depth},
+                        {"origin", vec(r.origin)}, {"direction", vec(r.dir)}, {"hit", r.hit},
+                        {"weight", vec(r.weight)}, {"contribution", vec(r.contribution)}};
+    if (r.hit) {
+      n["t"] = r.t;
+      n["position"] = vec(r.position);
+      n["material"] = r.material;
+      n["side"] = r.entering ? "front" : "back";
+    }
+    if (!r.note.empty()) n["note"] = r.note;
+    rays.push_back(std::move(n));
+  }
+  return nlohmann::json({{"pixel", {x, y}}, {"rays", rays}}).dump(2) + "\n";
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+  std::string tmp = path + ".tmp" + std::to_string(getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw InputError(path + ": cannot write file");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw InputError(path + ": cannot write file: " + ec.message());
+  }
+}
+
+std::string statsSummary(const RenderStats& s) {
+  const RayCounts& r = s.rays;
+  std::string out = fmt::format(
+      "{}: {}x{} spp {} on {} thread{} in {:.2f} s (load {:.2f}, bvh {:.2f}, photons {:.2f}+{:.2f}, "
+      "render {:.2f})\n  rays: {} camera, {} shadow, {} reflection, {} refraction\n",
+      s.scene, s.width, s.height, s.spp, s.threads, s.threads == 1 ? "" : "s", s.time.total,
+      s.time.load, s.time.buildBvh, s.time.emit, s.time.buildMaps, s.time.render, r.camera, r.shadow,
+      r.reflection, r.refraction);
+  if (r.gateQueries) {
+    out += fmt::format("  gate: {} queries, {:.1f}% lit, {:.1f}% shadowed, {:.1f}% mixed; {} shadow rays avoided\n",
+                       r.gateQueries, 100.0 * r.gateLit / r.gateQueries,
+                       100.0 * r.gateShadowed / r.gateQueries, 100.0 * r.gateMixed / r.gateQueries,
+                       r.shadowRaysAvoided);
+  }
+  if (s.emittedShadow || s.emittedIndirect) {
+    out += fmt::format("  photons: {} shadow stored of {} emitted, {} indirect stored of {} emitted, maps {:.1f} MB\n",
+                       s.storedShadow, s.emittedShadow, s.storedIndirect, s.emittedIndirect,
+                       s.photonMapBytes / 1e6);
+  }
+  return out;
+}
+
+}  // namespace penumbra

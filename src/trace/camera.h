@@ -1,0 +1,35 @@
+// Pinhole camera: maps a film position to a primary ray.
+#pragma once
+#include "core/scene.h"
+#include "trace/ray.h"
+
+namespace penumbra {
+
+class CameraRays {
+ public:
+  explicit CameraRays(const Camera& c) : origin_(c.position), width_(c.width), height_(c.height) {
+    forward_ = glm::normalize(c.lookAt - c.position);
+    right_ = glm::normalize(glm::cross(forward_, c.up));
+    up_ = glm::cross(right_, forward_);
+    tanHalf_ = std::tan(glm::radians(c.fovY) * 0.5f);
+    aspect_ = static_cast<float>(c.width) / static_cast<float>(c.height);
+  }
+  // (fx, fy) in pixels from the top-left corner of the film.
+  Ray generate(float fx, float fy) const {
+    float sx = (2.0f * fx / width_ - 1.0f) * aspect_ * tanHalf_;
+    float sy = (1.0f - 2.0f * fy / height_) * tanHalf_;
+    Ray r;
+    r.origin = origin_;
+    r.dir = glm::normalize(forward_ + sx * right_ + sy * up_);
+    return r;
+  }
+  // Angle one pixel subtends at the centre: the texture-footprint growth rate.
+  float pixelSpread() const { return 2.0f * tanHalf_ / height_; }
+
+ private:
+  Vec3 origin_, forward_, right_, up_;
+  float tanHalf_ = 1.0f, aspect_ = 1.0f;
+  int width_, height_;
+};
+
+}  // namespace penumbra

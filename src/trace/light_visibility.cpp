@@ -1,0 +1,91 @@
+// Light visibility through the ambiguity gate, and the ambient/indirect term.
+// Only the penumbra (photons disagree) pays for a real shadow ray.
+#include "trace/light_visibility.h"
+#include "gather/photon_map.h"
+
+namespace penumbra {
+
+ThreadState::ThreadState() : scratch(std::make_unique<GatherScratch>()) {}
+ThreadState::~ThreadState() = default;
+ThreadState::ThreadState(ThreadState&&) noexcept = default;
+
+namespace {
+
+// Transmittance along a shadow ray. Opaque scenes need one occlusion query;
+// with glass, walk the segment and filter by the tint of every surface entered
+// (Whitted's tinted shadows: cheap, no caustic focusing).
+Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, const Vec3& toLight,
+                          float distance, ThreadState& ts) {
+  ++ts.counts.shadow;
+  Ray ray{offsetRayOrigin(s.position, s.ng, toLight), toLight};
+  // Stop short of the light by the same relative margin used off surfaces.
+  ray.tMax = std::isinf(distance) ? kInf : distance * (1.0f - 1e-4f);
+  if (!ctx.hasGlass) return ctx.tracer.occluded(ray) ? Color(0.0f) : Color(1.0f);
+  Color t(1.0f);
+  for (int crossing = 0; crossing < 32; ++crossing) {
+    Hit hit;
+    if (!ctx.tracer.intersect(ray, hit)) return t;
+    SurfaceRecord h = ctx.tracer.surface(ray, hit);
+    const Material& m = ctx.scene.materials[h.material];
+    if (!m.transparent) return Color(0.0f);
+    if (h.frontFace) t *= m.tint;
+    if (maxComponent(t) < ctx.scene.render.minWeight) return Color(0.0f);
+    ray.origin = offsetRayOrigin(h.position, h.ng, toLight);
+    if (!std::isinf(ray.tMax)) ray.tMax -= hit.t;
+    if (ray.tMax <= 0.0f) return t;
+  }
+  return Color(0.0f);
+}
+
+}  // namespace
+
+Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                      const Vec3& toLight, float distance, ThreadState& ts, std::string* note) {
+  const PhotonSettings& ps = ctx.scene.photons;
+  bool gated = ps.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(lightIndex);
+  if (gated) {
+    GateParams params;
+    params.k = ps.kShadow;
+    params.maxRadius = ps.maxRadius;
+    ++ts.counts.gateQueries;
+    GateVerdict v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch);
+    if (v == GateVerdict::Lit) {
+      ++ts.counts.gateLit;
+      ++ts.counts.shadowRaysAvoided;
+      if (note) *note = "gate: lit";
+      return Color(1.0f);
+    }
+    // Behind glass a "shadow" is only tinted, which the photons cannot tell.
+    if (v == GateVerdict::Shadowed && !ctx.hasGlass) {
+      ++ts.counts.gateShadowed;
+      ++ts.counts.shadowRaysAvoided;
+      if (note) *note = "gate: shadowed";
+      return Color(0.0f);
+    }
+    if (v == GateVerdict::Shadowed) ++ts.counts.gateShadowed;
+    else ++ts.counts.gateMixed;
+    if (note) *note = v == GateVerdict::Mixed ? "gate: mixed, shadow ray" : "gate: shadowed behind glass, shadow ray";
+  }
+  return shadowTransmittance(ctx, s, toLight, distance, ts);
+}
+
+Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
+                  ThreadState& ts) {
+  if (!ctx.indirectMap || ctx.indirectMap->empty()) return m.ambient * ctx.scene.render.ambient;
+  const PhotonSettings& ps = ctx.scene.photons;
+  ++ts.counts.gatherQueries;
+  if (ps.estimator == IndirectEstimator::Density) {
+    // Irradiance from the cone-filtered density, reflected like direct light
+    // (k_d E), so direct and indirect share the same units.
+    auto e = ctx.indirectMap->density(s.position, s.ng, ps.kIndirect, ps.maxRadius, *ts.scratch);
+    ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
+    return m.diffuse * e.value;
+  }
+  // Classic (the report's): the weighted mean photon colour replaces the
+  // global ambient light; the material's ambient colour still filters it.
+  auto e = ctx.indirectMap->classic(s.position, s.ng, ps.kIndirect, ps.maxRadius, *ts.scratch);
+  ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
+  return m.ambient * e.value * ctx.classicScale;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,118 @@
+// Tiles are scheduled by tbb::parallel_for and write disjoint pixels; every
+// sample's random numbers come from (seed, pixel, sample), never from a thread.
+#include "trace/render.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "trace/camera.h"
+#include "trace/light_visibility.h"
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <atomic>
+
+namespace penumbra {
+
+Aov parseAov(const std::string& name) {
+  if (name == "beauty") return Aov::Beauty;
+  if (name == "depth") return Aov::Depth;
+  if (name == "normal") return Aov::Normal;
+  if (name == "indirect") return Aov::Indirect;
+  throw InputError("--aov: unknown view '" + name + "' (use beauty, depth, normal or indirect)");
+}
+
+namespace {
+
+// Sub-pixel position of sample s of n: stratified over a ceil(sqrt(n))^2 grid
+// with jitter; a single sample sits at the pixel centre.
+Vec2 samplePosition(int s, int n, Rng& rng) {
+  if (n == 1) return {0.5f, 0.5f};
+  int side = static_cast<int>(std::ceil(std::sqrt(static_cast<float>(n))));
+  int cx = s % side, cy = (s / side) % side;
+  return {(cx + rng.uniform()) / side, (cy + rng.uniform()) / side};
+}
+
+// One sample of the chosen view. Depth stores the raw distance (normalised for
+// display afterwards), -1 on a miss.
+Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
+  if (aov == Aov::Beauty) return traceRay(ctx, ray, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  ++ts.counts.camera;
+  Hit hit;
+  if (!ctx.tracer.intersect(ray, hit)) return aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
+  if (aov == Aov::Depth) return Color(hit.t);
+  SurfaceRecord s = ctx.tracer.surface(ray, hit);
+  if (aov == Aov::Normal) return s.ns * 0.5f + 0.5f;
+  const Material& m = ctx.scene.materials[s.material];
+  return ambientTerm(ctx, s, m, ts);  // Aov::Indirect
+}
+
+// Depth view as in the report: near black, far white, misses white.
+void normaliseDepth(Image& image) {
+  float lo = kInf, hi = -kInf;
+  for (const Color& c : image.pixels) {
+    if (c.r >= 0.0f) { lo = std::min(lo, c.r); hi = std::max(hi, c.r); }
+  }
+  float range = hi > lo ? hi - lo : 1.0f;
+  for (Color& c : image.pixels) {
+    c = c.r < 0.0f ? Color(1.0f) : Color(std::isfinite(lo) ? (c.r - lo) / range : 1.0f);
+  }
+}
+
+}  // namespace
+
+Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCounts& counts) {
+  const Camera& cam = ctx.scene.camera;
+  CameraRays camera(cam);
+  Image image(cam.width, cam.height);
+  const int tile = options.tileSize;
+  const int tilesX = (cam.width + tile - 1) / tile, tilesY = (cam.height + tile - 1) / tile;
+  const int numTiles = tilesX * tilesY;
+  const uint64_t seed = ctx.scene.render.seed;
+  tbb::enumerable_thread_specific<ThreadState> states;
+  std::atomic<int> tilesDone{0};
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, numTiles, 1), [&](const tbb::blocked_range<int>& r) {
+    ThreadState& ts = states.local();
+    for (int t = r.begin(); t != r.end(); ++t) {
+      int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
+      int x1 = std::min(x0 + tile, cam.width), y1 = std::min(y0 + tile, cam.height);
+      for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+          uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
+          Color sum(0.0f);
+          for (int s = 0; s < cam.spp; ++s) {
+            Rng rng(hashKey(seed, pixel, static_cast<uint64_t>(s)));
+            Vec2 off = samplePosition(s, cam.spp, rng);
+            sum += shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
+          }
+          image.at(x, y) = sum / static_cast<float>(cam.spp);
+        }
+      }
+      int done = ++tilesDone;
+      if (options.progress) options.progress(static_cast<double>(done) / numTiles);
+    }
+  });
+
+  for (const ThreadState& ts : states) counts += ts.counts;
+  if (options.aov == Aov::Depth) normaliseDepth(image);
+  return image;
+}
+
+RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
+  const Camera& cam = ctx.scene.camera;
+  if (x < 0 || y < 0 || x >= cam.width || y >= cam.height) {
+    throw InputError("--trace-pixel: " + std::to_string(x) + "," + std::to_string(y) +
+                     " is outside the " + std::to_string(cam.width) + "x" + std::to_string(cam.height) +
+                     " image");
+  }
+  RayTree tree;
+  ThreadState ts;
+  ts.recorder = &tree;
+  uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
+  Rng rng(hashKey(ctx.scene.render.seed, pixel, 0));
+  Vec2 off = samplePosition(0, cam.spp, rng);
+  CameraRays camera(cam);
+  traceRay(ctx, camera.generate(x + off.x, y + off.y), 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  return tree;
+}
+
+}  // namespace penumbra

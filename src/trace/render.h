@@ -1,0 +1,30 @@
+// The tile-parallel image loop: camera rays, stratified samples per pixel, and
+// the depth/normal/indirect views. Deterministic for any thread count.
+#pragma once
+#include "core/image.h"
+#include "core/ray_record.h"
+#include "trace/shading.h"
+#include <functional>
+#include <string>
+
+namespace penumbra {
+
+enum class Aov { Beauty, Depth, Normal, Indirect };
+
+// Parses "beauty", "depth", "normal", "indirect"; throws InputError otherwise.
+Aov parseAov(const std::string& name);
+
+struct RenderOptions {
+  Aov aov = Aov::Beauty;
+  int tileSize = 16;
+  // Called with the fraction of tiles done, from whichever thread finished one.
+  std::function<void(double)> progress;
+};
+
+// Renders the whole image; `counts` receives the sum of every thread's counters.
+Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCounts& counts);
+
+// The full ray tree of one pixel's first sample (--trace-pixel).
+RayTree tracePixel(const ShadingContext& ctx, int x, int y);
+
+}  // namespace penumbra

@@ -1,0 +1,49 @@
+// Whitted-style shading: Phong per light, gated shadow rays, recursive mirror
+// reflection and Fresnel refraction, with the photon maps' indirect term.
+#pragma once
+#include "core/ray_record.h"
+#include "core/scene.h"
+#include "core/stats.h"
+#include "trace/trace_scene.h"
+#include <memory>
+
+namespace penumbra {
+
+class ShadowPhotonMap;
+class IndirectPhotonMap;
+class TextureLookup;
+struct GatherScratch;
+
+// Read-only inputs shared by all render threads.
+struct ShadingContext {
+  const Scene& scene;
+  const TraceScene& tracer;
+  const ShadowPhotonMap* shadowMap = nullptr;      // null: every shadow test is a ray
+  const IndirectPhotonMap* indirectMap = nullptr;  // null: the ambient term is used
+  const TextureLookup* textures = nullptr;
+  float classicScale = 1.0f;  // turns stored photon flux back into photon colour
+  float pixelSpread = 0.0f;   // radians per pixel, for texture filter widths
+  bool hasGlass = false;      // some material is transparent: shadows are tinted
+};
+
+// Per-thread mutable state: counters, reusable gather buffers, optional recorder.
+struct ThreadState {
+  ThreadState();
+  ~ThreadState();
+  ThreadState(ThreadState&&) noexcept;
+  RayCounts counts;
+  std::unique_ptr<GatherScratch> scratch;
+  RayTree* recorder = nullptr;  // --trace-pixel: every ray appended here
+};
+
+enum class RayKind { Camera, Reflection, Refraction };
+
+// Radiance arriving along `ray`. `weight` is the path throughput so far (used
+// only to stop recursion when it becomes negligible); `cone` is the ray's
+// footprint width at its origin, for texture filtering.
+Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color& weight,
+               float cone, RayKind kind, int parentRecord, ThreadState& ts);
+
+bool sceneHasGlass(const Scene& scene);
+
+}  // namespace penumbra

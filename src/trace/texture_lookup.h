@@ -1,0 +1,25 @@
+// Image textures through OpenImageIO's TextureSystem: MIP-mapped, filtered,
+// periodic in u (the longitude seam) and clamped in v (the poles).
+#pragma once
+#include "trace/trace_scene.h"
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+class TextureLookup {
+ public:
+  // paths: Scene::textures paths, already resolved to real files.
+  explicit TextureLookup(const std::vector<std::string>& paths);
+  ~TextureLookup();
+  // Linear RGB of texture `index` at the surface's uv; `footprint` is the world
+  // width the pixel covers there, turned into a filter width in uv.
+  Color lookup(int index, const SurfaceRecord& s, float footprint, const TraceScene& tracer) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,181 @@
+// Builds the Embree scene (triangle meshes + one user geometry of spheres) and
+// answers ray queries; expands hits into surface records for shading.
+#include "trace/trace_scene.h"
+#include "core/error.h"
+#include "trace/sphere_geometry.h"
+#include <stdexcept>
+#include <string>
+
+namespace penumbra {
+namespace {
+
+void onEmbreeError(void* userPtr, RTCError code, const char* message) {
+  // Embree reports through a C callback; remember the first error and let the
+  // constructor throw once control is back in C++.
+  auto* first = static_cast<std::string*>(userPtr);
+  if (first->empty()) first->assign(std::string("Embree error ") + std::to_string(code) + ": " + (message ? message : ""));
+}
+
+RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    vertices[3 * i + 0] = mesh.positions[i].x;
+    vertices[3 * i + 1] = mesh.positions[i].y;
+    vertices[3 * i + 2] = mesh.positions[i].z;
+  }
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) indices[3 * i + k] = mesh.triangles[i][k];
+  }
+  rtcCommitGeometry(geom);
+  return geom;
+}
+
+}  // namespace
+
+Vec2 sphericalUv(const Vec3& d) {
+  float u = 0.5f + std::atan2(d.x, d.z) / (2.0f * kPi);
+  if (u >= 1.0f) u -= 1.0f;  // atan2 = pi maps to exactly 1: wrap it to the seam
+  if (u < 0.0f) u += 1.0f;
+  float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi;
+  return {u, v};
+}
+
+TraceScene::TraceScene(const Scene& scene) : scene_(scene) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("cannot create Embree device");
+  rtcSetDeviceErrorFunction(device_, onEmbreeError, &embreeError_);
+  rtcScene_ = rtcNewScene(device_);
+
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const TriangleMesh& mesh = scene.meshes[m];
+    Vec3 lo(kInf), hi(-kInf);
+    for (const Vec3& p : mesh.positions) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    meshCentres_.push_back(mesh.positions.empty() ? Vec3(0.0f) : 0.5f * (lo + hi));
+    meshRadii_.push_back(mesh.positions.empty() ? 1.0f : std::max(1e-6f, 0.5f * glm::length(hi - lo)));
+    if (mesh.triangles.empty()) continue;
+    RTCGeometry geom = createMeshGeometry(device_, mesh);
+    unsigned id = rtcAttachGeometry(rtcScene_, geom);
+    rtcReleaseGeometry(geom);
+    if (geometries_.size() <= id) geometries_.resize(id + 1);
+    geometries_[id] = {false, static_cast<uint32_t>(m)};
+  }
+  if (!scene.spheres.empty()) {
+    RTCGeometry geom = createSphereGeometry(device_, scene.spheres);
+    unsigned id = rtcAttachGeometry(rtcScene_, geom);
+    rtcReleaseGeometry(geom);
+    if (geometries_.size() <= id) geometries_.resize(id + 1);
+    geometries_[id] = {true, 0};
+  }
+  rtcCommitScene(rtcScene_);
+  if (!embreeError_.empty()) {
+    std::string message = embreeError_;
+    rtcReleaseScene(rtcScene_);
+    rtcReleaseDevice(device_);
+    throw std::runtime_error(message);
+  }
+}
+
+TraceScene::~TraceScene() {
+  rtcReleaseScene(rtcScene_);
+  rtcReleaseDevice(device_);
+}
+
+bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x; rh.ray.org_y = ray.origin.y; rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.dir.x; rh.ray.dir_y = ray.dir.y; rh.ray.dir_z = ray.dir.z;
+  rh.ray.tnear = ray.tMin;
+  rh.ray.tfar = ray.tMax;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = ~0u;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(rtcScene_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.t = rh.ray.tfar;
+  hit.u = rh.hit.u;
+  hit.v = rh.hit.v;
+  hit.geomId = rh.hit.geomID;
+  hit.primId = rh.hit.primID;
+  return true;
+}
+
+bool TraceScene::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r;
+  r.org_x = ray.origin.x; r.org_y = ray.origin.y; r.org_z = ray.origin.z;
+  r.dir_x = ray.dir.x; r.dir_y = ray.dir.y; r.dir_z = ray.dir.z;
+  r.tnear = ray.tMin;
+  r.tfar = ray.tMax;
+  r.time = 0.0f;
+  r.mask = ~0u;
+  r.id = 0;
+  r.flags = 0;
+  rtcOccluded1(rtcScene_, &context, &r);
+  return r.tfar < 0.0f;
+}
+
+SurfaceRecord TraceScene::surface(const Ray& ray, const Hit& hit) const {
+  return geometries_[hit.geomId].sphere ? sphereSurface(ray, hit) : meshSurface(ray, hit);
+}
+
+SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit) const {
+  const Sphere& s = scene_.spheres[hit.primId];
+  SurfaceRecord rec;
+  Vec3 p = ray.origin + hit.t * ray.dir;
+  Vec3 n = glm::normalize(p - s.center);
+  // Re-project onto the sphere: removes the error of o + t d at large t.
+  rec.position = s.center + s.radius * n;
+  rec.uv = sphericalUv(n);
+  rec.radius = s.radius;
+  rec.material = s.material;
+  rec.frontFace = glm::dot(n, ray.dir) < 0.0f;
+  rec.ng = rec.ns = rec.frontFace ? n : -n;
+  return rec;
+}
+
+SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit) const {
+  const TriangleMesh& mesh = scene_.meshes[geometries_[hit.geomId].index];
+  const auto& tri = mesh.triangles[hit.primId];
+  float w = 1.0f - hit.u - hit.v;
+  const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+  SurfaceRecord rec;
+  // Barycentric interpolation is exact to float precision on the triangle's
+  // plane, unlike o + t d, which drifts with the ray length.
+  rec.position = w * p0 + hit.u * p1 + hit.v * p2;
+  Vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  Vec3 ns = ng;
+  if (!mesh.normals.empty()) {
+    Vec3 n = w * mesh.normals[tri[0]] + hit.u * mesh.normals[tri[1]] + hit.v * mesh.normals[tri[2]];
+    float len = glm::length(n);
+    if (len > 1e-12f) ns = n / len;
+  }
+  if (!mesh.uvs.empty()) {
+    rec.uv = w * mesh.uvs[tri[0]] + hit.u * mesh.uvs[tri[1]] + hit.v * mesh.uvs[tri[2]];
+  } else {
+    Vec3 d = rec.position - meshCentres_[geometries_[hit.geomId].index];
+    float len = glm::length(d);
+    rec.uv = sphericalUv(len > 0.0f ? d / len : Vec3(0.0f, 1.0f, 0.0f));
+  }
+  rec.material = mesh.material;
+  rec.radius = meshRadii_[geometries_[hit.geomId].index];
+  rec.frontFace = glm::dot(ng, ray.dir) < 0.0f;
+  if (!rec.frontFace) { ng = -ng; ns = -ns; }
+  // An interpolated normal can lean past the silhouette; never let it face away
+  // from the viewer, or Phong would light the back of the surface.
+  if (glm::dot(ns, ray.dir) > 0.0f) ns = ng;
+  rec.ng = ng;
+  rec.ns = ns;
+  return rec;
+}
+
+}  // namespace penumbra

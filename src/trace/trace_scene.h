@@ -1,0 +1,60 @@
+// The Embree 3 device and scene built from a Scene: ray queries for the tracer
+// and the photon pass, and the expansion of a small Hit into a SurfaceRecord.
+#pragma once
+#include "core/scene.h"
+#include "trace/ray.h"
+#include <embree3/rtcore.h>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+// Everything shading needs about a hit. Normals are unit length and face the
+// side the ray came from; frontFace says whether that is the outside (the side
+// the geometric normal points to), which decides entering versus leaving glass.
+struct SurfaceRecord {
+  Vec3 position{0.0f};
+  Vec3 ng{0.0f, 0.0f, 1.0f};  // geometric normal, facing the incoming ray
+  Vec3 ns{0.0f, 0.0f, 1.0f};  // shading normal, facing the incoming ray
+  Vec2 uv{0.0f};
+  float radius = 1.0f;  // object's size (sphere radius, mesh half-diagonal) for uv filter widths
+  int material = 0;
+  bool frontFace = true;
+};
+
+class TraceScene {
+ public:
+  explicit TraceScene(const Scene& scene);
+  ~TraceScene();
+  TraceScene(const TraceScene&) = delete;
+  TraceScene& operator=(const TraceScene&) = delete;
+
+  bool intersect(const Ray& ray, Hit& hit) const;
+  bool occluded(const Ray& ray) const;
+  SurfaceRecord surface(const Ray& ray, const Hit& hit) const;
+
+  const Scene& scene() const { return scene_; }
+  RTCScene handle() const { return rtcScene_; }
+
+ private:
+  struct GeometryRef {
+    bool sphere;
+    uint32_t index;  // mesh index; spheres share one geometry and use primID
+  };
+  SurfaceRecord sphereSurface(const Ray& ray, const Hit& hit) const;
+  SurfaceRecord meshSurface(const Ray& ray, const Hit& hit) const;
+
+  const Scene& scene_;
+  RTCDevice device_ = nullptr;
+  RTCScene rtcScene_ = nullptr;
+  std::vector<GeometryRef> geometries_;  // by Embree geomID
+  std::vector<Vec3> meshCentres_;        // for spherical UVs on meshes without uvs
+  std::vector<float> meshRadii_;
+  std::string embreeError_;              // first error Embree reported, if any
+};
+
+// Equirectangular (u, v) of a unit direction from a centre, y up: u grows
+// eastwards with u = 0.5 facing +z, v = 0 at the north pole. u is in [0, 1).
+Vec2 sphericalUv(const Vec3& unitDir);
+
+}  // namespace penumbra
