@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
   render->add_option("--stats", statsPath, "Write render statistics as JSON to this file");
-  render->add_option("--aov", req.aov, "What to render: beauty (default), depth, normal, indirect");
+  render->add_option("--aov", req.aov, "What to render: beauty, depth, normal, indirect (default: the scene's render.aov, else beauty)");
   render->add_flag("--no-gate", noGate, "Cast every shadow ray instead of asking the shadow photon map");
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");

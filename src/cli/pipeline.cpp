@@ -44,13 +44,14 @@ RenderResult runRender(const RenderRequest& request) {
   Stopwatch total;
   int threads = request.threads > 0 ? request.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  Aov aov = parseAov(request.aov);
   RenderResult result;
   RenderStats& stats = result.stats;
 
   Stopwatch phase;
   Scene scene = loadScene(request.scenePath, request.overrides);
   stats.time.load = phase.seconds();
+  const std::string aovName = request.aov.empty() ? scene.render.aov : request.aov;
+  Aov aov = parseAov(aovName);
 
   phase = Stopwatch();
   TraceScene tracer(scene);
@@ -115,7 +116,7 @@ RenderResult runRender(const RenderRequest& request) {
 
   if (!request.outputPath.empty() && !request.tracePixel) {
     phase = Stopwatch();
-    writeImage(request.outputPath, result.image, describe(scene, stats, request.aov));
+    writeImage(request.outputPath, result.image, describe(scene, stats, aovName));
     stats.time.write = phase.seconds();
   }
   stats.time.total = total.seconds();

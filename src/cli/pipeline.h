@@ -16,7 +16,7 @@ struct RenderRequest {
   std::string outputPath;               // empty: keep the image in memory only
   std::vector<std::string> overrides;   // --set k=v, applied in order
   int threads = 0;                      // 0 = all cores
-  std::string aov = "beauty";
+  std::string aov;  // empty: the scene's render.aov
   std::optional<std::pair<int, int>> tracePixel;  // record this pixel's ray tree instead
   std::function<void(double)> progress;
 };

@@ -73,6 +73,8 @@ struct RenderSettings {
   Color ambient{1.0f};     // global ambient light, multiplies Material::ambient
   float minWeight = 1e-3f;  // recursion stops when the path weight falls below
   uint64_t seed = 1;
+  bool shadows = true;      // false: lights reach every surface facing them
+  std::string aov = "beauty";  // default view; the CLI's --aov overrides it
 };
 
 enum class IndirectEstimator { Classic, Density };

@@ -41,6 +41,7 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, con
 
 Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                       const Vec3& toLight, float distance, ThreadState& ts, std::string* note) {
+  if (!ctx.scene.render.shadows) return Color(1.0f);
   const PhotonSettings& ps = ctx.scene.photons;
   bool gated = ps.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(lightIndex);
   if (gated) {
