@@ -1,0 +1,193 @@
+// Image file I/O through OpenImageIO: the sRGB transfer curve, the choice of
+// writer by extension, and the write-to-temp-then-rename that keeps targets whole.
+#include "io/image_io.h"
+
+#include "core/error.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <system_error>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+enum class Encoding { Srgb8, LinearHalf };
+
+// The IEC 61966-2-1 piecewise curve, in double so that the 8-bit rounding is
+// decided by the standard and not by float error near the .5 boundaries.
+double srgbEncode(double linear) {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+double srgbDecode(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+uint8_t toSrgb8(float linear) {
+  if (!std::isfinite(linear) || linear <= 0.0f) return 0;
+  if (linear >= 1.0f) return 255;
+  return static_cast<uint8_t>(std::floor(srgbEncode(linear) * 255.0 + 0.5));
+}
+
+// Largest finite half: anything brighter would become +Inf in the EXR.
+constexpr float kHalfMax = 65504.0f;
+float toHalfSafe(float linear) {
+  if (!std::isfinite(linear)) return 0.0f;
+  return std::clamp(linear, -kHalfMax, kHalfMax);
+}
+
+// OIIO error strings can span lines; InputError messages are one line.
+std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  text = OIIO::Strutil::strip(text);
+  return text.empty() ? "unknown error" : text;
+}
+
+// Same directory (so the rename is atomic on one filesystem), real extension
+// last (so OIIO picks the right writer), pid + counter (so neither two processes
+// nor two threads writing the same target share a temp name).
+fs::path tempPathFor(const fs::path& target) {
+  static std::atomic<unsigned> counter{0};
+  std::string name = target.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
+                     std::to_string(counter++) + target.extension().string();
+  return target.parent_path() / name;
+}
+
+[[noreturn]] void writeFailed(const std::string& path, const std::string& reason) {
+  throw InputError(path + ": cannot write image: " + oneLine(reason));
+}
+
+void writeFile(const fs::path& file, const std::string& target, const OIIO::ImageSpec& spec,
+               OIIO::TypeDesc pixelType, const void* pixels) {
+  auto out = OIIO::ImageOutput::create(file.string());
+  if (!out) writeFailed(target, OIIO::geterror());
+  if (!out->open(file.string(), spec)) writeFailed(target, out->geterror());
+  if (!out->write_image(pixelType, pixels)) {
+    std::string reason = out->geterror();
+    out->close();
+    writeFailed(target, reason);
+  }
+  if (!out->close()) writeFailed(target, out->geterror());
+}
+
+}  // namespace
+
+void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata) {
+  fs::path target(path);
+  std::string ext = OIIO::Strutil::lower(target.extension().string());
+  Encoding encoding;
+  if (ext == ".png") {
+    encoding = Encoding::Srgb8;
+  } else if (ext == ".exr") {
+    encoding = Encoding::LinearHalf;
+  } else {
+    throw InputError(path + ": unsupported image extension '" + target.extension().string() +
+                     "' (use .png or .exr)");
+  }
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != static_cast<size_t>(image.width) * image.height) {
+    writeFailed(path, "image is empty or its pixel count does not match its size");
+  }
+
+  const size_t count = image.pixels.size() * 3;
+  std::vector<uint8_t> bytes;
+  std::vector<float> floats;
+  OIIO::ImageSpec spec;
+  const void* pixels = nullptr;
+  OIIO::TypeDesc pixelType;
+  if (encoding == Encoding::Srgb8) {
+    spec = OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    bytes.resize(count);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+      for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = toSrgb8(image.pixels[i][c]);
+    pixels = bytes.data();
+    pixelType = OIIO::TypeDesc::UINT8;
+  } else {
+    spec = OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::HALF);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    floats.resize(count);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+      for (int c = 0; c < 3; ++c) floats[i * 3 + c] = toHalfSafe(image.pixels[i][c]);
+    pixels = floats.data();
+    pixelType = OIIO::TypeDesc::FLOAT;  // OIIO converts to the file's half
+  }
+  spec.attribute("Software", "penumbra");
+  for (const auto& [key, value] : metadata) spec.attribute(key, value);
+
+  fs::path temp = tempPathFor(target);
+  try {
+    writeFile(temp, path, spec, pixelType, pixels);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw;
+  }
+  std::error_code ec;
+  fs::rename(temp, target, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    writeFailed(path, ec.message());
+  }
+}
+
+Image readImage(const std::string& path) {
+  // Keep colour unassociated: alpha is dropped, so premultiplying would darken.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  OIIO::ImageBuf buf(path, 0, 0, nullptr, &config);
+  if (!buf.read(0, 0, /*force=*/true, OIIO::TypeDesc::FLOAT)) {
+    throw InputError(path + ": cannot read image: " + oneLine(buf.geterror()));
+  }
+  // nativespec: the file's own format and attributes, not the float buffer's.
+  const OIIO::ImageSpec& spec = buf.nativespec();
+  const int channels = spec.nchannels;
+  if (spec.width <= 0 || spec.height <= 0 || channels <= 0) {
+    throw InputError(path + ": cannot read image: no pixels");
+  }
+
+  // How the stored values relate to linear light. Integer files that say
+  // nothing are taken as sRGB, which is what 8-bit images almost always are.
+  std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
+  bool integer = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+                 spec.format.basetype != OIIO::TypeDesc::HALF &&
+                 spec.format.basetype != OIIO::TypeDesc::DOUBLE;
+  bool srgb = OIIO::Strutil::iequals(colorSpace, "sRGB") || (colorSpace.empty() && integer);
+  float gamma = OIIO::Strutil::istarts_with(colorSpace, "Gamma")
+                    ? spec.get_float_attribute("oiio:Gamma", 2.2f)
+                    : 1.0f;
+
+  std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
+  OIIO::ROI roi = buf.roi();
+  if (!buf.get_pixels(roi, OIIO::TypeDesc::FLOAT, data.data())) {
+    throw InputError(path + ": cannot read image: " + oneLine(buf.geterror()));
+  }
+
+  auto linearise = [&](float v) {
+    if (!std::isfinite(v)) return 0.0f;
+    if (srgb) return static_cast<float>(srgbDecode(v));
+    if (gamma != 1.0f) return std::pow(std::max(v, 0.0f), gamma);
+    return v;
+  };
+  // Grey (and grey + alpha) is replicated; anything past RGB, alpha included, is dropped.
+  const bool grey = channels < 3;
+  Image image(spec.width, spec.height);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const float* p = &data[i * channels];
+    for (int c = 0; c < 3; ++c) image.pixels[i][c] = linearise(p[grey ? 0 : c]);
+  }
+  return image;
+}
+
+}  // namespace penumbra

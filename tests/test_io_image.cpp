@@ -1,0 +1,198 @@
+// Image I/O: exact sRGB encoding, half-precision EXR round trips, metadata, and
+// that failed or successful writes leave no temp files and no partial targets.
+#include "core/error.h"
+#include "io/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <Imath/half.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <set>
+
+namespace fs = std::filesystem;
+using namespace penumbra;
+
+namespace {
+
+// A fresh, empty directory per test, removed afterwards.
+class ImageIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "penumbra-image-XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir = pattern;
+  }
+  void TearDown() override { fs::remove_all(dir); }
+  std::set<std::string> listing() const {
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
+    return names;
+  }
+  std::string file(const std::string& name) const { return (dir / name).string(); }
+  fs::path dir;
+};
+
+double srgbDecode(double e) { return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4); }
+
+std::vector<uint8_t> readBytes(const std::string& path, int& channels) {
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec& spec = in->spec();
+  channels = spec.nchannels;
+  std::vector<uint8_t> bytes(spec.image_pixels() * channels);
+  EXPECT_TRUE(in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, bytes.data()));
+  return bytes;
+}
+
+Image rowImage(const std::vector<float>& values) {
+  Image image(static_cast<int>(values.size()), 1);
+  for (size_t i = 0; i < values.size(); ++i) image.pixels[i] = Color(values[i]);
+  return image;
+}
+
+}  // namespace
+
+TEST_F(ImageIoTest, PngEncodesTheStandardSrgbCurveRoundedToNearest) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = kInf;
+  // 0.0031308 sits at the curve's linear/power boundary: 12.92 * it = 0.04045 -> 10.3 -> 10.
+  Image image = rowImage({0.0f, 0.5f, 1.0f, 0.0031308f, 0.001f, 0.2f, 2.0f, -1.0f, nan, inf});
+  writeImage(file("ramp.png"), image);
+  int channels = 0;
+  std::vector<uint8_t> bytes = readBytes(file("ramp.png"), channels);
+  ASSERT_EQ(channels, 3);
+  const uint8_t expected[] = {0, 188, 255, 10, 3, 124, 255, 0, 0, 0};
+  for (size_t i = 0; i < std::size(expected); ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(bytes[i * 3 + c], expected[i]) << "pixel " << i;
+}
+
+TEST_F(ImageIoTest, PngRoundTripsEvery8BitCode) {
+  // Each code's exact linear value must encode back to the same code, and
+  // readImage must linearise it with the same curve.
+  Image image(256, 1);
+  for (int k = 0; k < 256; ++k) image.pixels[k] = Color(static_cast<float>(srgbDecode(k / 255.0)));
+  writeImage(file("codes.png"), image);
+  int channels = 0;
+  std::vector<uint8_t> bytes = readBytes(file("codes.png"), channels);
+  for (int k = 0; k < 256; ++k) EXPECT_EQ(bytes[k * 3], k);
+  Image back = readImage(file("codes.png"));
+  ASSERT_EQ(back.width, 256);
+  for (int k = 0; k < 256; ++k) EXPECT_NEAR(back.pixels[k].g, image.pixels[k].g, 1e-6f) << k;
+}
+
+TEST_F(ImageIoTest, ExrRoundTripIsExactToHalfPrecision) {
+  Image image(3, 2);
+  const float values[] = {0.0f, 0.1f, 0.5f, 1.0f, 3.14159f, 1234.5f, -0.25f, 1e-3f, 42.0f};
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = Color(values[i % 9], values[(i + 3) % 9], values[(i + 6) % 9]);
+  writeImage(file("linear.exr"), image);
+  Image back = readImage(file("linear.exr"));
+  ASSERT_EQ(back.width, 3);
+  ASSERT_EQ(back.height, 2);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(back.pixels[i][c], static_cast<float>(Imath::half(image.pixels[i][c])));
+}
+
+TEST_F(ImageIoTest, NonFiniteAndOverflowingValuesNeverReachTheFile) {
+  Image image = rowImage({std::numeric_limits<float>::quiet_NaN(), kInf, -kInf, 1e9f});
+  writeImage(file("bad.exr"), image);
+  Image back = readImage(file("bad.exr"));
+  EXPECT_EQ(back.pixels[0].r, 0.0f);
+  EXPECT_EQ(back.pixels[1].r, 0.0f);
+  EXPECT_EQ(back.pixels[2].r, 0.0f);
+  EXPECT_EQ(back.pixels[3].r, 65504.0f);  // largest finite half, not +Inf
+}
+
+TEST_F(ImageIoTest, ExtensionIsCaseInsensitive) {
+  writeImage(file("upper.PNG"), rowImage({0.5f}));
+  writeImage(file("upper.Exr"), rowImage({0.5f}));
+  EXPECT_EQ(listing(), (std::set<std::string>{"upper.PNG", "upper.Exr"}));
+}
+
+TEST_F(ImageIoTest, UnsupportedExtensionThrowsAndWritesNothing) {
+  try {
+    writeImage(file("out.xyz"), rowImage({0.5f}));
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              file("out.xyz") + ": unsupported image extension '.xyz' (use .png or .exr)");
+  }
+  EXPECT_THROW(writeImage(file("noext"), rowImage({0.5f})), InputError);
+  EXPECT_TRUE(listing().empty());
+}
+
+TEST_F(ImageIoTest, SuccessLeavesOnlyTheTarget) {
+  writeImage(file("a.png"), rowImage({0.5f}));
+  writeImage(file("a.png"), rowImage({1.0f}));  // replacing an existing file
+  writeImage(file("b.exr"), rowImage({0.5f}));
+  EXPECT_EQ(listing(), (std::set<std::string>{"a.png", "b.exr"}));
+  EXPECT_FLOAT_EQ(readImage(file("a.png")).pixels[0].r, 1.0f);
+}
+
+TEST_F(ImageIoTest, MissingDirectoryFailsCleanly) {
+  std::string target = (dir / "missing" / "out.png").string();
+  try {
+    writeImage(target, rowImage({0.5f}));
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(target + ": cannot write image: ", 0), 0u) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+  EXPECT_TRUE(listing().empty());
+}
+
+TEST_F(ImageIoTest, FailedRenameRemovesTheTempFile) {
+  // The temp file is written fine, but a directory occupies the target name.
+  fs::create_directory(dir / "taken.png");
+  EXPECT_THROW(writeImage(file("taken.png"), rowImage({0.5f})), InputError);
+  EXPECT_EQ(listing(), (std::set<std::string>{"taken.png"}));
+  EXPECT_TRUE(fs::is_directory(dir / "taken.png"));
+}
+
+TEST_F(ImageIoTest, MetadataIsReadableBack) {
+  const ImageMetadata metadata{{"penumbra:scene", "scenes/cornell.json"},
+                               {"penumbra:photons", "5000000"}};
+  for (const std::string name : {"meta.png", "meta.exr"}) {
+    writeImage(file(name), rowImage({0.5f}), metadata);
+    auto in = OIIO::ImageInput::open(file(name));
+    ASSERT_TRUE(in) << OIIO::geterror();
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.get_string_attribute("Software"), "penumbra") << name;
+    EXPECT_EQ(spec.get_string_attribute("penumbra:scene"), "scenes/cornell.json") << name;
+    EXPECT_EQ(spec.get_string_attribute("penumbra:photons"), "5000000") << name;
+  }
+}
+
+TEST_F(ImageIoTest, ReadReplicatesGreyAndDropsAlpha) {
+  auto writeRaw = [&](const std::string& name, int channels, const std::vector<uint8_t>& bytes) {
+    auto out = OIIO::ImageOutput::create(file(name));
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(1, 1, channels, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // store these bytes as they are
+    ASSERT_TRUE(out->open(file(name), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, bytes.data()));
+    out->close();
+  };
+  writeRaw("grey.png", 1, {188});
+  writeRaw("rgba.png", 4, {255, 188, 0, 7});
+  Image grey = readImage(file("grey.png"));
+  EXPECT_NEAR(grey.pixels[0].r, 0.5f, 5e-3f);  // 188 is 0.5 to within 8-bit steps
+  EXPECT_EQ(grey.pixels[0].r, grey.pixels[0].g);
+  EXPECT_EQ(grey.pixels[0].r, grey.pixels[0].b);
+  Image rgba = readImage(file("rgba.png"));
+  EXPECT_FLOAT_EQ(rgba.pixels[0].r, 1.0f);
+  EXPECT_NEAR(rgba.pixels[0].g, 0.5f, 5e-3f);  // colour is not premultiplied by alpha
+  EXPECT_FLOAT_EQ(rgba.pixels[0].b, 0.0f);
+}
+
+TEST_F(ImageIoTest, ReadingAMissingOrBrokenFileThrows) {
+  EXPECT_THROW(readImage(file("nope.png")), InputError);
+  std::FILE* f = std::fopen(file("broken.png").c_str(), "w");
+  std::fputs("not a png", f);
+  std::fclose(f);
+  EXPECT_THROW(readImage(file("broken.png")), InputError);
+}
