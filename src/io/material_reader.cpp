@@ -1,0 +1,110 @@
+// The "materials" section: Phong terms, mirror and glass parameters, photon
+// Russian-roulette probabilities, and the textures materials reference.
+#include "io/scene_sections.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <unordered_map>
+
+namespace penumbra {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Texture paths of this form name a procedural texture instead of a file.
+// HOOK: they are stored verbatim in Texture::path, unchecked; the texture
+// stage resolves "builtin:NAME" (e.g. "builtin:planet", "builtin:checker").
+constexpr const char* kBuiltinPrefix = "builtin:";
+
+// Texture path -> index into Scene::textures, so materials sharing a file share it.
+using TextureIndex = std::unordered_map<std::string, int>;
+
+int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureIndex& index) {
+  node.allowKeys({"file", "blend"});
+  JsonNode fileNode = node.required("file", " (an image path or \"builtin:NAME\")");
+  std::string file = fileNode.asString();
+  if (file.empty()) fileNode.fail("must not be empty");
+  std::string path;
+  if (file.rfind(kBuiltinPrefix, 0) == 0) {
+    if (file.size() == std::char_traits<char>::length(kBuiltinPrefix)) {
+      fileNode.fail("builtin texture needs a name, e.g. \"builtin:checker\"");
+    }
+    path = file;
+  } else {
+    path = resolvePath(fileNode, file);
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) fileNode.fail("texture file not found: " + path);
+  }
+  size_t blend = node.enumOr("blend", 0, {"multiply", "add"});
+  material.textureBlend = blend == 0 ? TextureBlend::Multiply : TextureBlend::Add;
+  auto [it, inserted] = index.try_emplace(path, static_cast<int>(scene.textures.size()));
+  if (inserted) scene.textures.push_back(Texture{path});
+  return it->second;
+}
+
+Material readMaterial(const JsonNode& node, const std::string& name, Scene& scene,
+                      TextureIndex& textures) {
+  node.allowKeys({"ambient", "diffuse", "specular", "shininess", "reflective", "transparent",
+                  "p_r", "p_t", "texture"});
+  Material m;
+  m.name = name;
+  m.ambient = node.colorOr("ambient", m.ambient);
+  m.diffuse = node.colorOr("diffuse", m.diffuse);
+  m.specular = node.colorOr("specular", m.specular);
+  m.shininess = node.floatOr("shininess", m.shininess, Range::atLeast(0.0));
+  const Range unit = Range::between(0.0, 1.0);
+  if (node.has("reflective")) {
+    JsonNode reflective = node.child("reflective");
+    reflective.allowKeys({"kr"});
+    m.kr = reflective.required("kr", " (mirror weight 0..1)").asFloat(unit);
+  }
+  if (node.has("transparent")) {
+    JsonNode transparent = node.child("transparent");
+    transparent.allowKeys({"ior", "tint"});
+    m.transparent = true;
+    m.ior = transparent.floatOr("ior", m.ior, Range::above(0.0));
+    m.tint = transparent.colorOr("tint", m.tint);
+  }
+  // Photon probabilities default to what the shading does: reflect as often as
+  // the mirror weight, transmit the remainder filtered by the tint's mean.
+  m.pR = node.floatOr("p_r", m.kr, unit);
+  float defaultPT = 0.0f;
+  if (m.transparent) {
+    float meanTint = (m.tint.r + m.tint.g + m.tint.b) / 3.0f;
+    defaultPT = std::clamp((1.0f - m.pR) * meanTint, 0.0f, 1.0f - m.pR);
+  }
+  m.pT = node.floatOr("p_t", defaultPT, unit);
+  if (m.pR + m.pT > 1.0f + 1e-6f) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "p_r + p_t must be <= 1, got %g + %g = %g", m.pR, m.pT,
+                  m.pR + m.pT);
+    node.fail(buf);
+  }
+  if (node.has("texture")) m.texture = readTexture(node.child("texture"), m, scene, textures);
+  return m;
+}
+
+}  // namespace
+
+std::string resolvePath(const JsonNode& where, const std::string& file) {
+  fs::path p(file);
+  if (p.is_relative()) p = where.context().baseDir / p;
+  return p.lexically_normal().string();
+}
+
+void readMaterials(const JsonNode& root, Scene& scene) {
+  if (!root.has("materials")) {
+    Material fallback;
+    fallback.name = "default";
+    scene.materials.push_back(fallback);
+    return;
+  }
+  JsonNode materials = root.child("materials");
+  TextureIndex textures;
+  for (const std::string& name : materials.keys()) {
+    scene.materials.push_back(readMaterial(materials.child(name), name, scene, textures));
+  }
+}
+
+}  // namespace penumbra

@@ -1,0 +1,145 @@
+// OBJ loading: tinyobjloader parse, vertex unification, normals and uvs.
+#include "io/obj_loader.h"
+
+#include "io/mesh_normals.h"
+
+#include <tiny_obj_loader.h>
+
+#include <filesystem>
+#include <unordered_map>
+
+namespace penumbra {
+
+namespace {
+
+// A face corner's (position, normal, uv) indices; -1 = attribute not used.
+struct CornerKey {
+  int v, n, t;
+  bool operator==(const CornerKey& o) const { return v == o.v && n == o.n && t == o.t; }
+};
+
+struct CornerHash {
+  size_t operator()(const CornerKey& k) const {
+    uint64_t h = static_cast<uint32_t>(k.v);
+    h = h * 0x9E3779B97F4A7C15ull ^ static_cast<uint32_t>(k.n);
+    h = h * 0x9E3779B97F4A7C15ull ^ static_cast<uint32_t>(k.t);
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+};
+
+std::string firstLine(const std::string& s) {
+  std::string line = s.substr(0, s.find('\n'));
+  return line.empty() ? "unknown parse error" : line;
+}
+
+void checkIndex(int index, size_t count, const char* what, const std::string& path) {
+  if (index < 0 || static_cast<size_t>(index) >= count) {
+    throw ObjError(std::string("OBJ file ") + path + ": a face refers to " + what + " " +
+                   std::to_string(static_cast<int64_t>(index) + 1) + " but the file has " +
+                   std::to_string(count));
+  }
+}
+
+}  // namespace
+
+TriangleMesh loadObj(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw ObjError("cannot open OBJ file " + path);
+  }
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    throw ObjError("cannot parse OBJ file " + path + ": " + firstLine(reader.Error()));
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const size_t numPositions = attrib.vertices.size() / 3;
+  const size_t numNormals = attrib.normals.size() / 3;
+  const size_t numUvs = attrib.texcoords.size() / 2;
+
+  // Gather triangle corners; a corner-less attribute anywhere drops it everywhere,
+  // since a mesh carries normals and uvs for all vertices or for none.
+  std::vector<tinyobj::index_t> corners;
+  bool allNormals = numNormals > 0, allUvs = numUvs > 0;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    size_t offset = 0;
+    for (unsigned char fv : shape.mesh.num_face_vertices) {
+      if (fv == 3 && offset + 3 <= shape.mesh.indices.size()) {
+        for (size_t k = 0; k < 3; ++k) {
+          const tinyobj::index_t& idx = shape.mesh.indices[offset + k];
+          checkIndex(idx.vertex_index, numPositions, "vertex", path);
+          allNormals = allNormals && idx.normal_index >= 0;
+          allUvs = allUvs && idx.texcoord_index >= 0;
+          corners.push_back(idx);
+        }
+      }
+      offset += fv;
+    }
+  }
+  if (corners.empty()) throw ObjError("OBJ file " + path + " contains no triangles");
+
+  for (const tinyobj::index_t& idx : corners) {
+    if (allNormals) checkIndex(idx.normal_index, numNormals, "normal", path);
+    if (allUvs) checkIndex(idx.texcoord_index, numUvs, "texture coordinate", path);
+  }
+  auto position = [&](int i) {
+    return Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+  };
+  // A zero or non-finite file normal cannot be renormalised: recompute them all.
+  for (const tinyobj::index_t& idx : corners) {
+    if (!allNormals) break;
+    int i = idx.normal_index;
+    Vec3 n(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+    float len = glm::length(n);
+    if (!(len > 0.0f) || !std::isfinite(len)) allNormals = false;
+  }
+
+  TriangleMesh mesh;
+  mesh.name = std::filesystem::path(path).stem().string();
+  std::unordered_map<CornerKey, uint32_t, CornerHash> unified;
+  std::vector<int> positionOf;  // unified vertex -> OBJ position index
+  std::vector<std::array<uint32_t, 3>> positionTriangles;
+  for (size_t c = 0; c < corners.size(); c += 3) {
+    std::array<uint32_t, 3> tri, byPosition;
+    for (size_t k = 0; k < 3; ++k) {
+      const tinyobj::index_t& idx = corners[c + k];
+      CornerKey key{idx.vertex_index, allNormals ? idx.normal_index : -1,
+                    allUvs ? idx.texcoord_index : -1};
+      auto [it, inserted] = unified.try_emplace(key, static_cast<uint32_t>(mesh.positions.size()));
+      if (inserted) {
+        Vec3 p = position(key.v);
+        if (!isFinite(p)) {
+          throw ObjError("OBJ file " + path + ": vertex " + std::to_string(key.v + 1) +
+                         " is not finite");
+        }
+        mesh.positions.push_back(p);
+        positionOf.push_back(key.v);
+        if (allNormals) {
+          Vec3 n(attrib.normals[3 * key.n], attrib.normals[3 * key.n + 1],
+                 attrib.normals[3 * key.n + 2]);
+          mesh.normals.push_back(glm::normalize(n));
+        }
+        if (allUvs) mesh.uvs.emplace_back(attrib.texcoords[2 * key.t], attrib.texcoords[2 * key.t + 1]);
+      }
+      tri[k] = it->second;
+      byPosition[k] = static_cast<uint32_t>(key.v);
+    }
+    mesh.triangles.push_back(tri);
+    positionTriangles.push_back(byPosition);
+  }
+
+  if (!allNormals) {
+    // Smooth over OBJ positions, not unified vertices, so a uv seam does not
+    // split the normal: vertices sharing a position share its normal.
+    std::vector<Vec3> objPositions(numPositions);
+    for (size_t i = 0; i < numPositions; ++i) objPositions[i] = position(static_cast<int>(i));
+    std::vector<Vec3> smooth = angleWeightedNormals(objPositions, positionTriangles);
+    mesh.normals.reserve(mesh.positions.size());
+    for (int p : positionOf) mesh.normals.push_back(smooth[p]);
+  }
+  return mesh;
+}
+
+}  // namespace penumbra

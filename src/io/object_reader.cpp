@@ -1,0 +1,162 @@
+// The "objects" section: spheres stay analytic; meshes, quads, boxes and
+// teapots become transformed TriangleMeshes bound to a material index.
+#include "io/scene_sections.h"
+
+#include "io/obj_loader.h"
+#include "io/shapes.h"
+#include "io/suggest.h"
+#include "io/transform.h"
+
+#include <unordered_map>
+
+#if __has_include("io/teapot.h")
+#include "io/teapot.h"
+#define PENUMBRA_HAS_TEAPOT 1
+#else
+#define PENUMBRA_HAS_TEAPOT 0
+#endif
+
+namespace penumbra {
+
+namespace {
+
+enum class ObjectType { Sphere, Mesh, Quad, Box, Teapot };
+
+// Resolves "material" names to Scene::materials indices.
+class MaterialLookup {
+ public:
+  MaterialLookup(const Scene& scene, bool declared) : declared_(declared) {
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+      index_.emplace(scene.materials[i].name, static_cast<int>(i));
+      names_.push_back(scene.materials[i].name);
+    }
+  }
+
+  int resolve(const JsonNode& object) const {
+    if (!object.has("material")) {
+      // Without a "materials" section every object uses the implicit default.
+      if (!declared_) return 0;
+      object.fail("missing required key \"material\"");
+    }
+    JsonNode node = object.child("material");
+    std::string name = node.asString();
+    auto it = index_.find(name);
+    if (it == index_.end()) {
+      std::string hint = didYouMean(name, names_);
+      node.fail("unknown material " + describeJson(node.value()) + hint);
+    }
+    return it->second;
+  }
+
+ private:
+  bool declared_;
+  std::unordered_map<std::string, int> index_;
+  std::vector<std::string> names_;
+};
+
+Sphere readSphere(const JsonNode& node) {
+  node.allowKeys({"type", "center", "radius", "material"});
+  Sphere s;
+  s.center = node.required("center", " for a sphere").asVec3();
+  s.radius = node.required("radius", " for a sphere").asFloat(Range::above(0.0));
+  return s;
+}
+
+TriangleMesh readQuad(const JsonNode& node) {
+  Vec3 corner = node.required("corner", " for a quad").asVec3();
+  Vec3 edge1 = node.required("edge1", " for a quad").asVec3();
+  JsonNode edge2Node = node.required("edge2", " for a quad");
+  Vec3 edge2 = edge2Node.asVec3();
+  // makeQuad normalises the float cross product, so that is what must be usable.
+  Vec3 normal = glm::cross(edge1, edge2);
+  float length = glm::length(normal);
+  if (!(length > 0.0f) || !std::isfinite(length)) {
+    edge2Node.fail("edge1 and edge2 must be non-zero and not parallel");
+  }
+  return makeQuad(corner, edge1, edge2);
+}
+
+TriangleMesh readBox(const JsonNode& node) {
+  Vec3 lo = node.required("min", " for a box").asVec3();
+  JsonNode maxNode = node.required("max", " for a box");
+  Vec3 hi = maxNode.asVec3();
+  if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) {
+    maxNode.fail("must be greater than min on every axis");
+  }
+  return makeBox(lo, hi);
+}
+
+TriangleMesh readObjMesh(const JsonNode& node) {
+  JsonNode fileNode = node.required("file", " for a mesh (an OBJ path)");
+  std::string file = fileNode.asString();
+  if (file.empty()) fileNode.fail("must not be empty");
+  try {
+    return loadObj(resolvePath(fileNode, file));
+  } catch (const ObjError& e) {
+    fileNode.fail(e.what());
+  }
+}
+
+TriangleMesh readTeapot(const JsonNode& node) {
+  int subdivisions = node.intOr("subdivisions", 8, 1, 64);
+#if PENUMBRA_HAS_TEAPOT
+  TriangleMesh mesh = makeTeapot(subdivisions);
+  if (mesh.name.empty()) mesh.name = "teapot";
+  return mesh;
+#else
+  (void)subdivisions;
+  node.fail("this build has no teapot support (io/teapot.h is missing)");
+#endif
+}
+
+void readObject(const JsonNode& node, const MaterialLookup& materials, Scene& scene) {
+  node.requireObject();
+  auto type = static_cast<ObjectType>(
+      node.required("type", " (\"sphere\", \"mesh\", \"quad\", \"box\" or \"teapot\")")
+          .asEnum({"sphere", "mesh", "quad", "box", "teapot"}));
+  if (type == ObjectType::Sphere) {
+    Sphere sphere = readSphere(node);
+    sphere.material = materials.resolve(node);
+    scene.spheres.push_back(sphere);
+    return;
+  }
+  switch (type) {
+    case ObjectType::Mesh:
+      node.allowKeys({"type", "file", "material", "translate", "rotate", "scale"});
+      break;
+    case ObjectType::Quad:
+      node.allowKeys({"type", "corner", "edge1", "edge2", "material", "translate", "rotate", "scale"});
+      break;
+    case ObjectType::Box:
+      node.allowKeys({"type", "min", "max", "material", "translate", "rotate", "scale"});
+      break;
+    default:
+      node.allowKeys({"type", "subdivisions", "material", "translate", "rotate", "scale"});
+      break;
+  }
+  // Check cheap fields before an expensive OBJ load or tessellation.
+  int material = materials.resolve(node);
+  Transform transform = readTransform(node);
+  TriangleMesh mesh = type == ObjectType::Mesh   ? readObjMesh(node)
+                      : type == ObjectType::Quad ? readQuad(node)
+                      : type == ObjectType::Box  ? readBox(node)
+                                                 : readTeapot(node);
+  applyTransform(transform, mesh);
+  for (const Vec3& p : mesh.positions) {
+    if (!isFinite(p)) node.fail("transformed positions are not finite (scale or translate too large)");
+  }
+  mesh.material = material;
+  scene.meshes.push_back(std::move(mesh));
+}
+
+}  // namespace
+
+void readObjects(const JsonNode& root, Scene& scene) {
+  if (!root.has("objects")) return;
+  MaterialLookup materials(scene, root.has("materials"));
+  JsonNode objects = root.child("objects");
+  size_t count = objects.arraySize();
+  for (size_t i = 0; i < count; ++i) readObject(objects.element(i), materials, scene);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,25 @@
+// Readers for the sections of a scene document, called in order by
+// scene_loader.cpp; each validates its part and fills the Scene.
+#pragma once
+#include "core/scene.h"
+#include "io/json_reader.h"
+
+namespace penumbra {
+
+void readCamera(const JsonNode& camera, Camera& out);
+void readLights(const JsonNode& lights, std::vector<Light>& out);
+void readRender(const JsonNode& render, RenderSettings& out);
+void readPhotons(const JsonNode& photons, PhotonSettings& out);
+
+// "materials" (and the textures they reference). Without a "materials" key the
+// scene gets one implicit material named "default".
+void readMaterials(const JsonNode& root, Scene& scene);
+
+// "objects": spheres into Scene::spheres, everything else into Scene::meshes.
+// Needs the materials read first.
+void readObjects(const JsonNode& root, Scene& scene);
+
+// A path from the scene file made absolute against the scene's folder.
+std::string resolvePath(const JsonNode& where, const std::string& file);
+
+}  // namespace penumbra

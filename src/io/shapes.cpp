@@ -1,0 +1,42 @@
+// Tessellation of the analytic scene shapes that travel as TriangleMesh.
+#include "io/shapes.h"
+
+namespace penumbra {
+
+TriangleMesh makeQuad(const Vec3& corner, const Vec3& edge1, const Vec3& edge2) {
+  TriangleMesh mesh;
+  mesh.name = "quad";
+  mesh.positions = {corner, corner + edge1, corner + edge1 + edge2, corner + edge2};
+  // Triangle (0,1,2) has edges e1 and e1+e2, whose cross product is cross(e1, e2).
+  Vec3 normal = glm::normalize(glm::cross(edge1, edge2));
+  mesh.normals.assign(4, normal);
+  mesh.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return mesh;
+}
+
+TriangleMesh makeBox(const Vec3& min, const Vec3& max) {
+  TriangleMesh mesh;
+  mesh.name = "box";
+  // Corner i takes max on axis k when bit k of i is set: 0 = min, 7 = max.
+  for (uint32_t i = 0; i < 8; ++i) {
+    mesh.positions.push_back(Vec3((i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y,
+                                  (i & 4) ? max.z : min.z));
+  }
+  // Each face as a loop a-b-c-d, counter-clockwise seen from outside.
+  const uint32_t faces[6][4] = {
+      {0, 4, 6, 2},  // -x
+      {1, 3, 7, 5},  // +x
+      {0, 1, 5, 4},  // -y
+      {2, 6, 7, 3},  // +y
+      {0, 2, 3, 1},  // -z
+      {4, 5, 7, 6},  // +z
+  };
+  for (const auto& f : faces) {
+    mesh.triangles.push_back({f[0], f[1], f[2]});
+    mesh.triangles.push_back({f[0], f[2], f[3]});
+  }
+  return mesh;
+}
+
+}  // namespace penumbra
