@@ -1,0 +1,53 @@
+// Spatial ordering of photon arrays: bounding boxes, 63-bit Morton codes and the
+// deterministic (group, code, index) sort the photon maps store their photons in.
+#pragma once
+#include "core/math.h"
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace penumbra {
+
+struct Bounds {
+  Vec3 lo{kInf};
+  Vec3 hi{-kInf};
+  void extend(const Vec3& p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  void extend(const Bounds& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
+  bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
+};
+
+// Spreads the low 21 bits of v so two zero bits separate each (bit i -> bit 3i).
+uint64_t spreadBits21(uint32_t v);
+
+// 63-bit Morton code of p quantised to 2^21 cells per axis over b. Degenerate axes
+// (zero extent: a plane, a line, identical points) quantise to 0 instead of NaN.
+uint64_t mortonCode63(const Vec3& p, const Bounds& b);
+
+// A strided view of positions inside an array of photon records, so the ordering
+// code serves every photon type without copying positions out.
+struct PositionView {
+  const unsigned char* base = nullptr;
+  size_t stride = 0;
+  size_t count = 0;
+  const Vec3& operator[](size_t i) const {
+    return *reinterpret_cast<const Vec3*>(base + i * stride);
+  }
+};
+template <class Photon>
+PositionView positionsOf(const std::vector<Photon>& photons) {
+  return {reinterpret_cast<const unsigned char*>(photons.data()) +
+              offsetof(Photon, position),
+          sizeof(Photon), photons.size()};
+}
+
+// Bounding box of all positions (parallel reduction).
+Bounds computeBounds(const PositionView& positions);
+
+// The order to store photons in: by group (light index; pass nullptr for one group),
+// then, if spatial, by Morton code over `bounds`, ties by original index. The key is
+// unique per photon, so the result does not depend on how the parallel sort splits
+// the work: same input, same order, at any thread count.
+std::vector<uint32_t> storageOrder(const PositionView& positions, const uint16_t* groups,
+                                   size_t groupStride, bool spatial, const Bounds& bounds);
+
+}  // namespace penumbra

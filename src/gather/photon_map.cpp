@@ -1,0 +1,127 @@
+// Building and querying the shadow and indirect photon maps.
+#include "gather/photon_map.h"
+#include "gather/morton.h"
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+namespace penumbra {
+
+namespace {
+// Gathers photons[order[i]] into a new array of exactly the right size.
+template <class Photon>
+std::vector<Photon> permuted(const std::vector<Photon>& photons, const uint32_t* order,
+                             size_t count) {
+  std::vector<Photon> out(count);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1 << 14), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = photons[order[i]];
+  });
+  return out;
+}
+}  // namespace
+
+// ---- ShadowPhotonMap ------------------------------------------------------------
+
+void ShadowPhotonMap::build(std::vector<ShadowPhoton> photons, size_t numLights,
+                            const MapBuildOptions& options) {
+  lights_.clear();
+  lights_.resize(numLights);
+  size_ = 0;
+  if (!photons.empty() && numLights > 0) {
+    // One sort does both jobs: the light index is the primary key, so each light's
+    // photons come out contiguous and, within it, in Morton order.
+    PositionView pos = positionsOf(photons);
+    Bounds bounds = options.mortonSort ? computeBounds(pos) : Bounds{};
+    std::vector<uint32_t> order = storageOrder(pos, &photons[0].light, sizeof(ShadowPhoton),
+                                               options.mortonSort, bounds);
+    size_t begin = 0;
+    for (size_t light = 0; light < numLights; ++light) {
+      size_t end = begin;
+      while (end < order.size() && photons[order[end]].light == light) ++end;
+      lights_[light].photons = permuted(photons, order.data() + begin, end - begin);
+      size_ += end - begin;
+      begin = end;
+    }
+    // order is sorted by light, so whatever is left has light >= numLights: dropped.
+  }
+  photons = {};  // free the input before the trees allocate
+  // nanoflann 1.4.3 builds single-threaded; lights are independent, so build them
+  // side by side.
+  tbb::parallel_for(size_t(0), numLights, [&](size_t light) {
+    lights_[light].tree.build(lights_[light].photons, options.leafSize);
+  });
+}
+
+bool ShadowPhotonMap::hasPhotons(uint32_t light) const {
+  return light < lights_.size() && !lights_[light].photons.empty();
+}
+
+size_t ShadowPhotonMap::knn(const Vec3& p, uint32_t light, size_t k, float maxRadius,
+                            GatherScratch& scratch) const {
+  if (light >= lights_.size()) return 0;
+  return lights_[light].tree.knn(p, k, maxRadius, scratch);
+}
+
+GateVerdict ShadowPhotonMap::classify(const Vec3& p, const Vec3& n, uint32_t light,
+                                      const GateParams& params, GatherScratch& scratch) const {
+  if (params.k <= 0) return GateVerdict::Mixed;
+  size_t found = knn(p, light, static_cast<size_t>(params.k), params.maxRadius, scratch);
+  if (found == 0) return GateVerdict::Mixed;
+  return voteGate(lights_[light].photons.data(), scratch.indices.data(), found, n, params);
+}
+
+size_t ShadowPhotonMap::size() const { return size_; }
+
+size_t ShadowPhotonMap::memoryBytes() const {
+  size_t bytes = lights_.capacity() * sizeof(PerLight);
+  for (const PerLight& l : lights_)
+    bytes += l.photons.capacity() * sizeof(ShadowPhoton) + l.tree.memoryBytes();
+  return bytes;
+}
+
+const std::vector<ShadowPhoton>& ShadowPhotonMap::photons(uint32_t light) const {
+  static const std::vector<ShadowPhoton> kNone;
+  return light < lights_.size() ? lights_[light].photons : kNone;
+}
+
+// ---- IndirectPhotonMap ----------------------------------------------------------
+
+void IndirectPhotonMap::build(std::vector<IndirectPhoton> photons,
+                              const MapBuildOptions& options) {
+  if (options.mortonSort && !photons.empty()) {
+    PositionView pos = positionsOf(photons);
+    std::vector<uint32_t> order = storageOrder(pos, nullptr, 0, true, computeBounds(pos));
+    photons_ = permuted(photons, order.data(), order.size());
+  } else {
+    photons_ = std::move(photons);
+    photons_.shrink_to_fit();
+  }
+  photons = {};
+  tree_.build(photons_, options.leafSize);
+}
+
+size_t IndirectPhotonMap::knn(const Vec3& p, size_t k, float maxRadius,
+                              GatherScratch& scratch) const {
+  return tree_.knn(p, k, maxRadius, scratch);
+}
+
+IndirectPhotonMap::Estimate IndirectPhotonMap::classic(const Vec3& p, const Vec3& n, int k,
+                                                       float maxRadius, GatherScratch& s,
+                                                       float minNormalCos) const {
+  if (k <= 0) return {};
+  size_t found = knn(p, static_cast<size_t>(k), maxRadius, s);
+  return classicEstimate(photons_.data(), s, found, n, minNormalCos);
+}
+
+IndirectPhotonMap::Estimate IndirectPhotonMap::density(const Vec3& p, const Vec3& n, int k,
+                                                       float maxRadius, GatherScratch& s,
+                                                       float minNormalCos) const {
+  if (k <= 0) return {};
+  size_t found = knn(p, static_cast<size_t>(k), maxRadius, s);
+  return densityEstimate(photons_.data(), s, found, n, minNormalCos);
+}
+
+size_t IndirectPhotonMap::memoryBytes() const {
+  return photons_.capacity() * sizeof(IndirectPhoton) + tree_.memoryBytes();
+}
+
+}  // namespace penumbra

@@ -1,0 +1,66 @@
+// The two photon maps the tracer queries: the shadow map (one KD-tree per light,
+// feeding the shadow gate) and the indirect map (feeding the indirect estimators).
+#pragma once
+#include "core/photon.h"
+#include "gather/indirect_estimate.h"
+#include "gather/kd_tree.h"
+#include "gather/shadow_gate.h"
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace penumbra {
+
+class ShadowPhotonMap {
+ public:
+  // Takes ownership. Partitions by light, sorts each partition spatially (Morton
+  // order, if options.mortonSort) in parallel, then builds one KD-tree per light over
+  // the stored arrays. Photons whose light is >= numLights are dropped.
+  void build(std::vector<ShadowPhoton> photons, size_t numLights,
+             const MapBuildOptions& options = {});
+  bool hasPhotons(uint32_t light) const;
+  GateVerdict classify(const Vec3& p, const Vec3& n, uint32_t light, const GateParams& params,
+                       GatherScratch& scratch) const;
+  // Raw kNN for tests and benchmarks: up to k photons of `light` strictly closer than
+  // maxRadius (0 = unlimited), nearest first, into scratch.indices (into photons(light))
+  // and scratch.dist2 (squared distances). Returns how many.
+  size_t knn(const Vec3& p, uint32_t light, size_t k, float maxRadius,
+             GatherScratch& scratch) const;
+  size_t size() const;         // photons stored
+  size_t memoryBytes() const;  // photon arrays + KD-tree nodes/indices
+  size_t numLights() const { return lights_.size(); }
+  const std::vector<ShadowPhoton>& photons(uint32_t light) const;
+
+ private:
+  struct PerLight {
+    std::vector<ShadowPhoton> photons;
+    PhotonKdTree<ShadowPhoton> tree;
+  };
+  std::vector<PerLight> lights_;
+  size_t size_ = 0;
+};
+
+class IndirectPhotonMap {
+ public:
+  using Estimate = IndirectEstimate;
+
+  void build(std::vector<IndirectPhoton> photons, const MapBuildOptions& options = {});
+  bool empty() const { return photons_.empty(); }
+  // Gather the k nearest photons (within maxRadius if > 0) and estimate; see
+  // indirect_estimate.h for the formulas and the normal filter.
+  Estimate classic(const Vec3& p, const Vec3& n, int k, float maxRadius, GatherScratch& s,
+                   float minNormalCos = kIndirectMinNormalCos) const;
+  Estimate density(const Vec3& p, const Vec3& n, int k, float maxRadius, GatherScratch& s,
+                   float minNormalCos = kIndirectMinNormalCos) const;
+  // Raw kNN, as ShadowPhotonMap::knn; indices into photons().
+  size_t knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch) const;
+  size_t size() const { return photons_.size(); }
+  size_t memoryBytes() const;
+  const std::vector<IndirectPhoton>& photons() const { return photons_; }
+
+ private:
+  std::vector<IndirectPhoton> photons_;
+  PhotonKdTree<IndirectPhoton> tree_;
+};
+
+}  // namespace penumbra
