@@ -3,7 +3,9 @@
 #include "cli/pipeline.h"
 #include "cli/progress_bar.h"
 #include "core/error.h"
+#include "io/image_io.h"
 #include "io/report_json.h"
+#include "io/texture_gen.h"
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -69,6 +71,15 @@ int main(int argc, char** argv) {
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-q,--quiet", quiet, "No progress bar and no summary on stderr");
 
+  std::string textureName, textureOut;
+  int textureWidth = 2048;
+  uint64_t textureSeed = 1;
+  CLI::App* texture = app.add_subcommand("texture", "Write a procedural lat-long texture (checker, grid, planet, earthlike)");
+  texture->add_option("name", textureName, "Texture name")->required();
+  texture->add_option("-o,--output", textureOut, "Output image (.png or .exr)")->required();
+  texture->add_option("--width", textureWidth, "Width in pixels; height is width / 2")->check(CLI::Range(2, 16384));
+  texture->add_option("--seed", textureSeed, "Noise seed");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -83,6 +94,11 @@ int main(int argc, char** argv) {
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
       if (noGate) req.overrides.push_back("photons.gate=false");
       return runRenderCommand(req, statsPath, tracePixelArg, quiet);
+    }
+    if (*texture) {
+      writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),
+                 {{"penumbra:texture", textureName}});
+      return 0;
     }
   } catch (const InputError& e) {
     std::cerr << "penumbra: " << e.what() << "\n";

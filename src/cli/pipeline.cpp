@@ -5,6 +5,7 @@
 #include "gather/photon_map.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
+#include "io/texture_gen.h"
 #include "trace/camera.h"
 #include "trace/render.h"
 #include "trace/texture_lookup.h"
@@ -84,7 +85,10 @@ RenderResult runRender(const RenderRequest& request) {
   std::unique_ptr<TextureLookup> textures;
   if (!scene.textures.empty()) {
     std::vector<std::string> paths;
-    for (const Texture& t : scene.textures) paths.push_back(t.path);
+    for (const Texture& t : scene.textures) {
+      // Procedural textures are generated once into the cache, then read like files.
+      paths.push_back(t.path.rfind("builtin:", 0) == 0 ? builtinTexturePath(t.path) : t.path);
+    }
     textures = std::make_unique<TextureLookup>(paths);
   }
 
