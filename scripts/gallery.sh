@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Renders every scene in scenes/ into OUT, composes a labelled contact sheet
+# with OpenImageIO's oiiotool, and regenerates docs/gallery.md from the stats.
+# Usage: scripts/gallery.sh PENUMBRA_BINARY OUT_DIR
+set -euo pipefail
+bin=${1:?usage: gallery.sh PENUMBRA OUT}
+out=${2:?usage: gallery.sh PENUMBRA OUT}
+root=$(cd "$(dirname "$0")/.." && pwd)
+font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
+mkdir -p "$out"
+
+tiles=()
+for scene in "$root"/scenes/*.json; do
+  name=$(basename "$scene" .json)
+  echo "rendering $name" >&2
+  "$bin" render "$scene" -o "$out/$name.png" --stats "$out/$name.json" --quiet
+  secs=$(sed -n 's/.*"total": \([0-9.e+-]*\).*/\1/p' "$out/$name.json" | head -n 1)
+  tile="$out/.tile-$name.png"
+  oiiotool "$out/$name.png" --fit:pad=1 320x240 \
+    --text:x=8:y=20:size=15:color=1,1,0.6:font="$font" "$name  ($(printf '%.1f' "$secs") s)" \
+    -o "$tile"
+  tiles+=("$tile")
+done
+
+n=${#tiles[@]}
+cols=4
+rows=$(( (n + cols - 1) / cols ))
+oiiotool "${tiles[@]}" --mosaic:pad=4 ${cols}x${rows} -o "$out/contact_sheet.png"
+rm -f "${tiles[@]}"
+echo "contact sheet: $out/contact_sheet.png" >&2
+
+python3 "$root/scripts/gallery_md.py" "$out" > "$root/docs/gallery.md"
+echo "docs/gallery.md updated" >&2
