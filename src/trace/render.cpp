@@ -9,6 +9,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <atomic>
+#include <numeric>
 
 namespace penumbra {
 
@@ -22,13 +23,20 @@ Aov parseAov(const std::string& name) {
 
 namespace {
 
-// Sub-pixel position of sample s of n: stratified over a ceil(sqrt(n))^2 grid
-// with jitter; a single sample sits at the pixel centre.
+// Sub-pixel position of sample s of n, jittered within its stratum. A perfect
+// square n uses a sqrt(n) x sqrt(n) grid; any other n uses a rank-1 lattice
+// (x stratum s, y stratum s * g mod n with g coprime to n), so every row and
+// column of the pixel gets exactly one sample and no part of it is skipped.
 Vec2 samplePosition(int s, int n, Rng& rng) {
   if (n == 1) return {0.5f, 0.5f};
-  int side = static_cast<int>(std::ceil(std::sqrt(static_cast<float>(n))));
-  int cx = s % side, cy = (s / side) % side;
-  return {(cx + rng.uniform()) / side, (cy + rng.uniform()) / side};
+  int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
+  if (side * side == n) {
+    return {(s % side + rng.uniform()) / side, (s / side + rng.uniform()) / side};
+  }
+  int g = std::max(1, static_cast<int>(n * 0.618034));
+  while (std::gcd(g, n) != 1) ++g;
+  int row = static_cast<int>((static_cast<int64_t>(s) * g) % n);
+  return {(s + rng.uniform()) / n, (row + rng.uniform()) / n};
 }
 
 // One sample of the chosen view. Depth stores the raw distance (normalised for

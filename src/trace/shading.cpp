@@ -62,6 +62,13 @@ Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Mate
   return lit;
 }
 
+// A shading normal can bend the mirror direction under the surface; fall back
+// to the geometric normal rather than reflect into the object.
+Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s) {
+  Vec3 r = reflect(dir, s.ns);
+  return glm::dot(r, s.ng) > 0.0f ? r : reflect(dir, s.ng);
+}
+
 }  // namespace
 
 bool sceneHasGlass(const Scene& scene) {
@@ -128,7 +135,8 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
     Color kt = (1.0f - kr) * (s.frontFace ? m.tint : Color(1.0f));
     Color reflW = weight * kr, transW = weight * kt;
     if (maxComponent(reflW) > rs.minWeight) {
-      Ray r{offsetRayOrigin(s.position, s.ng, reflect(ray.dir, s.ns)), reflect(ray.dir, s.ns)};
+      Ray r{s.position, mirrorDirection(ray.dir, s)};
+      r.origin = offsetRayOrigin(s.position, s.ng, r.dir);
       color += kr * traceRay(ctx, r, depth + 1, reflW, footprint, RayKind::Reflection, recIndex, ts);
     }
     if (transmits && maxComponent(transW) > rs.minWeight) {
@@ -136,10 +144,7 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
       color += kt * traceRay(ctx, r, depth + 1, transW, footprint, RayKind::Refraction, recIndex, ts);
     }
   } else if (deeper && m.kr > 0.0f && maxComponent(weight) * m.kr > rs.minWeight) {
-    Vec3 rdir = reflect(ray.dir, s.ns);
-    // A shading normal can bend the mirror direction under the surface; fall
-    // back to the geometric normal rather than reflect into the object.
-    if (glm::dot(rdir, s.ng) <= 0.0f) rdir = reflect(ray.dir, s.ng);
+    Vec3 rdir = mirrorDirection(ray.dir, s);
     Ray r{offsetRayOrigin(s.position, s.ng, rdir), rdir};
     color += m.kr * traceRay(ctx, r, depth + 1, weight * m.kr, footprint, RayKind::Reflection, recIndex, ts);
   }

@@ -1,0 +1,311 @@
+// The photon pass against counting arguments: shadow lines in a closed box,
+// the solid angle a sphere blocks, uniform emission over the cube's faces,
+// Russian-roulette path lengths (geometric: 1/(1-p) and p/(1-p) stored per
+// photon), budget splitting, and byte-identical maps for 1 and 2 threads.
+#include "emit/emit.h"
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <cmath>
+#include <cstring>
+
+namespace penumbra {
+namespace {
+
+// Axis-aligned box, faces wound outwards (the tracer sees both sides).
+TriangleMesh makeBox(Vec3 lo, Vec3 hi, int material) {
+  TriangleMesh mesh;
+  mesh.name = "box";
+  for (uint32_t i = 0; i < 8; ++i) {
+    mesh.positions.push_back(Vec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z));
+  }
+  const uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  for (const auto& f : faces) {
+    mesh.triangles.push_back({f[0], f[1], f[2]});
+    mesh.triangles.push_back({f[0], f[2], f[3]});
+  }
+  mesh.material = material;
+  return mesh;
+}
+
+Material wallMaterial(float pR, Color diffuse = Color(0.8f)) {
+  Material m;
+  m.name = "wall";
+  m.diffuse = diffuse;
+  m.pR = pR;
+  m.pT = 0.0f;
+  return m;
+}
+
+Light pointLight(Vec3 p, float intensity = 1.0f, Color color = Color(1.0f)) {
+  Light l;
+  l.type = LightType::Point;
+  l.position = p;
+  l.intensity = intensity;
+  l.color = color;
+  return l;
+}
+
+// A closed box [-h, h]^3 around a point light; no indirect photons by default.
+Scene boxScene(float h, Vec3 light, uint64_t shadow, uint64_t indirect = 0, float pR = 0.0f) {
+  Scene scene;
+  scene.materials.push_back(wallMaterial(pR));
+  scene.meshes.push_back(makeBox(Vec3(-h), Vec3(h), 0));
+  scene.lights.push_back(pointLight(light));
+  scene.photons.shadowPhotons = shadow;
+  scene.photons.indirectPhotons = indirect;
+  scene.render.seed = 12345;
+  return scene;
+}
+
+// |k - mean| within `sigmas` standard deviations.
+void expectWithinSigmas(double k, double mean, double sd, double sigmas, const std::string& what) {
+  EXPECT_LT(std::abs(k - mean), sigmas * sd) << what << ": got " << k << ", expected " << mean
+                                             << " +- " << sd;
+}
+
+TEST(EmitShadow, ClosedBoxEveryLineHitsExactlyOneWall) {
+  const Vec3 light(0.1f, -0.2f, 0.3f);
+  Scene scene = boxScene(1.0f, light, 20000);
+  TraceScene tracer(scene);
+  EmitOptions options;
+  options.batchSize = 1000;
+  PhotonMaps maps = emitPhotons(scene, tracer, options);
+  EXPECT_EQ(maps.emittedShadow, 20000u);
+  EXPECT_EQ(maps.emittedIndirect, 0u);
+  EXPECT_TRUE(maps.indirect.empty());
+  ASSERT_EQ(maps.shadow.size(), 20000u);
+  for (const ShadowPhoton& p : maps.shadow) {
+    EXPECT_EQ(p.shadow, 0);
+    EXPECT_EQ(p.light, 0);
+    EXPECT_NEAR(maxComponent(glm::abs(p.position)), 1.0f, 1e-5f);
+    // The stored normal faces the light.
+    EXPECT_GT(glm::dot(decodeOctahedral(p.normal), light - p.position), 0.0f);
+  }
+}
+
+TEST(EmitShadow, DirectionsAreUniformOverTheCubeFaces) {
+  Scene scene = boxScene(1.0f, Vec3(0.0f), 60000);
+  TraceScene tracer(scene);
+  PhotonMaps maps = emitPhotons(scene, tracer);
+  ASSERT_EQ(maps.shadow.size(), 60000u);
+  int faces[6] = {0, 0, 0, 0, 0, 0};
+  for (const ShadowPhoton& p : maps.shadow) {
+    Vec3 a = glm::abs(p.position);
+    int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    ++faces[2 * axis + (p.position[axis] > 0.0f ? 1 : 0)];
+  }
+  const double n = 60000.0, f = 1.0 / 6.0, sd = std::sqrt(n * f * (1.0 - f));
+  for (int i = 0; i < 6; ++i) expectWithinSigmas(faces[i], n * f, sd, 4.0, "face " + std::to_string(i));
+  // Within one face, the centre disc of radius 0.5 subtends 2 pi (1 - 1/sqrt(1.25)) / 4 pi.
+  int centre = 0;
+  for (const ShadowPhoton& p : maps.shadow) {
+    if (p.position.z > 0.999f && p.position.x * p.position.x + p.position.y * p.position.y < 0.25f) ++centre;
+  }
+  const double fc = 0.5 * (1.0 - 1.0 / std::sqrt(1.25));
+  expectWithinSigmas(centre, n * fc, std::sqrt(n * fc * (1.0 - fc)), 4.0, "disc on +z");
+}
+
+TEST(EmitShadow, SphereShadowMatchesItsSolidAngle) {
+  // Light at the origin, sphere at distance 1 with radius 0.5: sin(alpha) = 0.5,
+  // so a line passes through it with probability (1 - cos alpha) / 2, and each
+  // such line stores 3 hits: the near side (direct), far side and wall (shadow).
+  Scene scene = boxScene(2.0f, Vec3(0.0f), 20000);
+  scene.spheres.push_back(Sphere{Vec3(1.0f, 0.0f, 0.0f), 0.5f, 0});
+  TraceScene tracer(scene);
+  PhotonMaps maps = emitPhotons(scene, tracer);
+  size_t direct = 0, shadow = 0, onSphere = 0, shadowOnWall = 0;
+  const double alpha = std::asin(0.5);
+  for (const ShadowPhoton& p : maps.shadow) {
+    bool sphere = std::abs(glm::length(p.position - Vec3(1, 0, 0)) - 0.5f) < 1e-4f;
+    onSphere += sphere;
+    if (p.shadow) {
+      ++shadow;
+      // Every shadow photon is inside the sphere's shadow cone.
+      double angle = std::acos(std::clamp(glm::normalize(p.position).x, -1.0f, 1.0f));
+      EXPECT_LE(angle, alpha + 1e-3);
+      if (!sphere) {
+        ++shadowOnWall;
+        EXPECT_NEAR(p.position.x, 2.0f, 1e-5f);
+      }
+    } else {
+      ++direct;
+      // Direct hits on the sphere are on the half facing the light.
+      if (sphere) {
+        EXPECT_LT(p.position.x, 1.0f);
+      }
+    }
+  }
+  EXPECT_EQ(direct, 20000u);  // every line's first hit
+  const double n = 20000.0, f = 0.5 * (1.0 - std::cos(alpha)), sd = std::sqrt(n * f * (1.0 - f));
+  expectWithinSigmas(shadow / 2.0, n * f, sd, 3.0, "lines through the sphere");
+  EXPECT_EQ(shadowOnWall * 2, shadow);  // each such line: one far-side hit, one wall hit
+  EXPECT_EQ(onSphere, shadow);          // near side + far side per line
+  // Keeping only the first hit per line leaves exactly one (direct) photon per line.
+  EmitOptions firstOnly;
+  firstOnly.maxHitsPerLine = 1;
+  PhotonMaps first = emitPhotons(scene, tracer, firstOnly);
+  ASSERT_EQ(first.shadow.size(), 20000u);
+  for (const ShadowPhoton& p : first.shadow) EXPECT_EQ(p.shadow, 0);
+}
+
+TEST(EmitIndirect, RussianRouletteClassicStoresEveryHit) {
+  for (float p : {0.25f, 0.5f}) {
+    const uint64_t n = 20000;
+    Scene scene = boxScene(1.0f, Vec3(0.1f, 0.2f, -0.3f), 0, n, p);
+    scene.photons.maxBounces = 1000;
+    scene.photons.estimator = IndirectEstimator::Classic;
+    TraceScene tracer(scene);
+    PhotonMaps maps = emitPhotons(scene, tracer);
+    EXPECT_TRUE(maps.shadow.empty());
+    EXPECT_EQ(maps.emittedIndirect, n);
+    // Hits per path: 1 + Geometric(p), mean 1/(1-p), variance p/(1-p)^2.
+    const double mean = n / (1.0 - p), sd = std::sqrt(n * p) / (1.0 - p);
+    expectWithinSigmas(static_cast<double>(maps.indirect.size()), mean, sd, 4.0,
+                       "classic, p=" + std::to_string(p));
+    // Grey walls keep every photon at the emitted share of the flux 4 pi I / n.
+    const float power = 4.0f * kPi / n;
+    for (const IndirectPhoton& ph : maps.indirect) {
+      ASSERT_NEAR(ph.power.r, power, power * 1e-4f);
+      ASSERT_EQ(ph.power.r, ph.power.g);
+      // The stored normal faces where the photon came from.
+      EXPECT_LT(glm::dot(decodeOctahedral(ph.normal), decodeOctahedral(ph.direction)), 0.0f);
+      EXPECT_NEAR(maxComponent(glm::abs(ph.position)), 1.0f, 1e-5f);
+    }
+    EXPECT_FLOAT_EQ(maps.classicScale, static_cast<float>(n / (4.0 * kPi)));
+  }
+}
+
+TEST(EmitIndirect, RussianRouletteDensitySkipsTheFirstHit) {
+  const float p = 0.5f;
+  const uint64_t n = 20000;
+  Scene scene = boxScene(1.0f, Vec3(0.1f, 0.2f, -0.3f), 0, n, p);
+  scene.photons.maxBounces = 1000;
+  scene.photons.estimator = IndirectEstimator::Density;
+  TraceScene tracer(scene);
+  PhotonMaps maps = emitPhotons(scene, tracer);
+  const double mean = n * p / (1.0 - p), sd = std::sqrt(n * p) / (1.0 - p);
+  expectWithinSigmas(static_cast<double>(maps.indirect.size()), mean, sd, 4.0, "density");
+  // max_bounces caps the path: with 1 bounce at most one stored photon per path,
+  // and exactly the survivors of the first roulette, Binomial(n, p).
+  scene.photons.maxBounces = 1;
+  PhotonMaps capped = emitPhotons(scene, tracer);
+  expectWithinSigmas(static_cast<double>(capped.indirect.size()), n * p, std::sqrt(n * p * (1 - p)), 4.0,
+                     "density, max_bounces 1");
+}
+
+TEST(EmitIndirect, SurvivorsTakeOnTheWallColour) {
+  // Diffuse (0.9, 0.6, 0.3) has mean 0.6: each bounce multiplies power by (1.5, 1, 0.5).
+  const uint64_t n = 5000;
+  Scene scene = boxScene(1.0f, Vec3(0.0f), 0, n, 0.5f);
+  scene.materials[0].diffuse = Color(0.9f, 0.6f, 0.3f);
+  scene.photons.maxBounces = 1000;
+  TraceScene tracer(scene);
+  PhotonMaps maps = emitPhotons(scene, tracer);
+  const float p0 = 4.0f * kPi / n;
+  size_t firstHits = 0, secondHits = 0;
+  for (const IndirectPhoton& ph : maps.indirect) {
+    ASSERT_NEAR(ph.power.g, p0, p0 * 1e-4f);
+    double k = std::log(ph.power.r / p0) / std::log(1.5);  // bounces before this hit
+    double kRounded = std::round(k);
+    ASSERT_NEAR(k, kRounded, 1e-3);
+    ASSERT_GE(kRounded, 0.0);
+    EXPECT_NEAR(ph.power.b, p0 * std::pow(0.5, kRounded), p0 * std::pow(0.5, kRounded) * 1e-3);
+    firstHits += kRounded == 0.0;
+    secondHits += kRounded == 1.0;
+  }
+  EXPECT_EQ(firstHits, n);
+  expectWithinSigmas(secondHits, n * 0.5, std::sqrt(n * 0.25), 4.0, "second hits");
+}
+
+TEST(Emit, ByteIdenticalForOneAndTwoThreads) {
+  Scene scene = boxScene(2.0f, Vec3(0.0f, 1.0f, 0.0f), 30000, 20000, 0.6f);
+  scene.materials[0].diffuse = Color(0.7f, 0.5f, 0.3f);
+  Material glass;
+  glass.name = "glass";
+  glass.transparent = true;
+  glass.pR = 0.1f;
+  glass.pT = 0.8f;
+  glass.tint = Color(0.9f, 1.0f, 0.8f);
+  scene.materials.push_back(glass);
+  scene.spheres.push_back(Sphere{Vec3(0.5f, -0.5f, 0.0f), 0.6f, 1});
+  scene.spheres.push_back(Sphere{Vec3(-0.8f, 0.0f, 0.5f), 0.4f, 0});
+  scene.lights.push_back(pointLight(Vec3(-1.0f, -1.0f, 1.0f), 2.0f, Color(1.0f, 0.5f, 0.5f)));
+  TraceScene tracer(scene);
+  EmitOptions options;
+  options.batchSize = 512;  // dozens of batches, so both threads get work
+  auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return emitPhotons(scene, tracer, options);
+  };
+  PhotonMaps one = run(1), two = run(2), again = run(2);
+  EXPECT_GT(one.shadow.size(), 30000u);  // the spheres cast shadow photons
+  EXPECT_GT(one.indirect.size(), 20000u);
+  for (const PhotonMaps* m : {&two, &again}) {
+    ASSERT_EQ(m->shadow.size(), one.shadow.size());
+    ASSERT_EQ(m->indirect.size(), one.indirect.size());
+    EXPECT_EQ(std::memcmp(m->shadow.data(), one.shadow.data(), one.shadow.size() * sizeof(ShadowPhoton)), 0);
+    EXPECT_EQ(std::memcmp(m->indirect.data(), one.indirect.data(),
+                          one.indirect.size() * sizeof(IndirectPhoton)), 0);
+    EXPECT_EQ(m->emittedShadow, one.emittedShadow);
+    EXPECT_EQ(m->classicScale, one.classicScale);
+  }
+  // Each light's lines all start with one direct hit: its share of the budget.
+  size_t perLight[2] = {0, 0};
+  for (const ShadowPhoton& p : one.shadow) {
+    if (!p.shadow) ++perLight[p.light];
+  }
+  std::vector<uint64_t> split = splitBudget(scene, 30000);
+  EXPECT_EQ(perLight[0], split[0]);
+  EXPECT_EQ(perLight[1], split[1]);
+  // A different seed gives different photons.
+  scene.render.seed = 999;
+  PhotonMaps other = run(2);
+  EXPECT_TRUE(other.shadow.size() != one.shadow.size() ||
+              std::memcmp(other.shadow.data(), one.shadow.data(), one.shadow.size() * sizeof(ShadowPhoton)) != 0);
+}
+
+TEST(SplitBudget, ProportionalToLuminanceAndExact) {
+  Scene scene;
+  scene.lights = {pointLight(Vec3(0.0f), 1.0f), pointLight(Vec3(0.0f), 2.0f), pointLight(Vec3(0.0f), 3.0f)};
+  Light sun;
+  sun.type = LightType::Directional;
+  sun.intensity = 100.0f;
+  scene.lights.push_back(sun);
+  // 1000 * (1, 2, 3) / 6 = 166.67, 333.33, 500: the leftover unit goes to the largest remainder.
+  EXPECT_EQ(splitBudget(scene, 1000), (std::vector<uint64_t>{167, 333, 500, 0}));
+  // Equal thirds of 7: 2.33 each, the tie goes to the lowest index.
+  Scene equal;
+  equal.lights = {pointLight(Vec3(0.0f)), pointLight(Vec3(1.0f)), pointLight(Vec3(2.0f))};
+  EXPECT_EQ(splitBudget(equal, 7), (std::vector<uint64_t>{3, 2, 2}));
+  EXPECT_EQ(splitBudget(equal, 0), (std::vector<uint64_t>{0, 0, 0}));
+  // Coloured lights split by luminance (0.2126 R + 0.7152 G + 0.0722 B).
+  Scene coloured;
+  coloured.lights = {pointLight(Vec3(0.0f), 1.0f, Color(1, 0, 0)), pointLight(Vec3(0.0f), 1.0f, Color(0, 1, 0)),
+                     pointLight(Vec3(0.0f), 1.0f, Color(0, 0, 1)), pointLight(Vec3(0.0f), 0.0f)};
+  for (uint64_t total : {1ull, 10ull, 997ull, 123457ull}) {
+    std::vector<uint64_t> c = splitBudget(coloured, total);
+    ASSERT_EQ(c.size(), 4u);
+    EXPECT_EQ(c[0] + c[1] + c[2] + c[3], total);
+    EXPECT_EQ(c[3], 0u);  // zero intensity
+    const double w[3] = {0.2126, 0.7152, 0.0722};
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(static_cast<double>(c[i]), total * w[i], 1.0) << total;
+  }
+  // Only directional lights: nobody gets photons, and none are emitted.
+  Scene sunOnly;
+  sunOnly.materials.push_back(wallMaterial(0.5f));
+  sunOnly.meshes.push_back(makeBox(Vec3(-1.0f), Vec3(1.0f), 0));
+  sunOnly.lights = {sun, sun};
+  sunOnly.photons.shadowPhotons = 1000;
+  sunOnly.photons.indirectPhotons = 1000;
+  EXPECT_EQ(splitBudget(sunOnly, 1000), (std::vector<uint64_t>{0, 0}));
+  TraceScene tracer(sunOnly);
+  PhotonMaps maps = emitPhotons(sunOnly, tracer);
+  EXPECT_TRUE(maps.shadow.empty());
+  EXPECT_TRUE(maps.indirect.empty());
+  EXPECT_EQ(maps.emittedShadow, 0u);
+  EXPECT_EQ(maps.emittedIndirect, 0u);
+}
+
+}  // namespace
+}  // namespace penumbra
