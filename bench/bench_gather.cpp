@@ -142,6 +142,15 @@ void runQueries(benchmark::State& state, int threads, bool shuffled, Fn fn) {
     });
   }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * qs.size()));
+  // Share of queries that started from a search hint / whose hint ball was too small.
+  uint64_t hinted = 0, reruns = 0;
+  for (const GatherScratch& s : scratch) {
+    hinted += s.hintedQueries;
+    reruns += s.hintReruns;
+  }
+  const double total = static_cast<double>(state.iterations() * qs.size());
+  state.counters["hinted"] = static_cast<double>(hinted) / total;
+  state.counters["reruns"] = static_cast<double>(reruns) / total;
   // kIsRate divides by the time, kInvert flips it: seconds per query (printed as e.g. 8.1us).
   state.counters["time_per_query"] =
       benchmark::Counter(static_cast<double>(state.iterations() * qs.size()),
@@ -242,18 +251,22 @@ void registerAll(bool with5M) {
               ->Args({n, morton, lf, threads, shuffled})
               ->MinTime(0.3)->UseRealTime();
         if (lf == leaf)
-          benchmark::RegisterBenchmark(name("Classify").c_str(), BM_Classify)
-              ->ArgNames({"n", "morton", "leaf", "threads", "shuffled"})
-              ->Args({n, morton, lf, threads, 0})
-              ->MinTime(0.3)->UseRealTime();
+          for (int64_t shuffled : {0, 1})
+            if (threads == 1 || shuffled == 0)
+              benchmark::RegisterBenchmark(name("Classify").c_str(), BM_Classify)
+                  ->ArgNames({"n", "morton", "leaf", "threads", "shuffled"})
+                  ->Args({n, morton, lf, threads, shuffled})
+                  ->MinTime(0.3)->UseRealTime();
       }
     }
     for (int64_t threads : {1, 2})
       for (auto* fn : {BM_Classic, BM_Density})
-        benchmark::RegisterBenchmark(name(fn == BM_Classic ? "Classic" : "Density").c_str(), fn)
-            ->ArgNames({"n", "morton", "leaf", "threads", "shuffled"})
-            ->Args({n, 1, leaf, threads, 0})
-            ->MinTime(0.3)->UseRealTime();
+        for (int64_t shuffled : {0, 1})
+          if (threads == 1 || shuffled == 0)
+            benchmark::RegisterBenchmark(name(fn == BM_Classic ? "Classic" : "Density").c_str(), fn)
+                ->ArgNames({"n", "morton", "leaf", "threads", "shuffled"})
+                ->Args({n, 1, leaf, threads, shuffled})
+                ->MinTime(0.3)->UseRealTime();
   }
 }
 

@@ -1,6 +1,13 @@
-// nanoflann KD-tree over photon records, read in place through a dataset adaptor.
+// nanoflann KD-tree over photon records, read in place through a dataset adaptor,
+// queried with an exact bounded-selection result set and per-thread search hints.
 #include "gather/kd_tree.h"
 #include <nanoflann.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace penumbra {
 
@@ -16,6 +23,133 @@ struct PhotonCloud {
   template <class BBox>
   bool kdtree_get_bbox(BBox&) const { return false; }
 };
+
+inline uint32_t bitsOf(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+inline float floatOf(uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+// Squared distances are >= 0 (or +0), whose IEEE bit patterns order like the values:
+// (bits << 32 | index) orders by (dist2, index) with one integer compare.
+inline uint64_t keyOf(float d2, uint32_t index) {
+  return (static_cast<uint64_t>(bitsOf(d2)) << 32) | index;
+}
+inline float distOf(uint64_t key) { return floatOf(static_cast<uint32_t>(key >> 32)); }
+
+// The k smallest (dist2, index) keys among the points nanoflann offers, with a
+// shrinking bound. Candidates go into a buffer of `cap` (>= 2k) slots; the first time
+// k are in, the bound drops to the largest of them (as nanoflann's KNNResultSet
+// would), and whenever the buffer fills, nth_element keeps the k smallest and the
+// bound drops to the k-th. Cheaper than KNNResultSet's insertion sort per accepted
+// point, and ties are broken by index, so the answer is unique.
+//
+// A point is accepted iff its key < limitKey_. worst_ (what nanoflann prunes with:
+// leaves test dist < worst, nodes mindist <= worst) is >= every accepted distance,
+// with a little slack over the k-th so ties and nanoflann's incremental mindist
+// rounding never prune a point that belongs to the answer.
+class SelectResultSet {
+ public:
+  using DistanceType = float;
+  using IndexType = uint32_t;
+
+  // Accepts dist2 < limit (strict) until tightened.
+  SelectResultSet(uint64_t* buf, size_t cap, size_t k, float limit)
+      : buf_(buf), cap_(cap), k_(k), limitKey_(static_cast<uint64_t>(bitsOf(limit)) << 32),
+        worst_(limit) {}
+
+  size_t size() const { return n_; }
+  bool full() const { return n_ >= k_; }
+  float worstDist() const { return worst_; }
+
+  bool addPoint(float d2, uint32_t index) {
+    const uint64_t key = keyOf(d2, index);
+    if (key >= limitKey_) return true;  // the bound shrank within this leaf
+    buf_[n_++] = key;
+    if (n_ == k_) {
+      // First time k are in (after a compaction n_ is set, not incremented, to k).
+      tighten(*std::max_element(buf_, buf_ + n_));
+    } else if (n_ == cap_) {
+      std::nth_element(buf_, buf_ + (k_ - 1), buf_ + n_);
+      n_ = k_;
+      tighten(buf_[k_ - 1]);
+    }
+    return true;
+  }
+
+  // Leaves the k smallest keys (or all, if fewer) in buf[0..size()), unordered.
+  size_t select() {
+    if (n_ > k_) {
+      std::nth_element(buf_, buf_ + (k_ - 1), buf_ + n_);
+      n_ = k_;
+    }
+    return n_;
+  }
+
+ private:
+  void tighten(uint64_t kth) {
+    // Anything not below the current k-th key can no longer make the answer.
+    limitKey_ = kth;
+    const float d = distOf(kth);
+    worst_ = std::nextafter(d + d * 1e-5f, std::numeric_limits<float>::infinity());
+  }
+
+  uint64_t* buf_;
+  size_t cap_, k_, n_ = 0;
+  uint64_t limitKey_;
+  float worst_;
+};
+
+// Sorts keys[0..n) ascending, using tmp[0..n) and `counts` as scratch. The keys are
+// in random order, where a comparison sort's branches mispredict about half the time
+// (std::sort on 200 keys: ~3 us). Instead: a counting sort into n buckets by dist2
+// relative to the largest (photons are spread over a disc or ball, so the buckets
+// are balanced), then an insertion sort that only moves keys within their bucket.
+// The bucket is a monotone function of dist2, so the result is exactly sorted for
+// any input; degenerate inputs (all dist2 equal) merely cost more.
+void sortKeys(uint64_t* keys, size_t n, uint64_t* tmp, std::vector<uint32_t>& counts) {
+  if (n < 2) return;
+  float maxD = 0.0f;
+  for (size_t i = 0; i < n; ++i) maxD = std::max(maxD, distOf(keys[i]));
+  const float top = static_cast<float>(n - 1);
+  const float scale = static_cast<float>(n) / maxD;
+  if (!(maxD > 0.0f) || !std::isfinite(scale)) {
+    std::sort(keys, keys + n);
+    return;
+  }
+  counts.assign(n + 1, 0);
+  auto bucketOf = [&](uint64_t key) {
+    return static_cast<uint32_t>(std::min(distOf(key) * scale, top));
+  };
+  for (size_t i = 0; i < n; ++i) ++counts[bucketOf(keys[i]) + 1];
+  for (size_t b = 1; b <= n; ++b) counts[b] += counts[b - 1];
+  for (size_t i = 0; i < n; ++i) tmp[counts[bucketOf(keys[i])]++] = keys[i];
+  keys[0] = tmp[0];
+  for (size_t i = 1; i < n; ++i) {
+    const uint64_t v = tmp[i];
+    size_t j = i;
+    for (; j > 0 && keys[j - 1] > v; --j) keys[j] = keys[j - 1];
+    keys[j] = v;
+  }
+}
+
+// Candidate buffer slots per query, as a multiple of k: larger means fewer
+// nth_element passes but a bound that tightens later.
+constexpr size_t kBufferFactor = 4;
+// The hint ball's radius: the nearest recent query's k-th-neighbour distance r plus
+// the step to it (a ball that provably holds >= k photons), but at most r grown by
+// this margin (when the step is long, the density is likely similar and a smaller
+// ball prunes far better; if it holds < k photons, the search is repeated).
+constexpr float kHintMargin = 0.2f;
+// A recent query farther than this many radii is another stream: record the new
+// query in a fresh entry instead of overwriting that one.
+constexpr float kSameStreamSteps = 4.0f;
+// A hint ball that held < k photons: retry once at twice the radius, then unbounded.
+constexpr float kRetryGrowth2 = 4.0f;
 }  // namespace
 
 template <class Photon>
@@ -27,6 +161,13 @@ struct PhotonKdTree<Photon>::Impl {
   Cloud cloud;
   std::unique_ptr<Index> index;
   size_t bytes = 0;
+
+  // One bounded search from scratch: the k smallest keys with dist2 < limit.
+  size_t search(const float q[3], size_t k, size_t cap, float limit, GatherScratch& s) const {
+    SelectResultSet result(s.keys.data(), cap, k, limit);
+    index->findNeighbors(result, q, nanoflann::SearchParams());
+    return result.select();
+  }
 };
 
 template <class Photon>
@@ -39,32 +180,99 @@ template <class Photon>
 PhotonKdTree<Photon>& PhotonKdTree<Photon>::operator=(PhotonKdTree&&) noexcept = default;
 
 template <class Photon>
-void PhotonKdTree<Photon>::build(const std::vector<Photon>& photons, size_t leafSize) {
+void PhotonKdTree<Photon>::build(std::vector<Photon>& photons, size_t leafSize) {
   impl_.reset();
   if (photons.empty()) return;  // nanoflann throws on an empty bounding box
   auto impl = std::make_unique<Impl>();
   impl->cloud = {photons.data(), photons.size()};
   impl->index = std::make_unique<typename Impl::Index>(
       3, impl->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(std::max<size_t>(leafSize, 1)));
+  // The nodes address vAcc positions, not photons: storing photon vAcc[i] at i and
+  // making vAcc the identity leaves the tree valid and every leaf contiguous.
+  auto& vAcc = impl->index->vAcc;
+  {
+    std::vector<Photon> ordered(photons.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ordered.size(), 1 << 14),
+                      [&](const auto& r) {
+                        for (size_t i = r.begin(); i != r.end(); ++i) ordered[i] = photons[vAcc[i]];
+                      });
+    photons.swap(ordered);
+  }
+  for (size_t i = 0; i < vAcc.size(); ++i) vAcc[i] = static_cast<uint32_t>(i);
+  impl->cloud.data = photons.data();  // the index reads the cloud through its reference
   impl->bytes = impl->index->usedMemory(*impl->index);
   impl_ = std::move(impl);
 }
 
 template <class Photon>
 size_t PhotonKdTree<Photon>::knn(const Vec3& p, size_t k, float maxRadius,
-                                 GatherScratch& scratch) const {
-  if (!impl_ || k == 0) return 0;  // KNNResultSet reads dists[k-1]: k = 0 is not allowed
+                                 GatherScratch& scratch, bool sorted) const {
+  if (!impl_ || k == 0) return 0;
   k = std::min(k, impl_->cloud.count);  // more slots than photons would only cost memory
   scratch.reserve(k);
-  nanoflann::KNNResultSet<float, uint32_t, size_t> result(k);
-  result.init(scratch.indices.data(), scratch.dist2.data());
-  // init() puts +max in the last slot, which is what the search prunes against until
-  // k photons are in; putting r^2 there instead turns it into a radius-bounded kNN
-  // (a photon is accepted only if dist2 < r^2) with no extra pass.
-  if (maxRadius > 0.0f) scratch.dist2[k - 1] = maxRadius * maxRadius;
-  const float query[3] = {p.x, p.y, p.z};
-  impl_->index->findNeighbors(result, query, nanoflann::SearchParams());
-  return result.size();
+  const size_t cap = std::max<size_t>(kBufferFactor * k, 2 * k);
+  if (scratch.keys.size() < cap + k) scratch.keys.resize(cap + k);  // + k: sort scratch
+  const float inf = std::numeric_limits<float>::infinity();
+  const float limit = maxRadius > 0.0f ? maxRadius * maxRadius : inf;
+  const float q[3] = {p.x, p.y, p.z};
+
+  // The hint ball (see GatherScratch). If it holds >= k photons, its k smallest keys
+  // are the global answer, since everything outside is farther; if not, retry larger.
+  GatherScratch::Hint* hint = nullptr;
+  unsigned entry = 0;
+  float hinted = -1.0f;  // squared radius; < 0: no hint
+  if (scratch.forcedHintRadius >= 0.0f) {
+    hinted = scratch.forcedHintRadius * scratch.forcedHintRadius;
+  } else if (scratch.useHints) {
+    hint = &scratch.hintFor(impl_.get(), k);
+    float best = inf;
+    for (unsigned e = 0; e < GatherScratch::kHintEntries; ++e) {
+      if (hint->r[e] < 0.0f) continue;
+      const Vec3 d = p - hint->p[e];
+      const float dd = glm::dot(d, d);
+      if (dd < best) {
+        best = dd;
+        entry = e;
+      }
+    }
+    bool sameStream = false;
+    if (best < inf) {
+      const float rp = hint->r[entry], step = std::sqrt(best);
+      const float r = std::min(rp + step, rp * (1.0f + kHintMargin));
+      hinted = std::nextafter(r * r * 1.0002f, inf);  // slack for rounding; > 0 even for r = 0
+      sameStream = step <= kSameStreamSteps * rp;
+    }
+    if (!sameStream) {
+      entry = hint->next;
+      hint->next = (hint->next + 1) % GatherScratch::kHintEntries;
+    }
+  }
+  size_t n;
+  if (hinted >= 0.0f && hinted < limit) {
+    ++scratch.hintedQueries;
+    n = impl_->search(q, k, cap, hinted, scratch);
+    if (n < k) {
+      ++scratch.hintReruns;
+      if (hinted * kRetryGrowth2 < limit) n = impl_->search(q, k, cap, hinted * kRetryGrowth2, scratch);
+      if (n < k) n = impl_->search(q, k, cap, limit, scratch);
+    }
+  } else {
+    n = impl_->search(q, k, cap, limit, scratch);
+  }
+
+  uint64_t* keys = scratch.keys.data();
+  if (sorted) sortKeys(keys, n, keys + n, scratch.buckets);
+  float kth = 0.0f;
+  for (size_t i = 0; i < n; ++i) {
+    scratch.indices[i] = static_cast<uint32_t>(keys[i]);
+    scratch.dist2[i] = distOf(keys[i]);
+    kth = std::max(kth, scratch.dist2[i]);
+  }
+  if (hint && n == k) {  // fewer than k (within maxRadius): nothing learnt
+    hint->p[entry] = p;
+    hint->r[entry] = std::sqrt(kth);
+  }
+  return n;
 }
 
 template <class Photon>

@@ -10,17 +10,67 @@
 
 namespace penumbra {
 
-// Per-thread reusable query buffers: sized to k on first use, then every query
-// reuses them, so steady-state queries never allocate. One per thread, never shared.
+// Per-thread reusable query buffers: sized on first use, then every query reuses
+// them, so steady-state queries never allocate. One per thread, never shared; one
+// scratch may serve any number of trees (lights, maps) in any order.
+//
+// Besides the output arrays it keeps, per tree, search hints: recent queries'
+// positions p_i and k-th-neighbour distances r_i. A query starts with a search
+// bounded by a ball around it of radius min(r_i + |p - p_i|, 1.2 r_i) from the nearest
+// recent query (the first term provably holds >= k photons), so the KD-tree prunes
+// from the first node instead of widening from the nearest leaf; a ball that held
+// fewer than k photons is searched again, larger. Hints change only the speed, never
+// the answer: results are always exactly the k smallest (dist2, index) pairs, so
+// they do not depend on query order, hint state or thread count. (Hints are keyed by
+// the tree's address: a stale hint from a destroyed tree only costs speed.)
 struct GatherScratch {
-  std::vector<uint32_t> indices;  // nearest first, into the map's (sorted) photon array
-  std::vector<float> dist2;       // squared distances, ascending
+  std::vector<uint32_t> indices;  // into the map's photon array; nearest first (see knn)
+  std::vector<float> dist2;       // squared distances, in the same order
   void reserve(size_t k) {
     if (indices.size() < k) {
       indices.resize(k);
       dist2.resize(k);
     }
   }
+
+  // ---- search hints (performance only) ----
+  bool useHints = true;            // false: every query is a plain bounded kNN
+  float forcedHintRadius = -1.0f;  // tests: >= 0 replaces the hint by this radius
+  uint64_t hintedQueries = 0;      // queries that started from a hint
+  uint64_t hintReruns = 0;         // ... whose hint ball held < k photons (searched again)
+  // Per tree, the last few queries' positions and k-th-neighbour distances: the
+  // tracer interleaves several coherent streams (camera hits, reflection and
+  // refraction hits), so a query takes its hint from the nearest recent one.
+  static constexpr size_t kHintEntries = 4;
+  struct Hint {
+    const void* tree = nullptr;
+    size_t k = 0;
+    Vec3 p[kHintEntries];
+    float r[kHintEntries] = {-1.0f, -1.0f, -1.0f, -1.0f};  // < 0: no usable hint
+    unsigned next = 0;  // the entry to overwrite when no recent one is near
+  };
+  static constexpr size_t kHintSlots = 8;
+  Hint hints[kHintSlots];
+  size_t nextHintSlot = 0;
+  void clearHints() {
+    for (Hint& h : hints) h = Hint{};
+  }
+  // The slot of (tree, k) (claims the oldest-claimed slot on a miss).
+  Hint& hintFor(const void* tree, size_t k) {
+    for (Hint& h : hints)
+      if (h.tree == tree && h.k == k) return h;
+    Hint& h = hints[nextHintSlot];
+    nextHintSlot = (nextHintSlot + 1) % kHintSlots;
+    claim(h, tree, k);
+    return h;
+  }
+  static void claim(Hint& h, const void* tree, size_t k) {
+    h = Hint{};
+    h.tree = tree;
+    h.k = k;
+  }
+  std::vector<uint64_t> keys;  // candidate buffer of the selection: (dist2 bits << 32) | index
+  std::vector<uint32_t> buckets;  // sort scratch
 };
 
 // How a photon map is built. The defaults are the measured-faster choices
@@ -30,9 +80,9 @@ struct MapBuildOptions {
   size_t leafSize = 24;
 };
 
-// A KD-tree over the positions of a photon array it does not own. The array must
-// outlive the tree and keep its buffer (moving a std::vector keeps it; copying or
-// resizing does not).
+// A KD-tree over the positions of a photon array it does not own (but reorders at
+// build). The array must outlive the tree and keep its buffer (moving a std::vector
+// keeps it; copying or resizing does not).
 template <class Photon>
 class PhotonKdTree {
  public:
@@ -41,10 +91,17 @@ class PhotonKdTree {
   PhotonKdTree(PhotonKdTree&&) noexcept;
   PhotonKdTree& operator=(PhotonKdTree&&) noexcept;
 
-  void build(const std::vector<Photon>& photons, size_t leafSize);
-  // Up to k nearest photons strictly closer than maxRadius (0 = unlimited), nearest
-  // first, into scratch.indices/dist2; returns how many.
-  size_t knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch) const;
+  // Builds over `photons`, then permutes the array into the tree's leaf order (so a
+  // leaf's photons are contiguous and the index indirection reads sequentially).
+  // Any index into the array is only meaningful after this returns.
+  void build(std::vector<Photon>& photons, size_t leafSize);
+  // The k nearest photons strictly closer than maxRadius (0 = unlimited) into
+  // scratch.indices/dist2; returns how many (min(k, photons in range)). "Nearest" is
+  // by (dist2, index): ties at the k-th distance keep the lower indices, so the
+  // answer is unique. If sorted, ascending (dist2, index); otherwise in no
+  // particular order (enough for order-independent consumers such as the gate vote).
+  size_t knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch,
+             bool sorted = true) const;
   // KD-tree nodes (pool, including its slack) + the index permutation; not the photons.
   size_t memoryBytes() const;
 

@@ -64,7 +64,10 @@ size_t ShadowPhotonMap::knn(const Vec3& p, uint32_t light, size_t k, float maxRa
 GateVerdict ShadowPhotonMap::classify(const Vec3& p, const Vec3& n, uint32_t light,
                                       const GateParams& params, GatherScratch& scratch) const {
   if (params.k <= 0) return GateVerdict::Mixed;
-  size_t found = knn(p, light, static_cast<size_t>(params.k), params.maxRadius, scratch);
+  if (light >= lights_.size()) return GateVerdict::Mixed;
+  // The vote only counts kinds, so the k nearest need not be sorted.
+  size_t found = lights_[light].tree.knn(p, static_cast<size_t>(params.k), params.maxRadius,
+                                         scratch, /*sorted=*/false);
   if (found == 0) return GateVerdict::Mixed;
   return voteGate(lights_[light].photons.data(), scratch.indices.data(), found, n, params);
 }

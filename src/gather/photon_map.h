@@ -14,8 +14,9 @@ namespace penumbra {
 class ShadowPhotonMap {
  public:
   // Takes ownership. Partitions by light, sorts each partition spatially (Morton
-  // order, if options.mortonSort) in parallel, then builds one KD-tree per light over
-  // the stored arrays. Photons whose light is >= numLights are dropped.
+  // order, if options.mortonSort) in parallel, then builds one KD-tree per light and
+  // stores each light's photons in its tree's leaf order. Photons whose light is >=
+  // numLights are dropped.
   void build(std::vector<ShadowPhoton> photons, size_t numLights,
              const MapBuildOptions& options = {});
   bool hasPhotons(uint32_t light) const;
