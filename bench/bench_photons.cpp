@@ -1,0 +1,59 @@
+// The photon pass on the Cornell-style box (5M shadow + 5M indirect photons):
+// emission throughput at 1 and 2 threads, and the two KD-tree builds, for the
+// "emit + build <= 2.0 s" target in docs/PERFORMANCE.md.
+#include "emit/emit.h"
+#include "gather/photon_map.h"
+#include "io/scene_loader.h"
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_invoke.h>
+
+using namespace penumbra;
+
+namespace {
+
+Scene cornell() {
+  return loadScene(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/fig14_cornell.json",
+                   {"photons.shadow=5000000", "photons.indirect=5000000"});
+}
+
+void BM_EmitCornell(benchmark::State& state) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, state.range(0));
+  Scene scene = cornell();
+  TraceScene tracer(scene);
+  uint64_t emitted = 0, stored = 0;
+  for (auto _ : state) {
+    PhotonMaps maps = emitPhotons(scene, tracer);
+    emitted += maps.emittedShadow + maps.emittedIndirect;
+    stored += maps.shadow.size() + maps.indirect.size();
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(emitted));
+  state.counters["stored_per_iter"] = benchmark::Counter(double(stored), benchmark::Counter::kAvgIterations);
+}
+
+void BM_BuildMapsCornell(benchmark::State& state) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, state.range(0));
+  Scene scene = cornell();
+  TraceScene tracer(scene);
+  PhotonMaps maps = emitPhotons(scene, tracer);
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::vector<ShadowPhoton> shadow = maps.shadow;
+    std::vector<IndirectPhoton> indirect = maps.indirect;
+    ShadowPhotonMap shadowMap;
+    IndirectPhotonMap indirectMap;
+    state.ResumeTiming();
+    tbb::parallel_invoke([&] { shadowMap.build(std::move(shadow), scene.lights.size()); },
+                         [&] { indirectMap.build(std::move(indirect)); });
+    benchmark::DoNotOptimize(shadowMap.size() + indirectMap.size());
+    state.counters["bytes"] = double(shadowMap.memoryBytes() + indirectMap.memoryBytes());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * (maps.shadow.size() + maps.indirect.size())));
+}
+
+}  // namespace
+
+BENCHMARK(BM_EmitCornell)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_BuildMapsCornell)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+
+BENCHMARK_MAIN();
