@@ -17,6 +17,7 @@ for scene in "$root"/scenes/*.json; do
   secs=$(sed -n 's/.*"total": \([0-9.e+-]*\).*/\1/p' "$out/$name.json" | head -n 1)
   tile="$out/.tile-$name.png"
   oiiotool "$out/$name.png" --fit:pad=1 320x240 \
+    --box:color=0,0,0,0.75:fill=1 0,0,320,28 \
     --text:x=8:y=20:size=15:color=1,1,0.6:font="$font" "$name  ($(printf '%.1f' "$secs") s)" \
     -o "$tile"
   tiles+=("$tile")
@@ -29,5 +30,8 @@ oiiotool "${tiles[@]}" --mosaic:pad=4 ${cols}x${rows} -o "$out/contact_sheet.png
 rm -f "${tiles[@]}"
 echo "contact sheet: $out/contact_sheet.png" >&2
 
+# Small copies for the docs (the README shows the showcase).
+oiiotool "$out/showcase.png" --resize 480x300 -o "$root/docs/showcase.png"
+oiiotool "$out/contact_sheet.png" --resize 50% -o "$root/docs/contact_sheet.png"
 python3 "$root/scripts/gallery_md.py" "$out" > "$root/docs/gallery.md"
 echo "docs/gallery.md updated" >&2

@@ -31,6 +31,7 @@ print("Every scene in `scenes/`, rendered by `make gallery` (which wrote this fi
 print("project machine (2 cores). Times are wall-clock seconds for the whole run; the")
 print("contact sheet is `out/gallery/contact_sheet.png`.\n")
 print("![showcase](showcase.png)\n")
+print("![contact sheet](contact_sheet.png)\n")
 print("| scene | reproduces | size | time (s) | photons stored (shadow / indirect) | shadow rays cast / avoided |")
 print("|---|---|---|---|---|---|")
 for stats_file in sorted(out.glob("*.json")):

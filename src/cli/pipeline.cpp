@@ -65,7 +65,9 @@ RenderResult runRender(const RenderRequest& request) {
   float classicScale = 1.0f;
   if (wantPhotons && hasPointLight(scene)) {
     phase = Stopwatch();
-    PhotonMaps maps = emitPhotons(scene, tracer);
+    EmitOptions emitOptions;
+    emitOptions.shadowMap = aov == Aov::Beauty;
+    PhotonMaps maps = emitPhotons(scene, tracer, emitOptions);
     stats.time.emit = phase.seconds();
     stats.emittedShadow = maps.emittedShadow;
     stats.emittedIndirect = maps.emittedIndirect;

@@ -113,8 +113,9 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   const uint64_t seed = scene.render.seed;
   enum : uint64_t { kShadowStream = 1, kIndirectStream = 2 };
 
-  // Without the gate nobody reads the shadow map: do not pay for it.
-  std::vector<uint64_t> shadowCounts = splitBudget(scene, ps.gate ? ps.shadowPhotons : 0);
+  // Without the gate (or without shadows) nobody reads the shadow map: do not pay for it.
+  bool wantShadowMap = options.shadowMap && ps.gate && scene.render.shadows;
+  std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? ps.shadowPhotons : 0);
   std::vector<Batch> shadowBatches = makeBatches(shadowCounts, options.batchSize);
   BatchBuffers<ShadowPhoton> shadowBuffers;
   tbb::parallel_for(size_t(0), shadowBatches.size(), [&](size_t b) {

@@ -11,6 +11,7 @@ namespace penumbra {
 struct EmitOptions {
   uint32_t batchSize = 4096;  // photons per task; each batch owns one random stream
   int maxHitsPerLine = 64;    // shadow photons kept per line at most
+  bool shadowMap = true;      // false: the caller will not consult the gate (e.g. --aov indirect)
 };
 
 // Splits each budget across point lights by luminous intensity (largest
