@@ -3,6 +3,7 @@
 // Russian-roulette path lengths (geometric: 1/(1-p) and p/(1-p) stored per
 // photon), budget splitting, and byte-identical maps for 1 and 2 threads.
 #include "emit/emit.h"
+#include "io/shapes.h"
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <cmath>
@@ -11,22 +12,6 @@
 namespace penumbra {
 namespace {
 
-// Axis-aligned box, faces wound outwards (the tracer sees both sides).
-TriangleMesh makeBox(Vec3 lo, Vec3 hi, int material) {
-  TriangleMesh mesh;
-  mesh.name = "box";
-  for (uint32_t i = 0; i < 8; ++i) {
-    mesh.positions.push_back(Vec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z));
-  }
-  const uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-  for (const auto& f : faces) {
-    mesh.triangles.push_back({f[0], f[1], f[2]});
-    mesh.triangles.push_back({f[0], f[2], f[3]});
-  }
-  mesh.material = material;
-  return mesh;
-}
 
 Material wallMaterial(float pR, Color diffuse = Color(0.8f)) {
   Material m;

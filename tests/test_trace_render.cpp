@@ -8,6 +8,7 @@
 #include "trace/render.h"
 #include "trace/shading.h"
 #include "trace/trace_scene.h"
+#include "io/shapes.h"
 #include <gtest/gtest.h>
 #include <cmath>
 
@@ -23,32 +24,7 @@ Material makeMaterial(const std::string& name, Color ambient, Color diffuse) {
   return m;
 }
 
-// Two triangles; the normal is cross(e1, e2).
-TriangleMesh makeQuad(Vec3 corner, Vec3 e1, Vec3 e2, int material) {
-  TriangleMesh mesh;
-  mesh.name = "quad";
-  mesh.positions = {corner, corner + e1, corner + e1 + e2, corner + e2};
-  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-  mesh.material = material;
-  return mesh;
-}
 
-// Axis-aligned box, faces wound to point outwards.
-TriangleMesh makeBox(Vec3 lo, Vec3 hi, int material) {
-  TriangleMesh mesh;
-  mesh.name = "box";
-  for (uint32_t i = 0; i < 8; ++i) {
-    mesh.positions.push_back(Vec3((i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z));
-  }
-  const uint32_t faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
-                                {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-  for (const auto& f : faces) {
-    mesh.triangles.push_back({f[0], f[1], f[2]});
-    mesh.triangles.push_back({f[0], f[2], f[3]});
-  }
-  mesh.material = material;
-  return mesh;
-}
 
 Light directional(Vec3 travel, Color color, float intensity) {
   Light l;

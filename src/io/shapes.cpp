@@ -3,9 +3,10 @@
 
 namespace penumbra {
 
-TriangleMesh makeQuad(const Vec3& corner, const Vec3& edge1, const Vec3& edge2) {
+TriangleMesh makeQuad(const Vec3& corner, const Vec3& edge1, const Vec3& edge2, int material) {
   TriangleMesh mesh;
   mesh.name = "quad";
+  mesh.material = material;
   mesh.positions = {corner, corner + edge1, corner + edge1 + edge2, corner + edge2};
   // Triangle (0,1,2) has edges e1 and e1+e2, whose cross product is cross(e1, e2).
   Vec3 normal = glm::normalize(glm::cross(edge1, edge2));
@@ -15,9 +16,10 @@ TriangleMesh makeQuad(const Vec3& corner, const Vec3& edge1, const Vec3& edge2) 
   return mesh;
 }
 
-TriangleMesh makeBox(const Vec3& min, const Vec3& max) {
+TriangleMesh makeBox(const Vec3& min, const Vec3& max, int material) {
   TriangleMesh mesh;
   mesh.name = "box";
+  mesh.material = material;
   // Corner i takes max on axis k when bit k of i is set: 0 = min, 7 = max.
   for (uint32_t i = 0; i < 8; ++i) {
     mesh.positions.push_back(Vec3((i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y,
