@@ -1,0 +1,242 @@
+// The tracer's other paths: the depth view, rays born inside glass, ray-tree
+// bookkeeping, pixel stratification for any spp, and NaN-free output on
+// degenerate inputs.
+#include "core/optics.h"
+#include "io/shapes.h"
+#include "support/render_fixtures.h"
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+TEST(Render, DepthViewOrdersByDistance) {
+  Scene scene;
+  scene.materials.push_back(makeMaterial("m", Color(0.1f), Color(0.8f)));
+  scene.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
+  // Wall at z = -3 over the left half of the view only.
+  scene.meshes.push_back(makeQuad(Vec3(-10, -10, -3), Vec3(10, 0, 0), Vec3(0, 20, 0), 0));
+  scene.camera = axisCamera(Vec3(0, 0, 5), Vec3(0.0f), 40.0f);
+  Rig rig(scene);
+  Image img = rig.render(Aov::Depth);
+  CameraRays cam(scene.camera);
+  // Nearest point: the sphere's front at t = 4 -> 0. Farthest: the wall at the
+  // left corners -> 1. Misses (right corners) are white.
+  Ray corner = cam.generate(0.5f, 0.5f);
+  float tFar = 8.0f / -corner.dir.z;
+  EXPECT_FLOAT_EQ(img.at(32, 24).r, 0.0f);
+  EXPECT_NEAR(img.at(0, 0).r, 1.0f, 1e-6f);
+  EXPECT_EQ(img.at(64, 0), Color(1.0f));
+  EXPECT_EQ(img.at(64, 48), Color(1.0f));
+  // A sphere pixel off-centre: t from the analytic hit, normalised by (4, tFar).
+  Ray r = cam.generate(36.5f, 24.5f);
+  glm::dvec3 o(r.origin), d(glm::normalize(glm::dvec3(r.dir)));
+  double b = -glm::dot(o, d), perp2 = glm::dot(o + b * d, o + b * d);
+  ASSERT_LT(perp2, 1.0);
+  double t = b - std::sqrt(1.0 - perp2);
+  EXPECT_NEAR(img.at(36, 24).r, (t - 4.0) / (tFar - 4.0), 1e-4);
+  // Wall pixels are farther (lighter) than sphere pixels; greyscale throughout.
+  EXPECT_GT(img.at(2, 24).r, img.at(32, 24).r);
+  EXPECT_GT(img.at(2, 24).r, img.at(36, 24).r);
+  EXPECT_NEAR(img.at(2, 24).r, (8.0f / -cam.generate(2.5f, 24.5f).dir.z - 4.0f) / (tFar - 4.0f), 1e-4f);
+  for (const Color& c : img.pixels) {
+    EXPECT_EQ(c.r, c.g);
+    EXPECT_EQ(c.r, c.b);
+    EXPECT_GE(c.r, 0.0f);
+    EXPECT_LE(c.r, 1.0f);
+  }
+}
+
+Scene glassBallScene(int maxDepth) {
+  Scene scene;
+  Material glass = makeMaterial("glass", Color(0.0f), Color(0.0f));
+  glass.transparent = true;
+  glass.ior = 1.5f;
+  scene.materials.push_back(glass);
+  scene.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
+  scene.render.background = Color(0.2f, 0.4f, 0.6f);
+  scene.render.ambient = Color(1.0f);
+  scene.render.maxDepth = maxDepth;
+  return scene;
+}
+
+TEST(Render, RayBornInsideGlassLeavesIt) {
+  Scene scene = glassBallScene(1);
+  Rig rig(scene);
+  const Color bg = scene.render.background;
+  {
+    // From the centre: normal incidence on the inside of the wall.
+    RayTree tree;
+    Color c = rig.shade(makeRay(Vec3(0.0f), Vec3(0, 0, 1)), &tree);
+    ASSERT_TRUE(isFinite(c));
+    expectColorNear(c, 0.96f * bg, 1e-5f, "leaves through the wall");
+    ASSERT_GE(tree.size(), 2u);
+    EXPECT_TRUE(tree[0].hit);
+    EXPECT_FALSE(tree[0].entering);
+    EXPECT_NEAR(tree[0].t, 1.0f, 1e-6f);
+    const RayRecord* out = nullptr;
+    for (const RayRecord& r : tree) {
+      if (r.kind == "refraction") out = &r;
+    }
+    ASSERT_NE(out, nullptr);
+    EXPECT_EQ(out->parent, 0);
+    EXPECT_FALSE(out->hit);
+    EXPECT_NEAR(out->dir.z, 1.0f, 1e-6f);
+    EXPECT_GT(glm::length(out->origin), 1.0f);  // offset to the outside
+  }
+  {
+    // Off-centre at sin(theta_i) = 0.5 inside: leaves at sin(theta_t) = 0.75.
+    RayTree tree;
+    Color c = rig.shade(makeRay(Vec3(0.0f, 0.5f, 0.0f), Vec3(0, 0, 1)), &tree);
+    ASSERT_TRUE(isFinite(c));
+    const RayRecord* out = nullptr;
+    for (const RayRecord& r : tree) {
+      if (r.kind == "refraction") out = &r;
+    }
+    ASSERT_NE(out, nullptr);
+    Vec3 nOut = glm::normalize(tree[0].position);
+    EXPECT_NEAR(glm::length(glm::cross(out->dir, nOut)), 0.75f, 1e-5f);
+    EXPECT_GT(glm::dot(out->dir, nOut), 0.0f);
+    float cosI = std::sqrt(0.75f);
+    expectColorNear(c, (1.0f - fresnelDielectric(cosI, 1.5f, 1.0f)) * bg, 1e-5f, "oblique exit");
+  }
+  {
+    // sin(theta_i) = 0.8 > 1/1.5: total internal reflection, nothing leaves.
+    RayTree tree;
+    Color c = rig.shade(makeRay(Vec3(0.0f, 0.8f, 0.0f), Vec3(0, 0, 1)), &tree);
+    expectColorNear(c, Color(0.0f), 1e-7f, "trapped");
+    for (const RayRecord& r : tree) EXPECT_NE(r.kind, "refraction");
+    EXPECT_NE(tree[0].note.find("total internal reflection"), std::string::npos);
+  }
+}
+
+void expectConsistentTree(const RayTree& tree) {
+  ASSERT_FALSE(tree.empty());
+  EXPECT_EQ(tree[0].kind, "camera");
+  EXPECT_EQ(tree[0].parent, -1);
+  EXPECT_EQ(tree[0].depth, 0);
+  for (size_t i = 1; i < tree.size(); ++i) {
+    const RayRecord& r = tree[i];
+    ASSERT_GE(r.parent, 0) << i;
+    ASSERT_LT(r.parent, static_cast<int>(i)) << i;
+    const RayRecord& parent = tree[r.parent];
+    EXPECT_TRUE(parent.hit) << i;
+    EXPECT_EQ(r.depth, parent.depth + 1) << i;
+    EXPECT_TRUE(r.kind == "reflection" || r.kind == "refraction") << r.kind;
+  }
+  // A parent's contribution is its own weighted local shading plus its children's.
+  for (size_t i = 0; i < tree.size(); ++i) {
+    Color rest = tree[i].contribution;
+    for (const RayRecord& c : tree) {
+      if (c.parent == static_cast<int>(i)) rest -= c.contribution;
+    }
+    EXPECT_GE(rest.r, -1e-6f) << i;
+    EXPECT_GE(rest.g, -1e-6f) << i;
+    EXPECT_GE(rest.b, -1e-6f) << i;
+  }
+}
+
+TEST(Render, TracePixelTreeIsConsistent) {
+  Scene scene = glassBallScene(5);
+  scene.materials.push_back(makeMaterial("floor", Color(0.1f), Color(0.7f, 0.6f, 0.5f)));
+  scene.materials[1].kr = 0.5f;
+  scene.meshes.push_back(makeQuad(Vec3(-10, -1.5f, -10), Vec3(0, 0, 20), Vec3(20, 0, 0), 1));
+  scene.lights.push_back(point(Vec3(2, 4, 3), Color(1.0f), 20.0f));
+  scene.camera = axisCamera(Vec3(0.3f, 0.5f, 5.0f), Vec3(0.0f));
+  Rig rig(scene);
+  Image img = rig.render();
+  for (auto [x, y] : {std::pair{32, 24}, std::pair{30, 30}, std::pair{0, 48}, std::pair{64, 0}}) {
+    RayTree tree = tracePixel(rig.ctx, x, y);
+    expectConsistentTree(tree);
+    // The root carries the pixel's value (spp 1: the same sample).
+    expectColorNear(tree[0].contribution, img.at(x, y), 1e-6f, "pixel " + std::to_string(x));
+  }
+  RayTree centre = tracePixel(rig.ctx, 32, 24);
+  EXPECT_GT(centre.size(), 4u);  // through the ball: reflections and refractions
+  bool sawLeaving = false;
+  for (const RayRecord& r : centre) {
+    if (r.kind == "refraction" && r.hit && r.material == "glass" && !r.entering) sawLeaving = true;
+  }
+  EXPECT_TRUE(centre[0].entering);
+  EXPECT_TRUE(sawLeaving);
+  EXPECT_THROW(tracePixel(rig.ctx, 65, 0), std::exception);
+  EXPECT_THROW(tracePixel(rig.ctx, -1, 3), std::exception);
+}
+
+// A horizontal edge through the middle of pixel row 24 (odd height 49, so the
+// optical axis sits at film y = 24.5): a white ambient-only wall fills the lower
+// half of the view, the background is black. Any sampling that covers the pixel
+// uniformly averages that row to 0.5.
+Scene halfWallScene(int spp) {
+  Scene scene;
+  scene.materials.push_back(makeMaterial("white", Color(1.0f), Color(0.0f)));
+  scene.meshes.push_back(makeQuad(Vec3(-50, -50, -5), Vec3(100, 0, 0), Vec3(0, 50, 0), 0));  // y <= 0
+  scene.render.ambient = Color(1.0f);
+  scene.camera = axisCamera(Vec3(0.0f), Vec3(0, 0, -1), 40.0f);
+  scene.camera.spp = spp;
+  return scene;
+}
+
+double rowMean(const Image& img, int y) {
+  double sum = 0.0;
+  for (int x = 0; x < img.width; ++x) sum += img.at(x, y).r;
+  return sum / img.width;
+}
+
+TEST(Render, SquareSppStratifiesThePixel) {
+  for (int spp : {4, 16}) {
+    Scene scene = halfWallScene(spp);
+    Rig rig(scene);
+    Image img = rig.render();
+    // A 2x2 or 4x4 grid puts exactly half the samples of every edge pixel on the wall.
+    for (int x = 0; x < img.width; ++x) EXPECT_FLOAT_EQ(img.at(x, 24).r, 0.5f) << "spp " << spp << " x " << x;
+    EXPECT_EQ(rowMean(img, 23), 0.0);
+    EXPECT_EQ(rowMean(img, 25), 1.0);
+  }
+}
+
+TEST(Render, NonSquareSppCoversThePixel) {
+  for (int spp : {2, 3, 5, 8}) {
+    Scene scene = halfWallScene(spp);
+    Rig rig(scene);
+    Image img = rig.render();
+    // 65 pixels x spp samples, each on the wall with probability 1/2: sd <= 0.044
+    // even without stratification.
+    EXPECT_NEAR(rowMean(img, 24), 0.5, 0.12) << "spp " << spp;
+  }
+}
+
+TEST(Render, DegenerateLightsProduceNoNaN) {
+  Scene scene;
+  scene.materials.push_back(makeMaterial("m", Color(0.1f), Color(0.8f)));
+  scene.materials[0].specular = Color(0.5f);
+  scene.materials[0].shininess = 20.0f;
+  Material glass = makeMaterial("glass", Color(0.0f), Color(0.0f));
+  glass.transparent = true;
+  scene.materials.push_back(glass);
+  scene.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
+  scene.spheres.push_back(Sphere{Vec3(1.5f, 0.5f, 0.5f), 0.4f, 1});
+  scene.meshes.push_back(makeQuad(Vec3(-5, -1, -5), Vec3(0, 0, 10), Vec3(10, 0, 0), 0));  // y = -1
+  scene.lights.push_back(point(Vec3(0, 0, 1), Color(1.0f), 3.0f));    // on the sphere, in view
+  scene.lights.push_back(point(Vec3(2, -1, 0), Color(1.0f), 3.0f));   // on the floor
+  scene.lights.push_back(point(Vec3(0, 3, 0), Color(1.0f), 0.0f));    // zero intensity
+  scene.lights.push_back(directional(Vec3(0, -1, 0), Color(1.0f), 0.0f));
+  scene.lights.push_back(point(Vec3(0.0f), Color(1.0f), 1.0f));       // inside the sphere
+  scene.camera = axisCamera(Vec3(0, 0, 5), Vec3(0.0f), 50.0f);
+  for (int spp : {1, 4}) {
+    scene.camera.spp = spp;
+    Rig rig(scene);
+    Image img = rig.render();
+    int bad = 0;
+    for (const Color& c : img.pixels) bad += isFinite(c) ? 0 : 1;
+    EXPECT_EQ(bad, 0) << "spp " << spp;
+  }
+  // The centre pixel hits the light's own position: the light is skipped, not divided by 0.
+  scene.camera.spp = 1;
+  Rig rig(scene);
+  Color c = rig.render().at(32, 24);
+  EXPECT_TRUE(isFinite(c));
+  EXPECT_GE(c.r, 0.1f - 1e-6f);
+}
+
+}  // namespace
+}  // namespace penumbra
