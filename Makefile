@@ -10,7 +10,7 @@ PKGS := cmake ninja-build g++ pkg-config libtbb-dev libembree-dev libglm-dev \
         fonts-dejavu-core python3
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build render test bench gallery clean
+.PHONY: all deps configure build renderer render test bench gallery clean
 all: build
 
 deps:
@@ -31,7 +31,10 @@ configure: deps $(BUILD)/build.ninja
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-render: build
+renderer: configure
+	cmake --build $(BUILD) -j $(JOBS) --target penumbra
+
+render: renderer
 	@mkdir -p $(OUT)
 	$(BUILD)/penumbra render $(SHOWCASE) -o $(OUT)/showcase.png
 	@echo "Image written to $(abspath $(OUT)/showcase.png)"
@@ -42,7 +45,7 @@ test: build
 bench: build
 	@for b in $(BUILD)/bench/bench_*; do $$b; done
 
-gallery: build
+gallery: renderer
 	scripts/gallery.sh $(BUILD)/penumbra $(OUT)/gallery
 
 clean:

@@ -25,7 +25,7 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
     req.tracePixel = std::make_pair(x, y);
   }
   ProgressBar bar(!quiet);
-  req.progress = [&bar](double f) { bar.update(f); };
+  req.progress = [&bar](const char* phase, double f) { bar.update(phase, f); };
   RenderResult result = runRender(req);
   bar.finish();
   if (req.tracePixel) {

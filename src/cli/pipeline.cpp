@@ -64,6 +64,7 @@ RenderResult runRender(const RenderRequest& request) {
   IndirectPhotonMap indirectMap;
   float classicScale = 1.0f;
   if (wantPhotons && hasPointLight(scene)) {
+    if (request.progress) request.progress("photons", 0.0);
     phase = Stopwatch();
     EmitOptions emitOptions;
     emitOptions.shadowMap = aov == Aov::Beauty;
@@ -74,6 +75,7 @@ RenderResult runRender(const RenderRequest& request) {
     stats.storedShadow = maps.shadow.size();
     stats.storedIndirect = maps.indirect.size();
     classicScale = maps.classicScale;
+    if (request.progress) request.progress("maps", 0.0);
     phase = Stopwatch();
     // nanoflann builds single-threaded: build the two trees side by side.
     tbb::parallel_invoke([&] { shadowMap.build(std::move(maps.shadow), scene.lights.size()); },
@@ -115,7 +117,7 @@ RenderResult runRender(const RenderRequest& request) {
   } else {
     RenderOptions options;
     options.aov = aov;
-    options.progress = request.progress;
+    if (request.progress) options.progress = [&](double f) { request.progress("render", f); };
     result.image = renderImage(ctx, options, stats.rays);
   }
   stats.time.render = phase.seconds();

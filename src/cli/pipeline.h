@@ -18,7 +18,8 @@ struct RenderRequest {
   int threads = 0;                      // 0 = all cores
   std::string aov;  // empty: the scene's render.aov
   std::optional<std::pair<int, int>> tracePixel;  // record this pixel's ray tree instead
-  std::function<void(double)> progress;
+  // Called with the phase ("photons", "maps", "render") and its completed fraction.
+  std::function<void(const char* phase, double fraction)> progress;
 };
 
 struct RenderResult {

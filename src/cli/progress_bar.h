@@ -2,7 +2,6 @@
 // has taken over a second (short renders stay quiet).
 #pragma once
 #include "core/stats.h"
-#include <atomic>
 #include <cstdio>
 #include <mutex>
 #include <unistd.h>
@@ -14,16 +13,18 @@ class ProgressBar {
   explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
   ~ProgressBar() { finish(); }
 
-  void update(double fraction) {
+  // Redraws when the phase changes or the percentage grows; phases are labelled
+  // so the photon pass, which has no fraction of its own, still shows activity.
+  void update(const char* phase, double fraction) {
     if (!enabled_ || clock_.seconds() < 1.0) return;
     int percent = static_cast<int>(fraction * 100.0);
-    if (percent <= shown_.load()) return;
     std::lock_guard<std::mutex> lock(mutex_);
-    if (percent <= shown_) return;
+    if (phase == phase_ && percent <= shown_) return;
+    phase_ = phase;
     shown_ = percent;
     const int width = 40;
     int filled = percent * width / 100;
-    std::fprintf(stderr, "\r[%.*s%*s] %3d%%", filled, "########################################",
+    std::fprintf(stderr, "\r%-8s [%.*s%*s] %3d%%", phase, filled, "########################################",
                  width - filled, "", percent);
     std::fflush(stderr);
     drawn_ = true;
@@ -36,7 +37,8 @@ class ProgressBar {
  private:
   bool enabled_;
   Stopwatch clock_;
-  std::atomic<int> shown_{-1};
+  const char* phase_ = nullptr;  // phases are string literals: compared by address
+  int shown_ = -1;
   std::mutex mutex_;
   bool drawn_ = false;
 };
