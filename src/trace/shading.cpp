@@ -112,7 +112,7 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
   float footprint = cone + hit.t * ctx.pixelSpread;
 
   Color texel(1.0f);
-  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, ctx.tracer);
+  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint);
 
   // Local shading records its gate notes into this ray's record; fetch the
   // pointer after children may have grown the vector, never hold it across.

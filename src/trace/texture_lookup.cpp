@@ -38,8 +38,7 @@ TextureLookup::TextureLookup(const std::vector<std::string>& paths) : impl_(std:
 
 TextureLookup::~TextureLookup() { OIIO::TextureSystem::destroy(impl_->system); }
 
-Color TextureLookup::lookup(int index, const SurfaceRecord& s, float footprint,
-                            const TraceScene&) const {
+Color TextureLookup::lookup(int index, const SurfaceRecord& s, float footprint) const {
   OIIO::TextureOpt opt;
   opt.swrap = OIIO::TextureOpt::WrapPeriodic;  // longitude wraps across the seam
   opt.twrap = OIIO::TextureOpt::WrapClamp;     // latitude stops at the poles

@@ -15,7 +15,7 @@ class TextureLookup {
   ~TextureLookup();
   // Linear RGB of texture `index` at the surface's uv; `footprint` is the world
   // width the pixel covers there, turned into a filter width in uv.
-  Color lookup(int index, const SurfaceRecord& s, float footprint, const TraceScene& tracer) const;
+  Color lookup(int index, const SurfaceRecord& s, float footprint) const;
 
  private:
   struct Impl;
