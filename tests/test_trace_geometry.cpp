@@ -3,6 +3,7 @@
 // front/back faces and normal flipping, occlusion ranges, smooth normals and uvs.
 #include "trace/sphere_geometry.h"
 #include "trace/trace_scene.h"
+#include "io/shapes.h"
 #include <gtest/gtest.h>
 #include <cmath>
 
@@ -275,7 +276,25 @@ TEST(SphericalUv, CentrePolesAndSeam) {
   SurfaceRecord s = tracer.surface(ray, hit);
   EXPECT_FLOAT_EQ(s.uv.x, 0.5f);
   EXPECT_FLOAT_EQ(s.uv.y, 0.5f);
-  EXPECT_FLOAT_EQ(s.radius, 2.0f);
+  // A unit of arc moves u by 1/(2 pi r) and v by 1/(pi r).
+  EXPECT_FLOAT_EQ(s.uvPerWorld.x, 1.0f / (2.0f * kPi * 2.0f));
+  EXPECT_FLOAT_EQ(s.uvPerWorld.y, 1.0f / (kPi * 2.0f));
+}
+
+TEST(Geometry, QuadUvScaleFollowsItsSize) {
+  // A 10 x 10 quad maps uv [0,1]^2 onto 100 units^2: 0.1 uv per unit.
+  Scene scene;
+  scene.materials.push_back(Material{});
+  scene.meshes.push_back(makeQuad(Vec3(-5, -5, 0), Vec3(10, 0, 0), Vec3(0, 10, 0)));
+  TraceScene tracer(scene);
+  Hit hit;
+  Ray ray = makeRay(Vec3(1, 2, 5), Vec3(0, 0, -1));
+  ASSERT_TRUE(tracer.intersect(ray, hit));
+  SurfaceRecord s = tracer.surface(ray, hit);
+  EXPECT_NEAR(s.uv.x, 0.6f, 1e-6f);
+  EXPECT_NEAR(s.uv.y, 0.7f, 1e-6f);
+  EXPECT_NEAR(s.uvPerWorld.x, 0.1f, 1e-6f);
+  EXPECT_NEAR(s.uvPerWorld.y, 0.1f, 1e-6f);
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
 // Spherical texture mapping through OIIO's TextureSystem on generated textures:
 // the checker at known (u, v), the equator, both sides of the seam and the poles,
 // colour continuity across the seam, MIP filtering, and a rendered globe.
+#include "core/color.h"
 #include "io/image_io.h"
 #include "io/texture_gen.h"
 #include "support/render_fixtures.h"
 #include "trace/sphere_geometry.h"
 #include "trace/texture_lookup.h"
+#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 #include <filesystem>
 
@@ -35,13 +37,13 @@ class TextureLookupTest : public ::testing::Test {
   static Color at(int texture, const Vec3& dir, float footprint = 1e-5f) {
     SurfaceRecord s;
     s.uv = sphericalUv(glm::normalize(dir));
-    s.radius = 1.0f;
+    s.uvPerWorld = sphericalUvPerWorld(1.0f);
     return sample(texture, s.uv, footprint);
   }
   static Color sample(int texture, Vec2 uv, float footprint = 1e-5f) {
     SurfaceRecord s;
     s.uv = uv;
-    s.radius = 1.0f;
+    s.uvPerWorld = sphericalUvPerWorld(1.0f);
     return lookup_->lookup(texture, s, footprint);
   }
   static inline fs::path dir_;
@@ -156,6 +158,36 @@ TEST_F(TextureLookupTest, RenderedGlobeMultipliesTheLitColour) {
     }
   }
   EXPECT_GT(checked, 20);
+}
+
+// 16-bit PNGs are sRGB-encoded like 8-bit ones, and grey + alpha reads as grey.
+TEST(TextureFormats, SixteenBitAndGreyAlphaAreLinearisedGrey) {
+  fs::path dir = fs::temp_directory_path() / ("penumbra-texfmt-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  auto write = [&](const std::string& name, int channels, OIIO::TypeDesc format) {
+    OIIO::ImageBuf buf(OIIO::ImageSpec(8, 4, channels, OIIO::TypeDesc::FLOAT));
+    std::vector<float> values(8 * 4 * channels, 0.5f);
+    if (channels == 2) for (size_t i = 1; i < values.size(); i += 2) values[i] = 1.0f;  // alpha
+    buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, values.data());
+    std::string path = (dir / name).string();
+    EXPECT_TRUE(buf.write(path, format)) << buf.geterror();
+    return path;
+  };
+  std::vector<std::string> paths = {write("rgb16.png", 3, OIIO::TypeDesc::UINT16),
+                                    write("ga8.png", 2, OIIO::TypeDesc::UINT8),
+                                    write("rgb8.png", 3, OIIO::TypeDesc::UINT8)};
+  TextureLookup lookup(paths);
+  SurfaceRecord s;
+  s.uv = {0.5f, 0.5f};
+  s.uvPerWorld = Vec2(1e-3f);
+  const float expected = static_cast<float>(srgbDecode(0.5));  // 0.214
+  for (int i = 0; i < 3; ++i) {
+    Color c = lookup.lookup(i, s, 1e-3f);
+    EXPECT_NEAR(c.r, expected, 3e-3f) << paths[i];
+    EXPECT_NEAR(c.g, expected, 3e-3f) << paths[i];
+    EXPECT_NEAR(c.b, expected, 3e-3f) << paths[i];
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace penumbra

@@ -2,6 +2,7 @@
 // stream keyed by (seed, map, batch index); per-thread buffers are merged in
 // batch order, so the stored arrays do not depend on the thread count.
 #include "emit/emit.h"
+#include "core/color.h"
 #include "core/optics.h"
 #include "core/rng.h"
 #include "core/sampling.h"
@@ -38,8 +39,6 @@ void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& d
     ray.origin = offsetRayOrigin(s.position, s.ng, dir);
   }
 }
-
-float meanOf(const Color& c) { return (c.r + c.g + c.b) / 3.0f; }
 
 // One indirect photon path: stored at every hit (classic) or every hit after
 // the first (density, whose direct part comes from the Phong term instead).

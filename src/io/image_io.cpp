@@ -1,6 +1,7 @@
 // Image file I/O through OpenImageIO: the sRGB transfer curve, the choice of
 // writer by extension, and the write-to-temp-then-rename that keeps targets whole.
 #include "io/image_io.h"
+#include "core/color.h"
 
 #include "core/error.h"
 
@@ -23,15 +24,6 @@ namespace {
 namespace fs = std::filesystem;
 
 enum class Encoding { Srgb8, LinearHalf };
-
-// The IEC 61966-2-1 piecewise curve, in double so that the 8-bit rounding is
-// decided by the standard and not by float error near the .5 boundaries.
-double srgbEncode(double linear) {
-  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-}
-double srgbDecode(double encoded) {
-  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
-}
 
 uint8_t toSrgb8(float linear) {
   if (!std::isfinite(linear) || linear <= 0.0f) return 0;
@@ -163,7 +155,7 @@ Image readImage(const std::string& path) {
   bool integer = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
                  spec.format.basetype != OIIO::TypeDesc::HALF &&
                  spec.format.basetype != OIIO::TypeDesc::DOUBLE;
-  bool srgb = OIIO::Strutil::iequals(colorSpace, "sRGB") || (colorSpace.empty() && integer);
+  bool srgb = isSrgbEncoded(colorSpace, integer);
   float gamma = OIIO::Strutil::istarts_with(colorSpace, "Gamma")
                     ? spec.get_float_attribute("oiio:Gamma", 2.2f)
                     : 1.0f;

@@ -1,6 +1,7 @@
 // The "materials" section: Phong terms, mirror and glass parameters, photon
 // Russian-roulette probabilities, and the textures materials reference.
 #include "io/scene_sections.h"
+#include "core/color.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -71,7 +72,7 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
   m.pR = node.floatOr("p_r", m.kr, unit);
   float defaultPT = 0.0f;
   if (m.transparent) {
-    float meanTint = (m.tint.r + m.tint.g + m.tint.b) / 3.0f;
+    float meanTint = meanOf(m.tint);
     defaultPT = std::clamp((1.0f - m.pR) * meanTint, 0.0f, 1.0f - m.pR);
   }
   m.pT = node.floatOr("p_t", defaultPT, unit);

@@ -1,6 +1,7 @@
 // Procedural lat-long textures (checker, grid, gas giant, earth-like) built on
 // GLM simplex noise over sphere directions, plus the on-disk builtin: cache.
 #include "io/texture_gen.h"
+#include "core/color.h"
 
 #include "core/error.h"
 #include "io/image_io.h"
@@ -26,11 +27,7 @@ constexpr int kMaxSize = 16384;
 float smooth(float e0, float e1, float x) { return glm::smoothstep(e0, e1, x); }
 
 // Palette colours are picked by eye in sRGB; textures hold linear values.
-Color fromSrgb(Color c) {
-  for (int i = 0; i < 3; ++i)
-    c[i] = c[i] <= 0.04045f ? c[i] / 12.92f : std::pow((c[i] + 0.055f) / 1.055f, 2.4f);
-  return c;
-}
+Color fromSrgb(Color c) { return srgbToLinear(c); }
 
 uint64_t splitMix64(uint64_t& state) {
   uint64_t z = (state += 0x9E3779B97F4A7C15ull);

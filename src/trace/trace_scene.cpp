@@ -36,6 +36,11 @@ RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
 
 }  // namespace
 
+Vec2 sphericalUvPerWorld(float radius) {
+  // u spans the equator (2 pi r) and v a meridian (pi r).
+  return {1.0f / (2.0f * kPi * radius), 1.0f / (kPi * radius)};
+}
+
 Vec2 sphericalUv(const Vec3& d) {
   float u = 0.5f + std::atan2(d.x, d.z) / (2.0f * kPi);
   if (u >= 1.0f) u -= 1.0f;  // atan2 = pi maps to exactly 1: wrap it to the seam
@@ -136,7 +141,7 @@ SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit) const {
   // Re-project onto the sphere: removes the error of o + t d at large t.
   rec.position = s.center + s.radius * n;
   rec.uv = sphericalUv(n);
-  rec.radius = s.radius;
+  rec.uvPerWorld = sphericalUvPerWorld(s.radius);
   rec.material = s.material;
   rec.frontFace = glm::dot(n, ray.dir) < 0.0f;
   rec.ng = rec.ns = rec.frontFace ? n : -n;
@@ -159,15 +164,23 @@ SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit) const {
     float len = glm::length(n);
     if (len > 1e-12f) ns = n / len;
   }
+  const float radius = meshRadii_[geometries_[hit.geomId].index];
   if (!mesh.uvs.empty()) {
-    rec.uv = w * mesh.uvs[tri[0]] + hit.u * mesh.uvs[tri[1]] + hit.v * mesh.uvs[tri[2]];
+    const Vec2 &t0 = mesh.uvs[tri[0]], &t1 = mesh.uvs[tri[1]], &t2 = mesh.uvs[tri[2]];
+    rec.uv = w * t0 + hit.u * t1 + hit.v * t2;
+    // Isotropic scale from the triangle's uv area over its world area.
+    Vec2 a = t1 - t0, b = t2 - t0;
+    float uvArea = std::abs(a.x * b.y - a.y * b.x);
+    float worldArea = glm::length(glm::cross(p1 - p0, p2 - p0));
+    float scale = worldArea > 0.0f ? std::sqrt(uvArea / worldArea) : 0.0f;
+    rec.uvPerWorld = Vec2(scale);
   } else {
+    rec.uvPerWorld = sphericalUvPerWorld(radius);
     Vec3 d = rec.position - meshCentres_[geometries_[hit.geomId].index];
     float len = glm::length(d);
     rec.uv = sphericalUv(len > 0.0f ? d / len : Vec3(0.0f, 1.0f, 0.0f));
   }
   rec.material = mesh.material;
-  rec.radius = meshRadii_[geometries_[hit.geomId].index];
   rec.frontFace = glm::dot(ng, ray.dir) < 0.0f;
   if (!rec.frontFace) { ng = -ng; ns = -ns; }
   // An interpolated normal can lean past the silhouette; never let it face away

@@ -17,7 +17,7 @@ struct SurfaceRecord {
   Vec3 ng{0.0f, 0.0f, 1.0f};  // geometric normal, facing the incoming ray
   Vec3 ns{0.0f, 0.0f, 1.0f};  // shading normal, facing the incoming ray
   Vec2 uv{0.0f};
-  float radius = 1.0f;  // object's size (sphere radius, mesh half-diagonal) for uv filter widths
+  Vec2 uvPerWorld{1.0f};  // uv change per unit of world distance (u, v): texture filter widths
   int material = 0;
   bool frontFace = true;
 };
@@ -49,12 +49,14 @@ class TraceScene {
   RTCScene rtcScene_ = nullptr;
   std::vector<GeometryRef> geometries_;  // by Embree geomID
   std::vector<Vec3> meshCentres_;        // for spherical UVs on meshes without uvs
-  std::vector<float> meshRadii_;
+  std::vector<float> meshRadii_;         // half-diagonal: spherical-uv scale on meshes without uvs
   std::string embreeError_;              // first error Embree reported, if any
 };
 
 // Equirectangular (u, v) of a unit direction from a centre, y up: u grows
 // eastwards with u = 0.5 facing +z, v = 0 at the north pole. u is in [0, 1).
 Vec2 sphericalUv(const Vec3& unitDir);
+// How fast those (u, v) change per unit of distance on a sphere of this radius.
+Vec2 sphericalUvPerWorld(float radius);
 
 }  // namespace penumbra
