@@ -46,6 +46,23 @@ TEST(Render, DepthViewOrdersByDistance) {
   }
 }
 
+// With several samples, a silhouette pixel averages only the samples that hit:
+// a miss must not pull its depth towards zero (the nearest value in the image).
+TEST(Render, DepthViewIgnoresMissedSamples) {
+  Scene scene;
+  scene.materials.push_back(makeMaterial("m", Color(0.1f), Color(0.8f)));
+  scene.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
+  scene.camera = axisCamera(Vec3(0, 0, 5), Vec3(0.0f), 40.0f);
+  scene.camera.spp = 4;
+  Rig rig(scene);
+  Image img = rig.render(Aov::Depth);
+  // The nearest point is the sphere's front, seen by the centre pixel.
+  const float centre = img.at(32, 24).r;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) EXPECT_GE(img.at(x, y).r, centre) << x << "," << y;
+  EXPECT_LT(centre, 0.05f);
+}
+
 Scene glassBallScene(int maxDepth) {
   Scene scene;
   Material glass = makeMaterial("glass", Color(0.0f), Color(0.0f));
@@ -236,6 +253,31 @@ TEST(Render, DegenerateLightsProduceNoNaN) {
   Color c = rig.render().at(32, 24);
   EXPECT_TRUE(isFinite(c));
   EXPECT_GE(c.r, 0.1f - 1e-6f);
+}
+
+// Nested glass at depth 64 with no weight cut-off doubles the ray tree at every
+// hit; the per-sample budget must keep every pixel's tree bounded.
+TEST(Render, NestedGlassTreeIsBoundedPerSample) {
+  Scene scene;
+  Material glass = makeMaterial("glass", Color(0.0f), Color(0.0f));
+  glass.transparent = true;
+  scene.materials.push_back(glass);
+  scene.spheres.push_back(Sphere{Vec3(0.0f), 0.6f, 0});
+  scene.meshes.push_back(makeBox(Vec3(-1.0f), Vec3(1.0f), 0));
+  scene.lights.push_back(point(Vec3(2, 3, 3), Color(1.0f), 20.0f));
+  scene.render.maxDepth = 64;
+  scene.render.minWeight = 0.0f;
+  scene.camera = axisCamera(Vec3(0, 0, 4), Vec3(0.0f));
+  scene.camera.width = 9;
+  scene.camera.height = 7;
+  Rig rig(scene);
+  RenderOptions options;
+  RayCounts counts;
+  Image image = renderImage(rig.ctx, options, counts);
+  const uint64_t samples = 9 * 7;
+  EXPECT_LE(counts.camera + counts.reflection + counts.refraction, samples * kMaxRaysPerSample);
+  EXPECT_GT(counts.reflection + counts.refraction, samples * 64) << "the budget should be what stopped it";
+  for (const Color& c : image.pixels) EXPECT_TRUE(isFinite(c));
 }
 
 }  // namespace

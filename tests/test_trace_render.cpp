@@ -217,16 +217,22 @@ TEST(Render, GlassSlabAtNormalIncidence) {
     Rig rig(s);
     RayTree tree;
     expectColorNear(rig.shade(ray, &tree), T * T * wall, 1e-5f, "kt^2 x wall");
-    // Camera, front reflection, refraction in, internal reflection, refraction out.
+    // Stronger branch first: camera, refraction in, refraction out onto the
+    // wall, internal reflection, and last the weak front reflection.
     ASSERT_EQ(tree.size(), 5u);
     EXPECT_TRUE(tree[0].entering);
-    EXPECT_EQ(tree[1].kind, "reflection");
-    EXPECT_FALSE(tree[1].hit);
+    EXPECT_EQ(tree[1].kind, "refraction");
+    EXPECT_EQ(tree[1].parent, 0);
+    EXPECT_FALSE(tree[1].entering);  // the back face, from inside
+    EXPECT_NEAR(tree[1].t, 1.0f, 1e-4f);
     EXPECT_EQ(tree[2].kind, "refraction");
-    EXPECT_FALSE(tree[2].entering);  // the back face, from inside
-    EXPECT_NEAR(tree[2].t, 1.0f, 1e-4f);
-    EXPECT_EQ(tree[4].kind, "refraction");
-    EXPECT_EQ(tree[4].material, "wall");
+    EXPECT_EQ(tree[2].parent, 1);
+    EXPECT_EQ(tree[2].material, "wall");
+    EXPECT_EQ(tree[3].kind, "reflection");
+    EXPECT_EQ(tree[3].parent, 1);
+    EXPECT_EQ(tree[4].kind, "reflection");
+    EXPECT_EQ(tree[4].parent, 0);
+    EXPECT_FALSE(tree[4].hit);
   }
   {
     // Depth 4 adds the path bouncing once inside: T R R T.

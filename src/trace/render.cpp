@@ -33,7 +33,7 @@ Vec2 samplePosition(int s, int n, Rng& rng) {
   if (side * side == n) {
     return {(s % side + rng.uniform()) / side, (s / side + rng.uniform()) / side};
   }
-  int g = std::max(1, static_cast<int>(n * 0.618034));
+  int g = std::max(1, static_cast<int>(std::lround(n * 0.618034)));
   while (std::gcd(g, n) != 1) ++g;
   int row = static_cast<int>((static_cast<int64_t>(s) * g) % n);
   return {(s + rng.uniform()) / n, (row + rng.uniform()) / n};
@@ -42,6 +42,7 @@ Vec2 samplePosition(int s, int n, Rng& rng) {
 // One sample of the chosen view. Depth stores the raw distance (normalised for
 // display afterwards), -1 on a miss.
 Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
+  ts.raysLeft = kMaxRaysPerSample;
   if (aov == Aov::Beauty) return traceRay(ctx, ray, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
   ++ts.counts.camera;
   Hit hit;
@@ -87,12 +88,17 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
         for (int x = x0; x < x1; ++x) {
           uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
           Color sum(0.0f);
+          int counted = 0;
           for (int s = 0; s < cam.spp; ++s) {
             Rng rng(hashKey(seed, pixel, static_cast<uint64_t>(s)));
             Vec2 off = samplePosition(s, cam.spp, rng);
-            sum += shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
+            Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
+            // Depth averages only the samples that hit: a miss is "no depth", not -1 m.
+            if (options.aov == Aov::Depth && c.r < 0.0f) continue;
+            sum += c;
+            ++counted;
           }
-          image.at(x, y) = sum / static_cast<float>(cam.spp);
+          image.at(x, y) = counted > 0 ? sum / static_cast<float>(counted) : Color(-1.0f);
         }
       }
       int done = ++tilesDone;

@@ -31,6 +31,7 @@ Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Mate
   const auto& lights = ctx.scene.lights;
   for (uint32_t li = 0; li < lights.size(); ++li) {
     const Light& light = lights[li];
+    if (maxComponent(light.radiance()) <= 0.0f) continue;  // nothing to add: skip the shadow test
     Vec3 toLight;
     float distance = kInf, falloff = 1.0f;
     if (light.type == LightType::Point) {
@@ -81,6 +82,7 @@ bool sceneHasGlass(const Scene& scene) {
 Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color& weight,
                float cone, RayKind kind, int parentRecord, ThreadState& ts) {
   countRay(kind, ts.counts);
+  --ts.raysLeft;
   int recIndex = -1;
   if (ts.recorder) {
     RayRecord r;
@@ -134,16 +136,28 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
     if (!transmits) { kr = 1.0f; note = "total internal reflection"; }
     Color kt = (1.0f - kr) * (s.frontFace ? m.tint : Color(1.0f));
     Color reflW = weight * kr, transW = weight * kt;
-    if (maxComponent(reflW) > rs.minWeight) {
+    // Both branches of every glass hit would double the tree per level; the
+    // stronger one goes first so a tree that hits the per-sample ray budget
+    // loses its weakest light.
+    auto reflectBranch = [&] {
+      if (maxComponent(reflW) <= rs.minWeight || ts.raysLeft <= 0) return;
       Ray r{s.position, mirrorDirection(ray.dir, s)};
       r.origin = offsetRayOrigin(s.position, s.ng, r.dir);
       color += kr * traceRay(ctx, r, depth + 1, reflW, footprint, RayKind::Reflection, recIndex, ts);
-    }
-    if (transmits && maxComponent(transW) > rs.minWeight) {
+    };
+    auto refractBranch = [&] {
+      if (!transmits || maxComponent(transW) <= rs.minWeight || ts.raysLeft <= 0) return;
       Ray r{offsetRayOrigin(s.position, s.ng, tdir), tdir};
       color += kt * traceRay(ctx, r, depth + 1, transW, footprint, RayKind::Refraction, recIndex, ts);
+    };
+    if (maxComponent(reflW) >= maxComponent(transW)) {
+      reflectBranch();
+      refractBranch();
+    } else {
+      refractBranch();
+      reflectBranch();
     }
-  } else if (deeper && m.kr > 0.0f && maxComponent(weight) * m.kr > rs.minWeight) {
+  } else if (deeper && m.kr > 0.0f && maxComponent(weight) * m.kr > rs.minWeight && ts.raysLeft > 0) {
     Vec3 rdir = mirrorDirection(ray.dir, s);
     Ray r{offsetRayOrigin(s.position, s.ng, rdir), rdir};
     color += m.kr * traceRay(ctx, r, depth + 1, weight * m.kr, footprint, RayKind::Reflection, recIndex, ts);

@@ -26,6 +26,11 @@ struct ShadingContext {
   bool hasGlass = false;      // some material is transparent: shadows are tinted
 };
 
+// Rays one camera sample may spawn (itself included). Every glass hit spawns two
+// rays, so nested glass at a deep max_depth would otherwise grow the tree
+// exponentially; a normal scene at depth 6 needs at most 127.
+constexpr int kMaxRaysPerSample = 1024;
+
 // Per-thread mutable state: counters, reusable gather buffers, optional recorder.
 struct ThreadState {
   ThreadState();
@@ -34,6 +39,7 @@ struct ThreadState {
   RayCounts counts;
   std::unique_ptr<GatherScratch> scratch;
   RayTree* recorder = nullptr;  // --trace-pixel: every ray appended here
+  int raysLeft = kMaxRaysPerSample;  // reset for every camera sample
 };
 
 enum class RayKind { Camera, Reflection, Refraction };
