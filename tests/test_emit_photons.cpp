@@ -140,6 +140,7 @@ TEST(EmitIndirect, RussianRouletteClassicStoresEveryHit) {
     Scene scene = boxScene(1.0f, Vec3(0.1f, 0.2f, -0.3f), 0, n, p);
     scene.photons.maxBounces = 1000;
     scene.photons.estimator = IndirectEstimator::Classic;
+    scene.photons.sampling = HemisphereSampling::Cosine;  // unweighted bounces: power stays put
     TraceScene tracer(scene);
     PhotonMaps maps = emitPhotons(scene, tracer);
     EXPECT_TRUE(maps.shadow.empty());
@@ -148,7 +149,8 @@ TEST(EmitIndirect, RussianRouletteClassicStoresEveryHit) {
     const double mean = n / (1.0 - p), sd = std::sqrt(n * p) / (1.0 - p);
     expectWithinSigmas(static_cast<double>(maps.indirect.size()), mean, sd, 4.0,
                        "classic, p=" + std::to_string(p));
-    // Grey walls keep every photon at the emitted share of the flux 4 pi I / n.
+    // With cosine sampling grey walls keep every photon at the emitted share of
+    // the flux 4 pi I / n.
     const float power = 4.0f * kPi / n;
     for (const IndirectPhoton& ph : maps.indirect) {
       ASSERT_NEAR(ph.power.r, power, power * 1e-4f);
@@ -179,12 +181,40 @@ TEST(EmitIndirect, RussianRouletteDensitySkipsTheFirstHit) {
                      "density, max_bounces 1");
 }
 
+// Uniform hemisphere bounces carry the weight 2 cos(theta), which averages 1:
+// energy is conserved on average, and the weight follows the bounce direction.
+TEST(EmitIndirect, UniformBouncesAreCosineWeighted) {
+  const uint64_t n = 40000;
+  Scene scene = boxScene(1.0f, Vec3(0.0f), 0, n, 0.5f);
+  scene.photons.maxBounces = 1;
+  scene.photons.sampling = HemisphereSampling::Uniform;
+  TraceScene tracer(scene);
+  PhotonMaps maps = emitPhotons(scene, tracer);
+  const double p0 = 4.0 * kPi / n;
+  double sum = 0.0, sum2 = 0.0;
+  size_t second = 0;
+  for (const IndirectPhoton& ph : maps.indirect) {
+    if (std::abs(ph.power.r - p0) < p0 * 1e-4 && std::abs(ph.power.g - p0) < p0 * 1e-4) continue;
+    // A bounced photon: weight = power / p0 = 2 cos(theta) in [0, 2].
+    double w = ph.power.r / p0;
+    ASSERT_GE(w, 0.0);
+    ASSERT_LE(w, 2.0 + 1e-4);
+    sum += w;
+    sum2 += w * w;
+    ++second;
+  }
+  ASSERT_GT(second, 1000u);
+  // Mean of 2 cos(theta) for theta uniform over the hemisphere is 1, variance 1/3.
+  expectWithinSigmas(sum / second, 1.0, std::sqrt(1.0 / 3.0 / second), 4.0, "mean uniform weight");
+}
+
 TEST(EmitIndirect, SurvivorsTakeOnTheWallColour) {
   // Diffuse (0.9, 0.6, 0.3) has mean 0.6: each bounce multiplies power by (1.5, 1, 0.5).
   const uint64_t n = 5000;
   Scene scene = boxScene(1.0f, Vec3(0.0f), 0, n, 0.5f);
   scene.materials[0].diffuse = Color(0.9f, 0.6f, 0.3f);
   scene.photons.maxBounces = 1000;
+  scene.photons.sampling = HemisphereSampling::Cosine;
   TraceScene tracer(scene);
   PhotonMaps maps = emitPhotons(scene, tracer);
   const float p0 = 4.0f * kPi / n;

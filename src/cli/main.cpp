@@ -7,22 +7,31 @@
 #include "io/report_json.h"
 #include "io/texture_gen.h"
 #include <CLI/CLI.hpp>
-#include <cstdio>
+#include <charconv>
 #include <iostream>
 
 using namespace penumbra;
 
 namespace {
 
+// "X,Y" as two ints; from_chars, unlike sscanf, rejects out-of-range numbers.
+std::pair<int, int> parsePixel(const std::string& arg) {
+  int x = 0, y = 0;
+  const char* end = arg.data() + arg.size();
+  auto [next, ec] = std::from_chars(arg.data(), end, x);
+  bool ok = ec == std::errc() && next != end && *next == ',';
+  if (ok) {
+    auto r = std::from_chars(next + 1, end, y);
+    ok = r.ec == std::errc() && r.ptr == end;
+  }
+  if (!ok) throw InputError("--trace-pixel: expected X,Y, got '" + arg + "'");
+  return {x, y};
+}
+
 int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std::string& tracePixelArg,
                      bool quiet) {
   if (!tracePixelArg.empty()) {
-    int x = 0, y = 0;
-    char tail = 0;
-    if (std::sscanf(tracePixelArg.c_str(), "%d,%d%c", &x, &y, &tail) != 2) {
-      throw InputError("--trace-pixel: expected X,Y, got '" + tracePixelArg + "'");
-    }
-    req.tracePixel = std::make_pair(x, y);
+    req.tracePixel = parsePixel(tracePixelArg);
   }
   ProgressBar bar(!quiet);
   req.progress = [&bar](const char* phase, double f) { bar.update(phase, f); };

@@ -53,6 +53,9 @@ RenderResult runRender(const RenderRequest& request) {
   stats.time.load = phase.seconds();
   const std::string aovName = request.aov.empty() ? scene.render.aov : request.aov;
   Aov aov = parseAov(aovName);
+  // Bad output paths and pixels fail now, not after minutes of photons and tiles.
+  if (!request.outputPath.empty() && !request.tracePixel) checkImageOutputPath(request.outputPath);
+  if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
 
   phase = Stopwatch();
   TraceScene tracer(scene);
@@ -82,6 +85,10 @@ RenderResult runRender(const RenderRequest& request) {
                          [&] { indirectMap.build(std::move(maps.indirect)); });
     stats.time.buildMaps = phase.seconds();
     stats.photonMapBytes = shadowMap.memoryBytes() + indirectMap.memoryBytes();
+    if (scene.photons.indirectPhotons > 0 && indirectMap.empty()) {
+      result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
+                             "using the ambient term");
+    }
   } else if (wantPhotons && !scene.lights.empty()) {
     result.notes.push_back("only directional lights: rendering without photon maps");
   }

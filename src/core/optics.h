@@ -1,5 +1,6 @@
 // Reflection, Snell refraction and unpolarised Fresnel. Shared by the tracer and
-// the photon pass, so photons and camera rays bend identically.
+// the photon pass, so photons and camera rays bend identically (how often a photon
+// refracts is its material's p_t, not Fresnel: see docs/photon-maps.md).
 #pragma once
 #include "core/math.h"
 

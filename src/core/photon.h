@@ -34,7 +34,7 @@ struct PhotonMaps {
   std::vector<IndirectPhoton> indirect;
   uint64_t emittedShadow = 0;
   uint64_t emittedIndirect = 0;
-  // Converts stored indirect flux back into photon colour (white light -> 1):
+  // Converts stored indirect flux back into photon colour (a white light's photons -> 1):
   // emitted photons / (4 pi x summed luminous intensity). Used by the classic estimator.
   float classicScale = 1.0f;
 };

@@ -60,16 +60,23 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
     float u1 = rng.uniform(), u2 = rng.uniform();
     Vec3 dir;
     if (xi < m.pR) {
-      Vec3 local = ps.sampling == HemisphereSampling::Cosine ? cosineHemisphere(u1, u2)
-                                                             : uniformHemisphere(u1, u2);
+      // A Lambertian surface scatters with density cos(theta) / pi. Cosine
+      // sampling draws exactly that; uniform sampling (pdf 1 / 2 pi, the report's)
+      // carries the ratio 2 cos(theta) as a weight, so both converge to the same
+      // light and differ only in noise.
+      bool cosine = ps.sampling == HemisphereSampling::Cosine;
+      Vec3 local = cosine ? cosineHemisphere(u1, u2) : uniformHemisphere(u1, u2);
       dir = toWorld(local, s.ng);
       float mean = meanOf(m.diffuse);
       power *= mean > 0.0f ? m.diffuse / mean : Color(0.0f);
+      if (!cosine) power *= 2.0f * local.z;
     } else if (xi < m.pR + m.pT) {
       float eta = s.frontFace ? 1.0f / m.ior : m.ior;
-      if (!refract(ray.dir, s.ns, eta, dir)) dir = reflect(ray.dir, s.ns);  // total internal reflection
+      bool refracted = refract(ray.dir, s.ns, eta, dir);
+      if (!refracted) dir = reflect(ray.dir, s.ns);  // total internal reflection
       float mean = meanOf(m.tint);
-      if (s.frontFace) power *= mean > 0.0f ? m.tint / mean : Color(0.0f);
+      // The tint filters light entering the material, as on camera rays.
+      if (refracted && s.frontFace) power *= mean > 0.0f ? m.tint / mean : Color(0.0f);
     } else {
       return;  // absorbed
     }

@@ -74,18 +74,25 @@ void writeFile(const fs::path& file, const std::string& target, const OIIO::Imag
 
 }  // namespace
 
-void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata) {
+void checkImageOutputPath(const std::string& path) {
   fs::path target(path);
   std::string ext = OIIO::Strutil::lower(target.extension().string());
-  Encoding encoding;
-  if (ext == ".png") {
-    encoding = Encoding::Srgb8;
-  } else if (ext == ".exr") {
-    encoding = Encoding::LinearHalf;
-  } else {
+  if (ext != ".png" && ext != ".exr") {
     throw InputError(path + ": unsupported image extension '" + target.extension().string() +
                      "' (use .png or .exr)");
   }
+  fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) writeFailed(path, "directory '" + dir.string() + "' does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) writeFailed(path, "directory '" + dir.string() + "' is not writable");
+  if (fs::is_directory(target, ec)) writeFailed(path, "it is a directory");
+}
+
+void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata) {
+  checkImageOutputPath(path);
+  fs::path target(path);
+  Encoding encoding = OIIO::Strutil::lower(target.extension().string()) == ".png" ? Encoding::Srgb8
+                                                                                  : Encoding::LinearHalf;
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height) {
     writeFailed(path, "image is empty or its pixel count does not match its size");

@@ -10,6 +10,10 @@ namespace penumbra {
 
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
+// Throws InputError unless `path` has a supported extension and names a file in
+// an existing, writable directory: lets a render fail before it starts.
+void checkImageOutputPath(const std::string& path);
+
 // Throws InputError for an unsupported extension or an unwritable path.
 void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {});
 

@@ -3,6 +3,7 @@
 #include "io/scene_sections.h"
 
 #include "io/obj_loader.h"
+#include "io/mesh_cleanup.h"
 #include "io/shapes.h"
 #include "io/suggest.h"
 #include "io/transform.h"
@@ -144,6 +145,11 @@ void readObject(const JsonNode& node, const MaterialLookup& materials, Scene& sc
   applyTransform(transform, mesh);
   for (const Vec3& p : mesh.positions) {
     if (!isFinite(p)) node.fail("transformed positions are not finite (scale or translate too large)");
+  }
+  // Triangles whose normal cannot be computed in float (zero area, or a scale so
+  // small the cross product underflows) would hit with NaN normals: drop them.
+  if (dropDegenerateTriangles(mesh) > 0 && mesh.triangles.empty()) {
+    node.fail("every triangle has zero area after the transform (is the scale too small?)");
   }
   mesh.material = material;
   scene.meshes.push_back(std::move(mesh));

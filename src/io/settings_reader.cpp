@@ -42,6 +42,11 @@ void readCamera(const JsonNode& node, Camera& out) {
 
 void readLights(const JsonNode& node, std::vector<Light>& out) {
   size_t count = node.arraySize();
+  // Shadow photons name their light in 16 bits (core/photon.h).
+  constexpr size_t kMaxLights = 65535;
+  if (count > kMaxLights) {
+    node.fail("at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(count));
+  }
   for (size_t i = 0; i < count; ++i) {
     JsonNode item = node.element(i);
     item.requireObject();

@@ -43,8 +43,6 @@ glm::mat3 Transform::linear() const {
   return r * s;
 }
 
-Vec3 Transform::applyPoint(const Vec3& p) const { return linear() * p + translate; }
-
 Transform readTransform(const JsonNode& object) {
   Transform t;
   t.translate = object.vec3Or("translate", t.translate);

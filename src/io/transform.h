@@ -15,7 +15,6 @@ struct Transform {
 
   bool isIdentity() const;
   glm::mat3 linear() const;  // R * S
-  Vec3 applyPoint(const Vec3& p) const;
 };
 
 // Reads the optional "translate", "rotate" and "scale" keys of an object node;

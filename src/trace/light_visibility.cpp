@@ -48,6 +48,8 @@ Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     GateParams params;
     params.k = ps.kShadow;
     params.maxRadius = ps.maxRadius;
+    // A small k cannot muster the default quorum; let every neighbour count.
+    params.minVoters = std::min(params.minVoters, params.k);
     ++ts.counts.gateQueries;
     GateVerdict v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch);
     if (v == GateVerdict::Lit) {
@@ -82,8 +84,9 @@ Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Mater
     ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
     return m.diffuse * e.value;
   }
-  // Classic (the report's): the weighted mean photon colour replaces the
-  // global ambient light; the material's ambient colour still filters it.
+  // Classic (the report's): the cone-weighted sum of photon colours over the
+  // photon count replaces the global ambient light; the material's ambient
+  // colour still filters it.
   auto e = ctx.indirectMap->classic(s.position, s.ng, ps.kIndirect, ps.maxRadius, *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
   return m.ambient * e.value * ctx.classicScale;

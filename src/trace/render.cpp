@@ -111,13 +111,17 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   return image;
 }
 
-RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
-  const Camera& cam = ctx.scene.camera;
+void checkPixel(const Camera& cam, int x, int y) {
   if (x < 0 || y < 0 || x >= cam.width || y >= cam.height) {
     throw InputError("--trace-pixel: " + std::to_string(x) + "," + std::to_string(y) +
                      " is outside the " + std::to_string(cam.width) + "x" + std::to_string(cam.height) +
                      " image");
   }
+}
+
+RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
+  const Camera& cam = ctx.scene.camera;
+  checkPixel(cam, x, y);
   RayTree tree;
   ThreadState ts;
   ts.recorder = &tree;

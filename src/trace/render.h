@@ -24,6 +24,9 @@ struct RenderOptions {
 // Renders the whole image; `counts` receives the sum of every thread's counters.
 Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCounts& counts);
 
+// Throws InputError unless (x, y) is a pixel of the camera's image.
+void checkPixel(const Camera& camera, int x, int y);
+
 // The full ray tree of one pixel's first sample (--trace-pixel).
 RayTree tracePixel(const ShadingContext& ctx, int x, int y);
 

@@ -104,7 +104,9 @@ bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(rtcScene_, &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  // A non-finite distance can only come from geometry at the edge of float range;
+  // treating it as a miss keeps NaN out of every position and offset after it.
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !std::isfinite(rh.ray.tfar)) return false;
   hit.t = rh.ray.tfar;
   hit.u = rh.hit.u;
   hit.v = rh.hit.v;

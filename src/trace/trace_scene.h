@@ -34,7 +34,6 @@ class TraceScene {
   SurfaceRecord surface(const Ray& ray, const Hit& hit) const;
 
   const Scene& scene() const { return scene_; }
-  RTCScene handle() const { return rtcScene_; }
 
  private:
   struct GeometryRef {

@@ -1,0 +1,22 @@
+// Degenerate-triangle removal for loaded and transformed meshes.
+#include "io/mesh_cleanup.h"
+#include <algorithm>
+
+namespace penumbra {
+
+size_t dropDegenerateTriangles(TriangleMesh& mesh) {
+  const size_t before = mesh.triangles.size();
+  auto degenerate = [&](const std::array<uint32_t, 3>& t) {
+    const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+    Vec3 n = glm::cross(b - a, c - a);
+    float len2 = glm::dot(n, n);
+    // The tracer normalises this vector: it must be non-zero and its square finite
+    // and normal-range, or the division yields inf or NaN.
+    return !(len2 >= std::numeric_limits<float>::min()) || !std::isfinite(len2);
+  };
+  mesh.triangles.erase(std::remove_if(mesh.triangles.begin(), mesh.triangles.end(), degenerate),
+                       mesh.triangles.end());
+  return before - mesh.triangles.size();
+}
+
+}  // namespace penumbra
