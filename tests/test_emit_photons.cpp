@@ -322,5 +322,34 @@ TEST(SplitBudget, ProportionalToLuminanceAndExact) {
   EXPECT_EQ(maps.emittedIndirect, 0u);
 }
 
+// A line through a glass ball records glass-only shadows behind it; a line through
+// an opaque ball records opaque shadows, also behind glass crossed later.
+TEST(EmitShadow, ShadowKindRecordsWhetherSomethingOpaqueWasCrossed) {
+  Scene scene = boxScene(2.0f, Vec3(0.0f), 40000, 0, 0.0f);
+  Material glass;
+  glass.name = "glass";
+  glass.transparent = true;
+  scene.materials.push_back(glass);
+  scene.spheres.push_back(Sphere{Vec3(1.0f, 0.0f, 0.0f), 0.4f, 1});   // glass towards +x
+  scene.spheres.push_back(Sphere{Vec3(-1.0f, 0.0f, 0.0f), 0.4f, 0});  // opaque towards -x
+  TraceScene tracer(scene);
+  PhotonMaps maps = emitPhotons(scene, tracer);
+  size_t glassBehind = 0, opaqueBehind = 0;
+  for (const ShadowPhoton& p : maps.shadow) {
+    bool onWall = maxComponent(glm::abs(p.position)) > 1.99f;
+    if (!onWall || p.shadow == kDirect) continue;
+    // Wall photons in shadow sit behind one of the balls: glass ones at +x.
+    if (p.position.x > 0.0f) {
+      EXPECT_EQ(p.shadow, kShadowGlass);
+      ++glassBehind;
+    } else {
+      EXPECT_EQ(p.shadow, kShadowOpaque);
+      ++opaqueBehind;
+    }
+  }
+  EXPECT_GT(glassBehind, 100u);
+  EXPECT_GT(opaqueBehind, 100u);
+}
+
 }  // namespace
 }  // namespace penumbra

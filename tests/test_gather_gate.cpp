@@ -48,6 +48,25 @@ TEST(Gate, PlaneOfShadowPhotonsIsShadowed) {
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Shadowed);
 }
 
+// Behind glass alone the light is tinted, not blocked: the gate must hand such
+// points to a shadow ray, even when every voter is a shadow photon.
+TEST(Gate, ShadowBehindGlassOnlyAsksForARay) {
+  std::vector<ShadowPhoton> ph;
+  addPlane(ph, 100, 0.0f, kUp, 0, allShadow, 2);
+  for (ShadowPhoton& p : ph) p.shadow = kShadowGlass;
+  EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Mixed);
+  // One glass-only photon among opaque-shadow voters is enough to ask.
+  for (ShadowPhoton& p : ph) p.shadow = kShadowOpaque;
+  EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Shadowed);
+  ShadowPhotonMap map;
+  map.build(ph, 1);
+  GatherScratch scratch;
+  ASSERT_EQ(map.knn(Vec3(0.5f, 0.5f, 0.0f), 0, 1, 0.0f, scratch), 1u);
+  std::vector<ShadowPhoton> sorted = map.photons(0);
+  sorted[scratch.indices[0]].shadow = kShadowGlass;
+  EXPECT_EQ(classifyAt(sorted, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Mixed);
+}
+
 TEST(Gate, HalfAndHalfIsMixedOnlyNearTheBoundary) {
   std::vector<ShadowPhoton> ph;
   addPlane(ph, 100, 0.0f, kUp, 0, [](int, float x) { return x > 0.5f; }, 3);

@@ -102,3 +102,18 @@ TEST(ShadowGate, MatchesShadowRaysAndCastsFewOfThem) {
   RecordProperty("rmse", std::to_string(error));
   std::printf("gate: %.1f%% of shadow rays cast, RMSE %.5f\n", 100.0 * fraction, error);
 }
+
+// With glass, shadows behind glass alone are tinted and need a ray, but shadows
+// behind opaque objects are still decided by the photons.
+TEST(ShadowGate, GlassSceneKeepsTintedShadowsAndSavesRays) {
+  auto settings = with(kSmall, {"camera.width=320", "camera.height=240", "photons.shadow=2000000"});
+  RenderResult gated = render("fig06_thin_glass.json", settings);
+  RenderResult ungated = render("fig06_thin_glass.json", with(settings, {"photons.gate=false"}));
+  const RayCounts& g = gated.stats.rays;
+  ASSERT_GT(g.gateShadowed, 0u) << "opaque shadows decided without rays";
+  double fraction = double(g.shadow) / double(ungated.stats.rays.shadow);
+  EXPECT_LT(fraction, 0.5);
+  double error = rmse(gated.image, ungated.image);
+  EXPECT_LT(error, 0.01) << "RMSE gated vs ungated";
+  std::printf("glass gate: %.1f%% of shadow rays cast, RMSE %.5f\n", 100.0 * fraction, error);
+}

@@ -12,12 +12,16 @@ namespace penumbra {
 uint32_t encodeOctahedral(const Vec3& unit);
 Vec3 decodeOctahedral(uint32_t code);
 
-// A hit along a shadow photon's line: the first is Direct, every later one Shadow.
+// What lies between a shadow photon and its light. Behind glass alone the light
+// arrives tinted, which only a shadow ray can measure.
+enum ShadowKind : uint8_t { kDirect = 0, kShadowOpaque = 1, kShadowGlass = 2 };
+
+// A hit along a shadow photon's line: the first is direct, every later one a shadow.
 struct ShadowPhoton {
   Vec3 position;
   uint32_t normal;  // octahedral geometric normal, flipped to face where the photon came from
   uint16_t light;   // index into Scene::lights
-  uint8_t shadow;   // 0 = direct, 1 = shadow
+  uint8_t shadow;   // a ShadowKind: direct, behind something opaque, or behind glass only
   uint8_t pad = 0;
 };
 

@@ -27,15 +27,18 @@ std::vector<Batch> makeBatches(const std::vector<uint64_t>& perLight, uint32_t b
 }
 
 // Follows one line from the light through every surface: the first hit is
-// direct, all later ones are in that surface's shadow.
+// direct, all later ones are in shadow, opaque once anything opaque was crossed.
 void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& dir, uint16_t light,
                      int maxHits, std::vector<ShadowPhoton>& out) {
+  const std::vector<Material>& materials = tracer.scene().materials;
   Ray ray{origin, dir};
+  ShadowKind kind = kDirect;
   for (int h = 0; h < maxHits; ++h) {
     Hit hit;
     if (!tracer.intersect(ray, hit)) return;
     SurfaceRecord s = tracer.surface(ray, hit);
-    out.push_back({s.position, encodeOctahedral(s.ng), light, static_cast<uint8_t>(h > 0 ? 1 : 0)});
+    out.push_back({s.position, encodeOctahedral(s.ng), light, kind});
+    if (kind != kShadowOpaque) kind = materials[s.material].transparent ? kShadowGlass : kShadowOpaque;
     ray.origin = offsetRayOrigin(s.position, s.ng, dir);
   }
 }

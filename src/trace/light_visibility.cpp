@@ -58,16 +58,16 @@ Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
       if (note) *note = "gate: lit";
       return Color(1.0f);
     }
-    // Behind glass a "shadow" is only tinted, which the photons cannot tell.
-    if (v == GateVerdict::Shadowed && !ctx.hasGlass) {
+    // Shadowed means every voter sits behind something opaque; photons behind
+    // glass alone make the vote Mixed, since only a ray can measure the tint.
+    if (v == GateVerdict::Shadowed) {
       ++ts.counts.gateShadowed;
       ++ts.counts.shadowRaysAvoided;
       if (note) *note = "gate: shadowed";
       return Color(0.0f);
     }
-    if (v == GateVerdict::Shadowed) ++ts.counts.gateShadowed;
-    else ++ts.counts.gateMixed;
-    if (note) *note = v == GateVerdict::Mixed ? "gate: mixed, shadow ray" : "gate: shadowed behind glass, shadow ray";
+    ++ts.counts.gateMixed;
+    if (note) *note = "gate: mixed, shadow ray";
   }
   return shadowTransmittance(ctx, s, toLight, distance, ts);
 }
