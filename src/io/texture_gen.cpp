@@ -222,9 +222,13 @@ std::string validNames() {
   return list;
 }
 
+// The user's own cache first: a fixed name under a shared /tmp could be created
+// in advance by someone else, so it is only the last resort.
 std::filesystem::path cacheDirectory() {
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   if (xdg && *xdg) return std::filesystem::path(xdg) / "penumbra" / "textures";
+  const char* home = std::getenv("HOME");
+  if (home && *home) return std::filesystem::path(home) / ".cache" / "penumbra" / "textures";
   return std::filesystem::path("/tmp") / ("penumbra-textures-" + std::to_string(::getuid()));
 }
 

@@ -32,7 +32,8 @@ inline constexpr float kCheckerDark[3] = {0.60f, 0.05f, 0.03f};
 
 // Resolves "builtin:NAME" or "builtin:NAME@WIDTH" (height = WIDTH / 2, default
 // width 2048, seed 1) to an absolute .exr path in the cache directory
-// ($XDG_CACHE_HOME/penumbra/textures, else /tmp/penumbra-textures-<uid>),
+// ($XDG_CACHE_HOME/penumbra/textures, else ~/.cache/penumbra/textures, else
+// /tmp/penumbra-textures-<uid>),
 // generating the file on first use. The file name carries name, width and a
 // content version, so a changed generator never reuses stale files. Concurrent
 // processes may both generate; writeImage's rename makes the last one win whole.
