@@ -55,6 +55,7 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
 int main(int argc, char** argv) {
   CLI::App app{"penumbra: a CPU photon-mapping renderer (Whitted core + shadow and indirect photon maps)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION);
 
   RenderRequest req;
   std::string statsPath, tracePixelArg;
