@@ -4,6 +4,7 @@
 // photon), budget splitting, and byte-identical maps for 1 and 2 threads.
 #include "emit/emit.h"
 #include "io/shapes.h"
+#include "support/render_fixtures.h"
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <cmath>
@@ -11,7 +12,6 @@
 
 namespace penumbra {
 namespace {
-
 
 Material wallMaterial(float pR, Color diffuse = Color(0.8f)) {
   Material m;
@@ -23,12 +23,7 @@ Material wallMaterial(float pR, Color diffuse = Color(0.8f)) {
 }
 
 Light pointLight(Vec3 p, float intensity = 1.0f, Color color = Color(1.0f)) {
-  Light l;
-  l.type = LightType::Point;
-  l.position = p;
-  l.intensity = intensity;
-  l.color = color;
-  return l;
+  return point(p, color, intensity);
 }
 
 // A closed box [-h, h]^3 around a point light; no indirect photons by default.
