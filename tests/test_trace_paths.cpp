@@ -138,13 +138,17 @@ void expectConsistentTree(const RayTree& tree) {
     const RayRecord& parent = tree[r.parent];
     EXPECT_TRUE(parent.hit) << i;
     EXPECT_EQ(r.depth, parent.depth + 1) << i;
-    EXPECT_TRUE(r.kind == "reflection" || r.kind == "refraction") << r.kind;
+    EXPECT_TRUE(r.kind == "reflection" || r.kind == "refraction" || r.kind == "shadow") << r.kind;
+    if (r.kind == "shadow") {  // a transmittance in [0, 1], not radiance
+      EXPECT_GE(r.contribution.r, 0.0f);
+      EXPECT_LE(r.contribution.r, 1.0f);
+    }
   }
   // A parent's contribution is its own weighted local shading plus its children's.
   for (size_t i = 0; i < tree.size(); ++i) {
     Color rest = tree[i].contribution;
     for (const RayRecord& c : tree) {
-      if (c.parent == static_cast<int>(i)) rest -= c.contribution;
+      if (c.parent == static_cast<int>(i) && c.kind != "shadow") rest -= c.contribution;
     }
     EXPECT_GE(rest.r, -1e-6f) << i;
     EXPECT_GE(rest.g, -1e-6f) << i;

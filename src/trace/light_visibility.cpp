@@ -69,7 +69,21 @@ Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     ++ts.counts.gateMixed;
     if (note) *note = "gate: mixed, shadow ray";
   }
-  return shadowTransmittance(ctx, s, toLight, distance, ts);
+  Color t = shadowTransmittance(ctx, s, toLight, distance, ts);
+  if (ts.recorder) {
+    // The shadow ray joins the ray tree under the ray whose hit it lights.
+    RayRecord r;
+    r.kind = "shadow";
+    r.parent = ts.currentRecord;
+    r.depth = ts.currentRecord >= 0 ? (*ts.recorder)[ts.currentRecord].depth + 1 : 0;
+    r.origin = offsetRayOrigin(s.position, s.ng, toLight);
+    r.dir = toLight;
+    r.hit = maxComponent(t) < 1.0f;  // blocked or filtered on the way to the light
+    r.contribution = t;
+    r.note = "light " + std::to_string(lightIndex) + (r.hit ? (maxComponent(t) > 0.0f ? ": through glass" : ": blocked") : ": clear");
+    ts.recorder->push_back(r);
+  }
+  return t;
 }
 
 Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,

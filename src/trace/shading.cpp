@@ -119,6 +119,7 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
   // Local shading records its gate notes into this ray's record; fetch the
   // pointer after children may have grown the vector, never hold it across.
   RayRecord scratchRec;
+  ts.currentRecord = recIndex;
   Color color = localShading(ctx, s, m, toEye, texel, ts, recIndex >= 0 ? &scratchRec : nullptr);
 
   const RenderSettings& rs = ctx.scene.render;

@@ -39,6 +39,7 @@ struct ThreadState {
   RayCounts counts;
   std::unique_ptr<GatherScratch> scratch;
   RayTree* recorder = nullptr;  // --trace-pixel: every ray appended here
+  int currentRecord = -1;       // the recorded ray being shaded: parent of its shadow rays
   int raysLeft = kMaxRaysPerSample;  // reset for every camera sample
 };
 

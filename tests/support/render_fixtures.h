@@ -84,4 +84,13 @@ inline Camera axisCamera(Vec3 position, Vec3 lookAt, float fov = 30.0f) {
   return c;
 }
 
+// The tree without its shadow rays: camera, reflection and refraction only.
+inline RayTree withoutShadowRays(const RayTree& tree) {
+  RayTree out;
+  for (const RayRecord& r : tree) {
+    if (r.kind != "shadow") out.push_back(r);
+  }
+  return out;
+}
+
 }  // namespace penumbra
