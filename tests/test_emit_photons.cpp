@@ -4,7 +4,7 @@
 // photon), budget splitting, and byte-identical maps for 1 and 2 threads.
 #include "emit/emit.h"
 #include "io/shapes.h"
-#include "support/render_fixtures.h"
+#include "support/scene_fixtures.h"
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <cmath>

@@ -6,9 +6,9 @@
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "io/texture_gen.h"
-#include "trace/camera.h"
-#include "trace/render.h"
-#include "trace/texture_lookup.h"
+#include "integrator/camera.h"
+#include "integrator/render.h"
+#include "integrator/texture_lookup.h"
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_invoke.h>

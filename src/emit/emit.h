@@ -4,7 +4,7 @@
 #pragma once
 #include "core/photon.h"
 #include "core/scene.h"
-#include "trace/trace_scene.h"
+#include "geometry/trace_scene.h"
 
 namespace penumbra {
 

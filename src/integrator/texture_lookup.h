@@ -1,7 +1,7 @@
 // Image textures through OpenImageIO's TextureSystem: MIP-mapped, filtered,
 // periodic in u (the longitude seam) and clamped in v (the poles).
 #pragma once
-#include "trace/trace_scene.h"
+#include "geometry/trace_scene.h"
 #include <memory>
 #include <string>
 #include <vector>

@@ -3,7 +3,7 @@
 #pragma once
 #include "core/image.h"
 #include "core/ray_record.h"
-#include "trace/shading.h"
+#include "integrator/shading.h"
 #include <functional>
 #include <string>
 

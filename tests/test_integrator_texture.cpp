@@ -5,8 +5,8 @@
 #include "io/image_io.h"
 #include "io/texture_gen.h"
 #include "support/render_fixtures.h"
-#include "trace/sphere_geometry.h"
-#include "trace/texture_lookup.h"
+#include "geometry/sphere_geometry.h"
+#include "integrator/texture_lookup.h"
 #include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 #include <filesystem>

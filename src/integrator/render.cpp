@@ -1,10 +1,10 @@
 // Tiles are scheduled by tbb::parallel_for and write disjoint pixels; every
 // sample's random numbers come from (seed, pixel, sample), never from a thread.
-#include "trace/render.h"
+#include "integrator/render.h"
 #include "core/error.h"
 #include "core/rng.h"
-#include "trace/camera.h"
-#include "trace/light_visibility.h"
+#include "integrator/camera.h"
+#include "integrator/light_visibility.h"
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

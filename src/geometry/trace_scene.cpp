@@ -1,8 +1,8 @@
 // Builds the Embree scene (triangle meshes + one user geometry of spheres) and
 // answers ray queries; expands hits into surface records for shading.
-#include "trace/trace_scene.h"
+#include "geometry/trace_scene.h"
 #include "core/error.h"
-#include "trace/sphere_geometry.h"
+#include "geometry/sphere_geometry.h"
 #include <stdexcept>
 #include <string>
 

@@ -1,8 +1,8 @@
 // Ray queries of TraceScene against closed forms: analytic sphere hits (outside,
 // inside, far from the origin, grazing), triangle hits with barycentrics,
 // front/back faces and normal flipping, occlusion ranges, smooth normals and uvs.
-#include "trace/sphere_geometry.h"
-#include "trace/trace_scene.h"
+#include "geometry/sphere_geometry.h"
+#include "geometry/trace_scene.h"
 #include "io/shapes.h"
 #include <gtest/gtest.h>
 #include <cmath>

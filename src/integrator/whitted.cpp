@@ -1,9 +1,9 @@
 // Whitted recursion: local Phong lighting plus mirror and Fresnel-weighted
 // refraction rays. Photon maps enter only through light_visibility.
-#include "trace/shading.h"
+#include "integrator/shading.h"
 #include "core/optics.h"
-#include "trace/light_visibility.h"
-#include "trace/texture_lookup.h"
+#include "integrator/light_visibility.h"
+#include "integrator/texture_lookup.h"
 
 namespace penumbra {
 namespace {

@@ -4,7 +4,7 @@
 #include "core/ray_record.h"
 #include "core/scene.h"
 #include "core/stats.h"
-#include "trace/trace_scene.h"
+#include "geometry/trace_scene.h"
 #include <memory>
 
 namespace penumbra {

@@ -1,7 +1,7 @@
 // How much of a light reaches a shading point: the photon-map ambiguity gate
 // decides when a shadow ray is needed; shadow rays through glass are tinted.
 #pragma once
-#include "trace/shading.h"
+#include "integrator/shading.h"
 
 namespace penumbra {
 

@@ -1,7 +1,7 @@
 // Pinhole camera: maps a film position to a primary ray.
 #pragma once
 #include "core/scene.h"
-#include "trace/ray.h"
+#include "geometry/ray.h"
 
 namespace penumbra {
 

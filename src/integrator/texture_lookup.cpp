@@ -1,6 +1,6 @@
 // OpenImageIO TextureSystem behind a small facade: one handle per texture,
 // filter widths from the ray footprint, sRGB-encoded files linearised.
-#include "trace/texture_lookup.h"
+#include "integrator/texture_lookup.h"
 #include "core/color.h"
 #include "core/error.h"
 #include <OpenImageIO/texture.h>

@@ -1,6 +1,6 @@
 // Light visibility through the ambiguity gate, and the ambient/indirect term.
 // Only the penumbra (photons disagree) pays for a real shadow ray.
-#include "trace/light_visibility.h"
+#include "integrator/light_visibility.h"
 #include "gather/photon_map.h"
 
 namespace penumbra {

@@ -1,5 +1,5 @@
 // Embree user-geometry callbacks for analytic spheres.
-#include "trace/sphere_geometry.h"
+#include "geometry/sphere_geometry.h"
 #include <cmath>
 
 namespace penumbra {

@@ -2,7 +2,7 @@
 // and the photon pass, and the expansion of a small Hit into a SurfaceRecord.
 #pragma once
 #include "core/scene.h"
-#include "trace/ray.h"
+#include "geometry/ray.h"
 #include <embree3/rtcore.h>
 #include <string>
 #include <vector>
