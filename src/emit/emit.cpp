@@ -36,7 +36,7 @@ void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& d
   for (int h = 0; h < maxHits; ++h) {
     Hit hit;
     if (!tracer.intersect(ray, hit)) return;
-    SurfaceRecord s = tracer.surface(ray, hit);
+    SurfaceRecord s = tracer.surface(ray, hit, kSurfaceGeometric);
     out.push_back({s.position, encodeOctahedral(s.ng), light, kind});
     if (kind != kShadowOpaque) kind = materials[s.material].transparent ? kShadowGlass : kShadowOpaque;
     ray.origin = offsetRayOrigin(s.position, s.ng, dir);
@@ -51,7 +51,7 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
   for (int bounce = 0; bounce <= ps.maxBounces; ++bounce) {
     Hit hit;
     if (!tracer.intersect(ray, hit)) return;
-    SurfaceRecord s = tracer.surface(ray, hit);
+    SurfaceRecord s = tracer.surface(ray, hit, kSurfaceShadingNormal);
     const Material& m = scene.materials[s.material];
     if (bounce > 0 || storeFirstHit) {
       out.push_back({s.position, power, encodeOctahedral(ray.dir), encodeOctahedral(s.ng)});

@@ -131,26 +131,34 @@ bool TraceScene::occluded(const Ray& ray) const {
   return r.tfar < 0.0f;
 }
 
-SurfaceRecord TraceScene::surface(const Ray& ray, const Hit& hit) const {
-  return geometries_[hit.geomId].sphere ? sphereSurface(ray, hit) : meshSurface(ray, hit);
+int TraceScene::materialOf(const Hit& hit) const {
+  const GeometryRef& g = geometries_[hit.geomId];
+  return g.sphere ? scene_.spheres[hit.primId].material : scene_.meshes[g.index].material;
 }
 
-SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit) const {
+SurfaceRecord TraceScene::surface(const Ray& ray, const Hit& hit, uint8_t fields) const {
+  return geometries_[hit.geomId].sphere ? sphereSurface(ray, hit, fields)
+                                        : meshSurface(ray, hit, fields);
+}
+
+SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const {
   const Sphere& s = scene_.spheres[hit.primId];
   SurfaceRecord rec;
   Vec3 p = ray.origin + hit.t * ray.dir;
   Vec3 n = glm::normalize(p - s.center);
   // Re-project onto the sphere: removes the error of o + t d at large t.
   rec.position = s.center + s.radius * n;
-  rec.uv = sphericalUv(n);
-  rec.uvPerWorld = sphericalUvPerWorld(s.radius);
+  if (fields & kSurfaceUv) {
+    rec.uv = sphericalUv(n);
+    rec.uvPerWorld = sphericalUvPerWorld(s.radius);
+  }
   rec.material = s.material;
   rec.frontFace = glm::dot(n, ray.dir) < 0.0f;
   rec.ng = rec.ns = rec.frontFace ? n : -n;
   return rec;
 }
 
-SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit) const {
+SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit, uint8_t fields) const {
   const TriangleMesh& mesh = scene_.meshes[geometries_[hit.geomId].index];
   const auto& tri = mesh.triangles[hit.primId];
   float w = 1.0f - hit.u - hit.v;
@@ -161,13 +169,15 @@ SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit) const {
   rec.position = w * p0 + hit.u * p1 + hit.v * p2;
   Vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
   Vec3 ns = ng;
-  if (!mesh.normals.empty()) {
+  if ((fields & kSurfaceShadingNormal) && !mesh.normals.empty()) {
     Vec3 n = w * mesh.normals[tri[0]] + hit.u * mesh.normals[tri[1]] + hit.v * mesh.normals[tri[2]];
     float len = glm::length(n);
     if (len > 1e-12f) ns = n / len;
   }
   const float radius = meshRadii_[geometries_[hit.geomId].index];
-  if (!mesh.uvs.empty()) {
+  if (!(fields & kSurfaceUv)) {
+    // Not asked for: leave the defaults.
+  } else if (!mesh.uvs.empty()) {
     const Vec2 &t0 = mesh.uvs[tri[0]], &t1 = mesh.uvs[tri[1]], &t2 = mesh.uvs[tri[2]];
     rec.uv = w * t0 + hit.u * t1 + hit.v * t2;
     // Isotropic scale from the triangle's uv area over its world area.

@@ -9,6 +9,17 @@
 
 namespace penumbra {
 
+// Which SurfaceRecord fields a caller needs. Position, geometric normal, side and
+// material are always filled (every caller needs them, and they cost a few flops);
+// interpolated normals and texture coordinates only on request, so photon and
+// shadow hits skip the uv work.
+enum SurfaceFields : uint8_t {
+  kSurfaceGeometric = 0,
+  kSurfaceShadingNormal = 1 << 0,  // ns interpolated from vertex normals (else ns = ng)
+  kSurfaceUv = 1 << 1,             // uv and uvPerWorld
+  kSurfaceAll = kSurfaceShadingNormal | kSurfaceUv,
+};
+
 // Everything shading needs about a hit. Normals are unit length and face the
 // side the ray came from; frontFace says whether that is the outside (the side
 // the geometric normal points to), which decides entering versus leaving glass.
@@ -31,7 +42,11 @@ class TraceScene {
 
   bool intersect(const Ray& ray, Hit& hit) const;
   bool occluded(const Ray& ray) const;
-  SurfaceRecord surface(const Ray& ray, const Hit& hit) const;
+  SurfaceRecord surface(const Ray& ray, const Hit& hit, uint8_t fields = kSurfaceAll) const;
+
+  // The material index of a hit, without building its record: lets a caller
+  // decide which fields it needs (uv only for textured materials).
+  int materialOf(const Hit& hit) const;
 
   const Scene& scene() const { return scene_; }
 
@@ -40,8 +55,8 @@ class TraceScene {
     bool sphere;
     uint32_t index;  // mesh index; spheres share one geometry and use primID
   };
-  SurfaceRecord sphereSurface(const Ray& ray, const Hit& hit) const;
-  SurfaceRecord meshSurface(const Ray& ray, const Hit& hit) const;
+  SurfaceRecord sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
+  SurfaceRecord meshSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
 
   const Scene& scene_;
   RTCDevice device_ = nullptr;

@@ -25,7 +25,7 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, con
   for (int crossing = 0; crossing < 32; ++crossing) {
     Hit hit;
     if (!ctx.tracer.intersect(ray, hit)) return t;
-    SurfaceRecord h = ctx.tracer.surface(ray, hit);
+    SurfaceRecord h = ctx.tracer.surface(ray, hit, kSurfaceGeometric);
     const Material& m = ctx.scene.materials[h.material];
     if (!m.transparent) return Color(0.0f);
     if (h.frontFace) t *= m.tint;

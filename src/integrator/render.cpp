@@ -48,7 +48,7 @@ Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadStat
   Hit hit;
   if (!ctx.tracer.intersect(ray, hit)) return aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
   if (aov == Aov::Depth) return Color(hit.t);
-  SurfaceRecord s = ctx.tracer.surface(ray, hit);
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, kSurfaceShadingNormal);
   if (aov == Aov::Normal) return s.ns * 0.5f + 0.5f;
   const Material& m = ctx.scene.materials[s.material];
   return ambientTerm(ctx, s, m, ts);  // Aov::Indirect

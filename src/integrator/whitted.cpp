@@ -108,8 +108,8 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
   if (!ctx.tracer.intersect(ray, hit)) {
     return finish(ctx.scene.render.background, [](RayRecord&) {});
   }
-  SurfaceRecord s = ctx.tracer.surface(ray, hit);
-  const Material& m = ctx.scene.materials[s.material];
+  const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
   Vec3 toEye = -ray.dir;
   float footprint = cone + hit.t * ctx.pixelSpread;
 
