@@ -1,14 +1,18 @@
 // One render from scene file to image: load, build the BVH, emit photons,
 // build both photon maps concurrently, trace tiles, write the image.
 #include "cli/pipeline.h"
+#include "core/error.h"
 #include "emit/emit.h"
+#include "emit/emit_physical.h"
 #include "gather/photon_map.h"
+#include "gather/radiance_estimate.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "io/texture_gen.h"
 #include "integrator/camera.h"
 #include "integrator/render.h"
 #include "integrator/texture_lookup.h"
+#include "integrator/shading.h"
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_invoke.h>
@@ -20,16 +24,28 @@ namespace {
 
 ImageMetadata describe(const Scene& scene, const RenderStats& stats, const std::string& aov) {
   const auto& ps = scene.photons;
+  bool physical = scene.render.model == ShadingModel::Physical;
+  std::string photons =
+      physical ? fmt::format("global_photons={} caustic_photons={} k_global={} k_caustic={} "
+                             "passes={} alpha={} radius={} max_bounces={} shadow_photons={} "
+                             "k_shadow={} gate={}",
+                             ps.globalPhotons, ps.causticPhotons, ps.kGlobal, ps.kCaustic, ps.passes,
+                             ps.alpha, ps.radius, ps.maxBounces, stats.emittedShadow, ps.kShadow,
+                             ps.gate ? "on" : "off")
+               : fmt::format("shadow_photons={} indirect_photons={} k_shadow={} k_indirect={} "
+                             "max_radius={} max_bounces={} sampling={} gate={} estimator={}",
+                             stats.emittedShadow, stats.emittedIndirect, ps.kShadow, ps.kIndirect,
+                             ps.maxRadius, ps.maxBounces,
+                             ps.sampling == HemisphereSampling::Cosine ? "cosine" : "uniform",
+                             ps.gate ? "on" : "off",
+                             ps.estimator == IndirectEstimator::Classic ? "classic" : "density");
   return {{"penumbra:scene", scene.name},
           {"penumbra:scene_file", scene.file},
           {"penumbra:aov", aov},
-          {"penumbra:settings",
-           fmt::format("{}x{} spp={} max_depth={} seed={} shadow_photons={} indirect_photons={} "
-                       "k_shadow={} k_indirect={} gate={} estimator={}",
-                       scene.camera.width, scene.camera.height, scene.camera.spp, scene.render.maxDepth,
-                       scene.render.seed, stats.emittedShadow, stats.emittedIndirect, ps.kShadow,
-                       ps.kIndirect, ps.gate ? "on" : "off",
-                       ps.estimator == IndirectEstimator::Classic ? "classic" : "density")}};
+          {"penumbra:model", physical ? "physical" : "classic"},
+          {"penumbra:settings", fmt::format("{}x{} spp={} max_depth={} seed={} {}", scene.camera.width,
+                                            scene.camera.height, scene.camera.spp,
+                                            scene.render.maxDepth, scene.render.seed, photons)}};
 }
 
 bool hasPointLight(const Scene& scene) {
@@ -37,6 +53,120 @@ bool hasPointLight(const Scene& scene) {
     if (l.type == LightType::Point) return true;
   }
   return false;
+}
+
+void reportProgress(const RenderRequest& request, const char* phase, double fraction) {
+  if (request.progress) request.progress(phase, fraction);
+}
+
+// Everything a render reads besides the scene; owned here so the context can point in.
+struct Maps {
+  ShadowPhotonMap shadow;
+  IndirectPhotonMap indirect, caustic, global;
+  size_t bytes() const {
+    return shadow.memoryBytes() + indirect.memoryBytes() + caustic.memoryBytes() + global.memoryBytes();
+  }
+};
+
+// Classic model: the shadow map (gate) and the indirect map, once.
+void buildClassicMaps(const Scene& scene, const TraceScene& tracer, Aov aov,
+                      const RenderRequest& request, Maps& maps, ShadingContext& ctx,
+                      RenderResult& result) {
+  RenderStats& stats = result.stats;
+  bool wantPhotons = aov == Aov::Beauty || aov == Aov::Indirect;
+  if (!wantPhotons) return;
+  if (!hasPointLight(scene)) {
+    if (!scene.lights.empty()) result.notes.push_back("only directional lights: rendering without photon maps");
+    return;
+  }
+  reportProgress(request, "photons", 0.0);
+  Stopwatch phase;
+  EmitOptions emitOptions;
+  emitOptions.shadowMap = aov == Aov::Beauty;
+  PhotonMaps emitted = emitPhotons(scene, tracer, emitOptions);
+  stats.time.emit = phase.seconds();
+  stats.emittedShadow = emitted.emittedShadow;
+  stats.emittedIndirect = emitted.emittedIndirect;
+  stats.storedShadow = emitted.shadow.size();
+  stats.storedIndirect = emitted.indirect.size();
+  ctx.classicScale = emitted.classicScale;
+  reportProgress(request, "maps", 0.0);
+  phase = Stopwatch();
+  // nanoflann builds single-threaded: build the two trees side by side.
+  tbb::parallel_invoke([&] { maps.shadow.build(std::move(emitted.shadow), scene.lights.size()); },
+                       [&] { maps.indirect.build(std::move(emitted.indirect)); });
+  stats.time.buildMaps = phase.seconds();
+  if (scene.photons.indirectPhotons > 0 && maps.indirect.empty()) {
+    result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
+                           "using the ambient term");
+  }
+  ctx.shadowMap = maps.shadow.size() > 0 ? &maps.shadow : nullptr;
+  ctx.indirectMap = maps.indirect.empty() ? nullptr : &maps.indirect;
+}
+
+// Physical model, one progressive pass: fresh caustic and global photons (pass-keyed
+// streams), their maps, and the pass's gather radii (Knaus & Zwicker 2011:
+// r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1), so the average of the passes converges).
+void buildPhysicalPass(const Scene& scene, const TraceScene& tracer, uint32_t pass, Aov aov,
+                       Maps& maps, ShadingContext& ctx, RenderStats& stats) {
+  const PhotonSettings& ps = scene.photons;
+  Scene budget = scene;  // only the maps this view reads
+  if (aov != Aov::Beauty && aov != Aov::Indirect) budget.photons.globalPhotons = 0;
+  if (aov != Aov::Beauty && aov != Aov::Caustic) budget.photons.causticPhotons = 0;
+  Stopwatch phase;
+  PhysicalPhotons photons = emitPhysicalPhotons(budget, tracer, pass);
+  stats.time.emit += phase.seconds();
+  stats.emittedCaustic += photons.emittedCaustic;
+  stats.emittedGlobal += photons.emittedGlobal;
+  stats.storedCaustic += photons.caustic.size();
+  stats.storedGlobal += photons.global.size();
+  phase = Stopwatch();
+  tbb::parallel_invoke([&] { maps.caustic.build(std::move(photons.caustic)); },
+                       [&] { maps.global.build(std::move(photons.global)); });
+  stats.time.buildMaps += phase.seconds();
+  ctx.causticMap = maps.caustic.empty() ? nullptr : &maps.caustic;
+  ctx.globalMap = maps.global.empty() ? nullptr : &maps.global;
+  ctx.pass = pass;
+  if (ps.passes <= 1) return;  // a single pass gathers the k nearest
+  if (pass == 0) {
+    GatherScratch scratch;
+    ctx.causticRadius = ps.radius > 0.0f ? ps.radius : typicalKnnRadius(maps.caustic, ps.kCaustic, scratch);
+    ctx.globalRadius = ps.radius > 0.0f ? ps.radius : typicalKnnRadius(maps.global, ps.kGlobal, scratch);
+  } else {
+    const float shrink = std::sqrt((pass + ps.alpha) / (pass + 1.0f));
+    ctx.causticRadius *= shrink;
+    ctx.globalRadius *= shrink;
+  }
+  stats.causticRadius = ctx.causticRadius;
+  stats.globalRadius = ctx.globalRadius;
+}
+
+// The physical model's gate reads shadow photons; they do not change between passes.
+void buildPhysicalGate(const Scene& scene, const TraceScene& tracer, Aov aov, Maps& maps,
+                       ShadingContext& ctx, RenderStats& stats) {
+  if (!scene.photons.gate || !scene.render.shadows || !hasPointLight(scene)) return;
+  if (aov != Aov::Beauty && aov != Aov::Direct) return;
+  Stopwatch phase;
+  EmitOptions options;
+  options.indirectMap = false;
+  PhotonMaps emitted = emitPhotons(scene, tracer, options);
+  stats.time.emit += phase.seconds();
+  stats.emittedShadow = emitted.emittedShadow;
+  stats.storedShadow = emitted.shadow.size();
+  phase = Stopwatch();
+  maps.shadow.build(std::move(emitted.shadow), scene.lights.size());
+  stats.time.buildMaps += phase.seconds();
+  ctx.shadowMap = maps.shadow.size() > 0 ? &maps.shadow : nullptr;
+}
+
+std::unique_ptr<TextureLookup> loadTextures(const Scene& scene) {
+  if (scene.textures.empty()) return nullptr;
+  std::vector<std::string> paths;
+  for (const Texture& t : scene.textures) {
+    // Procedural textures are generated once into the cache, then read like files.
+    paths.push_back(t.path.rfind("builtin:", 0) == 0 ? builtinTexturePath(t.path) : t.path);
+  }
+  return std::make_unique<TextureLookup>(paths);
 }
 
 }  // namespace
@@ -53,6 +183,11 @@ RenderResult runRender(const RenderRequest& request) {
   stats.time.load = phase.seconds();
   const std::string aovName = request.aov.empty() ? scene.render.aov : request.aov;
   Aov aov = parseAov(aovName);
+  const bool physical = scene.render.model == ShadingModel::Physical;
+  if (!physical && (aov == Aov::Direct || aov == Aov::Caustic)) {
+    throw InputError(scene.file + ": view '" + aovName +
+                     "' needs the physical model (render.model: \"physical\")");
+  }
   // Bad output paths and pixels fail now, not after minutes of photons and tiles.
   if (!request.outputPath.empty() && !request.tracePixel) checkImageOutputPath(request.outputPath);
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
@@ -60,54 +195,11 @@ RenderResult runRender(const RenderRequest& request) {
   phase = Stopwatch();
   TraceScene tracer(scene);
   stats.time.buildBvh = phase.seconds();
+  std::unique_ptr<TextureLookup> textures = loadTextures(scene);
 
-  // Photon maps only exist for point lights; the beauty and indirect views use them.
-  bool wantPhotons = aov == Aov::Beauty || aov == Aov::Indirect;
-  ShadowPhotonMap shadowMap;
-  IndirectPhotonMap indirectMap;
-  float classicScale = 1.0f;
-  if (wantPhotons && hasPointLight(scene)) {
-    if (request.progress) request.progress("photons", 0.0);
-    phase = Stopwatch();
-    EmitOptions emitOptions;
-    emitOptions.shadowMap = aov == Aov::Beauty;
-    PhotonMaps maps = emitPhotons(scene, tracer, emitOptions);
-    stats.time.emit = phase.seconds();
-    stats.emittedShadow = maps.emittedShadow;
-    stats.emittedIndirect = maps.emittedIndirect;
-    stats.storedShadow = maps.shadow.size();
-    stats.storedIndirect = maps.indirect.size();
-    classicScale = maps.classicScale;
-    if (request.progress) request.progress("maps", 0.0);
-    phase = Stopwatch();
-    // nanoflann builds single-threaded: build the two trees side by side.
-    tbb::parallel_invoke([&] { shadowMap.build(std::move(maps.shadow), scene.lights.size()); },
-                         [&] { indirectMap.build(std::move(maps.indirect)); });
-    stats.time.buildMaps = phase.seconds();
-    stats.photonMapBytes = shadowMap.memoryBytes() + indirectMap.memoryBytes();
-    if (scene.photons.indirectPhotons > 0 && indirectMap.empty()) {
-      result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
-                             "using the ambient term");
-    }
-  } else if (wantPhotons && !scene.lights.empty()) {
-    result.notes.push_back("only directional lights: rendering without photon maps");
-  }
-
-  std::unique_ptr<TextureLookup> textures;
-  if (!scene.textures.empty()) {
-    std::vector<std::string> paths;
-    for (const Texture& t : scene.textures) {
-      // Procedural textures are generated once into the cache, then read like files.
-      paths.push_back(t.path.rfind("builtin:", 0) == 0 ? builtinTexturePath(t.path) : t.path);
-    }
-    textures = std::make_unique<TextureLookup>(paths);
-  }
-
+  Maps maps;
   ShadingContext ctx{scene, tracer};
-  ctx.shadowMap = shadowMap.size() > 0 ? &shadowMap : nullptr;
-  ctx.indirectMap = indirectMap.empty() ? nullptr : &indirectMap;
   ctx.textures = textures.get();
-  ctx.classicScale = classicScale;
   ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
   ctx.hasGlass = sceneHasGlass(scene);
 
@@ -117,17 +209,39 @@ RenderResult runRender(const RenderRequest& request) {
   stats.spp = scene.camera.spp;
   stats.threads = threads;
   stats.seed = scene.render.seed;
+  stats.model = physical ? "physical" : "classic";
+  const bool needsLight = aov != Aov::Depth && aov != Aov::Normal;
+  const int passes = physical && needsLight && !request.tracePixel ? scene.photons.passes : 1;
+  stats.passes = passes;
 
-  phase = Stopwatch();
-  if (request.tracePixel) {
-    result.rayTree = tracePixel(ctx, request.tracePixel->first, request.tracePixel->second);
-  } else {
-    RenderOptions options;
-    options.aov = aov;
-    if (request.progress) options.progress = [&](double f) { request.progress("render", f); };
-    result.image = renderImage(ctx, options, stats.rays);
+  if (!physical) buildClassicMaps(scene, tracer, aov, request, maps, ctx, result);
+  else if (needsLight) buildPhysicalGate(scene, tracer, aov, maps, ctx, stats);
+
+  RenderOptions options;
+  options.aov = aov;
+  for (int pass = 0; pass < passes; ++pass) {
+    if (physical && needsLight) {
+      reportProgress(request, "photons", static_cast<double>(pass) / passes);
+      buildPhysicalPass(scene, tracer, static_cast<uint32_t>(pass), aov, maps, ctx, stats);
+    }
+    phase = Stopwatch();
+    if (request.tracePixel) {
+      result.rayTree = tracePixel(ctx, request.tracePixel->first, request.tracePixel->second);
+      break;
+    }
+    if (request.progress) {
+      options.progress = [&](double f) { request.progress("render", (pass + f) / passes); };
+    }
+    Image image = renderImage(ctx, options, stats.rays);
+    if (pass == 0) result.image = std::move(image);
+    else for (size_t i = 0; i < image.pixels.size(); ++i) result.image.pixels[i] += image.pixels[i];
+    stats.time.render += phase.seconds();
   }
-  stats.time.render = phase.seconds();
+  // Progressive passes are independent estimates: their mean is the image.
+  if (passes > 1) {
+    for (Color& c : result.image.pixels) c /= static_cast<float>(passes);
+  }
+  stats.photonMapBytes = maps.bytes();
 
   if (!request.outputPath.empty() && !request.tracePixel) {
     phase = Stopwatch();

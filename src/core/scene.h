@@ -67,7 +67,12 @@ struct Texture {
   std::string path;  // absolute, resolved against the scene file's folder
 };
 
+// classic: the report's Whitted + Phong model with its ambient term and photon
+// roulette; physical: radiometric BSDFs and lights, caustic and global photon maps.
+enum class ShadingModel { Classic, Physical };
+
 struct RenderSettings {
+  ShadingModel model = ShadingModel::Classic;
   int maxDepth = 4;
   Color background{0.0f};
   Color ambient{1.0f};     // global ambient light, multiplies Material::ambient
@@ -90,6 +95,14 @@ struct PhotonSettings {
   HemisphereSampling sampling = HemisphereSampling::Uniform;
   int maxBounces = 16;
   bool gate = true;  // false = cast every shadow ray (--no-gate)
+  // Physical model (docs/photon-maps.md, "physical model").
+  uint64_t globalPhotons = 200'000;   // emitted per pass; stored after >= 1 diffuse bounce
+  uint64_t causticPhotons = 200'000;  // emitted per pass towards specular objects
+  int kGlobal = 100;
+  int kCaustic = 50;
+  int passes = 1;         // progressive passes, each with fresh photons and a smaller radius
+  float alpha = 0.7f;     // radius reduction: r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1)
+  float radius = 0.0f;    // first-pass gather radius for passes > 1; 0 = from the k-th neighbour
 };
 
 struct Scene {

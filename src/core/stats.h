@@ -34,7 +34,11 @@ struct RenderStats {
   uint64_t seed = 0;
   Timings time;
   RayCounts rays;
+  std::string model = "classic";
+  int passes = 1;
   uint64_t emittedShadow = 0, emittedIndirect = 0, storedShadow = 0, storedIndirect = 0;
+  uint64_t emittedCaustic = 0, emittedGlobal = 0, storedCaustic = 0, storedGlobal = 0;
+  float causticRadius = 0.0f, globalRadius = 0.0f;  // last pass's, when passes > 1
   uint64_t photonMapBytes = 0;
   uint64_t peakRssBytes = 0;
 };

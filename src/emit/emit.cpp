@@ -2,29 +2,16 @@
 // stream keyed by (seed, map, batch index); per-thread buffers are merged in
 // batch order, so the stored arrays do not depend on the thread count.
 #include "emit/emit.h"
+#include "core/bsdf.h"
 #include "core/color.h"
 #include "core/optics.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "emit/batch_buffers.h"
+#include "emit/budget.h"
 
 namespace penumbra {
 namespace {
-
-struct Batch {
-  uint32_t light;
-  uint64_t count;
-};
-
-std::vector<Batch> makeBatches(const std::vector<uint64_t>& perLight, uint32_t batchSize) {
-  std::vector<Batch> batches;
-  for (uint32_t l = 0; l < perLight.size(); ++l) {
-    for (uint64_t done = 0; done < perLight[l]; done += batchSize) {
-      batches.push_back({l, std::min<uint64_t>(batchSize, perLight[l] - done)});
-    }
-  }
-  return batches;
-}
 
 // Follows one line from the light through every surface: the first hit is
 // direct, all later ones are in shadow, opaque once anything opaque was crossed.
@@ -56,33 +43,15 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
     if (bounce > 0 || storeFirstHit) {
       out.push_back({s.position, power, encodeOctahedral(ray.dir), encodeOctahedral(s.ng)});
     }
-    // Russian roulette: the survival probability already carries the surface's
-    // average reflectance, so a survivor keeps its power level and only takes
-    // on the surface's hue (colour / mean colour).
+    // The report's roulette, behind the classic BSDF: p_r reflects, p_t transmits,
+    // the rest is absorbed; a survivor's power never grows in any channel.
     float xi = rng.uniform();
     float u1 = rng.uniform(), u2 = rng.uniform();
-    Vec3 dir;
-    if (xi < m.pR) {
-      // A Lambertian surface scatters with density cos(theta) / pi. Cosine
-      // sampling draws exactly that; uniform sampling (pdf 1 / 2 pi, the report's)
-      // carries the ratio 2 cos(theta) as a weight, so both converge to the same
-      // light and differ only in noise.
-      bool cosine = ps.sampling == HemisphereSampling::Cosine;
-      Vec3 local = cosine ? cosineHemisphere(u1, u2) : uniformHemisphere(u1, u2);
-      dir = toWorld(local, s.ng);
-      float mean = meanOf(m.diffuse);
-      power *= mean > 0.0f ? m.diffuse / mean : Color(0.0f);
-      if (!cosine) power *= 2.0f * local.z;
-    } else if (xi < m.pR + m.pT) {
-      float eta = s.frontFace ? 1.0f / m.ior : m.ior;
-      bool refracted = refract(ray.dir, s.ns, eta, dir);
-      if (!refracted) dir = reflect(ray.dir, s.ns);  // total internal reflection
-      float mean = meanOf(m.tint);
-      // The tint filters light entering the material, as on camera rays.
-      if (refracted && s.frontFace) power *= mean > 0.0f ? m.tint / mean : Color(0.0f);
-    } else {
-      return;  // absorbed
-    }
+    BsdfSample bs = sampleBsdf(makeBsdf(m, ShadingModel::Classic, ps.sampling), {s.ns, s.ng, s.frontFace},
+                               -ray.dir, xi, u1, u2);
+    if (!bs.valid) return;  // absorbed
+    Vec3 dir = bs.wi;
+    power *= bs.weight;
     if (maxComponent(power) <= 0.0f) return;
     ray = Ray{offsetRayOrigin(s.position, s.ng, dir), dir};
   }
@@ -92,28 +61,10 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
 
 std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total) {
   std::vector<double> power(scene.lights.size(), 0.0);
-  double sum = 0.0;
   for (size_t l = 0; l < scene.lights.size(); ++l) {
-    if (scene.lights[l].type != LightType::Point) continue;
-    power[l] = std::max(0.0f, luminance(scene.lights[l].radiance()));
-    sum += power[l];
+    if (scene.lights[l].type == LightType::Point) power[l] = luminance(scene.lights[l].radiance());
   }
-  std::vector<uint64_t> count(power.size(), 0);
-  if (sum <= 0.0 || total == 0) return count;
-  // Largest remainder: floor every share, then hand out what is left by the
-  // size of the dropped fractions (ties to the lower light index).
-  std::vector<std::pair<double, size_t>> remainders;
-  uint64_t given = 0;
-  for (size_t l = 0; l < power.size(); ++l) {
-    double share = total * power[l] / sum;
-    count[l] = static_cast<uint64_t>(share);
-    given += count[l];
-    if (power[l] > 0.0) remainders.push_back({share - count[l], l});
-  }
-  std::stable_sort(remainders.begin(), remainders.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
-  for (size_t i = 0; given < total && i < remainders.size(); ++i, ++given) ++count[remainders[i].second];
-  return count;
+  return splitByWeight(power, total);
 }
 
 PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options) {
@@ -125,10 +76,10 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   // Without the gate (or without shadows) nobody reads the shadow map: do not pay for it.
   bool wantShadowMap = options.shadowMap && ps.gate && scene.render.shadows;
   std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? ps.shadowPhotons : 0);
-  std::vector<Batch> shadowBatches = makeBatches(shadowCounts, options.batchSize);
+  std::vector<PhotonBatch> shadowBatches = makeBatches(shadowCounts, options.batchSize);
   BatchBuffers<ShadowPhoton> shadowBuffers;
   tbb::parallel_for(size_t(0), shadowBatches.size(), [&](size_t b) {
-    const Batch& batch = shadowBatches[b];
+    const PhotonBatch& batch = shadowBatches[b];
     const Light& light = scene.lights[batch.light];
     Rng rng(hashKey(seed, kShadowStream, b));
     auto& local = shadowBuffers.local();
@@ -141,12 +92,12 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   });
   maps.shadow = shadowBuffers.merge();
 
-  std::vector<uint64_t> indirectCounts = splitBudget(scene, ps.indirectPhotons);
-  std::vector<Batch> indirectBatches = makeBatches(indirectCounts, options.batchSize);
+  std::vector<uint64_t> indirectCounts = splitBudget(scene, options.indirectMap ? ps.indirectPhotons : 0);
+  std::vector<PhotonBatch> indirectBatches = makeBatches(indirectCounts, options.batchSize);
   bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
   BatchBuffers<IndirectPhoton> indirectBuffers;
   tbb::parallel_for(size_t(0), indirectBatches.size(), [&](size_t b) {
-    const Batch& batch = indirectBatches[b];
+    const PhotonBatch& batch = indirectBatches[b];
     const Light& light = scene.lights[batch.light];
     // Each photon carries an equal share of the light's flux 4 pi I.
     Color power = light.radiance() * (4.0f * kPi / static_cast<float>(indirectCounts[batch.light]));

@@ -12,6 +12,7 @@ struct EmitOptions {
   uint32_t batchSize = 4096;  // photons per task; each batch owns one random stream
   int maxHitsPerLine = 64;    // shadow photons kept per line at most
   bool shadowMap = true;      // false: the caller will not consult the gate (e.g. --aov indirect)
+  bool indirectMap = true;    // false: shadow photons only (the physical model's gate)
 };
 
 // Splits each budget across point lights by luminous intensity (largest

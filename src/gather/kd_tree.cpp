@@ -275,6 +275,41 @@ size_t PhotonKdTree<Photon>::knn(const Vec3& p, size_t k, float maxRadius,
   return n;
 }
 
+namespace {
+// nanoflann result set for a fixed-radius search into reusable buffers.
+class WithinResultSet {
+ public:
+  using DistanceType = float;
+  using IndexType = uint32_t;
+  WithinResultSet(GatherScratch& s, float r2) : s_(s), r2_(r2) {}
+  size_t size() const { return n_; }
+  bool full() const { return true; }
+  float worstDist() const { return r2_; }
+  bool addPoint(float d2, uint32_t index) {
+    if (d2 >= r2_) return true;
+    if (n_ == s_.indices.size()) s_.reserve(std::max<size_t>(64, 2 * n_));
+    s_.indices[n_] = index;
+    s_.dist2[n_] = d2;
+    ++n_;
+    return true;
+  }
+
+ private:
+  GatherScratch& s_;
+  float r2_;
+  size_t n_ = 0;
+};
+}  // namespace
+
+template <class Photon>
+size_t PhotonKdTree<Photon>::within(const Vec3& p, float radius, GatherScratch& scratch) const {
+  if (!impl_ || !(radius > 0.0f)) return 0;
+  const float q[3] = {p.x, p.y, p.z};
+  WithinResultSet result(scratch, radius * radius);
+  impl_->index->findNeighbors(result, q, nanoflann::SearchParams());
+  return result.size();
+}
+
 template <class Photon>
 size_t PhotonKdTree<Photon>::memoryBytes() const {
   return impl_ ? impl_->bytes + sizeof(Impl) + sizeof(typename Impl::Index) : 0;

@@ -102,6 +102,9 @@ class PhotonKdTree {
   // particular order (enough for order-independent consumers such as the gate vote).
   size_t knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch,
              bool sorted = true) const;
+  // Every photon strictly closer than radius into scratch.indices/dist2, in no
+  // particular order; returns how many. The buffers grow as needed and are kept.
+  size_t within(const Vec3& p, float radius, GatherScratch& scratch) const;
   // KD-tree nodes (pool, including its slack) + the index permutation; not the photons.
   size_t memoryBytes() const;
 

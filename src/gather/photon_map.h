@@ -55,6 +55,10 @@ class IndirectPhotonMap {
                    float minNormalCos = kIndirectMinNormalCos) const;
   // Raw kNN, as ShadowPhotonMap::knn; indices into photons().
   size_t knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch) const;
+  // Every photon closer than radius, unordered; indices into photons().
+  size_t within(const Vec3& p, float radius, GatherScratch& scratch) const {
+    return tree_.within(p, radius, scratch);
+  }
   size_t size() const { return photons_.size(); }
   size_t memoryBytes() const;
   const std::vector<IndirectPhoton>& photons() const { return photons_; }

@@ -12,8 +12,8 @@ GateVerdict voteGate(const ShadowPhoton* photons, const uint32_t* indices, size_
     // of a thin object face away from n and must not vote on this side's visibility.
     if (glm::dot(decodeOctahedral(ph.normal), n) <= params.minNormalCos) continue;
     // Behind glass only, the light arrives tinted: only a shadow ray can say how much.
-    if (ph.shadow == kShadowGlass) return GateVerdict::Mixed;
-    if (ph.shadow == kShadowOpaque) ++shadow; else ++direct;
+    if (ph.shadow == kShadowGlass && !params.glassBlocks) return GateVerdict::Mixed;
+    if (ph.shadow != kDirect) ++shadow; else ++direct;
     if (direct > 0 && shadow > 0) return GateVerdict::Mixed;
   }
   int voters = direct + shadow;

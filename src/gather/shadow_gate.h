@@ -13,6 +13,7 @@ struct GateParams {
   float maxRadius = 0.0f;     // 0 = unlimited
   float minNormalCos = 0.5f;  // a photon votes only if its normal . n > this
   int minVoters = 8;          // fewer voters than this: not enough evidence -> Mixed
+  bool glassBlocks = false;   // physical model: behind glass counts as shadow, not Mixed
 };
 
 // Mixed means "no confident answer": the tracer casts a real shadow ray.

@@ -76,6 +76,13 @@ TraceScene::TraceScene(const Scene& scene) : scene_(scene) {
     geometries_[id] = {true, 0};
   }
   rtcCommitScene(rtcScene_);
+  RTCBounds b;
+  rtcGetSceneBounds(rtcScene_, &b);
+  Vec3 lo(b.lower_x, b.lower_y, b.lower_z), hi(b.upper_x, b.upper_y, b.upper_z);
+  if (isFinite(lo) && isFinite(hi) && glm::all(glm::lessThanEqual(lo, hi))) {
+    bounds_.center = 0.5f * (lo + hi);
+    bounds_.radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
+  }
   if (!embreeError_.empty()) {
     std::string message = embreeError_;
     rtcReleaseScene(rtcScene_);

@@ -1,6 +1,7 @@
 // The Embree 3 device and scene built from a Scene: ray queries for the tracer
 // and the photon pass, and the expansion of a small Hit into a SurfaceRecord.
 #pragma once
+#include "core/light_sample.h"
 #include "core/scene.h"
 #include "geometry/ray.h"
 #include <embree3/rtcore.h>
@@ -48,6 +49,9 @@ class TraceScene {
   // decide which fields it needs (uv only for textured materials).
   int materialOf(const Hit& hit) const;
 
+  // A sphere around all geometry (Embree's bounds): directional lights emit from it.
+  SceneSphere boundingSphere() const { return bounds_; }
+
   const Scene& scene() const { return scene_; }
 
  private:
@@ -65,6 +69,7 @@ class TraceScene {
   std::vector<Vec3> meshCentres_;        // for spherical UVs on meshes without uvs
   std::vector<float> meshRadii_;         // half-diagonal: spherical-uv scale on meshes without uvs
   std::string embreeError_;              // first error Embree reported, if any
+  SceneSphere bounds_;
 };
 
 // Equirectangular (u, v) of a unit direction from a centre, y up: u grows

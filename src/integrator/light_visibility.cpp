@@ -20,7 +20,10 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, con
   Ray ray{offsetRayOrigin(s.position, s.ng, toLight), toLight};
   // Stop short of the light by the same relative margin used off surfaces.
   ray.tMax = std::isinf(distance) ? kInf : distance * (1.0f - 1e-4f);
-  if (!ctx.hasGlass) return ctx.tracer.occluded(ray) ? Color(0.0f) : Color(1.0f);
+  // The physical model's glass blocks shadow rays: its light arrives as caustic photons.
+  if (!ctx.hasGlass || ctx.scene.render.model == ShadingModel::Physical) {
+    return ctx.tracer.occluded(ray) ? Color(0.0f) : Color(1.0f);
+  }
   Color t(1.0f);
   for (int crossing = 0; crossing < 32; ++crossing) {
     Hit hit;
@@ -50,6 +53,7 @@ Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     params.maxRadius = ps.maxRadius;
     // A small k cannot muster the default quorum; let every neighbour count.
     params.minVoters = std::min(params.minVoters, params.k);
+    params.glassBlocks = ctx.scene.render.model == ShadingModel::Physical;
     ++ts.counts.gateQueries;
     GateVerdict v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch);
     if (v == GateVerdict::Lit) {

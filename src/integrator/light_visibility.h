@@ -5,8 +5,9 @@
 
 namespace penumbra {
 
-// Fraction (per channel) of light `lightIndex` arriving at `s` from direction
-// `toLight` (unit) over `distance` (kInf for directional lights).
+// How much of a light reaches a point (1 = unoccluded), from the gate or a shadow
+// ray. Classic: glass tints the ray; physical: glass blocks it like anything else
+// (light through glass arrives as caustic photons).
 Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                       const Vec3& toLight, float distance, ThreadState& ts, std::string* note);
 

@@ -5,6 +5,7 @@
 #include "core/rng.h"
 #include "integrator/camera.h"
 #include "integrator/light_visibility.h"
+#include "integrator/physical.h"
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -18,7 +19,10 @@ Aov parseAov(const std::string& name) {
   if (name == "depth") return Aov::Depth;
   if (name == "normal") return Aov::Normal;
   if (name == "indirect") return Aov::Indirect;
-  throw InputError("--aov: unknown view '" + name + "' (use beauty, depth, normal or indirect)");
+  if (name == "direct") return Aov::Direct;
+  if (name == "caustic") return Aov::Caustic;
+  throw InputError("--aov: unknown view '" + name +
+                   "' (use beauty, depth, normal, indirect, direct or caustic)");
 }
 
 namespace {
@@ -41,8 +45,20 @@ Vec2 samplePosition(int s, int n, Rng& rng) {
 
 // One sample of the chosen view. Depth stores the raw distance (normalised for
 // display afterwards), -1 on a miss.
+uint8_t physicalTerms(Aov aov) {
+  switch (aov) {
+    case Aov::Direct: return kTermDirect;
+    case Aov::Caustic: return kTermCaustic;
+    case Aov::Indirect: return kTermGlobal;
+    default: return kTermAll;
+  }
+}
+
 Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
   ts.raysLeft = kMaxRaysPerSample;
+  if (ctx.scene.render.model == ShadingModel::Physical && aov != Aov::Depth && aov != Aov::Normal) {
+    return tracePhysical(ctx, ray, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts);
+  }
   if (aov == Aov::Beauty) return traceRay(ctx, ray, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
   ++ts.counts.camera;
   Hit hit;
@@ -89,8 +105,10 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
           uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
           Color sum(0.0f);
           int counted = 0;
+          // A progressive pass continues the sample sequence where earlier passes stopped.
+          const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
           for (int s = 0; s < cam.spp; ++s) {
-            Rng rng(hashKey(seed, pixel, static_cast<uint64_t>(s)));
+            Rng rng(hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
             Vec2 off = samplePosition(s, cam.spp, rng);
             Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
             // Depth averages only the samples that hit: a miss is "no depth", not -1 m.
@@ -129,7 +147,12 @@ RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
   Rng rng(hashKey(ctx.scene.render.seed, pixel, 0));
   Vec2 off = samplePosition(0, cam.spp, rng);
   CameraRays camera(cam);
-  traceRay(ctx, camera.generate(x + off.x, y + off.y), 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  Ray ray = camera.generate(x + off.x, y + off.y);
+  if (ctx.scene.render.model == ShadingModel::Physical) {
+    tracePhysical(ctx, ray, 0, Color(1.0f), RayKind::Camera, kTermAll, -1, ts);
+  } else {
+    traceRay(ctx, ray, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  }
   return tree;
 }
 

@@ -9,9 +9,12 @@
 
 namespace penumbra {
 
-enum class Aov { Beauty, Depth, Normal, Indirect };
+// Indirect is the ambient/indirect term (classic) or the global map (physical);
+// Direct and Caustic exist in the physical model only.
+enum class Aov { Beauty, Depth, Normal, Indirect, Direct, Caustic };
 
-// Parses "beauty", "depth", "normal", "indirect"; throws InputError otherwise.
+// Parses "beauty", "depth", "normal", "indirect", "direct", "caustic"; throws
+// InputError otherwise.
 Aov parseAov(const std::string& name);
 
 struct RenderOptions {

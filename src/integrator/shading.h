@@ -21,6 +21,12 @@ struct ShadingContext {
   const ShadowPhotonMap* shadowMap = nullptr;      // null: every shadow test is a ray
   const IndirectPhotonMap* indirectMap = nullptr;  // null: the ambient term is used
   const TextureLookup* textures = nullptr;
+  // Physical model: caustic and global photon maps; radii > 0 make every estimate
+  // a fixed-radius one (a progressive pass), 0 gathers the k nearest.
+  const IndirectPhotonMap* causticMap = nullptr;
+  const IndirectPhotonMap* globalMap = nullptr;
+  float causticRadius = 0.0f, globalRadius = 0.0f;
+  uint32_t pass = 0;  // progressive pass: sample streams continue after earlier passes'
   float classicScale = 1.0f;  // turns stored photon flux back into photon colour
   float pixelSpread = 0.0f;   // radians per pixel, for texture filter widths
   bool hasGlass = false;      // some material is transparent: shadows are tinted
@@ -52,5 +58,15 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
                float cone, RayKind kind, int parentRecord, ThreadState& ts);
 
 bool sceneHasGlass(const Scene& scene);
+
+// Shared by both integrators (ray_tree.cpp): ray counters, --trace-pixel records,
+// and the mirror direction that never points into the surface.
+void countRay(RayKind kind, RayCounts& counts);
+int beginRecord(ThreadState& ts, RayKind kind, const Ray& ray, int depth, const Color& weight,
+                int parent);
+void endRecord(ThreadState& ts, int index, const Hit& hit, const SurfaceRecord& s,
+               const Material& m, const Color& contribution, const std::string& note);
+Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s);
+
 
 }  // namespace penumbra

@@ -1,6 +1,8 @@
 // Whitted recursion: local Phong lighting plus mirror and Fresnel-weighted
 // refraction rays. Photon maps enter only through light_visibility.
 #include "integrator/shading.h"
+#include "core/bsdf.h"
+#include "core/light_sample.h"
 #include "core/optics.h"
 #include "integrator/light_visibility.h"
 #include "integrator/texture_lookup.h"
@@ -8,66 +10,29 @@
 namespace penumbra {
 namespace {
 
-const char* kindName(RayKind k) {
-  switch (k) {
-    case RayKind::Camera: return "camera";
-    case RayKind::Reflection: return "reflection";
-    case RayKind::Refraction: return "refraction";
-  }
-  return "?";
-}
-
-void countRay(RayKind k, RayCounts& c) {
-  if (k == RayKind::Camera) ++c.camera;
-  else if (k == RayKind::Reflection) ++c.reflection;
-  else ++c.refraction;
-}
-
-// Phong: ambient (or the indirect estimate) plus, per visible light, diffuse
-// k_d (N.L) and specular k_s (R.V)^n. Point lights fall off with 1/d^2.
+// Phong through the BSDF and light interfaces: ambient (or the indirect estimate)
+// plus, per visible light, the classic BSDF (k_d N.L + k_s (R.V)^n) times the
+// light's incident term (I / d^2 for point lights).
 Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
                    const Vec3& toEye, const Color& texel, ThreadState& ts, RayRecord* rec) {
   Color lit = ambientTerm(ctx, s, m, ts);
+  const Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
+  const BsdfFrame frame{s.ns, s.ng, s.frontFace};
   const auto& lights = ctx.scene.lights;
   for (uint32_t li = 0; li < lights.size(); ++li) {
     const Light& light = lights[li];
     if (maxComponent(light.radiance()) <= 0.0f) continue;  // nothing to add: skip the shadow test
-    Vec3 toLight;
-    float distance = kInf, falloff = 1.0f;
-    if (light.type == LightType::Point) {
-      Vec3 d = light.position - s.position;
-      float d2 = glm::dot(d, d);
-      if (!(d2 > 0.0f)) continue;
-      distance = std::sqrt(d2);
-      toLight = d / distance;
-      falloff = 1.0f / d2;
-    } else {
-      toLight = -light.direction;
-    }
+    LightIncidence in = incidentLight(light, s.position);
     // A light behind the geometric surface cannot reach it: no shadow test needed.
-    if (glm::dot(s.ng, toLight) <= 0.0f) continue;
-    float nDotL = glm::dot(s.ns, toLight);
-    if (nDotL <= 0.0f) continue;
+    if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
     std::string note;
-    Color vis = lightVisibility(ctx, s, li, toLight, distance, ts, rec ? &note : nullptr);
+    Color vis = lightVisibility(ctx, s, li, in.wi, in.distance, ts, rec ? &note : nullptr);
     if (rec && !note.empty()) rec->note += (rec->note.empty() ? "" : "; ") + note;
     if (maxComponent(vis) <= 0.0f) continue;
-    Color c = m.diffuse * nDotL;
-    if (m.shininess > 0.0f && maxComponent(m.specular) > 0.0f) {
-      float rDotV = glm::dot(reflect(-toLight, s.ns), toEye);
-      if (rDotV > 0.0f) c += m.specular * std::pow(rDotV, m.shininess);
-    }
-    lit += vis * light.radiance() * falloff * c;
+    lit += vis * in.radiance * evaluateBsdf(bsdf, frame, toEye, in.wi);
   }
   if (m.texture >= 0) lit = m.textureBlend == TextureBlend::Multiply ? lit * texel : lit + texel;
   return lit;
-}
-
-// A shading normal can bend the mirror direction under the surface; fall back
-// to the geometric normal rather than reflect into the object.
-Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s) {
-  Vec3 r = reflect(dir, s.ns);
-  return glm::dot(r, s.ng) > 0.0f ? r : reflect(dir, s.ng);
 }
 
 }  // namespace
@@ -83,18 +48,7 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
                float cone, RayKind kind, int parentRecord, ThreadState& ts) {
   countRay(kind, ts.counts);
   --ts.raysLeft;
-  int recIndex = -1;
-  if (ts.recorder) {
-    RayRecord r;
-    r.kind = kindName(kind);
-    r.parent = parentRecord;
-    r.depth = depth;
-    r.origin = ray.origin;
-    r.dir = ray.dir;
-    r.weight = weight;
-    recIndex = static_cast<int>(ts.recorder->size());
-    ts.recorder->push_back(r);
-  }
+  int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, weight, parentRecord) : -1;
   auto finish = [&](const Color& c, auto&& fill) {
     if (recIndex >= 0) {
       RayRecord& r = (*ts.recorder)[recIndex];

@@ -82,6 +82,20 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
                   m.pR + m.pT);
     node.fail(buf);
   }
+  if (scene.render.model == ShadingModel::Physical && !m.transparent) {
+    // A physical surface may not reflect more than arrives: rho_d + rho_s <= 1.
+    for (int c = 0; c < 3; ++c) {
+      float sum = m.diffuse[c] + m.specular[c];
+      if (sum > 1.0f + 1e-6f) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf,
+                      "diffuse + specular must be <= 1 in the physical model, got %g + %g = %g "
+                      "in channel %d",
+                      m.diffuse[c], m.specular[c], sum, c);
+        node.fail(buf);
+      }
+    }
+  }
   if (node.has("texture")) m.texture = readTexture(node.child("texture"), m, scene, textures);
   return m;
 }

@@ -25,8 +25,14 @@ std::string statsToJson(const RenderStats& s) {
   const RayCounts& r = s.rays;
   j["rays"] = {{"camera", r.camera}, {"shadow", r.shadow}, {"reflection", r.reflection},
                {"refraction", r.refraction}};
+  j["model"] = s.model;
+  j["passes"] = s.passes;
   j["photons"] = {{"emitted_shadow", s.emittedShadow}, {"emitted_indirect", s.emittedIndirect},
-                  {"stored_shadow", s.storedShadow}, {"stored_indirect", s.storedIndirect}};
+                  {"stored_shadow", s.storedShadow}, {"stored_indirect", s.storedIndirect},
+                  {"emitted_caustic", s.emittedCaustic}, {"stored_caustic", s.storedCaustic},
+                  {"emitted_global", s.emittedGlobal}, {"stored_global", s.storedGlobal},
+                  {"final_radius_caustic", s.causticRadius},
+                  {"final_radius_global", s.globalRadius}};
   j["gate"] = {{"queries", r.gateQueries},      {"lit", r.gateLit},
                {"shadowed", r.gateShadowed},    {"mixed", r.gateMixed},
                {"shadow_rays_cast", r.shadow},  {"shadow_rays_avoided", r.shadowRaysAvoided}};
@@ -89,6 +95,11 @@ std::string statsSummary(const RenderStats& s) {
                        r.gateQueries, 100.0 * r.gateLit / r.gateQueries,
                        100.0 * r.gateShadowed / r.gateQueries, 100.0 * r.gateMixed / r.gateQueries,
                        r.shadowRaysAvoided);
+  }
+  if (s.emittedCaustic || s.emittedGlobal) {
+    out += fmt::format("  photons ({} pass{}): {} caustic stored of {} emitted, {} global stored of {} emitted\n",
+                       s.passes, s.passes == 1 ? "" : "es", s.storedCaustic, s.emittedCaustic,
+                       s.storedGlobal, s.emittedGlobal);
   }
   if (s.emittedShadow || s.emittedIndirect) {
     out += fmt::format("  photons: {} shadow stored of {} emitted, {} indirect stored of {} emitted, maps {:.1f} MB\n",

@@ -91,9 +91,10 @@ Scene buildScene(const json& document, const LoadContext& context) {
   }
   if (root.has("camera")) readCamera(root.child("camera"), scene.camera);
   if (root.has("lights")) readLights(root.child("lights"), scene.lights);
+  // render first: the model decides how materials are checked.
+  if (root.has("render")) readRender(root.child("render"), scene.render);
   readMaterials(root, scene);
   readObjects(root, scene);
-  if (root.has("render")) readRender(root.child("render"), scene.render);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
   return scene;
 }

@@ -72,7 +72,10 @@ void readLights(const JsonNode& node, std::vector<Light>& out) {
 }
 
 void readRender(const JsonNode& node, RenderSettings& out) {
-  node.allowKeys({"max_depth", "background", "ambient", "seed", "min_weight", "shadows", "aov"});
+  node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
+                  "aov"});
+  size_t model = node.enumOr("model", out.model == ShadingModel::Physical, {"classic", "physical"});
+  out.model = model == 0 ? ShadingModel::Classic : ShadingModel::Physical;
   out.maxDepth = node.intOr("max_depth", out.maxDepth, 0, 64);
   out.background = node.colorOr("background", out.background);
   out.ambient = node.colorOr("ambient", out.ambient);
@@ -80,13 +83,15 @@ void readRender(const JsonNode& node, RenderSettings& out) {
   out.minWeight = node.floatOr("min_weight", out.minWeight, Range::between(0.0, 1.0));
   out.shadows = node.boolOr("shadows", out.shadows);
   // The views the tracer's parseAov() knows; checked here so a typo fails at load time.
-  const std::vector<std::string> views = {"beauty", "depth", "normal", "indirect"};
+  const std::vector<std::string> views = {"beauty", "depth", "normal", "indirect", "direct",
+                                          "caustic"};
   if (node.has("aov")) out.aov = views[node.child("aov").asEnum(views)];
 }
 
 void readPhotons(const JsonNode& node, PhotonSettings& out) {
   node.allowKeys({"shadow", "indirect", "k_shadow", "k_indirect", "max_radius", "estimator",
-                  "sampling", "max_bounces", "gate"});
+                  "sampling", "max_bounces", "gate", "global", "caustic", "k_global", "k_caustic",
+                  "passes", "alpha", "radius"});
   out.shadowPhotons = node.uintOr("shadow", out.shadowPhotons, 0, kMaxPhotons);
   out.indirectPhotons = node.uintOr("indirect", out.indirectPhotons, 0, kMaxPhotons);
   out.kShadow = node.intOr("k_shadow", out.kShadow, 1, 10000);
@@ -100,6 +105,13 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
   out.sampling = sampling == 0 ? HemisphereSampling::Uniform : HemisphereSampling::Cosine;
   out.maxBounces = node.intOr("max_bounces", out.maxBounces, 0, 1024);
   out.gate = node.boolOr("gate", out.gate);
+  out.globalPhotons = node.uintOr("global", out.globalPhotons, 0, kMaxPhotons);
+  out.causticPhotons = node.uintOr("caustic", out.causticPhotons, 0, kMaxPhotons);
+  out.kGlobal = node.intOr("k_global", out.kGlobal, 1, 10000);
+  out.kCaustic = node.intOr("k_caustic", out.kCaustic, 1, 10000);
+  out.passes = node.intOr("passes", out.passes, 1, 100000);
+  out.alpha = node.floatOr("alpha", out.alpha, Range{0.0, 1.0, true, false});
+  out.radius = node.floatOr("radius", out.radius, Range::atLeast(0.0));
 }
 
 }  // namespace penumbra

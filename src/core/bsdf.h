@@ -1,0 +1,77 @@
+// The BSDF interface: evaluate, sample, pdf, albedo and flags of a material at a
+// hit, dispatched on a small tag (no virtual call per ray). The report's Phong
+// model is one implementation; the physical model's opaque and glass BSDFs the others.
+#pragma once
+#include "core/scene.h"
+
+namespace penumbra {
+
+// What a lobe does; a sample reports the flags of the lobe it chose.
+enum BsdfFlags : uint8_t {
+  kBsdfNone = 0,
+  kBsdfDiffuse = 1 << 0,       // Lambertian reflection
+  kBsdfGlossy = 1 << 1,        // a finite glossy lobe
+  kBsdfSpecular = 1 << 2,      // a delta lobe: mirror, or smooth glass (reflect or refract)
+  kBsdfTransmission = 1 << 3,  // light crosses the surface
+};
+
+enum class BsdfType : uint8_t {
+  ClassicPhong,  // the report's: k_d (N.L) + k_s (R.V)^n; photons by p_r / p_t roulette
+  Opaque,        // physical: (1 - kr) (Lambert rho + normalised Phong) + kr mirror
+  Dielectric,    // physical: smooth glass, Fresnel reflect / refract, tint on entering
+};
+
+// A material resolved for one model: plain data, a few dozen bytes, built per hit.
+struct Bsdf {
+  BsdfType type = BsdfType::ClassicPhong;
+  Color diffuse{0.0f};   // classic k_d, or physical rho (the BRDF is rho / pi)
+  Color specular{0.0f};  // classic k_s, or physical glossy reflectance
+  float shininess = 0.0f;
+  float kr = 0.0f;       // mirror reflectance (Opaque), ignored by Dielectric
+  float ior = 1.5f;
+  Color tint{1.0f};      // transmittance filter on entering glass
+  float pR = 0.0f, pT = 0.0f;  // ClassicPhong photon roulette
+  bool uniformBounce = true;   // ClassicPhong photon bounce: uniform (report) or cosine
+};
+
+// The local frame of a hit: unit normals facing the side the light or ray arrives
+// from, and whether that side is the outside (entering versus leaving glass).
+struct BsdfFrame {
+  Vec3 ns{0.0f, 0.0f, 1.0f};  // shading normal
+  Vec3 ng{0.0f, 0.0f, 1.0f};  // geometric normal
+  bool outside = true;
+};
+
+// weight = f * |cos| / pdf (including the probability of picking the lobe), so a
+// path's throughput is multiplied by it; flags say which lobe was picked.
+struct BsdfSample {
+  Vec3 wi{0.0f};
+  Color weight{0.0f};
+  uint8_t flags = kBsdfNone;
+  bool valid = false;  // false: absorbed (classic roulette) or no usable direction
+};
+
+Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce);
+
+// Union of the flags of the BSDF's lobes that have any weight.
+uint8_t bsdfFlags(const Bsdf& b);
+inline bool hasSmoothLobe(const Bsdf& b) { return bsdfFlags(b) & (kBsdfDiffuse | kBsdfGlossy); }
+inline bool hasDeltaLobe(const Bsdf& b) { return bsdfFlags(b) & kBsdfSpecular; }
+
+// f(wo, wi) |cos theta_i| of the non-delta lobes; wo points to the viewer, wi to
+// the light, both unit. Zero when wi is below the geometric surface.
+Color evaluateBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi);
+
+// Solid-angle density with which sampleBsdf picks wi through a non-delta lobe.
+float pdfBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi);
+
+// Samples an incident direction wi for outgoing wo from three uniform numbers.
+// `wo` for photons is the reversed direction of travel (towards where it came from).
+BsdfSample sampleBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, float uLobe, float u1,
+                      float u2);
+
+// Directional-hemispherical reflectance plus transmittance at normal incidence:
+// what fraction of arriving power a bounce returns on average, per channel.
+Color albedoBsdf(const Bsdf& b);
+
+}  // namespace penumbra

@@ -1,0 +1,47 @@
+// Photon budgets: a total split over lights by weight (largest remainder, so the
+// counts add up exactly) and cut into fixed-size batches, each its own random stream.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+// Counts proportional to `weights` (>= 0) summing to exactly `total` (or all 0
+// when no weight is positive). Ties in the remainders go to the lower index.
+inline std::vector<uint64_t> splitByWeight(const std::vector<double>& weights, uint64_t total) {
+  double sum = 0.0;
+  for (double w : weights) sum += std::max(0.0, w);
+  std::vector<uint64_t> count(weights.size(), 0);
+  if (!(sum > 0.0) || total == 0) return count;
+  std::vector<std::pair<double, size_t>> remainders;
+  uint64_t given = 0;
+  for (size_t l = 0; l < weights.size(); ++l) {
+    double share = total * (std::max(0.0, weights[l]) / sum);
+    count[l] = static_cast<uint64_t>(share);
+    given += count[l];
+    if (weights[l] > 0.0) remainders.push_back({share - count[l], l});
+  }
+  std::stable_sort(remainders.begin(), remainders.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (size_t i = 0; given < total && i < remainders.size(); ++i, ++given) ++count[remainders[i].second];
+  return count;
+}
+
+struct PhotonBatch {
+  uint32_t light;
+  uint64_t count;
+};
+
+inline std::vector<PhotonBatch> makeBatches(const std::vector<uint64_t>& perLight, uint32_t batchSize) {
+  std::vector<PhotonBatch> batches;
+  for (uint32_t l = 0; l < perLight.size(); ++l) {
+    for (uint64_t done = 0; done < perLight[l]; done += batchSize) {
+      batches.push_back({l, std::min<uint64_t>(batchSize, perLight[l] - done)});
+    }
+  }
+  return batches;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,234 @@
+// Physical photon emission. The global pass shoots photons from every light in
+// proportion to its power; the caustic pass aims them at the specular objects'
+// bounding spheres (Jensen's projection maps) and keeps only L S+ D paths.
+#include "emit/emit_physical.h"
+#include "core/bsdf.h"
+#include "core/light_sample.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "emit/batch_buffers.h"
+#include "emit/budget.h"
+#include <tbb/enumerable_thread_specific.h>
+
+namespace penumbra {
+
+PhotonTally& PhotonTally::operator+=(const PhotonTally& o) {
+  emitted += o.emitted; escaped += o.escaped; absorbed += o.absorbed; capped += o.capped;
+  storedCaustic += o.storedCaustic; storedGlobal += o.storedGlobal;
+  return *this;
+}
+
+namespace {
+
+enum : uint64_t { kGlobalStream = 3, kCausticStream = 4 };
+enum class PassKind { Global, Caustic };
+
+// The caustic pass samples directions (point lights) or disc points (directional
+// lights) only towards the targets, from the mixture of one cone or disc per
+// target; a photon's power divides by the mixture density, so overlapping
+// targets are not counted twice and the estimate stays unbiased.
+struct Aim {
+  std::vector<SceneSphere> targets;
+  std::vector<float> measure;  // solid angle (point) or disc area (directional) per target
+  float total = 0.0f;
+};
+
+Aim aimAt(const Light& light, const std::vector<SceneSphere>& targets) {
+  Aim aim;
+  aim.targets = targets;
+  for (const SceneSphere& t : targets) {
+    float m;
+    if (light.type == LightType::Point) {
+      float d = glm::length(t.center - light.position);
+      float cosMax = d > t.radius ? std::sqrt(1.0f - (t.radius / d) * (t.radius / d)) : -1.0f;
+      m = 2.0f * kPi * (1.0f - cosMax);
+    } else {
+      m = kPi * t.radius * t.radius;
+    }
+    aim.measure.push_back(m);
+    aim.total += m;
+  }
+  return aim;
+}
+
+// How many targets' cones (or discs) contain this photon's start.
+int coverage(const Light& light, const Aim& aim, const PhotonRay& r) {
+  int n = 0;
+  for (const SceneSphere& t : aim.targets) {
+    Vec3 c = t.center - r.origin;
+    float along = glm::dot(c, r.dir);
+    float perp2 = glm::dot(c, c) - along * along;
+    bool inside = glm::dot(c, c) <= t.radius * t.radius;
+    // Both cases are "the ray's line passes within the radius": for a point light
+    // that is the cone of the sphere, for a directional light its disc.
+    if (inside || (along > 0.0f && perp2 <= t.radius * t.radius) ||
+        (light.type == LightType::Directional && perp2 <= t.radius * t.radius)) {
+      ++n;
+    }
+  }
+  return n;
+}
+
+// Samples one aimed photon; returns the factor on the light's unaimed photon power
+// (total measure / (full measure x coverage)), 0 if it missed every target.
+float sampleAimed(const Light& light, const SceneSphere& bounds, const Aim& aim, Rng& rng,
+                  PhotonRay& r) {
+  float pick = rng.uniform() * aim.total;
+  size_t j = 0;
+  while (j + 1 < aim.measure.size() && pick >= aim.measure[j]) pick -= aim.measure[j++];
+  const SceneSphere& t = aim.targets[j];
+  float u1 = rng.uniform(), u2 = rng.uniform();
+  if (light.type == LightType::Point) {
+    r.origin = light.position;
+    Vec3 axis = t.center - light.position;
+    float d = glm::length(axis);
+    float cosMax = d > t.radius ? std::sqrt(1.0f - (t.radius / d) * (t.radius / d)) : -1.0f;
+    float cosT = 1.0f - u1 * (1.0f - cosMax);
+    float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
+    float phi = 2.0f * kPi * u2;
+    Vec3 local(sinT * std::cos(phi), sinT * std::sin(phi), cosT);
+    r.dir = d > 0.0f ? toWorld(local, axis / d) : uniformSphere(u1, u2);
+  } else {
+    float rad = t.radius * std::sqrt(u1), phi = 2.0f * kPi * u2;
+    Vec3 tt, bb;
+    orthonormalBasis(light.direction, tt, bb);
+    float back = glm::dot(t.center - bounds.center, light.direction) + 1.01f * bounds.radius;
+    r.origin = t.center - light.direction * back + rad * (std::cos(phi) * tt + std::sin(phi) * bb);
+    r.dir = light.direction;
+  }
+  int n = coverage(light, aim, r);
+  if (n == 0) return 0.0f;  // rounding at a cone's rim
+  float full = light.type == LightType::Point ? 4.0f * kPi : kPi * bounds.radius * bounds.radius;
+  return aim.total / (full * static_cast<float>(n));
+}
+
+// Follows one photon; stores it at smooth surfaces as the pass dictates and plays
+// Russian roulette by the sampled weight: survive with q = min(1, max weight), then
+// power *= weight / q, so E[power after] = power x albedo, per channel.
+void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ray ray, Color power,
+                 Rng& rng, std::vector<IndirectPhoton>& out, PhotonTally& tally) {
+  const PhotonSettings& ps = scene.photons;
+  int diffuseBounces = 0, specularBounces = 0;
+  for (int bounce = 0;; ++bounce) {
+    Hit hit;
+    if (!tracer.intersect(ray, hit)) {
+      tally.escaped += glm::dvec3(power);
+      return;
+    }
+    if (bounce > ps.maxBounces) {
+      tally.capped += glm::dvec3(power);
+      return;
+    }
+    SurfaceRecord s = tracer.surface(ray, hit, kSurfaceShadingNormal);
+    Bsdf bsdf = makeBsdf(scene.materials[s.material], ShadingModel::Physical, ps.sampling);
+    if (hasSmoothLobe(bsdf)) {
+      bool store = pass == PassKind::Global ? diffuseBounces > 0 : specularBounces > 0;
+      if (store) {
+        out.push_back({s.position, power, encodeOctahedral(ray.dir), encodeOctahedral(s.ng)});
+        (pass == PassKind::Global ? tally.storedGlobal : tally.storedCaustic) += glm::dvec3(power);
+      }
+    }
+    float uLobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), uRr = rng.uniform();
+    BsdfSample bs = sampleBsdf(bsdf, {s.ns, s.ng, s.frontFace}, -ray.dir, uLobe, u1, u2);
+    bool delta = bs.flags & kBsdfSpecular;
+    // The caustic pass ends at the first non-specular bounce: what follows is the
+    // global map's (and a direct hit, the shadow rays').
+    if (!bs.valid || (pass == PassKind::Caustic && !delta)) {
+      tally.absorbed += glm::dvec3(power);
+      return;
+    }
+    float q = std::min(1.0f, maxComponent(bs.weight));
+    Color next = uRr < q ? power * bs.weight / q : Color(0.0f);
+    tally.absorbed += glm::dvec3(power) - glm::dvec3(next);
+    if (!(maxComponent(next) > 0.0f)) return;
+    power = next;
+    if (delta) ++specularBounces; else ++diffuseBounces;
+    ray = Ray{offsetRayOrigin(s.position, s.ng, bs.wi), bs.wi};
+  }
+}
+
+std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, PassKind kind,
+                                    uint64_t pass, uint64_t total, const EmitOptions& options,
+                                    uint64_t& emitted, PhotonTally& tally) {
+  const SceneSphere bounds = tracer.boundingSphere();
+  std::vector<SceneSphere> targets = kind == PassKind::Caustic ? specularTargets(scene)
+                                                               : std::vector<SceneSphere>{};
+  if (kind == PassKind::Caustic && targets.empty()) total = 0;
+  std::vector<Aim> aims;
+  std::vector<double> weights;
+  for (const Light& l : scene.lights) {
+    aims.push_back(kind == PassKind::Caustic ? aimAt(l, targets) : Aim{});
+    // Aimed photons are split by the power that heads for the targets.
+    double w = luminance(lightPower(l, bounds));
+    if (kind == PassKind::Caustic) {
+      float full = l.type == LightType::Point ? 4.0f * kPi : kPi * bounds.radius * bounds.radius;
+      w *= std::min(1.0, double(aims.back().total) / full);
+    }
+    weights.push_back(w);
+  }
+  std::vector<uint64_t> counts = splitByWeight(weights, total);
+  std::vector<PhotonBatch> batches = makeBatches(counts, options.batchSize);
+  BatchBuffers<IndirectPhoton> buffers;
+  tbb::enumerable_thread_specific<PhotonTally> tallies;
+  const uint64_t stream = kind == PassKind::Caustic ? kCausticStream : kGlobalStream;
+  tbb::parallel_for(size_t(0), batches.size(), [&](size_t b) {
+    const PhotonBatch& batch = batches[b];
+    const Light& light = scene.lights[batch.light];
+    const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
+    Rng rng(hashKey(hashKey(scene.render.seed, pass), stream, b));
+    auto& local = buffers.local();
+    PhotonTally& t = tallies.local();
+    for (uint64_t i = 0; i < batch.count; ++i) {
+      PhotonRay r;
+      Color power = share;
+      if (kind == PassKind::Caustic) {
+        power *= sampleAimed(light, bounds, aims[batch.light], rng, r);
+      } else {
+        float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
+        r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
+      }
+      t.emitted += glm::dvec3(power);
+      if (maxComponent(power) <= 0.0f) continue;
+      tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, local.photons, t);
+    }
+    local.endBatch(b);
+  });
+  for (const PhotonTally& t : tallies) tally += t;
+  emitted = 0;
+  for (uint64_t c : counts) emitted += c;
+  return buffers.merge();
+}
+
+}  // namespace
+
+std::vector<SceneSphere> specularTargets(const Scene& scene) {
+  auto specular = [&](int material) {
+    return hasDeltaLobe(makeBsdf(scene.materials[material], ShadingModel::Physical,
+                                 scene.photons.sampling));
+  };
+  std::vector<SceneSphere> out;
+  for (const Sphere& s : scene.spheres) {
+    // A hair larger, so a photon grazing the silhouette is not lost to rounding.
+    if (specular(s.material)) out.push_back({s.center, s.radius * 1.001f});
+  }
+  for (const TriangleMesh& m : scene.meshes) {
+    if (!specular(m.material) || m.positions.empty()) continue;
+    Vec3 lo(kInf), hi(-kInf);
+    for (const Vec3& p : m.positions) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    out.push_back({0.5f * (lo + hi), 0.5f * glm::length(hi - lo) * 1.001f + 1e-6f});
+  }
+  return out;
+}
+
+PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass,
+                                    const EmitOptions& options) {
+  PhysicalPhotons out;
+  const PhotonSettings& ps = scene.photons;
+  out.global = runPass(scene, tracer, PassKind::Global, pass, ps.globalPhotons, options,
+                       out.emittedGlobal, out.globalTally);
+  out.caustic = runPass(scene, tracer, PassKind::Caustic, pass, ps.causticPhotons, options,
+                        out.emittedCaustic, out.causticTally);
+  return out;
+}
+
+}  // namespace penumbra

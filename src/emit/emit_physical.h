@@ -1,0 +1,36 @@
+// The physical model's photon pass: photons carry flux from each light's total
+// power, scatter by sampling the BSDF, survive Russian roulette by its albedo, and
+// land in a caustic map (L S+ D) or a global map (after >= 1 diffuse bounce).
+#pragma once
+#include "core/photon.h"
+#include "core/scene.h"
+#include "emit/emit.h"
+#include "geometry/trace_scene.h"
+
+namespace penumbra {
+
+// Where the emitted power went, summed over all photons (double, per channel):
+// emitted = escaped + absorbed + lost at the bounce cap, in expectation, and
+// exactly when every surface's sample weight is <= 1 with survival 1 (glass).
+struct PhotonTally {
+  glm::dvec3 emitted{0.0}, escaped{0.0}, absorbed{0.0}, capped{0.0};
+  glm::dvec3 storedCaustic{0.0}, storedGlobal{0.0};  // power of the photons stored
+  PhotonTally& operator+=(const PhotonTally& o);
+};
+
+struct PhysicalPhotons {
+  std::vector<IndirectPhoton> caustic, global;
+  uint64_t emittedCaustic = 0, emittedGlobal = 0;
+  PhotonTally causticTally, globalTally;
+};
+
+// Pass `pass` of a progressive render draws from its own random streams, so
+// passes are independent estimates. Identical for any thread count.
+PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass = 0,
+                                    const EmitOptions& options = {});
+
+// A bounding sphere of the geometry whose BSDF has a delta lobe (mirrors, glass):
+// the caustic pass aims its photons at these.
+std::vector<SceneSphere> specularTargets(const Scene& scene);
+
+}  // namespace penumbra

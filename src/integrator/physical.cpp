@@ -1,0 +1,112 @@
+// Physical shading. At a diffuse or glossy hit: direct light from every light by
+// shadow rays (opaque and glass both block), plus the caustic and global photon
+// estimates; mirror and glass lobes are followed by rays, weighted by their
+// reflectance and Fresnel (both branches of glass, as the Whitted tracer does).
+#include "integrator/physical.h"
+#include "core/bsdf.h"
+#include "core/light_sample.h"
+#include "core/optics.h"
+#include "gather/radiance_estimate.h"
+#include "integrator/light_visibility.h"
+#include "integrator/texture_lookup.h"
+
+namespace penumbra {
+namespace {
+
+Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf& bsdf,
+                  const BsdfFrame& frame, const Vec3& wo, ThreadState& ts, std::string* note) {
+  Color sum(0.0f);
+  const auto& lights = ctx.scene.lights;
+  for (uint32_t li = 0; li < lights.size(); ++li) {
+    LightIncidence in = incidentLight(lights[li], s.position);
+    if (!in.valid || maxComponent(in.radiance) <= 0.0f || glm::dot(s.ng, in.wi) <= 0.0f) continue;
+    Color f = evaluateBsdf(bsdf, frame, wo, in.wi);
+    if (maxComponent(f) <= 0.0f) continue;
+    std::string one;
+    Color vis = lightVisibility(ctx, s, li, in.wi, in.distance, ts, note ? &one : nullptr);
+    if (note && !one.empty()) *note += (note->empty() ? "" : "; ") + one;
+    sum += vis * f * in.radiance;
+  }
+  return sum;
+}
+
+Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k, float radius,
+                 const SurfaceRecord& s, const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo,
+                 ThreadState& ts) {
+  if (!map || map->empty()) return Color(0.0f);
+  ++ts.counts.gatherQueries;
+  RadianceEstimate e = photonRadiance(*map, bsdf, frame, s.position, wo, k, radius, *ts.scratch);
+  ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
+  return e.value;
+}
+
+}  // namespace
+
+Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const Color& throughput,
+                    RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts) {
+  countRay(kind, ts.counts);
+  --ts.raysLeft;
+  int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, throughput, parentRecord) : -1;
+
+  Hit hit;
+  if (!ctx.tracer.intersect(ray, hit)) {
+    Color c = (terms & kTermMissed) ? ctx.scene.render.background : Color(0.0f);
+    if (recIndex >= 0) (*ts.recorder)[recIndex].contribution = throughput * c;
+    return c;
+  }
+  const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
+  Bsdf bsdf = makeBsdf(m, ShadingModel::Physical, ctx.scene.photons.sampling);
+  if (m.texture >= 0 && ctx.textures) {
+    // A texture is the diffuse albedo's map: multiplied in, or added and kept <= 1.
+    Color texel = ctx.textures->lookup(m.texture, s, hit.t * ctx.pixelSpread);
+    bsdf.diffuse = m.textureBlend == TextureBlend::Multiply
+                       ? bsdf.diffuse * texel
+                       : glm::min(bsdf.diffuse + texel, Color(1.0f) - bsdf.specular);
+  }
+  const BsdfFrame frame{s.ns, s.ng, s.frontFace};
+  const Vec3 wo = -ray.dir;
+  const PhotonSettings& ps = ctx.scene.photons;
+  std::string note;
+  ts.currentRecord = recIndex;
+
+  Color color(0.0f);
+  if (hasSmoothLobe(bsdf)) {
+    if (terms & kTermDirect) color += directLight(ctx, s, bsdf, frame, wo, ts, recIndex >= 0 ? &note : nullptr);
+    if (terms & kTermCaustic)
+      color += photonTerm(ctx, ctx.causticMap, ps.kCaustic, ctx.causticRadius, s, bsdf, frame, wo, ts);
+    if (terms & kTermGlobal)
+      color += photonTerm(ctx, ctx.globalMap, ps.kGlobal, ctx.globalRadius, s, bsdf, frame, wo, ts);
+  }
+
+  const RenderSettings& rs = ctx.scene.render;
+  if (depth < rs.maxDepth && hasDeltaLobe(bsdf)) {
+    auto follow = [&](const Vec3& dir, const Color& w, RayKind k) {
+      Color next = throughput * w;
+      if (maxComponent(next) <= rs.minWeight || ts.raysLeft <= 0) return;
+      Ray r{offsetRayOrigin(s.position, s.ng, dir), dir};
+      color += w * tracePhysical(ctx, r, depth + 1, next, k, terms, recIndex, ts);
+    };
+    if (bsdf.type == BsdfType::Dielectric) {
+      float etaI = s.frontFace ? 1.0f : bsdf.ior, etaT = s.frontFace ? bsdf.ior : 1.0f;
+      float fr = fresnelDielectric(glm::dot(s.ns, wo), etaI, etaT);
+      Vec3 t;
+      if (!refract(ray.dir, s.ns, etaI / etaT, t)) fr = 1.0f, note = "total internal reflection";
+      Color kt = (1.0f - fr) * (s.frontFace ? bsdf.tint : Color(1.0f));
+      // The stronger branch first: a tree that hits the ray budget loses the weaker.
+      if (fr >= maxComponent(kt)) {
+        follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection);
+        if (fr < 1.0f) follow(t, kt, RayKind::Refraction);
+      } else {
+        follow(t, kt, RayKind::Refraction);
+        follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection);
+      }
+    } else {
+      follow(mirrorDirection(ray.dir, s), Color(bsdf.kr), RayKind::Reflection);
+    }
+  }
+  if (recIndex >= 0) endRecord(ts, recIndex, hit, s, m, throughput * color, note);
+  return color;
+}
+
+}  // namespace penumbra
