@@ -7,10 +7,10 @@ OUT ?= out
 PKGS := cmake ninja-build g++ pkg-config libtbb-dev libembree-dev libglm-dev \
         libopenimageio-dev openimageio-tools libnanoflann-dev libbenchmark-dev \
         libgtest-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libfmt-dev \
-        fonts-dejavu-core python3
+        fonts-dejavu-core python3 python3-matplotlib
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build renderer render test bench gallery clean
+.PHONY: all deps configure build renderer render test bench gallery convergence clean
 all: build
 
 deps:
@@ -47,6 +47,10 @@ bench: build
 
 gallery: renderer
 	scripts/gallery.sh $(BUILD)/penumbra $(OUT)/gallery
+
+# Error against time of the physical model on the convergence scene (docs/PERFORMANCE.md).
+convergence: renderer
+	scripts/convergence.py $(BUILD)/penumbra scenes/cornell_physical.json $(OUT)/convergence
 
 clean:
 	rm -rf $(BUILD) $(OUT)

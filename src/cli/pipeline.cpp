@@ -110,11 +110,11 @@ void buildClassicMaps(const Scene& scene, const TraceScene& tracer, Aov aov,
 void buildPhysicalPass(const Scene& scene, const TraceScene& tracer, uint32_t pass, Aov aov,
                        Maps& maps, ShadingContext& ctx, RenderStats& stats) {
   const PhotonSettings& ps = scene.photons;
-  Scene budget = scene;  // only the maps this view reads
-  if (aov != Aov::Beauty && aov != Aov::Indirect) budget.photons.globalPhotons = 0;
-  if (aov != Aov::Beauty && aov != Aov::Caustic) budget.photons.causticPhotons = 0;
+  EmitOptions options;  // only the maps this view reads
+  options.globalMap = aov == Aov::Beauty || aov == Aov::Indirect;
+  options.causticMap = aov == Aov::Beauty || aov == Aov::Caustic;
   Stopwatch phase;
-  PhysicalPhotons photons = emitPhysicalPhotons(budget, tracer, pass);
+  PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer, pass, options);
   stats.time.emit += phase.seconds();
   stats.emittedCaustic += photons.emittedCaustic;
   stats.emittedGlobal += photons.emittedGlobal;
@@ -128,15 +128,18 @@ void buildPhysicalPass(const Scene& scene, const TraceScene& tracer, uint32_t pa
   ctx.globalMap = maps.global.empty() ? nullptr : &maps.global;
   ctx.pass = pass;
   if (ps.passes <= 1) return;  // a single pass gathers the k nearest
-  if (pass == 0) {
-    GatherScratch scratch;
-    ctx.causticRadius = ps.radius > 0.0f ? ps.radius : typicalKnnRadius(maps.caustic, ps.kCaustic, scratch);
-    ctx.globalRadius = ps.radius > 0.0f ? ps.radius : typicalKnnRadius(maps.global, ps.kGlobal, scratch);
-  } else {
-    const float shrink = std::sqrt((pass + ps.alpha) / (pass + 1.0f));
-    ctx.causticRadius *= shrink;
-    ctx.globalRadius *= shrink;
-  }
+  // A radius still 0 (first pass, or every earlier pass stored nothing) starts from
+  // this pass's photons; afterwards it only shrinks.
+  auto step = [&](float& r, const IndirectPhotonMap& map, int k) {
+    if (r > 0.0f) {
+      r *= std::sqrt((pass + ps.alpha) / (pass + 1.0f));
+    } else {
+      GatherScratch scratch;
+      r = ps.radius > 0.0f ? ps.radius : typicalKnnRadius(map, k, scratch);
+    }
+  };
+  step(ctx.causticRadius, maps.caustic, ps.kCaustic);
+  step(ctx.globalRadius, maps.global, ps.kGlobal);
   stats.causticRadius = ctx.causticRadius;
   stats.globalRadius = ctx.globalRadius;
 }

@@ -13,6 +13,8 @@ struct EmitOptions {
   int maxHitsPerLine = 64;    // shadow photons kept per line at most
   bool shadowMap = true;      // false: the caller will not consult the gate (e.g. --aov indirect)
   bool indirectMap = true;    // false: shadow photons only (the physical model's gate)
+  bool globalMap = true;      // physical model: false skips the global pass (views that do not read it)
+  bool causticMap = true;     // physical model: false skips the caustic pass
 };
 
 // Splits each budget across point lights by luminous intensity (largest

@@ -224,10 +224,12 @@ PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer
                                     const EmitOptions& options) {
   PhysicalPhotons out;
   const PhotonSettings& ps = scene.photons;
-  out.global = runPass(scene, tracer, PassKind::Global, pass, ps.globalPhotons, options,
-                       out.emittedGlobal, out.globalTally);
-  out.caustic = runPass(scene, tracer, PassKind::Caustic, pass, ps.causticPhotons, options,
-                        out.emittedCaustic, out.causticTally);
+  out.global = runPass(scene, tracer, PassKind::Global, pass,
+                       options.globalMap ? ps.globalPhotons : 0, options, out.emittedGlobal,
+                       out.globalTally);
+  out.caustic = runPass(scene, tracer, PassKind::Caustic, pass,
+                        options.causticMap ? ps.causticPhotons : 0, options, out.emittedCaustic,
+                        out.causticTally);
   return out;
 }
 
