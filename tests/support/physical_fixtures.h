@@ -1,0 +1,49 @@
+// Shared by the physical-model analytic tests: a photon-free physical scene, Lambert
+// materials, and one traced ray with a chosen set of terms.
+#pragma once
+#include "core/light_sample.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "emit/emit.h"
+#include "emit/emit_physical.h"
+#include "gather/photon_map.h"
+#include "gather/radiance_estimate.h"
+#include "integrator/physical.h"
+#include "io/shapes.h"
+#include <gtest/gtest.h>
+#include <cmath>
+#include <string>
+#include <vector>
+#include "support/render_fixtures.h"
+
+namespace penumbra {
+
+inline constexpr double kPiD = 3.14159265358979323846;
+
+inline Material lambert(const std::string& name, Color rho) {
+  Material m = makeMaterial(name, Color(0.0f), rho);
+  m.shininess = 0.0f;
+  return m;
+}
+
+// A physical-model scene with no photons unless a test asks for them.
+inline Scene physicalScene() {
+  Scene s;
+  s.render.model = ShadingModel::Physical;
+  s.render.seed = 20261201;
+  s.photons.gate = false;
+  s.photons.globalPhotons = 0;
+  s.photons.causticPhotons = 0;
+  s.photons.shadowPhotons = 0;
+  s.camera = axisCamera(Vec3(0.0f, 0.0f, 5.0f), Vec3(0.0f));
+  return s;
+}
+
+inline Color trace(const Rig& rig, const Ray& ray, uint8_t terms) {
+  ThreadState ts;
+  return tracePhysical(rig.ctx, ray, 0, Color(1.0f), RayKind::Camera, terms, -1, ts);
+}
+
+inline double rel(double got, double want) { return std::abs(got - want) / std::abs(want); }
+
+}  // namespace penumbra
