@@ -12,7 +12,7 @@ LightIncidence incidentLight(const Light& light, const Vec3& p) {
     if (!(d2 > 0.0f) || !std::isfinite(d2)) return in;
     in.distance = std::sqrt(d2);
     in.wi = d / in.distance;
-    in.radiance = light.radiance() / d2;
+    in.radiance = light.radiance() * (1.0f / d2);  // as the Whitted tracer always did: bit-identical images
   } else {
     in.wi = -light.direction;
     in.radiance = light.radiance();
