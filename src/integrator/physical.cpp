@@ -91,7 +91,10 @@ Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const 
       float etaI = s.frontFace ? 1.0f : bsdf.ior, etaT = s.frontFace ? bsdf.ior : 1.0f;
       float fr = fresnelDielectric(glm::dot(s.ns, wo), etaI, etaT);
       Vec3 t;
-      if (!refract(ray.dir, s.ns, etaI / etaT, t)) fr = 1.0f, note = "total internal reflection";
+      if (!refract(ray.dir, s.ns, etaI / etaT, t)) {
+        fr = 1.0f;
+        if (recIndex >= 0) note = "total internal reflection";
+      }
       Color kt = (1.0f - fr) * (s.frontFace ? bsdf.tint : Color(1.0f));
       // The stronger branch first: a tree that hits the ray budget loses the weaker.
       if (fr >= maxComponent(kt)) {
