@@ -129,6 +129,20 @@ TEST(GlassEnergy, TintedSlabAbsorbs) {
 // ---------------------------------------------------------------------------
 // e. A mirror's caustic on the ceiling.
 
+// A perfect mirror square (kr 1, rho 0), half-size 0.5 at y = 0 facing up, and one
+// Lambert receiver (rho 0.6) for its caustic; the caller adds the light.
+Scene mirrorWithReceiver(const std::string& name, const TriangleMesh& receiver) {
+  Scene scene = physicalScene();
+  Material mirror = makeMaterial("mirror", Color(0.0f), Color(0.0f));
+  mirror.kr = 1.0f;
+  scene.materials.push_back(mirror);
+  scene.materials.push_back(lambert(name, Color(0.6f)));
+  scene.meshes.push_back(makeQuad(Vec3(-0.5f, 0.0f, -0.5f), Vec3(0, 0, 1), Vec3(1, 0, 0), 0));
+  scene.meshes.push_back(receiver);
+  scene.meshes.back().material = 1;
+  return scene;
+}
+
 TEST(MirrorCaustic, LandsInTheMirrorsImageWithItsSolidAnglesPower) {
   // A mirror square (kr 1, rho 0), half-size 0.5 at y = 0, a point light at (0, 1, 0)
   // and a large diffuse ceiling at y = 2. The virtual light is at (0, -1, 0), 3 below
@@ -136,13 +150,8 @@ TEST(MirrorCaustic, LandsInTheMirrorsImageWithItsSolidAnglesPower) {
   // total power is I x (the mirror's solid angle from the light), every aimed photon
   // carries I x Omega_cone / N, and the irradiance at (X, 2, Z) is I 3 / d^3 with
   // d the distance to the virtual light.
-  Scene scene = physicalScene();
-  Material mirror = makeMaterial("mirror", Color(0.0f), Color(0.0f));
-  mirror.kr = 1.0f;
-  scene.materials.push_back(mirror);
-  scene.materials.push_back(lambert("ceiling", Color(0.6f)));
-  scene.meshes.push_back(makeQuad(Vec3(-0.5f, 0.0f, -0.5f), Vec3(0, 0, 1), Vec3(1, 0, 0), 0));
-  scene.meshes.push_back(makeQuad(Vec3(-10.0f, 2.0f, -10.0f), Vec3(20, 0, 0), Vec3(0, 0, 20), 1));
+  Scene scene = mirrorWithReceiver(
+      "ceiling", makeQuad(Vec3(-10.0f, 2.0f, -10.0f), Vec3(20, 0, 0), Vec3(0, 0, 20), 1));
   const float I = 2.0f;
   scene.lights.push_back(point(Vec3(0.0f, 1.0f, 0.0f), Color(1.0f), I));
   scene.photons.causticPhotons = 400000;
@@ -209,13 +218,8 @@ TEST(MirrorCaustic, DirectionalLightThroughTheAimedDisc) {
   // so y in [2.5, 3.5], z in [-0.5, 0.5]. The global pass emits E pi R^2 over the
   // scene's bounding disc. Tolerance 1% on the power (binomial: p = 1 x cos 45 /
   // (pi 0.7078^2) = 0.45, rel. s.e. 0.18% at 400k), 1e-3 on positions.
-  Scene scene = physicalScene();
-  Material mirror = makeMaterial("mirror", Color(0.0f), Color(0.0f));
-  mirror.kr = 1.0f;
-  scene.materials.push_back(mirror);
-  scene.materials.push_back(lambert("wall", Color(0.6f)));
-  scene.meshes.push_back(makeQuad(Vec3(-0.5f, 0.0f, -0.5f), Vec3(0, 0, 1), Vec3(1, 0, 0), 0));
-  scene.meshes.push_back(makeQuad(Vec3(-3.0f, 1.0f, -20.0f), Vec3(0, 19, 0), Vec3(0, 0, 40), 1));
+  Scene scene = mirrorWithReceiver(
+      "wall", makeQuad(Vec3(-3.0f, 1.0f, -20.0f), Vec3(0, 19, 0), Vec3(0, 0, 40), 1));
   const float E = 2.0f;
   scene.lights.push_back(directional(Vec3(-1.0f, -1.0f, 0.0f), Color(1.0f), E));
   scene.photons.causticPhotons = 400000;
