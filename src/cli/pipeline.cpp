@@ -4,12 +4,14 @@
 #include "core/error.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
+#include "gather/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "gather/radiance_estimate.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "io/texture_gen.h"
 #include "integrator/camera.h"
+#include "integrator/light_visibility.h"
 #include "integrator/render.h"
 #include "integrator/texture_lookup.h"
 #include "integrator/shading.h"
@@ -39,6 +41,9 @@ ImageMetadata describe(const Scene& scene, const RenderStats& stats, const std::
                              ps.sampling == HemisphereSampling::Cosine ? "cosine" : "uniform",
                              ps.gate ? "on" : "off",
                              ps.estimator == IndirectEstimator::Classic ? "classic" : "density");
+  photons += ps.lookup == PhotonLookup::Precomputed
+                 ? fmt::format(" lookup=precomputed lookup_cell={}", ps.lookupCell)
+                 : std::string(" lookup=exact");
   return {{"penumbra:scene", scene.name},
           {"penumbra:scene_file", scene.file},
           {"penumbra:aov", aov},
@@ -63,10 +68,42 @@ void reportProgress(const RenderRequest& request, const char* phase, double frac
 struct Maps {
   ShadowPhotonMap shadow;
   IndirectPhotonMap indirect, caustic, global;
+  LookupCache lookup;
   size_t bytes() const {
     return shadow.memoryBytes() + indirect.memoryBytes() + caustic.memoryBytes() + global.memoryBytes();
   }
 };
+
+// photons.lookup = precomputed: the gate verdicts and the indirect (classic) or global
+// (physical) estimate, once per cell, from the maps just built. `radius` > 0 is the
+// physical pass's fixed gather radius.
+void buildLookup(const Scene& scene, Maps& maps, ShadingContext& ctx, float radius,
+                 RenderStats& stats) {
+  const PhotonSettings& ps = scene.photons;
+  if (ps.lookup != PhotonLookup::Precomputed) return;
+  Stopwatch phase;
+  const bool physical = scene.render.model == ShadingModel::Physical;
+  const IndirectPhotonMap* map = physical ? ctx.globalMap : ctx.indirectMap;
+  LookupCacheParams params;
+  params.gate = ps.gate && scene.render.shadows && ctx.shadowMap;
+  params.gateParams = gateParamsFor(scene);
+  if (map) {
+    params.indirect = physical ? CachedIndirect::Irradiance
+                      : ps.estimator == IndirectEstimator::Density ? CachedIndirect::Density
+                                                                   : CachedIndirect::Classic;
+  }
+  params.k = physical ? ps.kGlobal : ps.kIndirect;
+  params.maxRadius = physical ? 0.0f : ps.maxRadius;
+  params.radius = physical ? radius : 0.0f;
+  params.cellSize = radius > 0.0f ? cacheCellSize(radius, params.k, ps.lookupCell)
+                                  : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
+  maps.lookup.build(params.gate ? ctx.shadowMap : nullptr, map, params);
+  ctx.lookup = maps.lookup.empty() ? nullptr : &maps.lookup;
+  stats.time.precompute += phase.seconds();
+  stats.cacheRecords = maps.lookup.records();
+  stats.cacheCell = maps.lookup.cellSize();
+  stats.cacheBytes = maps.lookup.memoryBytes();
+}
 
 // Classic model: the shadow map (gate) and the indirect map, once.
 void buildClassicMaps(const Scene& scene, const TraceScene& tracer, Aov aov,
@@ -102,6 +139,7 @@ void buildClassicMaps(const Scene& scene, const TraceScene& tracer, Aov aov,
   }
   ctx.shadowMap = maps.shadow.size() > 0 ? &maps.shadow : nullptr;
   ctx.indirectMap = maps.indirect.empty() ? nullptr : &maps.indirect;
+  buildLookup(scene, maps, ctx, 0.0f, stats);
 }
 
 // Physical model, one progressive pass: fresh caustic and global photons (pass-keyed
@@ -127,7 +165,10 @@ void buildPhysicalPass(const Scene& scene, const TraceScene& tracer, uint32_t pa
   ctx.causticMap = maps.caustic.empty() ? nullptr : &maps.caustic;
   ctx.globalMap = maps.global.empty() ? nullptr : &maps.global;
   ctx.pass = pass;
-  if (ps.passes <= 1) return;  // a single pass gathers the k nearest
+  if (ps.passes <= 1) {  // a single pass gathers the k nearest
+    buildLookup(scene, maps, ctx, 0.0f, stats);
+    return;
+  }
   // A radius still 0 (first pass, or every earlier pass stored nothing) starts from
   // this pass's photons; afterwards it only shrinks.
   auto step = [&](float& r, const IndirectPhotonMap& map, int k) {
@@ -142,6 +183,7 @@ void buildPhysicalPass(const Scene& scene, const TraceScene& tracer, uint32_t pa
   step(ctx.globalRadius, maps.global, ps.kGlobal);
   stats.causticRadius = ctx.causticRadius;
   stats.globalRadius = ctx.globalRadius;
+  buildLookup(scene, maps, ctx, ctx.globalRadius, stats);
 }
 
 // The physical model's gate reads shadow photons; they do not change between passes.
@@ -213,6 +255,7 @@ RenderResult runRender(const RenderRequest& request) {
   stats.threads = threads;
   stats.seed = scene.render.seed;
   stats.model = physical ? "physical" : "classic";
+  stats.lookup = scene.photons.lookup == PhotonLookup::Precomputed ? "precomputed" : "exact";
   const bool needsLight = aov != Aov::Depth && aov != Aov::Normal;
   const int passes = physical && needsLight && !request.tracePixel ? scene.photons.passes : 1;
   stats.passes = passes;

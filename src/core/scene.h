@@ -83,6 +83,9 @@ struct RenderSettings {
 };
 
 enum class IndirectEstimator { Classic, Density };
+// exact: every gate vote and estimate gathers its k nearest photons (the definition);
+// precomputed: both are computed once per cell of a hash grid and read by one query.
+enum class PhotonLookup { Exact, Precomputed };
 enum class HemisphereSampling { Uniform, Cosine };
 
 struct PhotonSettings {
@@ -103,6 +106,8 @@ struct PhotonSettings {
   int passes = 1;         // progressive passes, each with fresh photons and a smaller radius
   float alpha = 0.7f;     // radius reduction: r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1)
   float radius = 0.0f;    // first-pass gather radius for passes > 1; 0 = from the k-th neighbour
+  PhotonLookup lookup = PhotonLookup::Exact;
+  float lookupCell = 1.0f;  // precomputed: cell size in units of the typical gather radius
 };
 
 struct Scene {

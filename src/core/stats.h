@@ -14,18 +14,22 @@ struct RayCounts {
   uint64_t shadowRaysAvoided = 0;
   // Indirect gather.
   uint64_t gatherQueries = 0, gatherNeighbours = 0;
+  // Precomputed lookups: cache queries, and estimates that fell back to an exact gather.
+  uint64_t cacheLookups = 0, cacheFallbacks = 0;
 
   RayCounts& operator+=(const RayCounts& o) {
     camera += o.camera; shadow += o.shadow; reflection += o.reflection; refraction += o.refraction;
     gateQueries += o.gateQueries; gateLit += o.gateLit; gateShadowed += o.gateShadowed;
     gateMixed += o.gateMixed; shadowRaysAvoided += o.shadowRaysAvoided;
     gatherQueries += o.gatherQueries; gatherNeighbours += o.gatherNeighbours;
+    cacheLookups += o.cacheLookups; cacheFallbacks += o.cacheFallbacks;
     return *this;
   }
 };
 
 struct Timings {
-  double load = 0, buildBvh = 0, emit = 0, buildMaps = 0, render = 0, write = 0, total = 0;
+  double load = 0, buildBvh = 0, emit = 0, buildMaps = 0, precompute = 0, render = 0, write = 0,
+         total = 0;
 };
 
 struct RenderStats {
@@ -40,6 +44,10 @@ struct RenderStats {
   uint64_t emittedCaustic = 0, emittedGlobal = 0, storedCaustic = 0, storedGlobal = 0;
   float causticRadius = 0.0f, globalRadius = 0.0f;  // last pass's, when passes > 1
   uint64_t photonMapBytes = 0;
+  std::string lookup = "exact";      // photons.lookup
+  uint64_t cacheRecords = 0;         // precomputed: cells (last pass)
+  float cacheCell = 0.0f;            // precomputed: cell size (last pass)
+  uint64_t cacheBytes = 0;
   uint64_t peakRssBytes = 0;
 };
 

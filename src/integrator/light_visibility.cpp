@@ -42,18 +42,51 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, con
 
 }  // namespace
 
+GateParams gateParamsFor(const Scene& scene) {
+  GateParams params;
+  params.k = scene.photons.kShadow;
+  params.maxRadius = scene.photons.maxRadius;
+  // A small k cannot muster the default quorum; let every neighbour count.
+  params.minVoters = std::min(params.minVoters, params.k);
+  params.glassBlocks = scene.render.model == ShadingModel::Physical;
+  return params;
+}
+
+const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
+                             CachedAnswer& storage, ThreadState& ts) {
+  if (!ctx.lookup) return nullptr;
+  ++ts.counts.cacheLookups;
+  storage = ctx.lookup->find(s.position, s.ng);
+  return &storage;
+}
+
 Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
-                      const Vec3& toLight, float distance, ThreadState& ts, std::string* note) {
+                      const Vec3& toLight, float distance, const CachedAnswer* cached,
+                      ThreadState& ts, std::string* note) {
   if (!ctx.scene.render.shadows) return Color(1.0f);
   const PhotonSettings& ps = ctx.scene.photons;
   bool gated = ps.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(lightIndex);
-  if (gated) {
-    GateParams params;
-    params.k = ps.kShadow;
-    params.maxRadius = ps.maxRadius;
-    // A small k cannot muster the default quorum; let every neighbour count.
-    params.minVoters = std::min(params.minVoters, params.k);
-    params.glassBlocks = ctx.scene.render.model == ShadingModel::Physical;
+  if (gated && cached && ctx.lookup->hasGate()) {
+    // The precomputed verdict of the point's cell; no cell there: a shadow ray.
+    ++ts.counts.gateQueries;
+    const GateVerdict v = cached->verdicts ? static_cast<GateVerdict>(cached->verdicts[lightIndex])
+                                           : GateVerdict::Mixed;
+    if (v == GateVerdict::Lit) {
+      ++ts.counts.gateLit;
+      ++ts.counts.shadowRaysAvoided;
+      if (note) *note = "gate (precomputed): lit";
+      return Color(1.0f);
+    }
+    if (v == GateVerdict::Shadowed) {
+      ++ts.counts.gateShadowed;
+      ++ts.counts.shadowRaysAvoided;
+      if (note) *note = "gate (precomputed): shadowed";
+      return Color(0.0f);
+    }
+    ++ts.counts.gateMixed;
+    if (note) *note = "gate (precomputed): mixed, shadow ray";
+  } else if (gated) {
+    const GateParams params = gateParamsFor(ctx.scene);
     ++ts.counts.gateQueries;
     GateVerdict v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch);
     if (v == GateVerdict::Lit) {
@@ -91,9 +124,17 @@ Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
 }
 
 Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
-                  ThreadState& ts) {
+                  const CachedAnswer* cached, ThreadState& ts) {
   if (!ctx.indirectMap || ctx.indirectMap->empty()) return m.ambient * ctx.scene.render.ambient;
   const PhotonSettings& ps = ctx.scene.photons;
+  if (cached && ctx.lookup->indirectKind() != CachedIndirect::None) {
+    if (cached->hasIndirect) {
+      return ctx.lookup->indirectKind() == CachedIndirect::Density
+                 ? m.diffuse * cached->indirect
+                 : m.ambient * cached->indirect * ctx.classicScale;
+    }
+    ++ts.counts.cacheFallbacks;  // no cell near the point: the exact gather below
+  }
   ++ts.counts.gatherQueries;
   if (ps.estimator == IndirectEstimator::Density) {
     // Irradiance from the cone-filtered density, reflected like direct light

@@ -14,7 +14,8 @@ namespace penumbra {
 namespace {
 
 Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf& bsdf,
-                  const BsdfFrame& frame, const Vec3& wo, ThreadState& ts, std::string* note) {
+                  const BsdfFrame& frame, const Vec3& wo, const CachedAnswer* cached,
+                  ThreadState& ts, std::string* note) {
   Color sum(0.0f);
   const auto& lights = ctx.scene.lights;
   for (uint32_t li = 0; li < lights.size(); ++li) {
@@ -23,7 +24,7 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
     Color f = evaluateBsdf(bsdf, frame, wo, in.wi);
     if (maxComponent(f) <= 0.0f) continue;
     std::string one;
-    Color vis = lightVisibility(ctx, s, li, in.wi, in.distance, ts, note ? &one : nullptr);
+    Color vis = lightVisibility(ctx, s, li, in.wi, in.distance, cached, ts, note ? &one : nullptr);
     if (note && !one.empty()) *note += (note->empty() ? "" : "; ") + one;
     sum += vis * f * in.radiance;
   }
@@ -32,8 +33,15 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
 
 Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k, float radius,
                  const SurfaceRecord& s, const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo,
-                 ThreadState& ts) {
+                 const CachedAnswer* cached, ThreadState& ts) {
   if (!map || map->empty()) return Color(0.0f);
+  // The cache holds irradiance / pi: it answers a Lambertian BSDF exactly; a glossy
+  // lobe needs the photons' directions, so it gathers.
+  if (cached && ctx.lookup->indirectKind() == CachedIndirect::Irradiance &&
+      bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy)) {
+    if (cached->hasIndirect) return (1.0f - bsdf.kr) * bsdf.diffuse * cached->indirect;
+    ++ts.counts.cacheFallbacks;
+  }
   ++ts.counts.gatherQueries;
   RadianceEstimate e = photonRadiance(*map, bsdf, frame, s.position, wo, k, radius, *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
@@ -72,11 +80,16 @@ Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const 
 
   Color color(0.0f);
   if (hasSmoothLobe(bsdf)) {
-    if (terms & kTermDirect) color += directLight(ctx, s, bsdf, frame, wo, ts, recIndex >= 0 ? &note : nullptr);
-    if (terms & kTermCaustic)
-      color += photonTerm(ctx, ctx.causticMap, ps.kCaustic, ctx.causticRadius, s, bsdf, frame, wo, ts);
+    CachedAnswer storage;
+    const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);
+    if (terms & kTermDirect)
+      color += directLight(ctx, s, bsdf, frame, wo, cached, ts, recIndex >= 0 ? &note : nullptr);
+    if (terms & kTermCaustic)  // caustics are sharp: always the direct gather
+      color += photonTerm(ctx, ctx.causticMap, ps.kCaustic, ctx.causticRadius, s, bsdf, frame, wo,
+                          nullptr, ts);
     if (terms & kTermGlobal)
-      color += photonTerm(ctx, ctx.globalMap, ps.kGlobal, ctx.globalRadius, s, bsdf, frame, wo, ts);
+      color += photonTerm(ctx, ctx.globalMap, ps.kGlobal, ctx.globalRadius, s, bsdf, frame, wo,
+                          cached, ts);
   }
 
   const RenderSettings& rs = ctx.scene.render;

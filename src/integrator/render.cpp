@@ -67,7 +67,8 @@ Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadStat
   SurfaceRecord s = ctx.tracer.surface(ray, hit, kSurfaceShadingNormal);
   if (aov == Aov::Normal) return s.ns * 0.5f + 0.5f;
   const Material& m = ctx.scene.materials[s.material];
-  return ambientTerm(ctx, s, m, ts);  // Aov::Indirect
+  CachedAnswer storage;  // Aov::Indirect
+  return ambientTerm(ctx, s, m, lookupAt(ctx, s, storage, ts), ts);
 }
 
 // Depth view as in the report: near black, far white, misses white.

@@ -11,6 +11,7 @@ namespace penumbra {
 
 class ShadowPhotonMap;
 class IndirectPhotonMap;
+class LookupCache;
 class TextureLookup;
 struct GatherScratch;
 
@@ -21,6 +22,9 @@ struct ShadingContext {
   const ShadowPhotonMap* shadowMap = nullptr;      // null: every shadow test is a ray
   const IndirectPhotonMap* indirectMap = nullptr;  // null: the ambient term is used
   const TextureLookup* textures = nullptr;
+  // photons.lookup = precomputed: gate verdicts and the indirect (classic) or global
+  // (physical, Lambertian part) estimate read from here, one query per shading point.
+  const LookupCache* lookup = nullptr;
   // Physical model: caustic and global photon maps; radii > 0 make every estimate
   // a fixed-radius one (a progressive pass), 0 gathers the k nearest.
   const IndirectPhotonMap* causticMap = nullptr;

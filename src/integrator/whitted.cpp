@@ -15,7 +15,9 @@ namespace {
 // light's incident term (I / d^2 for point lights).
 Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
                    const Vec3& toEye, const Color& texel, ThreadState& ts, RayRecord* rec) {
-  Color lit = ambientTerm(ctx, s, m, ts);
+  CachedAnswer storage;
+  const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);
+  Color lit = ambientTerm(ctx, s, m, cached, ts);
   const Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
   const BsdfFrame frame{s.ns, s.ng, s.frontFace};
   const auto& lights = ctx.scene.lights;
@@ -26,7 +28,7 @@ Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Mate
     // A light behind the geometric surface cannot reach it: no shadow test needed.
     if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
     std::string note;
-    Color vis = lightVisibility(ctx, s, li, in.wi, in.distance, ts, rec ? &note : nullptr);
+    Color vis = lightVisibility(ctx, s, li, in.wi, in.distance, cached, ts, rec ? &note : nullptr);
     if (rec && !note.empty()) rec->note += (rec->note.empty() ? "" : "; ") + note;
     if (maxComponent(vis) <= 0.0f) continue;
     lit += vis * in.radiance * evaluateBsdf(bsdf, frame, toEye, in.wi);

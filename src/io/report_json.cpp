@@ -20,6 +20,7 @@ std::string statsToJson(const RenderStats& s) {
   j["seed"] = s.seed;
   j["time_s"] = {{"load", s.time.load},           {"build_bvh", s.time.buildBvh},
                  {"emit", s.time.emit},           {"build_maps", s.time.buildMaps},
+                 {"precompute", s.time.precompute},
                  {"render", s.time.render},       {"write", s.time.write},
                  {"total", s.time.total}};
   const RayCounts& r = s.rays;
@@ -38,7 +39,9 @@ std::string statsToJson(const RenderStats& s) {
                {"shadow_rays_cast", r.shadow},  {"shadow_rays_avoided", r.shadowRaysAvoided}};
   j["gather"] = {{"queries", r.gatherQueries},
                  {"mean_neighbours", r.gatherQueries ? double(r.gatherNeighbours) / r.gatherQueries : 0.0}};
-  j["memory"] = {{"photon_maps_bytes", s.photonMapBytes}};
+  j["lookup"] = {{"mode", s.lookup}, {"cells", s.cacheRecords}, {"cell_size", s.cacheCell},
+                 {"queries", r.cacheLookups}, {"exact_fallbacks", r.cacheFallbacks}};
+  j["memory"] = {{"photon_maps_bytes", s.photonMapBytes}, {"lookup_cache_bytes", s.cacheBytes}};
   j["peak_rss_bytes"] = s.peakRssBytes;
   return j.dump(2) + "\n";
 }
@@ -86,10 +89,15 @@ std::string statsSummary(const RenderStats& s) {
   const RayCounts& r = s.rays;
   std::string out = fmt::format(
       "{}: {}x{} spp {} on {} thread{} in {:.2f} s (load {:.2f}, bvh {:.2f}, photons {:.2f}+{:.2f}, "
-      "render {:.2f})\n  rays: {} camera, {} shadow, {} reflection, {} refraction\n",
+      "{}render {:.2f})\n  rays: {} camera, {} shadow, {} reflection, {} refraction\n",
       s.scene, s.width, s.height, s.spp, s.threads, s.threads == 1 ? "" : "s", s.time.total,
-      s.time.load, s.time.buildBvh, s.time.emit, s.time.buildMaps, s.time.render, r.camera, r.shadow,
-      r.reflection, r.refraction);
+      s.time.load, s.time.buildBvh, s.time.emit, s.time.buildMaps,
+      s.cacheRecords ? fmt::format("precompute {:.2f}, ", s.time.precompute) : "", s.time.render,
+      r.camera, r.shadow, r.reflection, r.refraction);
+  if (s.cacheRecords) {
+    out += fmt::format("  lookup: precomputed, {} cells of {:.4g}, {:.1f} MB; {} queries, {} exact fallbacks\n",
+                       s.cacheRecords, s.cacheCell, s.cacheBytes / 1e6, r.cacheLookups, r.cacheFallbacks);
+  }
   if (r.gateQueries) {
     out += fmt::format("  gate: {} queries, {:.1f}% lit, {:.1f}% shadowed, {:.1f}% mixed; {} shadow rays avoided\n",
                        r.gateQueries, 100.0 * r.gateLit / r.gateQueries,

@@ -91,7 +91,7 @@ void readRender(const JsonNode& node, RenderSettings& out) {
 void readPhotons(const JsonNode& node, PhotonSettings& out) {
   node.allowKeys({"shadow", "indirect", "k_shadow", "k_indirect", "max_radius", "estimator",
                   "sampling", "max_bounces", "gate", "global", "caustic", "k_global", "k_caustic",
-                  "passes", "alpha", "radius"});
+                  "passes", "alpha", "radius", "lookup", "lookup_cell"});
   out.shadowPhotons = node.uintOr("shadow", out.shadowPhotons, 0, kMaxPhotons);
   out.indirectPhotons = node.uintOr("indirect", out.indirectPhotons, 0, kMaxPhotons);
   out.kShadow = node.intOr("k_shadow", out.kShadow, 1, 10000);
@@ -112,6 +112,10 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
   out.passes = node.intOr("passes", out.passes, 1, 100000);
   out.alpha = node.floatOr("alpha", out.alpha, Range{0.0, 1.0, true, false});
   out.radius = node.floatOr("radius", out.radius, Range::atLeast(0.0));
+  size_t lookup = node.enumOr("lookup", out.lookup == PhotonLookup::Precomputed,
+                              {"exact", "precomputed"});
+  out.lookup = lookup == 0 ? PhotonLookup::Exact : PhotonLookup::Precomputed;
+  out.lookupCell = node.floatOr("lookup_cell", out.lookupCell, Range{0.05, 8.0, false, false});
 }
 
 }  // namespace penumbra

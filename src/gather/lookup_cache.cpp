@@ -1,0 +1,307 @@
+// Building the lookup cache: bin photons into (cell, normal bucket) keys, count the
+// gate's photons per key, then vote and estimate once per key, in parallel.
+#include "gather/lookup_cache.h"
+#include "gather/radiance_estimate.h"
+#include "gather/morton.h"
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+
+namespace {
+constexpr int64_t kAxisCells = int64_t(1) << 20;  // 20 bits per axis in a key
+
+// The dominant axis of n and its sign: 0..5.
+inline unsigned bucketOf(const Vec3& n) {
+  const Vec3 a = glm::abs(n);
+  const unsigned axis = a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
+  return 2u * axis + (n[axis] < 0.0f ? 1u : 0u);
+}
+
+// One photon's key and where it came from: source 0 is the indirect map, 1 + l light l.
+struct Entry {
+  uint64_t key;
+  uint32_t index;
+  uint32_t source;
+  bool operator<(const Entry& o) const {
+    return key != o.key ? key < o.key : (source != o.source ? source < o.source : index < o.index);
+  }
+};
+
+struct GateCounts {
+  uint32_t direct = 0, opaque = 0, glass = 0;
+};
+
+// Median k-th-neighbour distance at up to 256 photons of one shadow light.
+float typicalShadowRadius(const ShadowPhotonMap& map, int k, GatherScratch& s) {
+  uint32_t best = 0;
+  for (uint32_t l = 0; l < map.numLights(); ++l)
+    if (map.photons(l).size() > map.photons(best).size()) best = l;
+  const auto& photons = map.photons(best);
+  if (photons.empty() || k <= 0) return 0.0f;
+  const size_t probes = std::min<size_t>(256, photons.size()), step = photons.size() / probes;
+  std::vector<float> radii;
+  for (size_t i = 0; i < probes; ++i) {
+    size_t n = map.knn(photons[i * step].position, best, static_cast<size_t>(k), 0.0f, s);
+    float r2 = 0.0f;
+    for (size_t j = 0; j < n; ++j) r2 = std::max(r2, s.dist2[j]);
+    radii.push_back(std::sqrt(r2));
+  }
+  std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+  return radii[radii.size() / 2];
+}
+}  // namespace
+
+float cacheCellSize(const IndirectPhotonMap* indirect, int k, const ShadowPhotonMap* shadow,
+                    int kShadow, float scale) {
+  GatherScratch scratch;
+  float r = 0.0f;
+  if (indirect && !indirect->empty() && k > 0) {
+    r = typicalKnnRadius(*indirect, k, scratch);
+  } else if (shadow && shadow->size() > 0 && kShadow > 0) {
+    r = typicalShadowRadius(*shadow, kShadow, scratch);
+    k = kShadow;
+  }
+  return cacheCellSize(r, k, scale);
+}
+
+float cacheCellSize(float r, int k, float scale) {
+  if (!(r > 0.0f) || k <= 0) return 0.0f;
+  // k photons within r: a cell of h holds k h^2 / (pi r^2) of them, >= kMinPhotonsPerCell.
+  const float minScale = std::sqrt(kMinPhotonsPerCell * kPi / static_cast<float>(k));
+  return r * std::max(scale, minScale);
+}
+
+uint64_t LookupCache::keyOf(int64_t x, int64_t y, int64_t z, unsigned bucket) const {
+  if (x < 0 || y < 0 || z < 0 || x >= kAxisCells || y >= kAxisCells || z >= kAxisCells)
+    return kEmpty;
+  return (uint64_t(x) << 43) | (uint64_t(y) << 23) | (uint64_t(z) << 3) | bucket;
+}
+
+uint64_t LookupCache::keyAt(const Vec3& p, unsigned bucket) const {
+  const Vec3 u = (p - origin_) * invCell_;
+  return keyOf(static_cast<int64_t>(std::floor(u.x)), static_cast<int64_t>(std::floor(u.y)),
+               static_cast<int64_t>(std::floor(u.z)), bucket);
+}
+
+int32_t LookupCache::recordOf(uint64_t key) const {
+  if (key == kEmpty || slots_.empty()) return -1;
+  const size_t mask = slots_.size() - 1;
+  for (size_t i = (key * 0x9E3779B97F4A7C15ull) >> 32 & mask;; i = (i + 1) & mask) {
+    const Slot& s = slots_[i];
+    if (s.key == key) return static_cast<int32_t>(s.record);
+    if (s.key == kEmpty) return -1;
+  }
+}
+
+void LookupCache::insertKeys(const std::vector<uint64_t>& keys) {
+  size_t size = 16;
+  while (size < 2 * keys.size()) size *= 2;
+  slots_.assign(size, Slot{});
+  const size_t mask = size - 1;
+  for (uint32_t r = 0; r < keys.size(); ++r) {
+    size_t i = (keys[r] * 0x9E3779B97F4A7C15ull) >> 32 & mask;
+    while (slots_[i].key != kEmpty) i = (i + 1) & mask;
+    slots_[i] = {keys[r], r};
+  }
+}
+
+void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* indirect,
+                        const LookupCacheParams& params) {
+  *this = LookupCache{};
+  numLights_ = params.gate && shadow ? shadow->numLights() : 0;
+  const bool useIndirect = params.indirect != CachedIndirect::None && indirect && !indirect->empty();
+  // The sources: 0 the indirect map, 1 + l the shadow photons of light l.
+  std::vector<std::pair<const unsigned char*, size_t>> sources;  // base, count
+  std::vector<size_t> offsets{0};
+  auto addSource = [&](const auto& photons) {
+    sources.emplace_back(reinterpret_cast<const unsigned char*>(photons.data()), photons.size());
+    offsets.push_back(offsets.back() + photons.size());
+  };
+  if (useIndirect) addSource(indirect->photons()); else addSource(std::vector<IndirectPhoton>{});
+  for (uint32_t l = 0; l < numLights_; ++l) addSource(shadow->photons(l));
+  const size_t total = offsets.back();
+  if (total == 0 || !(params.cellSize > 0.0f)) return;
+
+  auto photonPos = [&](size_t src, size_t i) -> const Vec3& {
+    return src == 0 ? indirect->photons()[i].position : shadow->photons(src - 1)[i].position;
+  };
+  auto photonNormal = [&](size_t src, size_t i) {
+    return decodeOctahedral(src == 0 ? indirect->photons()[i].normal
+                                     : shadow->photons(static_cast<uint32_t>(src - 1))[i].normal);
+  };
+
+  // Cells are counted from one cell below the photons' box, so every neighbour of an
+  // occupied cell has a valid key; the cell grows if the box would need > 2^20 per axis.
+  Bounds box;
+  for (size_t src = 0; src < sources.size(); ++src)
+    for (size_t i = 0; i < sources[src].second; ++i) box.extend(photonPos(src, i));
+  const Vec3 extent = box.hi - box.lo;
+  const float widest = std::max({extent.x, extent.y, extent.z});
+  cell_ = std::max(params.cellSize, widest / static_cast<float>(kAxisCells - 4));
+  invCell_ = 1.0f / cell_;
+  origin_ = box.lo - Vec3(cell_);
+
+  std::vector<Entry> entries(total);
+  for (size_t src = 0; src < sources.size(); ++src) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, sources[src].second, 1 << 14), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i)
+        entries[offsets[src] + i] = {keyAt(photonPos(src, i), bucketOf(photonNormal(src, i))),
+                                     static_cast<uint32_t>(i), static_cast<uint32_t>(src)};
+    });
+  }
+  tbb::parallel_sort(entries.begin(), entries.end());
+  std::vector<uint32_t> starts;
+  for (size_t i = 0; i < total; ++i)
+    if (i == 0 || entries[i].key != entries[i - 1].key) starts.push_back(static_cast<uint32_t>(i));
+  records_ = starts.size();
+  starts.push_back(static_cast<uint32_t>(total));
+  std::vector<uint64_t> keys(records_);
+  for (size_t r = 0; r < records_; ++r) keys[r] = entries[starts[r]].key;
+  insertKeys(keys);
+
+  // Per record: where its photons are (centroid), which way they face (mean normal),
+  // and per light how many arrived direct, behind something opaque, behind glass.
+  std::vector<Vec3> sites(records_), normals(records_);
+  std::vector<GateCounts> counts(records_ * numLights_);
+  const float minCos = params.gateParams.minNormalCos;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 256), [&](const auto& range) {
+    for (size_t r = range.begin(); r != range.end(); ++r) {
+      Vec3 sum(0.0f), nsum(0.0f);
+      for (uint32_t e = starts[r]; e < starts[r + 1]; ++e) {
+        sum += photonPos(entries[e].source, entries[e].index);
+        nsum += photonNormal(entries[e].source, entries[e].index);
+      }
+      sites[r] = sum / static_cast<float>(starts[r + 1] - starts[r]);
+      normals[r] = glm::length(nsum) > 0.0f ? glm::normalize(nsum) : photonNormal(entries[starts[r]].source, entries[starts[r]].index);
+      for (uint32_t e = starts[r]; e < starts[r + 1]; ++e) {
+        const uint32_t src = entries[e].source;
+        if (src == 0) continue;
+        const ShadowPhoton& ph = shadow->photons(src - 1)[entries[e].index];
+        if (glm::dot(decodeOctahedral(ph.normal), normals[r]) <= minCos) continue;
+        GateCounts& c = counts[r * numLights_ + (src - 1)];
+        if (ph.shadow == kDirect) ++c.direct;
+        else if (ph.shadow == kShadowGlass) ++c.glass;
+        else ++c.opaque;
+      }
+    }
+  });
+  entries = {};
+
+  // The verdict of a cell is the gate's vote over its 3x3x3 neighbourhood (same
+  // bucket): a superset of the 2x2x2 cells any point of it blends, so one cell's
+  // verdict holds for every point inside it.
+  verdicts_.assign(records_ * numLights_, static_cast<uint8_t>(GateVerdict::Mixed));
+  if (numLights_ > 0) {
+    const GateParams& g = params.gateParams;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 256), [&](const auto& range) {
+      std::vector<GateCounts> sum(numLights_);
+      for (size_t r = range.begin(); r != range.end(); ++r) {
+        const uint64_t key = keys[r];
+        const int64_t x = int64_t(key >> 43), y = int64_t(key >> 23 & 0xFFFFF), z = int64_t(key >> 3 & 0xFFFFF);
+        const unsigned bucket = unsigned(key & 7);
+        std::fill(sum.begin(), sum.end(), GateCounts{});
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              int32_t n = recordOf(keyOf(x + dx, y + dy, z + dz, bucket));
+              if (n < 0) continue;
+              for (size_t l = 0; l < numLights_; ++l) {
+                const GateCounts& c = counts[size_t(n) * numLights_ + l];
+                sum[l].direct += c.direct;
+                sum[l].opaque += c.opaque;
+                sum[l].glass += c.glass;
+              }
+            }
+        for (size_t l = 0; l < numLights_; ++l) {
+          const GateCounts& c = sum[l];
+          const uint32_t shadowed = c.opaque + (g.glassBlocks ? c.glass : 0);
+          GateVerdict v = GateVerdict::Mixed;
+          if ((c.glass == 0 || g.glassBlocks) && (c.direct == 0 || shadowed == 0) &&
+              c.direct + shadowed >= static_cast<uint32_t>(std::max(g.minVoters, 1)))
+            v = c.direct > 0 ? GateVerdict::Lit : GateVerdict::Shadowed;
+          verdicts_[r * numLights_ + l] = static_cast<uint8_t>(v);
+        }
+      }
+    });
+  }
+
+  // The indirect estimate, by the exact estimator, at each record's site.
+  indirect_.assign(records_, Color(0.0f));
+  if (!useIndirect) return;
+  kind_ = params.indirect;
+  // Gathers in Morton order of their cells: consecutive queries are neighbours, so the
+  // KD-tree's search hints and the caches serve them (keys order by x first).
+  std::vector<std::pair<uint64_t, uint32_t>> order(records_);
+  for (uint32_t r = 0; r < records_; ++r) {
+    const uint64_t key = keys[r];
+    order[r] = {spreadBits21(uint32_t(key >> 43)) << 2 | spreadBits21(uint32_t(key >> 23 & 0xFFFFF)) << 1 |
+                    spreadBits21(uint32_t(key >> 3 & 0xFFFFF)),
+                r};
+  }
+  tbb::parallel_sort(order.begin(), order.end());
+  tbb::enumerable_thread_specific<GatherScratch> scratch;
+  Bsdf white;  // rho = 1, no glossy or mirror part: photonRadiance = irradiance / pi
+  white.type = BsdfType::Opaque;
+  white.diffuse = Color(1.0f);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 64), [&](const auto& range) {
+    GatherScratch& s = scratch.local();
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const uint32_t r = order[i].second;
+      const Vec3& p = sites[r];
+      const Vec3& n = normals[r];
+      switch (params.indirect) {
+        case CachedIndirect::Classic:
+          indirect_[r] = indirect->classic(p, n, params.k, params.maxRadius, s).value;
+          break;
+        case CachedIndirect::Density:
+          indirect_[r] = indirect->density(p, n, params.k, params.maxRadius, s).value;
+          break;
+        case CachedIndirect::Irradiance:
+          indirect_[r] = photonRadiance(*indirect, white, BsdfFrame{n, n, true}, p, n, params.k,
+                                        params.radius, s).value;
+          break;
+        case CachedIndirect::None: break;
+      }
+    }
+  });
+}
+
+LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
+  Answer a;
+  if (records_ == 0) return a;
+  const unsigned bucket = bucketOf(n);
+  const Vec3 u = (p - origin_) * invCell_ - 0.5f;
+  const Vec3 b = glm::floor(u), f = u - b;
+  const int64_t bx = static_cast<int64_t>(b.x), by = static_cast<int64_t>(b.y),
+                bz = static_cast<int64_t>(b.z);
+  // p's own cell is the corner nearer to it along each axis.
+  const unsigned own = (f.x >= 0.5f ? 1u : 0u) | (f.y >= 0.5f ? 2u : 0u) | (f.z >= 0.5f ? 4u : 0u);
+  Color sum(0.0f);
+  float weight = 0.0f;
+  for (unsigned c = 0; c < 8; ++c) {
+    const int32_t r = recordOf(keyOf(bx + (c & 1), by + (c >> 1 & 1), bz + (c >> 2), bucket));
+    if (r < 0) continue;
+    const float w = ((c & 1) ? f.x : 1.0f - f.x) * ((c & 2) ? f.y : 1.0f - f.y) *
+                    ((c & 4) ? f.z : 1.0f - f.z);
+    sum += w * indirect_[size_t(r)];
+    weight += w;
+    if (c == own && numLights_ > 0) a.verdicts = &verdicts_[size_t(r) * numLights_];
+  }
+  if (weight > 1e-6f) {
+    a.indirect = sum / weight;
+    a.hasIndirect = true;
+  }
+  return a;
+}
+
+size_t LookupCache::memoryBytes() const {
+  return slots_.capacity() * sizeof(Slot) + indirect_.capacity() * sizeof(Color) +
+         verdicts_.capacity();
+}
+
+}  // namespace penumbra

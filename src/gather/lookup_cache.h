@@ -1,0 +1,87 @@
+// Precomputed photon lookups (Christensen 1999, "Faster photon map global
+// illumination"): the gate's verdict for every light and the indirect estimate,
+// computed once per cell of a spatial hash, then read with one query per shading point.
+#pragma once
+#include "core/math.h"
+#include "gather/photon_map.h"
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace penumbra {
+
+// Which indirect estimate the cache holds (the exact estimators of indirect_estimate.h
+// and radiance_estimate.h, evaluated at the cell's photons' centroid).
+enum class CachedIndirect : uint8_t {
+  None,
+  Classic,     // the report's cone-weighted average (classic model)
+  Density,     // Jensen's cone-filtered irradiance (classic model, density estimator)
+  Irradiance,  // the Epanechnikov-weighted flux density: photonRadiance over rho/pi
+};
+
+struct LookupCacheParams {
+  float cellSize = 0.0f;  // world units (> 0); see cacheCellSize()
+  CachedIndirect indirect = CachedIndirect::None;
+  int k = 50;              // photons per indirect estimate (radius == 0)
+  float maxRadius = 0.0f;  // classic/density: bound of the k-nearest gather (0 = none)
+  float radius = 0.0f;     // irradiance: fixed gather radius (> 0) instead of k nearest
+  bool gate = false;       // precompute shadow-gate verdicts
+  GateParams gateParams;
+};
+
+// The cell size: `scale` times the median distance to the k-th nearest photon of
+// `map` (at most 256 probes), but never so small that the cells outnumber the map's
+// photons / kMinPhotonsPerCell: a cell must cost less than the gathers it replaces.
+constexpr float kMinPhotonsPerCell = 16.0f;
+float cacheCellSize(const IndirectPhotonMap* indirect, int k, const ShadowPhotonMap* shadow,
+                    int kShadow, float scale);
+// The same from a known gather radius r holding about k photons.
+float cacheCellSize(float r, int k, float scale);
+
+class LookupCache {
+ public:
+  // Cells are keyed by position and the dominant axis of the surface normal (six
+  // buckets), so a thin wall's two sides and a corner's two faces never share a cell.
+  // Either map may be null or empty; a cell exists where either map has photons.
+  void build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* indirect,
+             const LookupCacheParams& params);
+  bool empty() const { return records_ == 0; }
+
+  // The answer at one shading point: the indirect estimate blended trilinearly from
+  // the up to 8 cells around p that share n's bucket, and the gate verdicts of p's own
+  // cell (nullptr when p's cell has no record: the caller casts shadow rays).
+  struct Answer {
+    Color indirect{0.0f};
+    bool hasIndirect = false;           // false: no cell near p; use the exact estimate
+    const uint8_t* verdicts = nullptr;  // one GateVerdict per light
+  };
+  Answer find(const Vec3& p, const Vec3& n) const;
+
+  bool hasGate() const { return numLights_ > 0; }
+  CachedIndirect indirectKind() const { return kind_; }
+  size_t records() const { return records_; }
+  size_t numLights() const { return numLights_; }
+  float cellSize() const { return cell_; }
+  size_t memoryBytes() const;
+
+ private:
+  struct Slot {
+    uint64_t key = kEmpty;
+    uint32_t record = 0;
+  };
+  static constexpr uint64_t kEmpty = ~uint64_t(0);
+  uint64_t keyOf(int64_t x, int64_t y, int64_t z, unsigned bucket) const;
+  uint64_t keyAt(const Vec3& p, unsigned bucket) const;
+  int32_t recordOf(uint64_t key) const;  // -1: none
+  void insertKeys(const std::vector<uint64_t>& sortedKeys);
+
+  Vec3 origin_{0.0f};
+  float cell_ = 1.0f, invCell_ = 1.0f;
+  size_t records_ = 0, numLights_ = 0;
+  CachedIndirect kind_ = CachedIndirect::None;
+  std::vector<Slot> slots_;        // open addressing, power-of-two size, linear probing
+  std::vector<Color> indirect_;    // per record
+  std::vector<uint8_t> verdicts_;  // per record x light: a GateVerdict
+};
+
+}  // namespace penumbra

@@ -1,0 +1,189 @@
+// The precomputed lookup cache against the exact estimators it replaces: a uniformly
+// lit plane (analytic irradiance), a half-shadowed plane (the gate never contradicts
+// the truth), a thin wall's two sides, and points far from any photon.
+#include "gather/lookup_cache.h"
+#include "gather/photon_map.h"
+#include "core/rng.h"
+#include <gtest/gtest.h>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+// n x n photons jittered over the unit square in the plane z = 0, facing `normal`.
+std::vector<IndirectPhoton> planePhotons(int n, const Vec3& normal, const Color& power, uint64_t seed) {
+  std::vector<IndirectPhoton> out;
+  Rng rng(seed);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      IndirectPhoton p;
+      p.position = Vec3((x + rng.uniform()) / n, (y + rng.uniform()) / n, 0.0f);
+      p.power = power;
+      p.direction = encodeOctahedral(-normal);
+      p.normal = encodeOctahedral(normal);
+      out.push_back(p);
+    }
+  return out;
+}
+
+// Shadow photons of light 0 over the unit square: direct where x < edge, else `beyond`.
+std::vector<ShadowPhoton> halfShadow(int n, float edge, uint8_t beyond, const Vec3& normal) {
+  std::vector<ShadowPhoton> out;
+  Rng rng(11);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      ShadowPhoton p;
+      p.position = Vec3((x + rng.uniform()) / n, (y + rng.uniform()) / n, 0.0f);
+      p.normal = encodeOctahedral(normal);
+      p.light = 0;
+      p.shadow = p.position.x < edge ? kDirect : beyond;
+      out.push_back(p);
+    }
+  return out;
+}
+
+TEST(LookupCache, UniformPlaneMatchesTheExactDensityAndTheAnalyticIrradiance) {
+  const int n = 300;  // 90k photons of power 1e-4 over 1 m^2: irradiance 9 W/m^2
+  IndirectPhotonMap map;
+  map.build(planePhotons(n, Vec3(0, 0, 1), Color(1e-4f), 3));
+  LookupCacheParams params;
+  params.indirect = CachedIndirect::Density;
+  params.k = 100;
+  params.cellSize = cacheCellSize(&map, params.k, nullptr, 0, 1.0f);
+  ASSERT_GT(params.cellSize, 0.0f);
+  LookupCache cache;
+  cache.build(nullptr, &map, params);
+  ASSERT_FALSE(cache.empty());
+  EXPECT_FALSE(cache.hasGate());
+  // Fewer cells than photons / 16: the precompute costs far less than the gathers.
+  EXPECT_LE(cache.records() * 16, map.size());
+
+  GatherScratch s;
+  Rng rng(5);
+  double worst = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 p(0.2f + 0.6f * rng.uniform(), 0.2f + 0.6f * rng.uniform(), 0.0f);
+    LookupCache::Answer a = cache.find(p, Vec3(0, 0, 1));
+    ASSERT_TRUE(a.hasIndirect);
+    const float exact = map.density(p, Vec3(0, 0, 1), params.k, 0.0f, s).value.x;
+    EXPECT_NEAR(exact, 9.0f, 9.0f * 0.15f);     // the estimator itself: noisy but unbiased
+    EXPECT_NEAR(a.indirect.x, 9.0f, 9.0f * 0.1f);  // the cache: a smoothed version of it
+    worst = std::max(worst, std::abs(double(a.indirect.x) - exact) / exact);
+  }
+  EXPECT_LT(worst, 0.15);
+}
+
+TEST(LookupCache, ClassicEstimateOfAConstantPowerIsAThirdOfIt) {
+  IndirectPhotonMap map;
+  map.build(planePhotons(200, Vec3(0, 0, 1), Color(0.25f, 0.5f, 0.75f), 4));
+  LookupCacheParams params;
+  params.indirect = CachedIndirect::Classic;
+  params.k = 50;
+  params.cellSize = 0.05f;
+  LookupCache cache;
+  cache.build(nullptr, &map, params);
+  LookupCache::Answer a = cache.find(Vec3(0.5f, 0.31f, 0.0f), Vec3(0, 0, 1));
+  ASSERT_TRUE(a.hasIndirect);
+  // The weights 1 - d/d_max sum to about k/3, over k photons: the average is ~power/3.
+  GatherScratch s;
+  Color exact = map.classic(Vec3(0.5f, 0.31f, 0.0f), Vec3(0, 0, 1), 50, 0.0f, s).value;
+  EXPECT_NEAR(a.indirect.z / a.indirect.x, 3.0f, 1e-3f);
+  EXPECT_NEAR(a.indirect.y, 0.5f / 3.0f, 0.05f * 0.5f / 3.0f);
+  EXPECT_NEAR(exact.y, 0.5f / 3.0f, 0.05f * 0.5f / 3.0f);
+}
+
+TEST(LookupCache, GateNeverContradictsTheTruthAndIsConfidentAwayFromTheEdge) {
+  ShadowPhotonMap map;
+  map.build(halfShadow(400, 0.5f, kShadowOpaque, Vec3(0, 0, 1)), 1);
+  LookupCacheParams params;
+  params.gate = true;
+  params.cellSize = 0.02f;
+  LookupCache cache;
+  cache.build(&map, nullptr, params);
+  ASSERT_TRUE(cache.hasGate());
+  int lit = 0, shadowed = 0, mixed = 0;
+  Rng rng(9);
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 p(0.05f + 0.9f * rng.uniform(), 0.05f + 0.9f * rng.uniform(), 0.0f);
+    LookupCache::Answer a = cache.find(p, Vec3(0, 0, 1));
+    ASSERT_NE(a.verdicts, nullptr);
+    const auto v = static_cast<GateVerdict>(a.verdicts[0]);
+    if (v == GateVerdict::Lit) { EXPECT_LT(p.x, 0.5f) << p.x; ++lit; }
+    if (v == GateVerdict::Shadowed) { EXPECT_GE(p.x, 0.5f) << p.x; ++shadowed; }
+    if (v == GateVerdict::Mixed) {
+      // Only the band of cells around the edge is undecided: <= 2 cells each side.
+      EXPECT_LT(std::abs(p.x - 0.5f), 2.0f * params.cellSize + 1e-3f) << p.x;
+      ++mixed;
+    }
+  }
+  EXPECT_GT(lit, 1500);
+  EXPECT_GT(shadowed, 1500);
+  EXPECT_GT(mixed, 0);
+}
+
+TEST(LookupCache, GlassShadowIsMixedUnlessGlassBlocks) {
+  ShadowPhotonMap map;
+  map.build(halfShadow(200, 0.5f, kShadowGlass, Vec3(0, 0, 1)), 1);
+  LookupCacheParams params;
+  params.gate = true;
+  params.cellSize = 0.03f;
+  LookupCache cache;
+  cache.build(&map, nullptr, params);
+  const Vec3 behind(0.8f, 0.5f, 0.0f), front(0.2f, 0.5f, 0.0f);
+  EXPECT_EQ(static_cast<GateVerdict>(cache.find(behind, Vec3(0, 0, 1)).verdicts[0]), GateVerdict::Mixed);
+  EXPECT_EQ(static_cast<GateVerdict>(cache.find(front, Vec3(0, 0, 1)).verdicts[0]), GateVerdict::Lit);
+  params.gateParams.glassBlocks = true;  // the physical model: glass is a shadow
+  cache.build(&map, nullptr, params);
+  EXPECT_EQ(static_cast<GateVerdict>(cache.find(behind, Vec3(0, 0, 1)).verdicts[0]), GateVerdict::Shadowed);
+}
+
+TEST(LookupCache, ThinWallSidesKeepTheirOwnAnswers) {
+  // Both sides of the plane z = 0: the +z side bright and lit, the -z side dim and dark.
+  std::vector<IndirectPhoton> photons = planePhotons(200, Vec3(0, 0, 1), Color(1e-4f), 1);
+  for (const IndirectPhoton& p : planePhotons(200, Vec3(0, 0, -1), Color(1e-5f), 2)) photons.push_back(p);
+  IndirectPhotonMap indirect;
+  indirect.build(std::move(photons));
+  std::vector<ShadowPhoton> shadow = halfShadow(200, 2.0f, kShadowOpaque, Vec3(0, 0, 1));  // all direct
+  for (ShadowPhoton p : halfShadow(200, -1.0f, kShadowOpaque, Vec3(0, 0, -1))) shadow.push_back(p);  // all shadow
+  ShadowPhotonMap gate;
+  gate.build(std::move(shadow), 1);
+  LookupCacheParams params;
+  params.indirect = CachedIndirect::Density;
+  params.k = 50;
+  params.gate = true;
+  params.cellSize = 0.04f;
+  LookupCache cache;
+  cache.build(&gate, &indirect, params);
+  const Vec3 p(0.5f, 0.5f, 0.0f);
+  LookupCache::Answer up = cache.find(p, Vec3(0, 0, 1)), down = cache.find(p, Vec3(0, 0, -1));
+  ASSERT_TRUE(up.hasIndirect && down.hasIndirect);
+  // Ten times the power on the +z side; mixing the sides would give a ratio near 1.
+  EXPECT_NEAR(up.indirect.x / down.indirect.x, 10.0f, 2.5f);
+  EXPECT_EQ(static_cast<GateVerdict>(up.verdicts[0]), GateVerdict::Lit);
+  EXPECT_EQ(static_cast<GateVerdict>(down.verdicts[0]), GateVerdict::Shadowed);
+}
+
+TEST(LookupCache, NoCellFarFromThePhotons) {
+  IndirectPhotonMap map;
+  map.build(planePhotons(50, Vec3(0, 0, 1), Color(1.0f), 1));
+  LookupCacheParams params;
+  params.indirect = CachedIndirect::Classic;
+  params.cellSize = 0.05f;
+  LookupCache cache;
+  cache.build(nullptr, &map, params);
+  EXPECT_FALSE(cache.find(Vec3(0.5f, 0.5f, 3.0f), Vec3(0, 0, 1)).hasIndirect);
+  EXPECT_FALSE(cache.find(Vec3(-40.0f, 0.5f, 0.0f), Vec3(0, 0, 1)).hasIndirect);
+  EXPECT_FALSE(cache.find(Vec3(0.5f, 0.5f, 0.0f), Vec3(1, 0, 0)).hasIndirect);  // no such surface
+  EXPECT_TRUE(cache.find(Vec3(0.5f, 0.5f, 0.0f), Vec3(0, 0, 1)).hasIndirect);
+  EXPECT_EQ(cache.find(Vec3(0.5f, 0.5f, 0.0f), Vec3(0, 0, 1)).verdicts, nullptr);  // no gate
+}
+
+TEST(LookupCache, CellSizeKeepsSixteenPhotonsPerCell) {
+  // k photons within r: with k = 50 a cell of 0.5 r would hold ~4; it grows to >= 16.
+  EXPECT_NEAR(cacheCellSize(1.0f, 50, 0.5f), std::sqrt(16.0f * kPi / 50.0f), 1e-5f);
+  EXPECT_FLOAT_EQ(cacheCellSize(1.0f, 400, 0.5f), 0.5f);
+  EXPECT_EQ(cacheCellSize(0.0f, 50, 1.0f), 0.0f);
+}
+
+}  // namespace
+}  // namespace penumbra
