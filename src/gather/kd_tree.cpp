@@ -66,8 +66,11 @@ class SelectResultSet {
   bool full() const { return n_ >= k_; }
   float worstDist() const { return worst_; }
 
+  // Parts number their photons from 0: the offset makes the index global.
+  void setOffset(uint32_t offset) { offset_ = offset; }
+
   bool addPoint(float d2, uint32_t index) {
-    const uint64_t key = keyOf(d2, index);
+    const uint64_t key = keyOf(d2, index + offset_);
     if (key >= limitKey_) return true;  // the bound shrank within this leaf
     buf_[n_++] = key;
     if (n_ == k_) {
@@ -102,6 +105,7 @@ class SelectResultSet {
   size_t cap_, k_, n_ = 0;
   uint64_t limitKey_;
   float worst_;
+  uint32_t offset_ = 0;
 };
 
 // Sorts keys[0..n) ascending, using tmp[0..n) and `counts` as scratch. The keys are
@@ -150,6 +154,35 @@ constexpr float kHintMargin = 0.2f;
 constexpr float kSameStreamSteps = 4.0f;
 // A hint ball that held < k photons: retry once at twice the radius, then unbounded.
 constexpr float kRetryGrowth2 = 4.0f;
+
+// Photons per part of a tree: nanoflann 1.4.3 builds single-threaded, so a map is
+// split into Morton-ordered ranges of about this many photons, built side by side
+// and searched as one. The count depends only on the photon count, never on the
+// thread count, so the storage order and every answer are the same for any threads.
+constexpr size_t kPhotonsPerPart = 1 << 18;
+constexpr size_t kMaxParts = 16;
+size_t partCount(size_t n) { return std::clamp<size_t>((n + kPhotonsPerPart - 1) / kPhotonsPerPart, 1, kMaxParts); }
+
+// Reorders a[0..n) so that a[i] becomes the old a[perm[i]], in place, by following
+// the permutation's cycles; leaves perm as the identity.
+template <class T>
+void permuteInPlace(T* a, uint32_t* perm, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    if (perm[i] == i) continue;
+    T first = a[i];
+    size_t j = i;
+    for (;;) {
+      const size_t k = perm[j];
+      perm[j] = static_cast<uint32_t>(j);
+      if (k == i) {
+        a[j] = first;
+        break;
+      }
+      a[j] = a[k];
+      j = k;
+    }
+  }
+}
 }  // namespace
 
 template <class Photon>
@@ -157,15 +190,55 @@ struct PhotonKdTree<Photon>::Impl {
   using Cloud = PhotonCloud<Photon>;
   using Metric = nanoflann::L2_Simple_Adaptor<float, Cloud, float, uint32_t>;
   using Index = nanoflann::KDTreeSingleIndexAdaptor<Metric, Cloud, 3, uint32_t>;
-  // The index holds a reference to the cloud: both live here, at a fixed heap address.
-  Cloud cloud;
-  std::unique_ptr<Index> index;
+  // One contiguous range of the photon array and its own tree. The index holds a
+  // reference to the cloud: parts live at fixed heap addresses (the array never grows).
+  struct Part {
+    Cloud cloud;
+    std::unique_ptr<Index> index;
+    uint32_t offset = 0;
+    Vec3 lo{kInf}, hi{-kInf};  // the part's bounding box
+  };
+  std::vector<Part> parts;
+  size_t count = 0;
   size_t bytes = 0;
+
+  // The parts in the order to search them (nearest box first) with their squared
+  // box distances; returns how many.
+  size_t order(const float q[3], uint8_t* ids, float* d2) const {
+    const size_t n = parts.size();
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3 p(q[0], q[1], q[2]);
+      const Vec3 d = glm::max(glm::max(parts[i].lo - p, p - parts[i].hi), Vec3(0.0f));
+      float v = glm::dot(d, d);
+      size_t j = i;  // insertion sort: at most kMaxParts entries
+      for (; j > 0 && d2[j - 1] > v; --j) {
+        d2[j] = d2[j - 1];
+        ids[j] = ids[j - 1];
+      }
+      d2[j] = v;
+      ids[j] = static_cast<uint8_t>(i);
+    }
+    return n;
+  }
+
+  // Offers every part whose box may hold a point the result set still accepts.
+  template <class Result>
+  void searchParts(const float q[3], Result& result) const {
+    uint8_t ids[kMaxParts];
+    float d2[kMaxParts];
+    const size_t n = order(q, ids, d2);
+    for (size_t i = 0; i < n; ++i) {
+      if (d2[i] > result.worstDist()) break;  // sorted: every later box is farther
+      const Part& part = parts[ids[i]];
+      result.setOffset(part.offset);
+      part.index->findNeighbors(result, q, nanoflann::SearchParams());
+    }
+  }
 
   // One bounded search from scratch: the k smallest keys with dist2 < limit.
   size_t search(const float q[3], size_t k, size_t cap, float limit, GatherScratch& s) const {
     SelectResultSet result(s.keys.data(), cap, k, limit);
-    index->findNeighbors(result, q, nanoflann::SearchParams());
+    searchParts(q, result);
     return result.select();
   }
 };
@@ -184,23 +257,27 @@ void PhotonKdTree<Photon>::build(std::vector<Photon>& photons, size_t leafSize) 
   impl_.reset();
   if (photons.empty()) return;  // nanoflann throws on an empty bounding box
   auto impl = std::make_unique<Impl>();
-  impl->cloud = {photons.data(), photons.size()};
-  impl->index = std::make_unique<typename Impl::Index>(
-      3, impl->cloud, nanoflann::KDTreeSingleIndexAdaptorParams(std::max<size_t>(leafSize, 1)));
-  // The nodes address vAcc positions, not photons: storing photon vAcc[i] at i and
-  // making vAcc the identity leaves the tree valid and every leaf contiguous.
-  auto& vAcc = impl->index->vAcc;
-  {
-    std::vector<Photon> ordered(photons.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, ordered.size(), 1 << 14),
-                      [&](const auto& r) {
-                        for (size_t i = r.begin(); i != r.end(); ++i) ordered[i] = photons[vAcc[i]];
-                      });
-    photons.swap(ordered);
-  }
-  for (size_t i = 0; i < vAcc.size(); ++i) vAcc[i] = static_cast<uint32_t>(i);
-  impl->cloud.data = photons.data();  // the index reads the cloud through its reference
-  impl->bytes = impl->index->usedMemory(*impl->index);
+  impl->count = photons.size();
+  const size_t parts = partCount(photons.size());
+  impl->parts.resize(parts);
+  tbb::parallel_for(size_t(0), parts, [&](size_t i) {
+    typename Impl::Part& part = impl->parts[i];
+    const size_t begin = photons.size() * i / parts, end = photons.size() * (i + 1) / parts;
+    part.offset = static_cast<uint32_t>(begin);
+    part.cloud = {photons.data() + begin, end - begin};
+    part.index = std::make_unique<typename Impl::Index>(
+        3, part.cloud, nanoflann::KDTreeSingleIndexAdaptorParams(std::max<size_t>(leafSize, 1)));
+    // The nodes address vAcc positions, not photons: storing photon vAcc[i] at i and
+    // making vAcc the identity leaves the tree valid and every leaf contiguous. The
+    // reordering happens in place: no second copy of the photons.
+    auto& vAcc = part.index->vAcc;
+    permuteInPlace(photons.data() + begin, vAcc.data(), vAcc.size());
+    for (size_t j = begin; j < end; ++j) {
+      part.lo = glm::min(part.lo, photons[j].position);
+      part.hi = glm::max(part.hi, photons[j].position);
+    }
+  });
+  for (const auto& part : impl->parts) impl->bytes += part.index->usedMemory(*part.index);
   impl_ = std::move(impl);
 }
 
@@ -208,7 +285,7 @@ template <class Photon>
 size_t PhotonKdTree<Photon>::knn(const Vec3& p, size_t k, float maxRadius,
                                  GatherScratch& scratch, bool sorted) const {
   if (!impl_ || k == 0) return 0;
-  k = std::min(k, impl_->cloud.count);  // more slots than photons would only cost memory
+  k = std::min(k, impl_->count);  // more slots than photons would only cost memory
   scratch.reserve(k);
   const size_t cap = std::max<size_t>(kBufferFactor * k, 2 * k);
   if (scratch.keys.size() < cap + k) scratch.keys.resize(cap + k);  // + k: sort scratch
@@ -282,13 +359,14 @@ class WithinResultSet {
   using DistanceType = float;
   using IndexType = uint32_t;
   WithinResultSet(GatherScratch& s, float r2) : s_(s), r2_(r2) {}
+  void setOffset(uint32_t offset) { offset_ = offset; }
   size_t size() const { return n_; }
   bool full() const { return true; }
   float worstDist() const { return r2_; }
   bool addPoint(float d2, uint32_t index) {
     if (d2 >= r2_) return true;
     if (n_ == s_.indices.size()) s_.reserve(std::max<size_t>(64, 2 * n_));
-    s_.indices[n_] = index;
+    s_.indices[n_] = index + offset_;
     s_.dist2[n_] = d2;
     ++n_;
     return true;
@@ -298,6 +376,7 @@ class WithinResultSet {
   GatherScratch& s_;
   float r2_;
   size_t n_ = 0;
+  uint32_t offset_ = 0;
 };
 }  // namespace
 
@@ -306,13 +385,15 @@ size_t PhotonKdTree<Photon>::within(const Vec3& p, float radius, GatherScratch& 
   if (!impl_ || !(radius > 0.0f)) return 0;
   const float q[3] = {p.x, p.y, p.z};
   WithinResultSet result(scratch, radius * radius);
-  impl_->index->findNeighbors(result, q, nanoflann::SearchParams());
+  impl_->searchParts(q, result);
   return result.size();
 }
 
 template <class Photon>
 size_t PhotonKdTree<Photon>::memoryBytes() const {
-  return impl_ ? impl_->bytes + sizeof(Impl) + sizeof(typename Impl::Index) : 0;
+  return impl_ ? impl_->bytes + sizeof(Impl) +
+                     impl_->parts.size() * (sizeof(typename Impl::Part) + sizeof(typename Impl::Index))
+               : 0;
 }
 
 template class PhotonKdTree<ShadowPhoton>;
