@@ -36,7 +36,7 @@ std::vector<ShadowPhoton> halfShadow(int n, float edge, uint8_t beyond, const Ve
       p.position = Vec3((x + rng.uniform()) / n, (y + rng.uniform()) / n, 0.0f);
       p.normal = encodeOctahedral(normal);
       p.light = 0;
-      p.shadow = p.position.x < edge ? kDirect : beyond;
+      p.shadow = p.position.x < edge ? uint8_t(kDirect) : beyond;
       out.push_back(p);
     }
   return out;

@@ -1,5 +1,7 @@
 // Cone-filtered indirect estimators; everything finite for any input.
 #include "gather/indirect_estimate.h"
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace penumbra {
@@ -10,16 +12,17 @@ namespace {
 Color coneSum(const IndirectPhoton* photons, GatherScratch& s, size_t count, const Vec3& n,
               float minNormalCos, IndirectEstimate& e) {
   size_t kept = 0;
+  float far2 = 0.0f;  // the photons come in any order: track the farthest kept one
   for (size_t i = 0; i < count; ++i) {
     if (glm::dot(decodeOctahedral(photons[s.indices[i]].normal), n) <= minNormalCos) continue;
     s.indices[kept] = s.indices[i];
     s.dist2[kept] = s.dist2[i];
+    far2 = std::max(far2, s.dist2[i]);
     ++kept;
   }
   e.found = static_cast<int>(kept);
   if (kept == 0) return Color(0.0f);
-  // Ascending order: the last kept photon is the farthest.
-  e.dMax = std::sqrt(s.dist2[kept - 1]);
+  e.dMax = std::sqrt(far2);
   Color sum(0.0f);
   if (e.dMax > 0.0f) {
     const float inv = 1.0f / e.dMax;

@@ -19,8 +19,9 @@ struct IndirectEstimate {
   float dMax = 0.0f;  // distance to the farthest of them
 };
 
-// Both take the count nearest photons listed in scratch (indices/dist2, ascending
-// distance) and compact the ones passing the normal filter to the front of scratch.
+// Both take the count nearest photons listed in scratch (indices/dist2; any order
+// gives the same value up to float rounding, so callers pass a canonical one) and
+// compact the ones passing the normal filter to the front of scratch.
 // Weight w_i = 1 - d_i / d_max; all-coincident photons (d_max = 0) get w = 1.
 //   classic: sum(w_i * power_i) / found                 (0 if nothing passed)
 //   density: sum(w_i * power_i) / ((1 - 2/3) * pi * d_max^2)   (0 if d_max = 0)

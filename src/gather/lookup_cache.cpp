@@ -88,13 +88,13 @@ uint64_t LookupCache::keyAt(const Vec3& p, unsigned bucket) const {
                static_cast<int64_t>(std::floor(u.z)), bucket);
 }
 
-int32_t LookupCache::recordOf(uint64_t key) const {
-  if (key == kEmpty || slots_.empty()) return -1;
+const LookupCache::Slot* LookupCache::slotOf(uint64_t key) const {
+  if (key == kEmpty || slots_.empty()) return nullptr;
   const size_t mask = slots_.size() - 1;
   for (size_t i = (key * 0x9E3779B97F4A7C15ull) >> 32 & mask;; i = (i + 1) & mask) {
     const Slot& s = slots_[i];
-    if (s.key == key) return static_cast<int32_t>(s.record);
-    if (s.key == kEmpty) return -1;
+    if (s.key == key) return &s;
+    if (s.key == kEmpty) return nullptr;
   }
 }
 
@@ -106,7 +106,8 @@ void LookupCache::insertKeys(const std::vector<uint64_t>& keys) {
   for (uint32_t r = 0; r < keys.size(); ++r) {
     size_t i = (keys[r] * 0x9E3779B97F4A7C15ull) >> 32 & mask;
     while (slots_[i].key != kEmpty) i = (i + 1) & mask;
-    slots_[i] = {keys[r], r};
+    slots_[i].key = keys[r];
+    slots_[i].record = r;
   }
 }
 
@@ -193,8 +194,8 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   entries = {};
 
   // The verdict of a cell is the gate's vote over its 3x3x3 neighbourhood (same
-  // bucket): a superset of the 2x2x2 cells any point of it blends, so one cell's
-  // verdict holds for every point inside it.
+  // bucket): every photon within one cell of any point inside it votes, so a point
+  // near the cell's edge still sees the shadow boundary beyond it.
   verdicts_.assign(records_ * numLights_, static_cast<uint8_t>(GateVerdict::Mixed));
   if (numLights_ > 0) {
     const GateParams& g = params.gateParams;
@@ -231,9 +232,9 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   }
 
   // The indirect estimate, by the exact estimator, at each record's site.
-  indirect_.assign(records_, Color(0.0f));
   if (!useIndirect) return;
   kind_ = params.indirect;
+  std::vector<Color> values(records_, Color(0.0f));
   // Gathers in Morton order of their cells: consecutive queries are neighbours, so the
   // KD-tree's search hints and the caches serve them (keys order by x first).
   std::vector<std::pair<uint64_t, uint32_t>> order(records_);
@@ -256,41 +257,55 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
       const Vec3& n = normals[r];
       switch (params.indirect) {
         case CachedIndirect::Classic:
-          indirect_[r] = indirect->classic(p, n, params.k, params.maxRadius, s).value;
+          values[r] = indirect->classic(p, n, params.k, params.maxRadius, s).value;
           break;
         case CachedIndirect::Density:
-          indirect_[r] = indirect->density(p, n, params.k, params.maxRadius, s).value;
+          values[r] = indirect->density(p, n, params.k, params.maxRadius, s).value;
           break;
         case CachedIndirect::Irradiance:
-          indirect_[r] = photonRadiance(*indirect, white, BsdfFrame{n, n, true}, p, n, params.k,
+          values[r] = photonRadiance(*indirect, white, BsdfFrame{n, n, true}, p, n, params.k,
                                         params.radius, s).value;
           break;
         case CachedIndirect::None: break;
       }
     }
   });
+  for (Slot& slot : slots_)
+    if (slot.key != kEmpty) slot.indirect = values[slot.record];
 }
 
 LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
   Answer a;
   if (records_ == 0) return a;
-  const unsigned bucket = bucketOf(n);
-  const Vec3 u = (p - origin_) * invCell_ - 0.5f;
-  const Vec3 b = glm::floor(u), f = u - b;
-  const int64_t bx = static_cast<int64_t>(b.x), by = static_cast<int64_t>(b.y),
-                bz = static_cast<int64_t>(b.z);
-  // p's own cell is the corner nearer to it along each axis.
-  const unsigned own = (f.x >= 0.5f ? 1u : 0u) | (f.y >= 0.5f ? 2u : 0u) | (f.z >= 0.5f ? 4u : 0u);
+  const unsigned bucket = bucketOf(n), axis = bucket / 2;
+  const Vec3 cellOf = (p - origin_) * invCell_;
+  int64_t own[3];  // p's own cell
+  for (int i = 0; i < 3; ++i) own[i] = static_cast<int64_t>(std::floor(cellOf[i]));
+  if (kind_ == CachedIndirect::None) {  // the gate alone reads only p's own cell
+    const int32_t r = recordOf(keyOf(own[0], own[1], own[2], bucket));
+    if (r >= 0) a.verdicts = &verdicts_[size_t(r) * numLights_];
+    return a;
+  }
+  // The surface runs across the bucket's axis: blend bilinearly over the 2x2 cells
+  // around p along the other two axes, in p's own layer along this one.
+  const unsigned t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
+  const float u1 = cellOf[t1] - 0.5f, u2 = cellOf[t2] - 0.5f;
+  const float b1 = std::floor(u1), b2 = std::floor(u2), f1 = u1 - b1, f2 = u2 - b2;
   Color sum(0.0f);
   float weight = 0.0f;
-  for (unsigned c = 0; c < 8; ++c) {
-    const int32_t r = recordOf(keyOf(bx + (c & 1), by + (c >> 1 & 1), bz + (c >> 2), bucket));
-    if (r < 0) continue;
-    const float w = ((c & 1) ? f.x : 1.0f - f.x) * ((c & 2) ? f.y : 1.0f - f.y) *
-                    ((c & 4) ? f.z : 1.0f - f.z);
-    sum += w * indirect_[size_t(r)];
+  int64_t c[3];
+  c[axis] = own[axis];
+  for (unsigned corner = 0; corner < 4; ++corner) {
+    const unsigned d1 = corner & 1, d2 = corner >> 1;
+    c[t1] = static_cast<int64_t>(b1) + d1;
+    c[t2] = static_cast<int64_t>(b2) + d2;
+    const Slot* slot = slotOf(keyOf(c[0], c[1], c[2], bucket));
+    if (!slot) continue;
+    const float w = (d1 ? f1 : 1.0f - f1) * (d2 ? f2 : 1.0f - f2);
+    sum += w * slot->indirect;
     weight += w;
-    if (c == own && numLights_ > 0) a.verdicts = &verdicts_[size_t(r) * numLights_];
+    if (c[t1] == own[t1] && c[t2] == own[t2] && numLights_ > 0)
+      a.verdicts = &verdicts_[size_t(slot->record) * numLights_];
   }
   if (weight > 1e-6f) {
     a.indirect = sum / weight;
@@ -300,8 +315,7 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
 }
 
 size_t LookupCache::memoryBytes() const {
-  return slots_.capacity() * sizeof(Slot) + indirect_.capacity() * sizeof(Color) +
-         verdicts_.capacity();
+  return slots_.capacity() * sizeof(Slot) + verdicts_.capacity();
 }
 
 }  // namespace penumbra

@@ -47,9 +47,10 @@ class LookupCache {
              const LookupCacheParams& params);
   bool empty() const { return records_ == 0; }
 
-  // The answer at one shading point: the indirect estimate blended trilinearly from
-  // the up to 8 cells around p that share n's bucket, and the gate verdicts of p's own
-  // cell (nullptr when p's cell has no record: the caller casts shadow rays).
+  // The answer at one shading point: the indirect estimate blended bilinearly from
+  // the up to 4 cells around p (across the surface, in p's layer along the normal's
+  // axis) that share n's bucket, and the gate verdicts of p's own cell (nullptr when
+  // p's cell has no record: the caller casts shadow rays).
   struct Answer {
     Color indirect{0.0f};
     bool hasIndirect = false;           // false: no cell near p; use the exact estimate
@@ -65,14 +66,17 @@ class LookupCache {
   size_t memoryBytes() const;
 
  private:
+  // A probe touches one slot: the indirect value lives in it, not behind the index.
   struct Slot {
     uint64_t key = kEmpty;
+    Color indirect{0.0f};
     uint32_t record = 0;
   };
   static constexpr uint64_t kEmpty = ~uint64_t(0);
   uint64_t keyOf(int64_t x, int64_t y, int64_t z, unsigned bucket) const;
   uint64_t keyAt(const Vec3& p, unsigned bucket) const;
-  int32_t recordOf(uint64_t key) const;  // -1: none
+  const Slot* slotOf(uint64_t key) const;  // nullptr: none
+  int32_t recordOf(uint64_t key) const { const Slot* s = slotOf(key); return s ? int32_t(s->record) : -1; }
   void insertKeys(const std::vector<uint64_t>& sortedKeys);
 
   Vec3 origin_{0.0f};
@@ -80,7 +84,6 @@ class LookupCache {
   size_t records_ = 0, numLights_ = 0;
   CachedIndirect kind_ = CachedIndirect::None;
   std::vector<Slot> slots_;        // open addressing, power-of-two size, linear probing
-  std::vector<Color> indirect_;    // per record
   std::vector<uint8_t> verdicts_;  // per record x light: a GateVerdict
 };
 

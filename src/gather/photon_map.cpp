@@ -102,16 +102,18 @@ void IndirectPhotonMap::build(std::vector<IndirectPhoton> photons,
   tree_.build(photons_, options.leafSize);
 }
 
-size_t IndirectPhotonMap::knn(const Vec3& p, size_t k, float maxRadius,
-                              GatherScratch& scratch) const {
-  return tree_.knn(p, k, maxRadius, scratch);
+size_t IndirectPhotonMap::knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch,
+                              bool sorted) const {
+  return tree_.knn(p, k, maxRadius, scratch, sorted);
 }
 
 IndirectPhotonMap::Estimate IndirectPhotonMap::classic(const Vec3& p, const Vec3& n, int k,
                                                        float maxRadius, GatherScratch& s,
                                                        float minNormalCos) const {
   if (k <= 0) return {};
-  size_t found = knn(p, static_cast<size_t>(k), maxRadius, s);
+  // Sorted although the estimate only sums and takes a maximum: the selection's own
+  // order depends on the search hints (per thread), and a float sum on its order.
+  size_t found = tree_.knn(p, static_cast<size_t>(k), maxRadius, s);
   return classicEstimate(photons_.data(), s, found, n, minNormalCos);
 }
 
@@ -119,7 +121,7 @@ IndirectPhotonMap::Estimate IndirectPhotonMap::density(const Vec3& p, const Vec3
                                                        float maxRadius, GatherScratch& s,
                                                        float minNormalCos) const {
   if (k <= 0) return {};
-  size_t found = knn(p, static_cast<size_t>(k), maxRadius, s);
+  size_t found = tree_.knn(p, static_cast<size_t>(k), maxRadius, s);  // sorted: see classic()
   return densityEstimate(photons_.data(), s, found, n, minNormalCos);
 }
 

@@ -53,8 +53,10 @@ class IndirectPhotonMap {
                    float minNormalCos = kIndirectMinNormalCos) const;
   Estimate density(const Vec3& p, const Vec3& n, int k, float maxRadius, GatherScratch& s,
                    float minNormalCos = kIndirectMinNormalCos) const;
-  // Raw kNN, as ShadowPhotonMap::knn; indices into photons().
-  size_t knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch) const;
+  // Raw kNN, as ShadowPhotonMap::knn; indices into photons(). Sorted nearest first
+  // unless `sorted` is false (then in no particular order, and cheaper).
+  size_t knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch,
+             bool sorted = true) const;
   // Every photon closer than radius, unordered; indices into photons().
   size_t within(const Vec3& p, float radius, GatherScratch& scratch) const {
     return tree_.within(p, radius, scratch);

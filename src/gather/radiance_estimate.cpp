@@ -16,6 +16,7 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf,
     n = map.within(p, radius, s);
     r2 = radius * radius;
   } else {
+    // Sorted (canonical order) so the float sum is the same at any thread count.
     n = map.knn(p, static_cast<size_t>(k), 0.0f, s);
     r2 = 0.0f;
     for (size_t i = 0; i < n; ++i) r2 = std::max(r2, s.dist2[i]);
