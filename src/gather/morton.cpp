@@ -1,10 +1,9 @@
-// Morton codes and the parallel, deterministic storage-order sort.
+// Morton codes and the deterministic storage order (a coarse spatial counting sort).
 #include "gather/morton.h"
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/parallel_sort.h>
-#include <numeric>
+#include <algorithm>
 
 namespace penumbra {
 
@@ -42,19 +41,6 @@ Bounds computeBounds(const PositionView& pos) {
       });
 }
 
-namespace {
-struct SortKey {
-  uint64_t code;
-  uint32_t group;
-  uint32_t index;
-  bool operator<(const SortKey& o) const {
-    if (group != o.group) return group < o.group;
-    if (code != o.code) return code < o.code;
-    return index < o.index;
-  }
-};
-}  // namespace
-
 std::vector<uint32_t> storageOrder(const PositionView& pos, const uint16_t* groups,
                                    size_t groupStride, bool spatial, const Bounds& bounds) {
   const size_t n = pos.count;
@@ -63,25 +49,27 @@ std::vector<uint32_t> storageOrder(const PositionView& pos, const uint16_t* grou
                         reinterpret_cast<const unsigned char*>(groups) + i * groupStride)
                   : 0u;
   };
+  uint32_t numGroups = 1;
+  for (size_t i = 0; i < n && groups; ++i) numGroups = std::max(numGroups, groupOf(i) + 1);
+  // Buckets: (group, the top bits of the Morton code). The KD-tree build later puts
+  // every photon in leaf order, so the spatial sort need only be coarse: cells of
+  // 1/64 of the box per axis (fewer with many groups) give compact, balanced parts
+  // and a cache-friendly build. A stable counting sort: O(n), unique result.
+  int bitsPerAxis = spatial ? 6 : 0;
+  while (bitsPerAxis > 0 && (uint64_t(numGroups) << (3 * bitsPerAxis)) > (uint64_t(1) << 22)) --bitsPerAxis;
+  const int cellBits = 3 * bitsPerAxis;
+  std::vector<uint32_t> bucket(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const uint64_t cell = cellBits ? mortonCode63(pos[i], bounds) >> (63 - cellBits) : 0;
+      bucket[i] = static_cast<uint32_t>((uint64_t(groupOf(i)) << cellBits) | cell);
+    }
+  });
+  std::vector<uint32_t> start((size_t(numGroups) << cellBits) + 1, 0);
+  for (size_t i = 0; i < n; ++i) ++start[bucket[i] + 1];
+  for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
   std::vector<uint32_t> order(n);
-  if (!spatial) {
-    // Stable counting partition by group: O(n), keeps the emission order inside.
-    std::vector<size_t> start(size_t(1) << 16, 0);
-    for (size_t i = 0; i < n; ++i) ++start[groupOf(i)];
-    size_t sum = 0;
-    for (size_t& s : start) { size_t c = s; s = sum; sum += c; }
-    for (size_t i = 0; i < n; ++i) order[start[groupOf(i)]++] = static_cast<uint32_t>(i);
-    return order;
-  }
-  std::vector<SortKey> keys(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i)
-      keys[i] = {mortonCode63(pos[i], bounds), groupOf(i), static_cast<uint32_t>(i)};
-  });
-  tbb::parallel_sort(keys.begin(), keys.end());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) order[i] = keys[i].index;
-  });
+  for (size_t i = 0; i < n; ++i) order[start[bucket[i]]++] = static_cast<uint32_t>(i);
   return order;
 }
 

@@ -44,9 +44,9 @@ PositionView positionsOf(const std::vector<Photon>& photons) {
 Bounds computeBounds(const PositionView& positions);
 
 // The order to store photons in: by group (light index; pass nullptr for one group),
-// then, if spatial, by Morton code over `bounds`, ties by original index. The key is
-// unique per photon, so the result does not depend on how the parallel sort splits
-// the work: same input, same order, at any thread count.
+// then, if spatial, by a coarse Morton cell over `bounds` (the KD-tree build orders
+// finely), ties by original index. A stable counting sort, so the result does not
+// depend on the thread count: same input, same order.
 std::vector<uint32_t> storageOrder(const PositionView& positions, const uint16_t* groups,
                                    size_t groupStride, bool spatial, const Bounds& bounds);
 
