@@ -74,6 +74,28 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
     EXPECT_NEAR(t.absorbed[c] + t.capped[c], t.emitted[c], 1e-9 * t.emitted[c]);
   }
 
+  // The map stores each photon's power as shared-exponent RGB: every channel within
+  // 2^-8 of the photon's largest (red here), rounded to nearest. Red's sum therefore
+  // stays within 2^-8 of the tally. Green/blue keep only that absolute precision, and
+  // the rounding does not average out: all photons of one bounce depth carry the
+  // same colour, so they round alike. Second-bounce green is 0.0556^2 x red = 0.61
+  // mantissa units and stores as 1 (+64%); it is ~5% of the green total, so the map's
+  // green is ~3% above the tally (measured +2.95%; 1e-5 of the red radiance, invisible,
+  // but beyond this test's 2% per channel against the energy balance). Hence the
+  // map against the tally at the format's bound, and the gather below against what
+  // the map holds, at its old 2%.
+  glm::dvec3 inMap(0.0), bound(0.0);
+  for (const IndirectPhoton& p : photons.global) {
+    const Color c = p.power.color();
+    inMap += glm::dvec3(c);
+    bound += glm::dvec3(0x1p-8 * maxComponent(c) / (1.0 - 0x1p-8));  // 2^-8 of the float's largest
+  }
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LE(std::abs(inMap[c] - t.storedGlobal[c]), bound[c]) << "channel " << c;
+  }
+  std::printf("[ info ] map / tally - 1 per channel: %+.4f %+.4f %+.4f\n", inMap.r / t.storedGlobal.r - 1.0,
+              inMap.g / t.storedGlobal.g - 1.0, inMap.b / t.storedGlobal.b - 1.0);
+
   IndirectPhotonMap map;
   map.build(std::move(photons.global));
   rig.ctx.globalMap = &map;
@@ -98,9 +120,10 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   }
   const glm::dvec3 mean = sum / double(points);
   for (int c = 0; c < 3; ++c) {
-    const double want = kRed[c] / kPiD * stored[c] / boxArea() * (1.0 - edgeLoss);
-    // ~39 photons per disc: ~19% scatter per point, 0.15% over 20000 points; with the
-    // photon total's 0.24% that is ~0.3%. Tolerance 2% per channel as asked.
+    const double want = kRed[c] / kPiD * inMap[c] / boxArea() * (1.0 - edgeLoss);
+    // ~39 photons per disc: ~19% scatter per point, 0.15% over 20000 points (the
+    // photon total's 0.24% is checked above, against the tally). Tolerance 2% per
+    // channel as asked.
     EXPECT_LT(rel(mean[c], want), 0.02) << "channel " << c << ": " << mean[c] << " vs " << want;
   }
 }
@@ -153,7 +176,7 @@ TEST(RedBox, ClassicRouletteStoredPowerConvergesWithMaxBounces) {
       options.shadowMap = false;
       PhotonMaps maps = emitPhotons(scene, tracer, options);
       glm::dvec3 sum(0.0);
-      for (const IndirectPhoton& p : maps.indirect) sum += glm::dvec3(p.power);
+      for (const IndirectPhoton& p : maps.indirect) sum += glm::dvec3(p.power.color());
       total[i++] = sum;
       for (int ch = 0; ch < 3; ++ch) {
         const double x = 0.5 * c[ch];

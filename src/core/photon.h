@@ -1,8 +1,10 @@
 // Photon records as stored in the maps. Compact on purpose: 5M photons per map,
-// and the normal/direction are octahedral-encoded into 32 bits each.
+// the normal/direction are octahedral-encoded into 32 bits each and an indirect
+// photon's power is a 32-bit shared-exponent colour.
 #pragma once
 #include "core/math.h"
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace penumbra {
@@ -11,6 +13,34 @@ namespace penumbra {
 // worst-case angular error ~0.005 degrees, plenty for a "same side" test.
 uint32_t encodeOctahedral(const Vec3& unit);
 Vec3 decodeOctahedral(uint32_t code);
+
+// A photon's power in 32 bits: Ward's RGBE shared-exponent colour (Graphics Gems II,
+// "Real pixels"). Three 8-bit mantissas share the largest channel's exponent, so it
+// covers the float range without a per-map scale. Encoding rounds each channel to
+// nearest (the largest rounding up to 256 bumps the exponent), so decoding adds no
+// +0.5: every channel comes back within 2^-8 (0.39%) of the LARGEST channel (a weak
+// channel beside a strong one keeps only that absolute precision). Zero, negative
+// and non-finite channels, and colours whose largest channel is below 2^-100, store
+// as 0; a largest channel of 2^127 or more saturates at 255 x 2^119 (~1.7e38).
+// Byte layout: r | g << 8 | b << 16 | exponent << 24; bits == 0 is exactly black.
+struct PackedPower {
+  uint32_t bits = 0;
+  PackedPower() = default;
+  PackedPower(const Color& c);  // implicit on purpose: records are built from colours
+  Color color() const {
+    const uint32_t e = bits >> 24;
+    if (e == 0) return Color(0.0f);
+    // The scale 2^(e - 136) = 2^(e - 128 - 8), built from its float bits: e >= 29
+    // for every stored colour, so the biased exponent e - 9 is a normal float's.
+    const uint32_t scaleBits = (e - 9u) << 23;
+    float scale;
+    std::memcpy(&scale, &scaleBits, sizeof scale);
+    return Color(static_cast<float>(bits & 0xFFu), static_cast<float>((bits >> 8) & 0xFFu),
+                 static_cast<float>((bits >> 16) & 0xFFu)) * scale;
+  }
+  bool operator==(const PackedPower& o) const { return bits == o.bits; }
+  bool operator!=(const PackedPower& o) const { return bits != o.bits; }
+};
 
 // What lies between a shadow photon and its light. Behind glass alone the light
 // arrives tinted, which only a shadow ray can measure.
@@ -26,12 +56,21 @@ struct ShadowPhoton {
 };
 
 // An indirect-map photon: stored at every surface hit of a bouncing path.
+// 24 bytes: the map's budget is <= 32 B per stored photon including the KD-tree
+// index, and a float Color alone would take 12 of them. The power is packed (4 B);
+// the estimators average >= 50 photons, so the <= 0.4% rounding of each photon's
+// power is far below their noise (~1/sqrt(k), 14% at k = 50). The bound is relative
+// to the photon's largest channel, and photons of one colour round alike, so a weak
+// channel beside a strong one can be biased by up to 2^-8 of the strong one (the red
+// box's green: +3% of itself, 1e-5 of its red). Read the power once per photon with
+// power.color(); emitters compute in float and pack only at the store.
 struct IndirectPhoton {
   Vec3 position;
-  Color power;
+  PackedPower power;   // shared-exponent RGB, within 2^-8 of the largest channel
   uint32_t direction;  // octahedral, incoming direction of travel
   uint32_t normal;     // octahedral geometric normal, flipped to face where the photon came from
 };
+static_assert(sizeof(IndirectPhoton) == 24, "IndirectPhoton: 12 B position + 3 x 4 B codes");
 
 struct PhotonMaps {
   std::vector<ShadowPhoton> shadow;

@@ -27,9 +27,9 @@ Color coneSum(const IndirectPhoton* photons, GatherScratch& s, size_t count, con
   if (e.dMax > 0.0f) {
     const float inv = 1.0f / e.dMax;
     for (size_t i = 0; i < kept; ++i)
-      sum += (1.0f - std::sqrt(s.dist2[i]) * inv) * photons[s.indices[i]].power;
+      sum += (1.0f - std::sqrt(s.dist2[i]) * inv) * photons[s.indices[i]].power.color();
   } else {
-    for (size_t i = 0; i < kept; ++i) sum += photons[s.indices[i]].power;
+    for (size_t i = 0; i < kept; ++i) sum += photons[s.indices[i]].power.color();
   }
   return sum;
 }

@@ -36,13 +36,13 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf,
     if (w <= 0.0f) continue;
     ++found;
     if (lambertOnly) {
-      sum += w * ph.power;
+      sum += w * ph.power.color();  // decoded once per photon on either path
       continue;
     }
     Vec3 wi = -decodeOctahedral(ph.direction);
     float cosI = glm::dot(frame.ns, wi);
     if (cosI <= 1e-4f) continue;
-    sum += w * ph.power * evaluateBsdf(bsdf, frame, wo, wi) / cosI;
+    sum += w * ph.power.color() * evaluateBsdf(bsdf, frame, wo, wi) / cosI;
   }
   if (lambertOnly) sum *= (1.0f - bsdf.kr) * bsdf.diffuse * (1.0f / kPi);
   e.found = found;
