@@ -1,6 +1,7 @@
 // nanoflann KD-tree over photon records, read in place through a dataset adaptor,
 // queried with an exact bounded-selection result set and per-thread search hints.
 #include "gather/kd_tree.h"
+#include "gather/knn_result_sets.h"
 #include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -12,6 +13,7 @@
 namespace penumbra {
 
 namespace {
+using namespace knn;
 // nanoflann's dataset interface over the photon array: positions are read straight
 // from the records, nothing is copied.
 template <class Photon>
@@ -23,123 +25,6 @@ struct PhotonCloud {
   template <class BBox>
   bool kdtree_get_bbox(BBox&) const { return false; }
 };
-
-inline uint32_t bitsOf(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
-inline float floatOf(uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
-// Squared distances are >= 0 (or +0), whose IEEE bit patterns order like the values:
-// (bits << 32 | index) orders by (dist2, index) with one integer compare.
-inline uint64_t keyOf(float d2, uint32_t index) {
-  return (static_cast<uint64_t>(bitsOf(d2)) << 32) | index;
-}
-inline float distOf(uint64_t key) { return floatOf(static_cast<uint32_t>(key >> 32)); }
-
-// The k smallest (dist2, index) keys among the points nanoflann offers, with a
-// shrinking bound. Candidates go into a buffer of `cap` (>= 2k) slots; the first time
-// k are in, the bound drops to the largest of them (as nanoflann's KNNResultSet
-// would), and whenever the buffer fills, nth_element keeps the k smallest and the
-// bound drops to the k-th. Cheaper than KNNResultSet's insertion sort per accepted
-// point, and ties are broken by index, so the answer is unique.
-//
-// A point is accepted iff its key < limitKey_. worst_ (what nanoflann prunes with:
-// leaves test dist < worst, nodes mindist <= worst) is >= every accepted distance,
-// with a little slack over the k-th so ties and nanoflann's incremental mindist
-// rounding never prune a point that belongs to the answer.
-class SelectResultSet {
- public:
-  using DistanceType = float;
-  using IndexType = uint32_t;
-
-  // Accepts dist2 < limit (strict) until tightened.
-  SelectResultSet(uint64_t* buf, size_t cap, size_t k, float limit)
-      : buf_(buf), cap_(cap), k_(k), limitKey_(static_cast<uint64_t>(bitsOf(limit)) << 32),
-        worst_(limit) {}
-
-  size_t size() const { return n_; }
-  bool full() const { return n_ >= k_; }
-  float worstDist() const { return worst_; }
-
-  // Parts number their photons from 0: the offset makes the index global.
-  void setOffset(uint32_t offset) { offset_ = offset; }
-
-  bool addPoint(float d2, uint32_t index) {
-    const uint64_t key = keyOf(d2, index + offset_);
-    if (key >= limitKey_) return true;  // the bound shrank within this leaf
-    buf_[n_++] = key;
-    if (n_ == k_) {
-      // First time k are in (after a compaction n_ is set, not incremented, to k).
-      tighten(*std::max_element(buf_, buf_ + n_));
-    } else if (n_ == cap_) {
-      std::nth_element(buf_, buf_ + (k_ - 1), buf_ + n_);
-      n_ = k_;
-      tighten(buf_[k_ - 1]);
-    }
-    return true;
-  }
-
-  // Leaves the k smallest keys (or all, if fewer) in buf[0..size()), unordered.
-  size_t select() {
-    if (n_ > k_) {
-      std::nth_element(buf_, buf_ + (k_ - 1), buf_ + n_);
-      n_ = k_;
-    }
-    return n_;
-  }
-
- private:
-  void tighten(uint64_t kth) {
-    // Anything not below the current k-th key can no longer make the answer.
-    limitKey_ = kth;
-    const float d = distOf(kth);
-    worst_ = std::nextafter(d + d * 1e-5f, std::numeric_limits<float>::infinity());
-  }
-
-  uint64_t* buf_;
-  size_t cap_, k_, n_ = 0;
-  uint64_t limitKey_;
-  float worst_;
-  uint32_t offset_ = 0;
-};
-
-// Sorts keys[0..n) ascending, using tmp[0..n) and `counts` as scratch. The keys are
-// in random order, where a comparison sort's branches mispredict about half the time
-// (std::sort on 200 keys: ~3 us). Instead: a counting sort into n buckets by dist2
-// relative to the largest (photons are spread over a disc or ball, so the buckets
-// are balanced), then an insertion sort that only moves keys within their bucket.
-// The bucket is a monotone function of dist2, so the result is exactly sorted for
-// any input; degenerate inputs (all dist2 equal) merely cost more.
-void sortKeys(uint64_t* keys, size_t n, uint64_t* tmp, std::vector<uint32_t>& counts) {
-  if (n < 2) return;
-  float maxD = 0.0f;
-  for (size_t i = 0; i < n; ++i) maxD = std::max(maxD, distOf(keys[i]));
-  const float top = static_cast<float>(n - 1);
-  const float scale = static_cast<float>(n) / maxD;
-  if (!(maxD > 0.0f) || !std::isfinite(scale)) {
-    std::sort(keys, keys + n);
-    return;
-  }
-  counts.assign(n + 1, 0);
-  auto bucketOf = [&](uint64_t key) {
-    return static_cast<uint32_t>(std::min(distOf(key) * scale, top));
-  };
-  for (size_t i = 0; i < n; ++i) ++counts[bucketOf(keys[i]) + 1];
-  for (size_t b = 1; b <= n; ++b) counts[b] += counts[b - 1];
-  for (size_t i = 0; i < n; ++i) tmp[counts[bucketOf(keys[i])]++] = keys[i];
-  keys[0] = tmp[0];
-  for (size_t i = 1; i < n; ++i) {
-    const uint64_t v = tmp[i];
-    size_t j = i;
-    for (; j > 0 && keys[j - 1] > v; --j) keys[j] = keys[j - 1];
-    keys[j] = v;
-  }
-}
 
 // Candidate buffer slots per query, as a multiple of k: larger means fewer
 // nth_element passes but a bound that tightens later.
@@ -352,33 +237,6 @@ size_t PhotonKdTree<Photon>::knn(const Vec3& p, size_t k, float maxRadius,
   return n;
 }
 
-namespace {
-// nanoflann result set for a fixed-radius search into reusable buffers.
-class WithinResultSet {
- public:
-  using DistanceType = float;
-  using IndexType = uint32_t;
-  WithinResultSet(GatherScratch& s, float r2) : s_(s), r2_(r2) {}
-  void setOffset(uint32_t offset) { offset_ = offset; }
-  size_t size() const { return n_; }
-  bool full() const { return true; }
-  float worstDist() const { return r2_; }
-  bool addPoint(float d2, uint32_t index) {
-    if (d2 >= r2_) return true;
-    if (n_ == s_.indices.size()) s_.reserve(std::max<size_t>(64, 2 * n_));
-    s_.indices[n_] = index + offset_;
-    s_.dist2[n_] = d2;
-    ++n_;
-    return true;
-  }
-
- private:
-  GatherScratch& s_;
-  float r2_;
-  size_t n_ = 0;
-  uint32_t offset_ = 0;
-};
-}  // namespace
 
 template <class Photon>
 size_t PhotonKdTree<Photon>::within(const Vec3& p, float radius, GatherScratch& scratch) const {
