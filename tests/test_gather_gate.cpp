@@ -62,7 +62,8 @@ TEST(Gate, ShadowBehindGlassOnlyAsksForARay) {
   map.build(ph, 1);
   GatherScratch scratch;
   ASSERT_EQ(map.knn(Vec3(0.5f, 0.5f, 0.0f), 0, 1, 0.0f, scratch), 1u);
-  std::vector<ShadowPhoton> sorted = map.photons(0);
+  const auto range = map.photons(0);
+  std::vector<ShadowPhoton> sorted(range.begin(), range.end());
   sorted[scratch.indices[0]].shadow = kShadowGlass;
   EXPECT_EQ(classifyAt(sorted, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Mixed);
 }

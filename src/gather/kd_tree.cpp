@@ -2,9 +2,11 @@
 // queried with an exact bounded-selection result set and per-thread search hints.
 #include "gather/kd_tree.h"
 #include "gather/knn_result_sets.h"
+#include "gather/morton.h"
 #include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -48,25 +50,28 @@ constexpr size_t kPhotonsPerPart = 1 << 18;
 constexpr size_t kMaxParts = 16;
 size_t partCount(size_t n) { return std::clamp<size_t>((n + kPhotonsPerPart - 1) / kPhotonsPerPart, 1, kMaxParts); }
 
-// Reorders a[0..n) so that a[i] becomes the old a[perm[i]], in place, by following
-// the permutation's cycles; leaves perm as the identity.
-template <class T>
-void permuteInPlace(T* a, uint32_t* perm, size_t n) {
-  for (size_t i = 0; i < n; ++i) {
-    if (perm[i] == i) continue;
-    T first = a[i];
-    size_t j = i;
-    for (;;) {
-      const size_t k = perm[j];
-      perm[j] = static_cast<uint32_t>(j);
-      if (k == i) {
-        a[j] = first;
-        break;
-      }
-      a[j] = a[k];
-      j = k;
-    }
+
+// Arranges photons[0..count) in place so that part i of `parts` (the range
+// [count i / parts, count (i + 1) / parts)) holds a spatially compact block: a
+// median split on the widest axis, recursively, halves of the part list in
+// parallel. Linear passes and swaps only, no copy; the result depends only on the
+// input order, never on the thread count (each half is split by one thread).
+template <class Photon>
+void splitIntoParts(Photon* photons, size_t count, size_t parts, size_t first, size_t last) {
+  if (last - first < 2) return;
+  const size_t begin = count * first / parts, end = count * last / parts;
+  const size_t midPart = (first + last) / 2, mid = count * midPart / parts;
+  Vec3 lo(kInf), hi(-kInf);
+  for (size_t i = begin; i < end; ++i) {
+    lo = glm::min(lo, photons[i].position);
+    hi = glm::max(hi, photons[i].position);
   }
+  const Vec3 extent = hi - lo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  std::nth_element(photons + begin, photons + mid, photons + end,
+                   [axis](const Photon& a, const Photon& b) { return a.position[axis] < b.position[axis]; });
+  tbb::parallel_invoke([&] { splitIntoParts(photons, count, parts, first, midPart); },
+                       [&] { splitIntoParts(photons, count, parts, midPart, last); });
 }
 }  // namespace
 
@@ -138,25 +143,26 @@ template <class Photon>
 PhotonKdTree<Photon>& PhotonKdTree<Photon>::operator=(PhotonKdTree&&) noexcept = default;
 
 template <class Photon>
-void PhotonKdTree<Photon>::build(std::vector<Photon>& photons, size_t leafSize) {
+void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize, bool split) {
   impl_.reset();
-  if (photons.empty()) return;  // nanoflann throws on an empty bounding box
+  if (count == 0) return;  // nanoflann throws on an empty bounding box
   auto impl = std::make_unique<Impl>();
-  impl->count = photons.size();
-  const size_t parts = partCount(photons.size());
+  impl->count = count;
+  const size_t parts = partCount(count);
+  if (split) splitIntoParts(photons, count, parts, 0, parts);
   impl->parts.resize(parts);
   tbb::parallel_for(size_t(0), parts, [&](size_t i) {
     typename Impl::Part& part = impl->parts[i];
-    const size_t begin = photons.size() * i / parts, end = photons.size() * (i + 1) / parts;
+    const size_t begin = count * i / parts, end = count * (i + 1) / parts;
     part.offset = static_cast<uint32_t>(begin);
-    part.cloud = {photons.data() + begin, end - begin};
+    part.cloud = {photons + begin, end - begin};
     part.index = std::make_unique<typename Impl::Index>(
         3, part.cloud, nanoflann::KDTreeSingleIndexAdaptorParams(std::max<size_t>(leafSize, 1)));
     // The nodes address vAcc positions, not photons: storing photon vAcc[i] at i and
     // making vAcc the identity leaves the tree valid and every leaf contiguous. The
     // reordering happens in place: no second copy of the photons.
     auto& vAcc = part.index->vAcc;
-    permuteInPlace(photons.data() + begin, vAcc.data(), vAcc.size());
+    permuteInPlace(photons + begin, vAcc.data(), vAcc.size());
     for (size_t j = begin; j < end; ++j) {
       part.lo = glm::min(part.lo, photons[j].position);
       part.hi = glm::max(part.hi, photons[j].position);

@@ -94,7 +94,15 @@ class PhotonKdTree {
   // Builds over `photons`, then permutes the array into the tree's leaf order (so a
   // leaf's photons are contiguous and the index indirection reads sequentially).
   // Any index into the array is only meaningful after this returns.
-  void build(std::vector<Photon>& photons, size_t leafSize);
+  // The tree is a set of parts (contiguous ranges built side by side), which must be
+  // spatially compact: either the input is already in spatial (Morton) order, or
+  // `split` first arranges it in place by median splits (slower: the build then reads
+  // photons in a random order).
+  void build(std::vector<Photon>& photons, size_t leafSize, bool split = false) {
+    build(photons.data(), photons.size(), leafSize, split);
+  }
+  // The same over photons[0..count) of an array the caller keeps in place.
+  void build(Photon* photons, size_t count, size_t leafSize, bool split = false);
   // The k nearest photons strictly closer than maxRadius (0 = unlimited) into
   // scratch.indices/dist2; returns how many (min(k, photons in range)). "Nearest" is
   // by (dist2, index): ties at the k-th distance keep the lower indices, so the

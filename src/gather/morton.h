@@ -50,4 +50,24 @@ Bounds computeBounds(const PositionView& positions);
 std::vector<uint32_t> storageOrder(const PositionView& positions, const uint16_t* groups,
                                    size_t groupStride, bool spatial, const Bounds& bounds);
 
+// Reorders a[0..n) so that a[i] becomes the old a[perm[i]], in place, by following
+// the permutation's cycles; leaves perm as the identity.
+template <class T>
+void permuteInPlace(T* a, uint32_t* perm, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    if (perm[i] == i) continue;
+    T first = a[i];
+    size_t j = i;
+    for (;;) {
+      const size_t k = perm[j];
+      perm[j] = static_cast<uint32_t>(j);
+      if (k == i) {
+        a[j] = first;
+        break;
+      }
+      a[j] = a[k];
+      j = k;
+    }
+  }
+}
 }  // namespace penumbra

@@ -11,12 +11,25 @@
 
 namespace penumbra {
 
+// A read-only view of a contiguous run of photons (C++17 has no std::span).
+template <class Photon>
+struct PhotonRange {
+  const Photon* first = nullptr;
+  size_t count = 0;
+  const Photon* data() const { return first; }
+  size_t size() const { return count; }
+  bool empty() const { return count == 0; }
+  const Photon& operator[](size_t i) const { return first[i]; }
+  const Photon* begin() const { return first; }
+  const Photon* end() const { return first + count; }
+};
+
 class ShadowPhotonMap {
  public:
-  // Takes ownership. Partitions by light, sorts each partition spatially (Morton
-  // order, if options.mortonSort) in parallel, then builds one KD-tree per light and
-  // stores each light's photons in its tree's leaf order. Photons whose light is >=
-  // numLights are dropped.
+  // Takes ownership and orders the photons by light, then spatially (coarse Morton
+  // cells, one parallel gather into a new array, if options.mortonSort), then builds
+  // one KD-tree per light over its range, which leaves each range in its tree's leaf
+  // order (in place). Photons whose light is >= numLights are dropped.
   void build(std::vector<ShadowPhoton> photons, size_t numLights,
              const MapBuildOptions& options = {});
   bool hasPhotons(uint32_t light) const;
@@ -30,13 +43,14 @@ class ShadowPhotonMap {
   size_t size() const;         // photons stored
   size_t memoryBytes() const;  // photon arrays + KD-tree nodes/indices
   size_t numLights() const { return lights_.size(); }
-  const std::vector<ShadowPhoton>& photons(uint32_t light) const;
+  PhotonRange<ShadowPhoton> photons(uint32_t light) const;
 
  private:
   struct PerLight {
-    std::vector<ShadowPhoton> photons;
+    size_t begin = 0, count = 0;  // the light's range of photons_
     PhotonKdTree<ShadowPhoton> tree;
   };
+  std::vector<ShadowPhoton> photons_;  // every light's, by light
   std::vector<PerLight> lights_;
   size_t size_ = 0;
 };
@@ -45,6 +59,7 @@ class IndirectPhotonMap {
  public:
   using Estimate = IndirectEstimate;
 
+  // Takes ownership; coarse Morton order (one parallel gather), then leaf order in place.
   void build(std::vector<IndirectPhoton> photons, const MapBuildOptions& options = {});
   bool empty() const { return photons_.empty(); }
   // Gather the k nearest photons (within maxRadius if > 0) and estimate; see
