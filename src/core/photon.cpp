@@ -4,8 +4,10 @@
 namespace penumbra {
 namespace {
 Vec2 signNotZero(Vec2 v) { return {v.x >= 0.0f ? 1.0f : -1.0f, v.y >= 0.0f ? 1.0f : -1.0f}; }
-uint32_t quantise(float x) {  // [-1,1] -> [0, 65535]
-  return static_cast<uint32_t>(std::lround((std::clamp(x, -1.0f, 1.0f) * 0.5f + 0.5f) * 65535.0f));
+uint32_t quantise(float x) {  // [-1,1] -> [0, 65535], to nearest
+  // The value is >= 0, so adding 0.5 and truncating rounds like lround, without
+  // the libm call.
+  return static_cast<uint32_t>((std::clamp(x, -1.0f, 1.0f) * 0.5f + 0.5f) * 65535.0f + 0.5f);
 }
 }  // namespace
 

@@ -1,7 +1,7 @@
-// Per-thread photon buffers that remember which batch wrote which run, so the
-// merge can concatenate runs in batch order: deterministic for any thread count.
+// Photon storage during emission: one vector per batch, merged in batch order, so
+// the stored arrays do not depend on which thread ran which batch.
 #pragma once
-#include <tbb/enumerable_thread_specific.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <algorithm>
 #include <cstdint>
@@ -9,41 +9,32 @@
 
 namespace penumbra {
 
+// Each batch task fills only its own vector (disjoint writes, nothing shared).
+// Small per-batch vectors grow inside the cache; one large per-thread vector would
+// copy everything it holds at every doubling and fault in fresh pages each time.
 template <class Photon>
 class BatchBuffers {
  public:
-  // The calling thread's buffer; a batch appends its photons and then calls endBatch.
-  struct Local {
-    std::vector<Photon> photons;
-    struct Run { uint64_t batch; size_t begin, count; };
-    std::vector<Run> runs;
-    size_t open = 0;
-    void endBatch(uint64_t batch) {
-      runs.push_back({batch, open, photons.size() - open});
-      open = photons.size();
-    }
-  };
-  Local& local() { return buffers_.local(); }
+  explicit BatchBuffers(size_t batches) : batches_(batches) {}
+  std::vector<Photon>& batch(size_t b) { return batches_[b]; }
 
+  // All batches' photons in batch order; each batch is freed once copied.
   std::vector<Photon> merge() {
-    struct Source { uint64_t batch; const Photon* data; size_t count; };
-    std::vector<Source> sources;
-    for (Local& l : buffers_) {
-      for (const auto& run : l.runs) sources.push_back({run.batch, l.photons.data() + run.begin, run.count});
-    }
-    std::sort(sources.begin(), sources.end(), [](const Source& a, const Source& b) { return a.batch < b.batch; });
-    std::vector<size_t> offset(sources.size() + 1, 0);
-    for (size_t i = 0; i < sources.size(); ++i) offset[i + 1] = offset[i] + sources[i].count;
+    std::vector<size_t> offset(batches_.size() + 1, 0);
+    for (size_t i = 0; i < batches_.size(); ++i) offset[i + 1] = offset[i] + batches_[i].size();
     std::vector<Photon> out(offset.back());
-    tbb::parallel_for(size_t(0), sources.size(), [&](size_t i) {
-      std::copy_n(sources[i].data, sources[i].count, out.begin() + offset[i]);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, batches_.size(), 8), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        std::copy(batches_[i].begin(), batches_[i].end(), out.begin() + offset[i]);
+        std::vector<Photon>().swap(batches_[i]);
+      }
     });
-    buffers_.clear();
+    batches_.clear();
     return out;
   }
 
  private:
-  tbb::enumerable_thread_specific<Local> buffers_;
+  std::vector<std::vector<Photon>> batches_;
 };
 
 }  // namespace penumbra

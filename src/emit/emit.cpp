@@ -1,5 +1,5 @@
 // Shadow and indirect photon emission. Each batch draws from its own random
-// stream keyed by (seed, map, batch index); per-thread buffers are merged in
+// stream keyed by (seed, map, batch index); per-batch buffers are merged in
 // batch order, so the stored arrays do not depend on the thread count.
 #include "emit/emit.h"
 #include "core/bsdf.h"
@@ -77,38 +77,36 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   bool wantShadowMap = options.shadowMap && ps.gate && scene.render.shadows;
   std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? ps.shadowPhotons : 0);
   std::vector<PhotonBatch> shadowBatches = makeBatches(shadowCounts, options.batchSize);
-  BatchBuffers<ShadowPhoton> shadowBuffers;
+  BatchBuffers<ShadowPhoton> shadowBuffers(shadowBatches.size());
   tbb::parallel_for(size_t(0), shadowBatches.size(), [&](size_t b) {
     const PhotonBatch& batch = shadowBatches[b];
     const Light& light = scene.lights[batch.light];
     Rng rng(hashKey(seed, kShadowStream, b));
-    auto& local = shadowBuffers.local();
+    auto& out = shadowBuffers.batch(b);
     for (uint64_t i = 0; i < batch.count; ++i) {
       float u1 = rng.uniform(), u2 = rng.uniform();
       traceShadowLine(tracer, light.position, uniformSphere(u1, u2), static_cast<uint16_t>(batch.light),
-                      options.maxHitsPerLine, local.photons);
+                      options.maxHitsPerLine, out);
     }
-    local.endBatch(b);
   });
   maps.shadow = shadowBuffers.merge();
 
   std::vector<uint64_t> indirectCounts = splitBudget(scene, options.indirectMap ? ps.indirectPhotons : 0);
   std::vector<PhotonBatch> indirectBatches = makeBatches(indirectCounts, options.batchSize);
   bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
-  BatchBuffers<IndirectPhoton> indirectBuffers;
+  BatchBuffers<IndirectPhoton> indirectBuffers(indirectBatches.size());
   tbb::parallel_for(size_t(0), indirectBatches.size(), [&](size_t b) {
     const PhotonBatch& batch = indirectBatches[b];
     const Light& light = scene.lights[batch.light];
     // Each photon carries an equal share of the light's flux 4 pi I.
     Color power = light.radiance() * (4.0f * kPi / static_cast<float>(indirectCounts[batch.light]));
     Rng rng(hashKey(seed, kIndirectStream, b));
-    auto& local = indirectBuffers.local();
+    auto& out = indirectBuffers.batch(b);
     for (uint64_t i = 0; i < batch.count; ++i) {
       float u1 = rng.uniform(), u2 = rng.uniform();
       traceIndirectPath(scene, tracer, Ray{light.position, uniformSphere(u1, u2)}, power, rng,
-                        storeFirstHit, local.photons);
+                        storeFirstHit, out);
     }
-    local.endBatch(b);
   });
   maps.indirect = indirectBuffers.merge();
 

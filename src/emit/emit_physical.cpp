@@ -168,7 +168,7 @@ std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
   }
   std::vector<uint64_t> counts = splitByWeight(weights, total);
   std::vector<PhotonBatch> batches = makeBatches(counts, options.batchSize);
-  BatchBuffers<IndirectPhoton> buffers;
+  BatchBuffers<IndirectPhoton> buffers(batches.size());
   tbb::enumerable_thread_specific<PhotonTally> tallies;
   const uint64_t stream = kind == PassKind::Caustic ? kCausticStream : kGlobalStream;
   tbb::parallel_for(size_t(0), batches.size(), [&](size_t b) {
@@ -176,7 +176,7 @@ std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
     const Light& light = scene.lights[batch.light];
     const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
     Rng rng(hashKey(hashKey(scene.render.seed, pass), stream, b));
-    auto& local = buffers.local();
+    auto& out = buffers.batch(b);
     PhotonTally& t = tallies.local();
     for (uint64_t i = 0; i < batch.count; ++i) {
       PhotonRay r;
@@ -189,9 +189,8 @@ std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
       }
       t.emitted += glm::dvec3(power);
       if (maxComponent(power) <= 0.0f) continue;
-      tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, local.photons, t);
+      tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);
     }
-    local.endBatch(b);
   });
   for (const PhotonTally& t : tallies) tally += t;
   emitted = 0;
