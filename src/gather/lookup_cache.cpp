@@ -117,14 +117,10 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   numLights_ = params.gate && shadow ? shadow->numLights() : 0;
   const bool useIndirect = params.indirect != CachedIndirect::None && indirect && !indirect->empty();
   // The sources: 0 the indirect map, 1 + l the shadow photons of light l.
-  std::vector<std::pair<const unsigned char*, size_t>> sources;  // base, count
+  std::vector<size_t> sourceSize{useIndirect ? indirect->size() : 0};
+  for (uint32_t l = 0; l < numLights_; ++l) sourceSize.push_back(shadow->photons(l).size());
   std::vector<size_t> offsets{0};
-  auto addSource = [&](const auto& photons) {
-    sources.emplace_back(reinterpret_cast<const unsigned char*>(photons.data()), photons.size());
-    offsets.push_back(offsets.back() + photons.size());
-  };
-  if (useIndirect) addSource(indirect->photons()); else addSource(std::vector<IndirectPhoton>{});
-  for (uint32_t l = 0; l < numLights_; ++l) addSource(shadow->photons(l));
+  for (size_t c : sourceSize) offsets.push_back(offsets.back() + c);
   const size_t total = offsets.back();
   if (total == 0 || !(params.cellSize > 0.0f)) return;
 
@@ -139,8 +135,8 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   // Cells are counted from one cell below the photons' box, so every neighbour of an
   // occupied cell has a valid key; the cell grows if the box would need > 2^20 per axis.
   Bounds box;
-  for (size_t src = 0; src < sources.size(); ++src)
-    for (size_t i = 0; i < sources[src].second; ++i) box.extend(photonPos(src, i));
+  for (size_t src = 0; src < sourceSize.size(); ++src)
+    for (size_t i = 0; i < sourceSize[src]; ++i) box.extend(photonPos(src, i));
   const Vec3 extent = box.hi - box.lo;
   const float widest = std::max({extent.x, extent.y, extent.z});
   cell_ = std::max(params.cellSize, widest / static_cast<float>(kAxisCells - 4));
@@ -148,8 +144,8 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   origin_ = box.lo - Vec3(cell_);
 
   std::vector<Entry> entries(total);
-  for (size_t src = 0; src < sources.size(); ++src) {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, sources[src].second, 1 << 14), [&](const auto& r) {
+  for (size_t src = 0; src < sourceSize.size(); ++src) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, sourceSize[src], 1 << 14), [&](const auto& r) {
       for (size_t i = r.begin(); i != r.end(); ++i)
         entries[offsets[src] + i] = {keyAt(photonPos(src, i), bucketOf(photonNormal(src, i))),
                                      static_cast<uint32_t>(i), static_cast<uint32_t>(src)};
