@@ -53,9 +53,10 @@ ImageMetadata describe(const Scene& scene, const RenderStats& stats, const std::
                                             scene.render.maxDepth, scene.render.seed, photons)}};
 }
 
-bool hasPointLight(const Scene& scene) {
+// The classic photon passes (and every gate) emit from point and area lights.
+bool hasPhotonLight(const Scene& scene) {
   for (const Light& l : scene.lights) {
-    if (l.type == LightType::Point) return true;
+    if (l.type != LightType::Directional) return true;
   }
   return false;
 }
@@ -112,7 +113,7 @@ void buildClassicMaps(const Scene& scene, const TraceScene& tracer, Aov aov,
   RenderStats& stats = result.stats;
   bool wantPhotons = aov == Aov::Beauty || aov == Aov::Indirect;
   if (!wantPhotons) return;
-  if (!hasPointLight(scene)) {
+  if (!hasPhotonLight(scene)) {
     if (!scene.lights.empty()) result.notes.push_back("only directional lights: rendering without photon maps");
     return;
   }
@@ -189,7 +190,7 @@ void buildPhysicalPass(const Scene& scene, const TraceScene& tracer, uint32_t pa
 // The physical model's gate reads shadow photons; they do not change between passes.
 void buildPhysicalGate(const Scene& scene, const TraceScene& tracer, Aov aov, Maps& maps,
                        ShadingContext& ctx, RenderStats& stats) {
-  if (!scene.photons.gate || !scene.render.shadows || !hasPointLight(scene)) return;
+  if (!scene.photons.gate || !scene.render.shadows || !hasPhotonLight(scene)) return;
   if (aov != Aov::Beauty && aov != Aov::Direct) return;
   Stopwatch phase;
   EmitOptions options;

@@ -1,32 +1,88 @@
-// Point and directional lights behind the light interface.
+// Point, directional, quad and sphere lights behind the light interface.
 #include "core/light_sample.h"
 #include "core/sampling.h"
 
 namespace penumbra {
 
-LightIncidence incidentLight(const Light& light, const Vec3& p) {
+namespace {
+Vec3 quadNormal(const Light& l) { return glm::normalize(glm::cross(l.edge1, l.edge2)); }
+
+LightIncidence sampleQuad(const Light& light, const Vec3& p, float u1, float u2) {
   LightIncidence in;
-  if (light.type == LightType::Point) {
-    Vec3 d = light.position - p;
-    float d2 = glm::dot(d, d);
-    if (!(d2 > 0.0f) || !std::isfinite(d2)) return in;
-    in.distance = std::sqrt(d2);
-    in.wi = d / in.distance;
-    in.radiance = light.radiance() * (1.0f / d2);  // as the Whitted tracer always did: bit-identical images
-  } else {
-    in.wi = -light.direction;
-    in.radiance = light.radiance();
+  const Vec3 y = light.position + u1 * light.edge1 + u2 * light.edge2;
+  const Vec3 d = y - p;
+  const float d2 = glm::dot(d, d);
+  if (!(d2 > 0.0f) || !std::isfinite(d2)) return in;
+  in.distance = std::sqrt(d2);
+  in.wi = d / in.distance;
+  const float cosLight = -glm::dot(quadNormal(light), in.wi);
+  if (cosLight <= 0.0f) return in;  // behind the emitting side
+  in.radiance = light.radiance() * (cosLight * lightArea(light) / d2);
+  in.valid = true;
+  return in;
+}
+
+LightIncidence sampleSphere(const Light& light, const Vec3& p, float u1, float u2) {
+  LightIncidence in;
+  const Vec3 toCentre = light.position - p;
+  const float dc2 = glm::dot(toCentre, toCentre), r2 = light.radius * light.radius;
+  if (!(dc2 > r2) || !std::isfinite(dc2)) return in;  // inside (or on) the sphere
+  const float dc = std::sqrt(dc2);
+  const Vec3 w = toCentre / dc;
+  const float sin2Max = r2 / dc2, cosMax = std::sqrt(std::max(0.0f, 1.0f - sin2Max));
+  const float cosTheta = 1.0f - u1 * (1.0f - cosMax);
+  const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+  const float phi = 2.0f * kPi * u2;
+  Vec3 t, b;
+  orthonormalBasis(w, t, b);
+  in.wi = cosTheta * w + sinTheta * (std::cos(phi) * t + std::sin(phi) * b);
+  // The near intersection along wi: dc cos - sqrt(r^2 - dc^2 sin^2), never < 0.
+  const float disc = std::max(0.0f, r2 - dc2 * sinTheta * sinTheta);
+  in.distance = std::max(0.0f, dc * cosTheta - std::sqrt(disc));
+  in.radiance = light.radiance() * (2.0f * kPi * (1.0f - cosMax));
+  in.valid = in.distance > 0.0f;
+  return in;
+}
+}  // namespace
+
+LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
+  LightIncidence in;
+  switch (light.type) {
+    case LightType::Point: {
+      Vec3 d = light.position - p;
+      float d2 = glm::dot(d, d);
+      if (!(d2 > 0.0f) || !std::isfinite(d2)) return in;
+      in.distance = std::sqrt(d2);
+      in.wi = d / in.distance;
+      in.radiance = light.radiance() * (1.0f / d2);  // as the Whitted tracer always did: bit-identical images
+      break;
+    }
+    case LightType::Directional:
+      in.wi = -light.direction;
+      in.radiance = light.radiance();
+      break;
+    case LightType::Quad: return sampleQuad(light, p, u1, u2);
+    case LightType::Sphere: return sampleSphere(light, p, u1, u2);
   }
   in.valid = true;
   return in;
 }
 
-Color lightPower(const Light& light, const SceneSphere& bounds) {
-  if (light.type == LightType::Point) return light.radiance() * (4.0f * kPi);
-  return light.radiance() * (kPi * bounds.radius * bounds.radius);
+float lightArea(const Light& light) {
+  if (light.type == LightType::Quad) return glm::length(glm::cross(light.edge1, light.edge2));
+  if (light.type == LightType::Sphere) return 4.0f * kPi * light.radius * light.radius;
+  return 0.0f;
 }
 
-bool isDeltaLight(const Light&) { return true; }  // point and directional; area lights are not
+Color lightPower(const Light& light, const SceneSphere& bounds) {
+  if (light.type == LightType::Point) return light.radiance() * (4.0f * kPi);
+  if (light.type == LightType::Directional) return light.radiance() * (kPi * bounds.radius * bounds.radius);
+  return light.radiance() * (kPi * lightArea(light));  // a Lambertian emitter: pi A L
+}
+
+bool isDeltaLight(const Light& light) {
+  return light.type == LightType::Point || light.type == LightType::Directional;
+}
 
 PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                             float u3, float u4) {
@@ -34,6 +90,19 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
   if (light.type == LightType::Point) {
     r.origin = light.position;
     r.dir = uniformSphere(u1, u2);
+    return r;
+  }
+  if (light.type == LightType::Quad || light.type == LightType::Sphere) {
+    Vec3 n;
+    if (light.type == LightType::Quad) {
+      r.origin = light.position + u1 * light.edge1 + u2 * light.edge2;
+      n = quadNormal(light);
+    } else {
+      n = uniformSphere(u1, u2);
+      r.origin = light.position + light.radius * n;
+    }
+    r.dir = toWorld(cosineHemisphere(u3, u4), n);
+    r.normal = n;
     return r;
   }
   // Uniform over the disc that covers the scene, seen along the light's direction,
@@ -45,6 +114,12 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
              rad * (std::cos(phi) * t + std::sin(phi) * b);
   r.dir = light.direction;
   return r;
+}
+
+float classicPhotonWeight(const Light& light) {
+  if (light.type == LightType::Point) return luminance(light.radiance());
+  if (light.type == LightType::Directional) return 0.0f;
+  return luminance(light.radiance()) * lightArea(light) * 0.25f;
 }
 
 }  // namespace penumbra

@@ -1,6 +1,7 @@
-// The light interface: incident light at a point, emitted photons, total power,
-// delta-ness; dispatched on Light::type. Units: a point light's colour x intensity
-// is its radiant intensity (W/sr), a directional light's is its irradiance (W/m^2).
+// The light interface: incident light at a point (one sample of an area light),
+// emitted photons, total power, delta-ness; dispatched on Light::type. Units: a
+// point light's colour x intensity is its radiant intensity (W/sr), a directional
+// light's its irradiance (W/m^2), a quad or sphere light's its radiance (W/(sr m^2)).
 #pragma once
 #include "core/scene.h"
 
@@ -18,24 +19,49 @@ struct SceneSphere {
 struct LightIncidence {
   Vec3 wi{0.0f};          // unit, towards the light
   float distance = kInf;  // to the light's sample point; kInf for directional
-  Color radiance{0.0f};   // I / d^2 for a point light, E for a directional one
+  // I / d^2 for a point light, E for a directional one; for an area light the
+  // sample's estimate L / pdf (pdf in solid angle), so that averaging
+  // f cos * radiance over the samples is an unbiased estimate of reflected light.
+  Color radiance{0.0f};
   bool valid = false;
 };
 
-LightIncidence incidentLight(const Light& light, const Vec3& p);
+// A delta light's incidence (u1, u2 unused), or one sample of an area light: a
+// quad uniformly over its area (pdf d^2 / (A cos_l)), a sphere uniformly over the
+// cone it subtends (pdf 1 / (2 pi (1 - cos_max))); invalid where the quad faces
+// away or the point is inside the sphere.
+LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2);
+inline LightIncidence incidentLight(const Light& light, const Vec3& p) {
+  return sampleLight(light, p, 0.5f, 0.5f);
+}
+
+// Surface area of an area light (0 for a delta light).
+float lightArea(const Light& light);
+// Area lights in a scene get this many samples per shading point, delta lights one.
+inline int lightSampleCount(const Light& light, int areaSamples) {
+  return light.type == LightType::Quad || light.type == LightType::Sphere ? areaSamples : 1;
+}
 
 // Total emitted flux, per channel: 4 pi I for a point light, E pi R^2 for a
-// directional light over the scene's bounding disc.
+// directional light over the scene's bounding disc, pi A L for an area light.
 Color lightPower(const Light& light, const SceneSphere& bounds);
 
 bool isDeltaLight(const Light& light);
 
 // Where and which way one emitted photon starts, from two (point) or four
-// (directional) uniform numbers; every photon of a light carries power / count.
+// (directional, area) uniform numbers; every photon of a light carries power /
+// count. An area light's photons start uniformly over its surface, cosine-weighted
+// about its normal (a quad's emitting side; a sphere's outward normal).
 struct PhotonRay {
   Vec3 origin{0.0f};
   Vec3 dir{0.0f, 0.0f, -1.0f};
+  Vec3 normal{0.0f};  // an area light's surface normal at the origin (0 for delta lights)
 };
+
+// A light's share of the classic photon budget, in the units of a point light's
+// intensity (flux / 4 pi): area lights pi A L / (4 pi); directional lights emit no
+// classic photons.
+float classicPhotonWeight(const Light& light);
 PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                             float u3, float u4);
 

@@ -19,13 +19,19 @@ struct Camera {
   int spp = 1;  // samples per pixel; 1 = pixel centre, >1 = stratified jitter
 };
 
-enum class LightType { Point, Directional };
+// Point and directional lights are deltas; quad and sphere lights are area
+// emitters, sampled light_samples times per shading point and visible to rays.
+enum class LightType { Point, Directional, Quad, Sphere };
 
 struct Light {
   LightType type = LightType::Point;
-  Vec3 position{0.0f};              // point lights
+  Vec3 position{0.0f};              // point light; quad corner; sphere centre
   Vec3 direction{0.0f, -1.0f, 0.0f};  // directional: the way the light travels (unit)
+  Vec3 edge1{0.0f}, edge2{0.0f};    // quad: it emits on the side of edge1 x edge2
+  float radius = 0.0f;              // sphere
   Color color{1.0f};
+  // Point: radiant intensity (W/sr); directional: irradiance (W/m^2); quad and
+  // sphere: emitted radiance (W/(sr m^2)), uniform over the surface.
   float intensity = 1.0f;
   Color radiance() const { return color * intensity; }
 };
@@ -46,6 +52,10 @@ struct Material {
   float pT = 0.0f;   // transmit with pT, absorb otherwise
   int texture = -1;  // index into Scene::textures, -1 = none
   TextureBlend textureBlend = TextureBlend::Multiply;
+  // An area light's own surface: the radiance camera and specular rays see on its
+  // emitting side (the light's sampling accounts for it everywhere else).
+  Color emission{0.0f};
+  bool twoSidedEmission = false;  // a sphere emits all round, a quad on one side
 };
 
 struct Sphere {
@@ -80,6 +90,7 @@ struct RenderSettings {
   uint64_t seed = 1;
   bool shadows = true;      // false: lights reach every surface facing them
   std::string aov = "beauty";  // default view; the CLI's --aov overrides it
+  int lightSamples = 16;       // samples per area light per shading point
 };
 
 enum class IndirectEstimator { Classic, Density };

@@ -4,6 +4,7 @@
 #include "emit/emit.h"
 #include "core/bsdf.h"
 #include "core/color.h"
+#include "core/light_sample.h"
 #include "core/optics.h"
 #include "core/rng.h"
 #include "core/sampling.h"
@@ -57,19 +58,35 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
   }
 }
 
+// Where a classic photon starts: a point light's position and a uniform direction
+// from two numbers (as always), an area light's surface point and cosine-weighted
+// direction from four, lifted off the emitter so its first ray misses it.
+PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
+  PhotonRay r;
+  const float u1 = rng.uniform(), u2 = rng.uniform();
+  if (light.type == LightType::Point) {
+    r.origin = light.position;
+    r.dir = uniformSphere(u1, u2);
+    return r;
+  }
+  const float u3 = rng.uniform(), u4 = rng.uniform();
+  r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
+  r.origin = offsetRayOrigin(r.origin, r.normal, r.dir);
+  return r;
+}
+
 }  // namespace
 
 std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total) {
   std::vector<double> power(scene.lights.size(), 0.0);
-  for (size_t l = 0; l < scene.lights.size(); ++l) {
-    if (scene.lights[l].type == LightType::Point) power[l] = luminance(scene.lights[l].radiance());
-  }
+  for (size_t l = 0; l < scene.lights.size(); ++l) power[l] = classicPhotonWeight(scene.lights[l]);
   return splitByWeight(power, total);
 }
 
 PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options) {
   PhotonMaps maps;
   const PhotonSettings& ps = scene.photons;
+  const SceneSphere bounds = tracer.boundingSphere();
   const uint64_t seed = scene.render.seed;
   enum : uint64_t { kShadowStream = 1, kIndirectStream = 2 };
 
@@ -84,8 +101,8 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
     Rng rng(hashKey(seed, kShadowStream, b));
     auto& out = shadowBuffers.batch(b);
     for (uint64_t i = 0; i < batch.count; ++i) {
-      float u1 = rng.uniform(), u2 = rng.uniform();
-      traceShadowLine(tracer, light.position, uniformSphere(u1, u2), static_cast<uint16_t>(batch.light),
+      const PhotonRay r = startPhoton(light, bounds, rng);
+      traceShadowLine(tracer, r.origin, r.dir, static_cast<uint16_t>(batch.light),
                       options.maxHitsPerLine, out);
     }
   });
@@ -98,14 +115,15 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   tbb::parallel_for(size_t(0), indirectBatches.size(), [&](size_t b) {
     const PhotonBatch& batch = indirectBatches[b];
     const Light& light = scene.lights[batch.light];
-    // Each photon carries an equal share of the light's flux 4 pi I.
-    Color power = light.radiance() * (4.0f * kPi / static_cast<float>(indirectCounts[batch.light]));
+    // Each photon carries an equal share of the light's flux (4 pi I for a point light).
+    const float count = static_cast<float>(indirectCounts[batch.light]);
+    Color power = light.type == LightType::Point ? light.radiance() * (4.0f * kPi / count)
+                                                 : lightPower(light, bounds) * (1.0f / count);
     Rng rng(hashKey(seed, kIndirectStream, b));
     auto& out = indirectBuffers.batch(b);
     for (uint64_t i = 0; i < batch.count; ++i) {
-      float u1 = rng.uniform(), u2 = rng.uniform();
-      traceIndirectPath(scene, tracer, Ray{light.position, uniformSphere(u1, u2)}, power, rng,
-                        storeFirstHit, out);
+      const PhotonRay r = startPhoton(light, bounds, rng);
+      traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power, rng, storeFirstHit, out);
     }
   });
   maps.indirect = indirectBuffers.merge();
@@ -113,9 +131,7 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   for (uint64_t c : shadowCounts) maps.emittedShadow += c;
   for (uint64_t c : indirectCounts) maps.emittedIndirect += c;
   double intensity = 0.0;
-  for (const Light& l : scene.lights) {
-    if (l.type == LightType::Point) intensity += luminance(l.radiance());
-  }
+  for (const Light& l : scene.lights) intensity += classicPhotonWeight(l);
   if (maps.emittedIndirect > 0 && intensity > 0.0) {
     maps.classicScale = static_cast<float>(maps.emittedIndirect / (4.0 * kPi * intensity));
   }

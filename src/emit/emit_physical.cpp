@@ -160,7 +160,7 @@ std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
     aims.push_back(kind == PassKind::Caustic ? aimAt(l, targets) : Aim{});
     // Aimed photons are split by the power that heads for the targets.
     double w = luminance(lightPower(l, bounds));
-    if (kind == PassKind::Caustic) {
+    if (kind == PassKind::Caustic && isDeltaLight(l)) {  // area lights emit unaimed
       float full = l.type == LightType::Point ? 4.0f * kPi : kPi * bounds.radius * bounds.radius;
       w *= std::min(1.0, double(aims.back().total) / full);
     }
@@ -181,11 +181,14 @@ std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
     for (uint64_t i = 0; i < batch.count; ++i) {
       PhotonRay r;
       Color power = share;
-      if (kind == PassKind::Caustic) {
+      if (kind == PassKind::Caustic && isDeltaLight(light)) {
         power *= sampleAimed(light, bounds, aims[batch.light], rng, r);
       } else {
+        // Area lights are not aimed at the specular objects: their caustic photons
+        // are the share of all photons whose path turns out L S+ D.
         float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
         r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
+        if (!isDeltaLight(light)) r.origin = offsetRayOrigin(r.origin, r.normal, r.dir);
       }
       t.emitted += glm::dvec3(power);
       if (maxComponent(power) <= 0.0f) continue;

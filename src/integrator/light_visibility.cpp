@@ -60,52 +60,37 @@ const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
   return &storage;
 }
 
-Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
-                      const Vec3& toLight, float distance, const CachedAnswer* cached,
-                      ThreadState& ts, std::string* note) {
-  if (!ctx.scene.render.shadows) return Color(1.0f);
+GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                        const CachedAnswer* cached, ThreadState& ts, std::string* note) {
   const PhotonSettings& ps = ctx.scene.photons;
-  bool gated = ps.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(lightIndex);
-  if (gated && cached && ctx.lookup->hasGate()) {
+  if (!ps.gate || !ctx.shadowMap || !ctx.shadowMap->hasPhotons(lightIndex)) return GateVerdict::Mixed;
+  ++ts.counts.gateQueries;
+  GateVerdict v;
+  const bool precomputed = cached && ctx.lookup->hasGate();
+  if (precomputed) {
     // The precomputed verdict of the point's cell; no cell there: a shadow ray.
-    ++ts.counts.gateQueries;
-    const GateVerdict v = cached->verdicts ? static_cast<GateVerdict>(cached->verdicts[lightIndex])
-                                           : GateVerdict::Mixed;
-    if (v == GateVerdict::Lit) {
-      ++ts.counts.gateLit;
-      ++ts.counts.shadowRaysAvoided;
-      if (note) *note = "gate (precomputed): lit";
-      return Color(1.0f);
-    }
-    if (v == GateVerdict::Shadowed) {
-      ++ts.counts.gateShadowed;
-      ++ts.counts.shadowRaysAvoided;
-      if (note) *note = "gate (precomputed): shadowed";
-      return Color(0.0f);
-    }
-    ++ts.counts.gateMixed;
-    if (note) *note = "gate (precomputed): mixed, shadow ray";
-  } else if (gated) {
-    const GateParams params = gateParamsFor(ctx.scene);
-    ++ts.counts.gateQueries;
-    GateVerdict v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch);
-    if (v == GateVerdict::Lit) {
-      ++ts.counts.gateLit;
-      ++ts.counts.shadowRaysAvoided;
-      if (note) *note = "gate: lit";
-      return Color(1.0f);
-    }
-    // Shadowed means every voter sits behind something opaque; photons behind
-    // glass alone make the vote Mixed, since only a ray can measure the tint.
-    if (v == GateVerdict::Shadowed) {
-      ++ts.counts.gateShadowed;
-      ++ts.counts.shadowRaysAvoided;
-      if (note) *note = "gate: shadowed";
-      return Color(0.0f);
-    }
-    ++ts.counts.gateMixed;
-    if (note) *note = "gate: mixed, shadow ray";
+    v = cached->verdicts ? static_cast<GateVerdict>(cached->verdicts[lightIndex]) : GateVerdict::Mixed;
+  } else {
+    v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, gateParamsFor(ctx.scene), *ts.scratch);
   }
+  // Shadowed means every voter sits behind something opaque; photons behind
+  // glass alone make the vote Mixed, since only a ray can measure the tint.
+  const char* how = precomputed ? "gate (precomputed): " : "gate: ";
+  if (v == GateVerdict::Lit) {
+    ++ts.counts.gateLit;
+    if (note) *note = std::string(how) + "lit";
+  } else if (v == GateVerdict::Shadowed) {
+    ++ts.counts.gateShadowed;
+    if (note) *note = std::string(how) + "shadowed";
+  } else {
+    ++ts.counts.gateMixed;
+    if (note) *note = std::string(how) + "mixed, shadow ray";
+  }
+  return v;
+}
+
+Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                const Vec3& toLight, float distance, ThreadState& ts) {
   Color t = shadowTransmittance(ctx, s, toLight, distance, ts);
   if (ts.recorder) {
     // The shadow ray joins the ray tree under the ray whose hit it lights.
@@ -121,6 +106,18 @@ Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     ts.recorder->push_back(r);
   }
   return t;
+}
+
+Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                      const Vec3& toLight, float distance, const CachedAnswer* cached,
+                      ThreadState& ts, std::string* note) {
+  if (!ctx.scene.render.shadows) return Color(1.0f);
+  const GateVerdict v = gateVerdict(ctx, s, lightIndex, cached, ts, note);
+  if (v != GateVerdict::Mixed) {
+    ++ts.counts.shadowRaysAvoided;
+    return v == GateVerdict::Lit ? Color(1.0f) : Color(0.0f);
+  }
+  return shadowRay(ctx, s, lightIndex, toLight, distance, ts);
 }
 
 Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,

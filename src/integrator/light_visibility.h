@@ -1,6 +1,9 @@
 // How much of a light reaches a shading point: the photon-map ambiguity gate
 // decides when a shadow ray is needed; shadow rays through glass are tinted.
 #pragma once
+#include "core/light_sample.h"
+#include "core/rng.h"
+#include "core/sampling.h"
 #include "gather/lookup_cache.h"
 #include "integrator/shading.h"
 
@@ -17,6 +20,57 @@ using CachedAnswer = LookupCache::Answer;
 Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                       const Vec3& toLight, float distance, const CachedAnswer* cached,
                       ThreadState& ts, std::string* note);
+
+// The gate's verdict for one light at a shading point (Mixed when the gate is off
+// or has no photons of that light): from the cache when there is one, else by the
+// k-nearest vote. Counts the query and its outcome.
+GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                        const CachedAnswer* cached, ThreadState& ts, std::string* note);
+// One shadow ray (a tinted walk through classic glass), recorded under --trace-pixel.
+Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                const Vec3& toLight, float distance, ThreadState& ts);
+
+// Direct light from light `li` at a shading point: the mean over its samples (one
+// for a delta light, render.light_samples for an area light, stratified, from the
+// shading point's own random stream) of visibility x f x incidence. `reflect(in, f)`
+// gives the BSDF term for one sample, or false to skip it; `weigh(t, f, in)` the
+// sample's contribution at transmittance t (each model multiplies in the order its
+// images were made with). The gate is asked once, at the first sample that needs
+// it: lit -> no shadow ray at all, shadowed -> nothing, mixed -> one ray per sample.
+template <class Reflect, class Weigh>
+Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,
+                      const CachedAnswer* cached, ThreadState& ts, std::string* note,
+                      Reflect&& reflect, Weigh&& weigh) {
+  const Light& light = ctx.scene.lights[li];
+  const int n = lightSampleCount(light, ctx.scene.render.lightSamples);
+  Rng rng(hashKey(ts.sampleKey, ts.shadingPoint, li));
+  const bool shadows = ctx.scene.render.shadows;
+  GateVerdict v = GateVerdict::Mixed;
+  bool asked = false;
+  Color sum(0.0f);
+  for (int j = 0; j < n; ++j) {
+    const Vec2 u = n > 1 ? stratified2D(j, n, rng) : Vec2(0.5f);
+    const LightIncidence in = sampleLight(light, s.position, u.x, u.y);
+    Color f;
+    if (!in.valid || !reflect(in, f)) continue;
+    if (shadows && !asked) {
+      asked = true;
+      v = gateVerdict(ctx, s, li, cached, ts, note);
+      if (v == GateVerdict::Shadowed) {
+        ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
+        return Color(0.0f);
+      }
+    }
+    if (!shadows || v == GateVerdict::Lit) {
+      if (shadows) ++ts.counts.shadowRaysAvoided;
+      sum += weigh(Color(1.0f), f, in);
+      continue;
+    }
+    const Color t = shadowRay(ctx, s, li, in.wi, in.distance, ts);
+    if (maxComponent(t) > 0.0f) sum += weigh(t, f, in);
+  }
+  return n > 1 ? sum / static_cast<float>(n) : sum;
+}
 
 // The precomputed answer at a shading point, or null without a lookup cache.
 const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,

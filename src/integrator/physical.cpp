@@ -19,14 +19,17 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
   Color sum(0.0f);
   const auto& lights = ctx.scene.lights;
   for (uint32_t li = 0; li < lights.size(); ++li) {
-    LightIncidence in = incidentLight(lights[li], s.position);
-    if (!in.valid || maxComponent(in.radiance) <= 0.0f || glm::dot(s.ng, in.wi) <= 0.0f) continue;
-    Color f = evaluateBsdf(bsdf, frame, wo, in.wi);
-    if (maxComponent(f) <= 0.0f) continue;
+    if (maxComponent(lights[li].radiance()) <= 0.0f) continue;
     std::string one;
-    Color vis = lightVisibility(ctx, s, li, in.wi, in.distance, cached, ts, note ? &one : nullptr);
+    sum += directFromLight(
+        ctx, s, li, cached, ts, note ? &one : nullptr,
+        [&](const LightIncidence& in, Color& f) {
+          if (glm::dot(s.ng, in.wi) <= 0.0f) return false;
+          f = evaluateBsdf(bsdf, frame, wo, in.wi);
+          return maxComponent(f) > 0.0f;
+        },
+        [](const Color& t, const Color& f, const LightIncidence& in) { return t * f * in.radiance; });
     if (note && !one.empty()) *note += (note->empty() ? "" : "; ") + one;
-    sum += vis * f * in.radiance;
   }
   return sum;
 }
@@ -64,6 +67,14 @@ Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const 
   }
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
+  if (maxComponent(m.emission) > 0.0f) {
+    // An area light seen by the camera or through mirrors and glass (diffuse
+    // surfaces sample it directly instead): part of the direct term.
+    Color glow = (terms & kTermDirect) && (s.frontFace || m.twoSidedEmission) ? m.emission : Color(0.0f);
+    if (recIndex >= 0) endRecord(ts, recIndex, hit, s, m, throughput * glow, "emitter");
+    return glow;
+  }
+  ++ts.shadingPoint;
   Bsdf bsdf = makeBsdf(m, ShadingModel::Physical, ctx.scene.photons.sampling);
   if (m.texture >= 0 && ctx.textures) {
     // A texture is the diffuse albedo's map: multiplied in, or added and kept <= 1.

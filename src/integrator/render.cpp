@@ -27,22 +27,6 @@ Aov parseAov(const std::string& name) {
 
 namespace {
 
-// Sub-pixel position of sample s of n, jittered within its stratum. A perfect
-// square n uses a sqrt(n) x sqrt(n) grid; any other n uses a rank-1 lattice
-// (x stratum s, y stratum s * g mod n with g coprime to n), so every row and
-// column of the pixel gets exactly one sample and no part of it is skipped.
-Vec2 samplePosition(int s, int n, Rng& rng) {
-  if (n == 1) return {0.5f, 0.5f};
-  int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
-  if (side * side == n) {
-    return {(s % side + rng.uniform()) / side, (s / side + rng.uniform()) / side};
-  }
-  int g = std::max(1, static_cast<int>(std::lround(n * 0.618034)));
-  while (std::gcd(g, n) != 1) ++g;
-  int row = static_cast<int>((static_cast<int64_t>(s) * g) % n);
-  return {(s + rng.uniform()) / n, (row + rng.uniform()) / n};
-}
-
 // One sample of the chosen view. Depth stores the raw distance (normalised for
 // display afterwards), -1 on a miss.
 uint8_t physicalTerms(Aov aov) {
@@ -110,7 +94,8 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
           const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
           for (int s = 0; s < cam.spp; ++s) {
             Rng rng(hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
-            Vec2 off = samplePosition(s, cam.spp, rng);
+            Vec2 off = stratified2D(s, cam.spp, rng);
+            beginSample(ts, hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
             Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
             // Depth averages only the samples that hit: a miss is "no depth", not -1 m.
             if (options.aov == Aov::Depth && c.r < 0.0f) continue;
@@ -146,7 +131,8 @@ RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
   ts.recorder = &tree;
   uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
   Rng rng(hashKey(ctx.scene.render.seed, pixel, 0));
-  Vec2 off = samplePosition(0, cam.spp, rng);
+  Vec2 off = stratified2D(0, cam.spp, rng);
+  beginSample(ts, hashKey(ctx.scene.render.seed, pixel, 0));
   CameraRays camera(cam);
   Ray ray = camera.generate(x + off.x, y + off.y);
   if (ctx.scene.render.model == ShadingModel::Physical) {

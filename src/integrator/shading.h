@@ -51,7 +51,17 @@ struct ThreadState {
   RayTree* recorder = nullptr;  // --trace-pixel: every ray appended here
   int currentRecord = -1;       // the recorded ray being shaded: parent of its shadow rays
   int raysLeft = kMaxRaysPerSample;  // reset for every camera sample
+  // Light samples draw from (camera sample key, shading point along its ray tree,
+  // light): the same numbers for any thread count.
+  uint64_t sampleKey = 0;
+  uint32_t shadingPoint = 0;
 };
+
+// A camera sample starts: its key seeds every light sample of its ray tree.
+inline void beginSample(ThreadState& ts, uint64_t key) {
+  ts.sampleKey = key ^ 0x6c69676874736d70ull;  // "lightsmp": a stream apart from the pixel's
+  ts.shadingPoint = 0;
+}
 
 enum class RayKind { Camera, Reflection, Refraction };
 

@@ -21,17 +21,20 @@ Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Mate
   const Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
   const BsdfFrame frame{s.ns, s.ng, s.frontFace};
   const auto& lights = ctx.scene.lights;
+  ++ts.shadingPoint;
   for (uint32_t li = 0; li < lights.size(); ++li) {
-    const Light& light = lights[li];
-    if (maxComponent(light.radiance()) <= 0.0f) continue;  // nothing to add: skip the shadow test
-    LightIncidence in = incidentLight(light, s.position);
-    // A light behind the geometric surface cannot reach it: no shadow test needed.
-    if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
+    if (maxComponent(lights[li].radiance()) <= 0.0f) continue;  // nothing to add: skip the shadow test
     std::string note;
-    Color vis = lightVisibility(ctx, s, li, in.wi, in.distance, cached, ts, rec ? &note : nullptr);
+    lit += directFromLight(
+        ctx, s, li, cached, ts, rec ? &note : nullptr,
+        [&](const LightIncidence& in, Color& f) {
+          // A light behind the surface cannot reach it: no shadow test needed.
+          if (glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) return false;
+          f = evaluateBsdf(bsdf, frame, toEye, in.wi);
+          return true;
+        },
+        [](const Color& t, const Color& f, const LightIncidence& in) { return t * in.radiance * f; });
     if (rec && !note.empty()) rec->note += (rec->note.empty() ? "" : "; ") + note;
-    if (maxComponent(vis) <= 0.0f) continue;
-    lit += vis * in.radiance * evaluateBsdf(bsdf, frame, toEye, in.wi);
   }
   if (m.texture >= 0) lit = m.textureBlend == TextureBlend::Multiply ? lit * texel : lit + texel;
   return lit;
@@ -66,6 +69,16 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
   }
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
+  if (maxComponent(m.emission) > 0.0f) {  // an area light's surface: it only glows
+    const Color glow = s.frontFace || m.twoSidedEmission ? m.emission : Color(0.0f);
+    return finish(glow, [&](RayRecord& r) {
+      r.hit = true;
+      r.t = hit.t;
+      r.position = s.position;
+      r.material = m.name;
+      r.entering = s.frontFace;
+    });
+  }
   Vec3 toEye = -ray.dir;
   float footprint = cone + hit.t * ctx.pixelSpread;
 

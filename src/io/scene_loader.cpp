@@ -95,6 +95,7 @@ Scene buildScene(const json& document, const LoadContext& context) {
   if (root.has("render")) readRender(root.child("render"), scene.render);
   readMaterials(root, scene);
   readObjects(root, scene);
+  addEmitters(scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
   return scene;
 }

@@ -19,6 +19,10 @@ void readMaterials(const JsonNode& root, Scene& scene);
 // Needs the materials read first.
 void readObjects(const JsonNode& root, Scene& scene);
 
+// Area lights' surfaces as scene objects (a quad mesh or a sphere with an emitting
+// black material); after readObjects, so object indices stay as written.
+void addEmitters(Scene& scene);
+
 // A path from the scene file made absolute against the scene's folder.
 std::string resolvePath(const JsonNode& where, const std::string& file);
 

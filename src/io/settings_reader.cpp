@@ -1,6 +1,5 @@
-// The scene's settings sections: camera, lights, render and photons.
+// The scene's settings sections: camera, render and photons.
 #include "io/scene_sections.h"
-
 
 namespace penumbra {
 
@@ -40,40 +39,9 @@ void readCamera(const JsonNode& node, Camera& out) {
   if (!(sine > 1e-6)) upNode.fail("up is parallel to the view direction (look_at - position)");
 }
 
-void readLights(const JsonNode& node, std::vector<Light>& out) {
-  size_t count = node.arraySize();
-  // Shadow photons name their light in 16 bits (core/photon.h).
-  constexpr size_t kMaxLights = 65535;
-  if (count > kMaxLights) {
-    node.fail("at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(count));
-  }
-  for (size_t i = 0; i < count; ++i) {
-    JsonNode item = node.element(i);
-    item.requireObject();
-    Light light;
-    size_t type = item.required("type", " (\"point\" or \"directional\")")
-                      .asEnum({"point", "directional"});
-    light.type = type == 0 ? LightType::Point : LightType::Directional;
-    if (light.type == LightType::Point) {
-      item.allowKeys({"type", "position", "color", "intensity"});
-      light.position = item.required("position", " for a point light").asVec3();
-    } else {
-      item.allowKeys({"type", "direction", "color", "intensity"});
-      JsonNode dir = item.required("direction", " for a directional light");
-      glm::dvec3 d = toDouble(dir.asVec3());
-      double length = glm::length(d);
-      if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
-      light.direction = Vec3(d / length);
-    }
-    light.color = item.colorOr("color", light.color);
-    light.intensity = item.floatOr("intensity", light.intensity, Range::atLeast(0.0));
-    out.push_back(light);
-  }
-}
-
 void readRender(const JsonNode& node, RenderSettings& out) {
   node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
-                  "aov"});
+                  "aov", "light_samples"});
   size_t model = node.enumOr("model", out.model == ShadingModel::Physical, {"classic", "physical"});
   out.model = model == 0 ? ShadingModel::Classic : ShadingModel::Physical;
   out.maxDepth = node.intOr("max_depth", out.maxDepth, 0, 64);
@@ -86,6 +54,7 @@ void readRender(const JsonNode& node, RenderSettings& out) {
   const std::vector<std::string> views = {"beauty", "depth", "normal", "indirect", "direct",
                                           "caustic"};
   if (node.has("aov")) out.aov = views[node.child("aov").asEnum(views)];
+  out.lightSamples = node.intOr("light_samples", out.lightSamples, 1, 1024);
 }
 
 void readPhotons(const JsonNode& node, PhotonSettings& out) {

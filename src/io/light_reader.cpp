@@ -1,0 +1,107 @@
+// The "lights" section: point and directional lights, and the quad and sphere
+// area lights, whose surfaces also join the scene as emitting objects.
+#include "core/light_sample.h"
+#include "io/scene_sections.h"
+#include "io/shapes.h"
+#include <cmath>
+#include <string>
+
+namespace penumbra {
+
+namespace {
+
+// An area light's emitted radiance: `radiance` (W/(sr m^2)) or total `power` (W),
+// with power = pi x area x radiance for a Lambertian emitter; not both.
+void readEmission(const JsonNode& item, Light& light) {
+  if (item.has("radiance") && item.has("power")) {
+    item.child("power").fail("give radiance or power, not both");
+  }
+  if (item.has("power")) {
+    const float power = item.child("power").asFloat(Range::atLeast(0.0));
+    light.intensity = power / (kPi * lightArea(light));
+  } else {
+    light.intensity = item.floatOr("radiance", 1.0f, Range::atLeast(0.0));
+  }
+}
+
+void readQuadLight(const JsonNode& item, Light& light) {
+  item.allowKeys({"type", "corner", "edge1", "edge2", "color", "radiance", "power"});
+  light.position = item.required("corner", " for a quad light").asVec3();
+  light.edge1 = item.required("edge1", " for a quad light").asVec3();
+  JsonNode edge2 = item.required("edge2", " for a quad light");
+  light.edge2 = edge2.asVec3();
+  const float area = glm::length(glm::cross(light.edge1, light.edge2));
+  if (!(area > 1e-12f) || !std::isfinite(area)) edge2.fail("edge1 and edge2 span no area");
+}
+
+void readSphereLight(const JsonNode& item, Light& light) {
+  item.allowKeys({"type", "center", "radius", "color", "radiance", "power"});
+  light.position = item.required("center", " for a sphere light").asVec3();
+  light.radius = item.required("radius", " for a sphere light").asFloat(Range::above(0.0));
+}
+
+}  // namespace
+
+void readLights(const JsonNode& node, std::vector<Light>& out) {
+  size_t count = node.arraySize();
+  // Shadow photons name their light in 16 bits (core/photon.h).
+  constexpr size_t kMaxLights = 65535;
+  if (count > kMaxLights) {
+    node.fail("at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(count));
+  }
+  for (size_t i = 0; i < count; ++i) {
+    JsonNode item = node.element(i);
+    item.requireObject();
+    Light light;
+    size_t type = item.required("type", " (\"point\", \"directional\", \"quad\" or \"sphere\")")
+                      .asEnum({"point", "directional", "quad", "sphere"});
+    light.type = static_cast<LightType>(type);
+    if (light.type == LightType::Point) {
+      item.allowKeys({"type", "position", "color", "intensity"});
+      light.position = item.required("position", " for a point light").asVec3();
+    } else if (light.type == LightType::Directional) {
+      item.allowKeys({"type", "direction", "color", "intensity"});
+      JsonNode dir = item.required("direction", " for a directional light");
+      glm::dvec3 d(dir.asVec3());
+      double length = glm::length(d);
+      if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
+      light.direction = Vec3(d / length);
+    } else if (light.type == LightType::Quad) {
+      readQuadLight(item, light);
+    } else {
+      readSphereLight(item, light);
+    }
+    light.color = item.colorOr("color", light.color);
+    if (isDeltaLight(light)) {
+      light.intensity = item.floatOr("intensity", light.intensity, Range::atLeast(0.0));
+    } else {
+      readEmission(item, light);
+    }
+    out.push_back(light);
+  }
+}
+
+void addEmitters(Scene& scene) {
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    if (isDeltaLight(light)) continue;
+    // A black surface that glows: photons landing on it are absorbed, and camera
+    // and specular rays see its radiance on the emitting side.
+    Material m;
+    m.name = "light " + std::to_string(i);
+    m.ambient = m.diffuse = m.specular = Color(0.0f);
+    m.emission = light.radiance();
+    m.twoSidedEmission = light.type == LightType::Sphere;
+    const int material = static_cast<int>(scene.materials.size());
+    scene.materials.push_back(m);
+    if (light.type == LightType::Quad) {
+      TriangleMesh quad = makeQuad(light.position, light.edge1, light.edge2, material);
+      quad.name = m.name;
+      scene.meshes.push_back(std::move(quad));
+    } else {
+      scene.spheres.push_back({light.position, light.radius, material});
+    }
+  }
+}
+
+}  // namespace penumbra
