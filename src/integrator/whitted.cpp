@@ -69,15 +69,15 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
   }
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
+  auto recordHit = [&](RayRecord& r) {
+    r.hit = true;
+    r.t = hit.t;
+    r.position = s.position;
+    r.material = m.name;
+    r.entering = s.frontFace;
+  };
   if (maxComponent(m.emission) > 0.0f) {  // an area light's surface: it only glows
-    const Color glow = s.frontFace || m.twoSidedEmission ? m.emission : Color(0.0f);
-    return finish(glow, [&](RayRecord& r) {
-      r.hit = true;
-      r.t = hit.t;
-      r.position = s.position;
-      r.material = m.name;
-      r.entering = s.frontFace;
-    });
+    return finish(s.frontFace || m.twoSidedEmission ? m.emission : Color(0.0f), recordHit);
   }
   Vec3 toEye = -ray.dir;
   float footprint = cone + hit.t * ctx.pixelSpread;
@@ -134,11 +134,7 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
   }
 
   return finish(color, [&](RayRecord& r) {
-    r.hit = true;
-    r.t = hit.t;
-    r.position = s.position;
-    r.material = m.name;
-    r.entering = s.frontFace;
+    recordHit(r);
     r.note = scratchRec.note;
     if (!note.empty()) r.note += (r.note.empty() ? "" : "; ") + note;
   });
