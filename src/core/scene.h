@@ -56,6 +56,7 @@ struct Material {
   // emitting side (the light's sampling accounts for it everywhere else).
   Color emission{0.0f};
   bool twoSidedEmission = false;  // a sphere emits all round, a quad on one side
+  int light = -1;                 // the area light this surface belongs to, -1 = none
 };
 
 struct Sphere {

@@ -13,23 +13,33 @@ namespace {
 
 // Transmittance along a shadow ray. Opaque scenes need one occlusion query;
 // with glass, walk the segment and filter by the tint of every surface entered
-// (Whitted's tinted shadows: cheap, no caustic focusing).
-Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, const Vec3& toLight,
-                          float distance, ThreadState& ts) {
+// (Whitted's tinted shadows: cheap, no caustic focusing). A walk that meets the
+// light's own surface has arrived.
+Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                          const Vec3& toLight, float distance, ThreadState& ts) {
   ++ts.counts.shadow;
   Ray ray{offsetRayOrigin(s.position, s.ng, toLight), toLight};
   // Stop short of the light by the same relative margin used off surfaces.
   ray.tMax = std::isinf(distance) ? kInf : distance * (1.0f - 1e-4f);
   // The physical model's glass blocks shadow rays: its light arrives as caustic photons.
-  if (!ctx.hasGlass || ctx.scene.render.model == ShadingModel::Physical) {
-    return ctx.tracer.occluded(ray) ? Color(0.0f) : Color(1.0f);
+  const bool tinted = ctx.hasGlass && ctx.scene.render.model == ShadingModel::Classic;
+  if (ctx.scene.lights[lightIndex].type == LightType::Sphere && !tinted) {
+    // Near a sphere light's silhouette the ray from the lifted origin can enter the
+    // sphere before the sampled point: whatever it meets first decides, and meeting
+    // the light itself means it arrived.
+    Hit hit;
+    if (!ctx.tracer.intersect(ray, hit)) return Color(1.0f);
+    return ctx.scene.materials[ctx.tracer.materialOf(hit)].light == static_cast<int>(lightIndex)
+               ? Color(1.0f) : Color(0.0f);
   }
+  if (!tinted) return ctx.tracer.occluded(ray) ? Color(0.0f) : Color(1.0f);
   Color t(1.0f);
   for (int crossing = 0; crossing < 32; ++crossing) {
     Hit hit;
     if (!ctx.tracer.intersect(ray, hit)) return t;
     SurfaceRecord h = ctx.tracer.surface(ray, hit, kSurfaceGeometric);
     const Material& m = ctx.scene.materials[h.material];
+    if (m.light == static_cast<int>(lightIndex)) return t;  // reached the light itself
     if (!m.transparent) return Color(0.0f);
     if (h.frontFace) t *= m.tint;
     if (maxComponent(t) < ctx.scene.render.minWeight) return Color(0.0f);
@@ -91,7 +101,7 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
 
 Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                 const Vec3& toLight, float distance, ThreadState& ts) {
-  Color t = shadowTransmittance(ctx, s, toLight, distance, ts);
+  Color t = shadowTransmittance(ctx, s, lightIndex, toLight, distance, ts);
   if (ts.recorder) {
     // The shadow ray joins the ray tree under the ray whose hit it lights.
     RayRecord r;

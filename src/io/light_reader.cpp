@@ -92,6 +92,7 @@ void addEmitters(Scene& scene) {
     m.ambient = m.diffuse = m.specular = Color(0.0f);
     m.emission = light.radiance();
     m.twoSidedEmission = light.type == LightType::Sphere;
+    m.light = static_cast<int>(i);
     const int material = static_cast<int>(scene.materials.size());
     scene.materials.push_back(m);
     if (light.type == LightType::Quad) {
