@@ -299,7 +299,7 @@ TEST(SceneLoader, MalformedScenesFailWithPreciseMessages) {
       {"number_overflow.json", "number_overflow.json:2:28: JSON number error: number overflow"},
       {"float_overflow.json", ": objects[0].center[1]: is too large for single precision"},
       {"wrong_type.json", ": camera.fov: must be a number, got \"wide\""},
-      {"wrong_bool.json", ": photons.gate: must be true or false, got 1"},
+      {"wrong_bool.json", ": photons.gate: must be true, false, \"on\", \"off\" or \"auto\", got 1"},
       {"missing_required.json", ": objects[0]: missing required key \"radius\" for a sphere"},
       {"missing_light_position.json",
        ": lights[0]: missing required key \"position\" for a point light"},

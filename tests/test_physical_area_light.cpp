@@ -148,7 +148,7 @@ const char* kSoftScene = R"({
     {"type": "sphere", "center": [0, 0.4, 0], "radius": 0.4, "material": "white"}
   ],
   "render": {"light_samples": 9},
-  "photons": {"shadow": 20000, "indirect": 20000, "global": 20000, "caustic": 0}
+  "photons": {"shadow": 20000, "indirect": 20000, "global": 20000, "caustic": 0, "gate": "on"}
 })";
 
 TEST(AreaLight, RendersAreIdenticalForOneAndTwoThreadsInBothModels) {

@@ -72,7 +72,9 @@ TEST_P(PrecomputedLookup, IdenticalForOneAndTwoThreads) {
   EXPECT_TRUE(samePixels(one.image, two.image)) << c.scene;
 }
 
-const std::vector<std::string> kSmall = {"camera.width=160", "camera.height=100", "camera.spp=2"};
+// The gate on: at this size auto would turn it off, and the verdicts are under test.
+const std::vector<std::string> kSmall = {"camera.width=160", "camera.height=100", "camera.spp=2",
+                                         "photons.gate=on"};
 
 std::vector<std::string> with(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());

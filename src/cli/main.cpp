@@ -76,7 +76,10 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   render->add_option("--stats", statsPath, "Write render statistics as JSON to this file");
   render->add_option("--aov", req.aov, "What to render: beauty, depth, normal, indirect (default: the scene's render.aov, else beauty)");
-  render->add_flag("--no-gate", noGate, "Cast every shadow ray instead of asking the shadow photon map");
+  render->add_flag("--no-gate", noGate, "Cast every shadow ray instead of asking the shadow photon map (--gate off)");
+  std::string gateMode;
+  render->add_option("--gate", gateMode, "The shadow gate: on, off or auto (default: the scene's photons.gate, else auto)")
+      ->check(CLI::IsMember({"on", "off", "auto"}));
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-q,--quiet", quiet, "No progress bar and no summary on stderr");
@@ -102,6 +105,7 @@ int main(int argc, char** argv) {
       if (req.outputPath.empty() && tracePixelArg.empty()) throw InputError("render: -o OUT is required");
       if (seed) req.overrides.push_back("render.seed=" + std::to_string(*seed));
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
+      if (!gateMode.empty()) req.overrides.push_back("photons.gate=" + gateMode);
       if (noGate) req.overrides.push_back("photons.gate=false");
       return runRenderCommand(req, statsPath, tracePixelArg, quiet);
     }

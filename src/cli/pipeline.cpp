@@ -1,6 +1,7 @@
 // One render from scene file to image: load, build the BVH, emit photons,
 // build both photon maps concurrently, trace tiles, write the image.
 #include "cli/pipeline.h"
+#include "cli/gate_decision.h"
 #include "core/error.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
@@ -227,6 +228,15 @@ RenderResult runRender(const RenderRequest& request) {
   Stopwatch phase;
   Scene scene = loadScene(request.scenePath, request.overrides);
   stats.time.load = phase.seconds();
+  // photons.gate = auto: build the shadow map only where it is estimated to pay.
+  const GateMode gateMode = scene.photons.gateMode;
+  stats.gateMode = gateMode == GateMode::Auto ? "auto" : gateMode == GateMode::On ? "on" : "off";
+  if (gateMode == GateMode::Auto) {
+    const GateDecision decision = decideGate(scene);
+    scene.photons.gate = decision.gate;
+    stats.gateReason = decision.reason;
+  }
+  stats.gate = scene.photons.gate;
   const std::string aovName = request.aov.empty() ? scene.render.aov : request.aov;
   Aov aov = parseAov(aovName);
   const bool physical = scene.render.model == ShadingModel::Physical;

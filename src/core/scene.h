@@ -95,6 +95,9 @@ struct RenderSettings {
 };
 
 enum class IndirectEstimator { Classic, Density };
+// on: always ask the shadow map; off: every shadow test is a ray; auto: build the
+// shadow map only where the cost model says it pays (cli/gate_decision.h).
+enum class GateMode { Off, On, Auto };
 // exact: every gate vote and estimate gathers its k nearest photons (the definition);
 // precomputed: both are computed once per cell of a hash grid and read by one query.
 enum class PhotonLookup { Exact, Precomputed };
@@ -109,7 +112,8 @@ struct PhotonSettings {
   IndirectEstimator estimator = IndirectEstimator::Classic;
   HemisphereSampling sampling = HemisphereSampling::Uniform;
   int maxBounces = 16;
-  bool gate = true;  // false = cast every shadow ray (--no-gate)
+  GateMode gateMode = GateMode::Auto;  // photons.gate / --gate
+  bool gate = true;  // the resolved decision: false = cast every shadow ray
   // Physical model (docs/photon-maps.md, "physical model").
   uint64_t globalPhotons = 200'000;   // emitted per pass; stored after >= 1 diffuse bounce
   uint64_t causticPhotons = 200'000;  // emitted per pass towards specular objects

@@ -45,6 +45,9 @@ struct RenderStats {
   float causticRadius = 0.0f, globalRadius = 0.0f;  // last pass's, when passes > 1
   uint64_t photonMapBytes = 0;
   std::string lookup = "exact";      // photons.lookup
+  std::string gateMode = "auto";     // photons.gate as given
+  bool gate = false;                 // ... and as decided
+  std::string gateReason;            // why (auto: the cost model's estimate)
   uint64_t cacheRecords = 0;         // precomputed: cells (last pass)
   float cacheCell = 0.0f;            // precomputed: cell size (last pass)
   uint64_t cacheBytes = 0;

@@ -34,7 +34,9 @@ std::string statsToJson(const RenderStats& s) {
                   {"emitted_global", s.emittedGlobal}, {"stored_global", s.storedGlobal},
                   {"final_radius_caustic", s.causticRadius},
                   {"final_radius_global", s.globalRadius}};
-  j["gate"] = {{"queries", r.gateQueries},      {"lit", r.gateLit},
+  j["gate"] = {{"mode", s.gateMode},             {"on", s.gate},
+               {"reason", s.gateReason},
+               {"queries", r.gateQueries},      {"lit", r.gateLit},
                {"shadowed", r.gateShadowed},    {"mixed", r.gateMixed},
                {"shadow_rays_cast", r.shadow},  {"shadow_rays_avoided", r.shadowRaysAvoided}};
   j["gather"] = {{"queries", r.gatherQueries},
@@ -98,6 +100,7 @@ std::string statsSummary(const RenderStats& s) {
     out += fmt::format("  lookup: precomputed, {} cells of {:.4g}, {:.1f} MB; {} queries, {} exact fallbacks\n",
                        s.cacheRecords, s.cacheCell, s.cacheBytes / 1e6, r.cacheLookups, r.cacheFallbacks);
   }
+  if (s.gateMode == "auto") out += fmt::format("  gate: {}\n", s.gateReason);
   if (r.gateQueries) {
     out += fmt::format("  gate: {} queries, {:.1f}% lit, {:.1f}% shadowed, {:.1f}% mixed; {} shadow rays avoided\n",
                        r.gateQueries, 100.0 * r.gateLit / r.gateQueries,

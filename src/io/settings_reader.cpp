@@ -73,7 +73,19 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
                                 {"uniform", "cosine"});
   out.sampling = sampling == 0 ? HemisphereSampling::Uniform : HemisphereSampling::Cosine;
   out.maxBounces = node.intOr("max_bounces", out.maxBounces, 0, 1024);
-  out.gate = node.boolOr("gate", out.gate);
+  if (node.has("gate")) {
+    // true / false, or "on" / "off" / "auto".
+    JsonNode gate = node.child("gate");
+    if (gate.value().is_boolean()) {
+      out.gateMode = gate.asBool() ? GateMode::On : GateMode::Off;
+    } else if (!gate.value().is_string()) {
+      gate.fail("must be true, false, \"on\", \"off\" or \"auto\", got " + gate.value().dump());
+    } else {
+      const size_t mode = gate.asEnum({"off", "on", "auto"});
+      out.gateMode = static_cast<GateMode>(mode);
+    }
+  }
+  out.gate = out.gateMode != GateMode::Off;
   out.globalPhotons = node.uintOr("global", out.globalPhotons, 0, kMaxPhotons);
   out.causticPhotons = node.uintOr("caustic", out.causticPhotons, 0, kMaxPhotons);
   out.kGlobal = node.intOr("k_global", out.kGlobal, 1, 10000);
