@@ -51,4 +51,32 @@ TEST(GateAuto, RenderSkipsTheShadowMapUnlessAskedFor) {
   EXPECT_FALSE(runRender(req).stats.gate);
 }
 
+TEST(GateAuto, SoftShadowsGatedMatchesUngatedAndSkipsMostRays) {
+  // Lit verdicts take exactly the samples the rays would have confirmed, so the
+  // gated image differs only where a verdict is wrong. Bound: RMSE <= 0.5% of the
+  // image mean (the issue's), with most shadow tests answered by the gate.
+  RenderRequest req;
+  req.scenePath = kScenes + "soft_shadows.json";
+  // At this size auto would say off (too few shading points to repay the photons).
+  req.overrides = {"camera.width=160", "camera.height=100", "camera.spp=1", "photons.shadow=500000",
+                   "photons.gate=on"};
+  RenderResult gated = runRender(req);
+  req.overrides.back() = "photons.gate=off";
+  RenderResult ungated = runRender(req);
+  ASSERT_TRUE(gated.stats.gate);
+  ASSERT_FALSE(ungated.stats.gate);
+  double mean = 0.0, se = 0.0;
+  for (size_t i = 0; i < gated.image.pixels.size(); ++i) {
+    const Color d = gated.image.pixels[i] - ungated.image.pixels[i];
+    se += glm::dot(d, d) / 3.0;
+    mean += (ungated.image.pixels[i].r + ungated.image.pixels[i].g + ungated.image.pixels[i].b) / 3.0;
+  }
+  const double n = double(gated.image.pixels.size()), rmse = std::sqrt(se / n);
+  mean /= n;
+  EXPECT_LE(rmse, 0.005 * mean) << "RMSE " << rmse << ", mean " << mean;
+  const RayCounts& g = gated.stats.rays;
+  EXPECT_GT(g.shadowRaysAvoided, 4 * g.shadow) << "avoided " << g.shadowRaysAvoided << ", cast " << g.shadow;
+  EXPECT_EQ(g.shadowRaysAvoided + g.shadow, ungated.stats.rays.shadow);  // every test is one or the other
+}
+
 }  // namespace

@@ -92,6 +92,8 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"fig07_glass_in_box.json", with(kSmall, {"photons.shadow=400000"}), 0.002},
         // The showcase: two lights, glass, mirrors, k = 200.
         Case{"showcase.json", with(kSmall, {"photons.shadow=500000", "photons.indirect=500000"}), 0.01},
+        // Area lights: one verdict per light decides 16 samples.
+        Case{"soft_shadows.json", with(kSmall, {"photons.shadow=500000"}), 0.002},
         // Physical model: the global map's irradiance and the gate (glass blocks).
         Case{"cornell_physical.json", with(kSmall, {"camera.spp=1", "photons.gate=true"}), 0.03}),
     [](const auto& info) {

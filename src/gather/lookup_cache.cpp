@@ -59,20 +59,18 @@ float typicalShadowRadius(const ShadowPhotonMap& map, int k, GatherScratch& s) {
 float cacheCellSize(const IndirectPhotonMap* indirect, int k, const ShadowPhotonMap* shadow,
                     int kShadow, float scale) {
   GatherScratch scratch;
-  float r = 0.0f;
-  if (indirect && !indirect->empty() && k > 0) {
-    r = typicalKnnRadius(*indirect, k, scratch);
-  } else if (shadow && shadow->size() > 0 && kShadow > 0) {
-    r = typicalShadowRadius(*shadow, kShadow, scratch);
-    k = kShadow;
+  if (indirect && !indirect->empty() && k > 0) return cacheCellSize(typicalKnnRadius(*indirect, k, scratch), k, scale);
+  if (shadow && shadow->size() > 0 && kShadow > 0) {
+    return cacheCellSize(typicalShadowRadius(*shadow, kShadow, scratch), kShadow, scale,
+                         kMinPhotonsPerGateCell);
   }
-  return cacheCellSize(r, k, scale);
+  return 0.0f;
 }
 
-float cacheCellSize(float r, int k, float scale) {
+float cacheCellSize(float r, int k, float scale, float minPhotonsPerCell) {
   if (!(r > 0.0f) || k <= 0) return 0.0f;
-  // k photons within r: a cell of h holds k h^2 / (pi r^2) of them, >= kMinPhotonsPerCell.
-  const float minScale = std::sqrt(kMinPhotonsPerCell * kPi / static_cast<float>(k));
+  // k photons within r: a cell of h holds k h^2 / (pi r^2) of them, >= minPhotonsPerCell.
+  const float minScale = std::sqrt(minPhotonsPerCell * kPi / static_cast<float>(k));
   return r * std::max(scale, minScale);
 }
 

@@ -32,11 +32,14 @@ struct LookupCacheParams {
 // The cell size: `scale` times the median distance to the k-th nearest photon of
 // `map` (at most 256 probes), but never so small that the cells outnumber the map's
 // photons / kMinPhotonsPerCell: a cell must cost less than the gathers it replaces.
+// A cache of gate verdicts alone costs a linear count, not gathers, so its cells
+// may be finer: kMinPhotonsPerGateCell.
 constexpr float kMinPhotonsPerCell = 16.0f;
+constexpr float kMinPhotonsPerGateCell = 4.0f;
 float cacheCellSize(const IndirectPhotonMap* indirect, int k, const ShadowPhotonMap* shadow,
                     int kShadow, float scale);
 // The same from a known gather radius r holding about k photons.
-float cacheCellSize(float r, int k, float scale);
+float cacheCellSize(float r, int k, float scale, float minPhotonsPerCell = kMinPhotonsPerCell);
 
 class LookupCache {
  public:
