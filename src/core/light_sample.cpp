@@ -4,52 +4,67 @@
 
 namespace penumbra {
 
-namespace {
-Vec3 quadNormal(const Light& l) { return glm::normalize(glm::cross(l.edge1, l.edge2)); }
+LightSampler prepareLight(const Light& light, const Vec3& p) {
+  LightSampler s;
+  s.light = &light;
+  s.p = p;
+  if (light.type == LightType::Quad) {
+    s.normal = glm::normalize(glm::cross(light.edge1, light.edge2));
+    s.area = lightArea(light);
+  } else if (light.type == LightType::Sphere) {
+    const Vec3 toCentre = light.position - p;
+    s.dc2 = glm::dot(toCentre, toCentre);
+    s.r2 = light.radius * light.radius;
+    s.outside = s.dc2 > s.r2 && std::isfinite(s.dc2);
+    if (s.outside) {
+      s.dc = std::sqrt(s.dc2);
+      s.w = toCentre / s.dc;
+      s.cosMax = std::sqrt(std::max(0.0f, 1.0f - s.r2 / s.dc2));
+      orthonormalBasis(s.w, s.t, s.b);
+    }
+  }
+  return s;
+}
 
-LightIncidence sampleQuad(const Light& light, const Vec3& p, float u1, float u2) {
+namespace {
+LightIncidence sampleQuad(const LightSampler& s, float u1, float u2) {
+  const Light& light = *s.light;
   LightIncidence in;
   const Vec3 y = light.position + u1 * light.edge1 + u2 * light.edge2;
-  const Vec3 d = y - p;
+  const Vec3 d = y - s.p;
   const float d2 = glm::dot(d, d);
   if (!(d2 > 0.0f) || !std::isfinite(d2)) return in;
   in.distance = std::sqrt(d2);
   in.wi = d / in.distance;
-  const float cosLight = -glm::dot(quadNormal(light), in.wi);
+  const float cosLight = -glm::dot(s.normal, in.wi);
   if (cosLight <= 0.0f) return in;  // behind the emitting side
-  in.radiance = light.radiance() * (cosLight * lightArea(light) / d2);
+  in.radiance = light.radiance() * (cosLight * s.area / d2);
   in.valid = true;
   return in;
 }
 
-LightIncidence sampleSphere(const Light& light, const Vec3& p, float u1, float u2) {
+LightIncidence sampleSphere(const LightSampler& s, float u1, float u2) {
   LightIncidence in;
-  const Vec3 toCentre = light.position - p;
-  const float dc2 = glm::dot(toCentre, toCentre), r2 = light.radius * light.radius;
-  if (!(dc2 > r2) || !std::isfinite(dc2)) return in;  // inside (or on) the sphere
-  const float dc = std::sqrt(dc2);
-  const Vec3 w = toCentre / dc;
-  const float sin2Max = r2 / dc2, cosMax = std::sqrt(std::max(0.0f, 1.0f - sin2Max));
-  const float cosTheta = 1.0f - u1 * (1.0f - cosMax);
+  if (!s.outside) return in;  // inside (or on) the sphere
+  const float cosTheta = 1.0f - u1 * (1.0f - s.cosMax);
   const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
   const float phi = 2.0f * kPi * u2;
-  Vec3 t, b;
-  orthonormalBasis(w, t, b);
-  in.wi = cosTheta * w + sinTheta * (std::cos(phi) * t + std::sin(phi) * b);
+  in.wi = cosTheta * s.w + sinTheta * (std::cos(phi) * s.t + std::sin(phi) * s.b);
   // The near intersection along wi: dc cos - sqrt(r^2 - dc^2 sin^2), never < 0.
-  const float disc = std::max(0.0f, r2 - dc2 * sinTheta * sinTheta);
-  in.distance = std::max(0.0f, dc * cosTheta - std::sqrt(disc));
-  in.radiance = light.radiance() * (2.0f * kPi * (1.0f - cosMax));
+  const float disc = std::max(0.0f, s.r2 - s.dc2 * sinTheta * sinTheta);
+  in.distance = std::max(0.0f, s.dc * cosTheta - std::sqrt(disc));
+  in.radiance = s.light->radiance() * (2.0f * kPi * (1.0f - s.cosMax));
   in.valid = in.distance > 0.0f;
   return in;
 }
 }  // namespace
 
-LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
+LightIncidence sampleLight(const LightSampler& s, float u1, float u2) {
+  const Light& light = *s.light;
   LightIncidence in;
   switch (light.type) {
     case LightType::Point: {
-      Vec3 d = light.position - p;
+      Vec3 d = light.position - s.p;
       float d2 = glm::dot(d, d);
       if (!(d2 > 0.0f) || !std::isfinite(d2)) return in;
       in.distance = std::sqrt(d2);
@@ -61,8 +76,8 @@ LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2
       in.wi = -light.direction;
       in.radiance = light.radiance();
       break;
-    case LightType::Quad: return sampleQuad(light, p, u1, u2);
-    case LightType::Sphere: return sampleSphere(light, p, u1, u2);
+    case LightType::Quad: return sampleQuad(s, u1, u2);
+    case LightType::Sphere: return sampleSphere(s, u1, u2);
   }
   in.valid = true;
   return in;
@@ -96,7 +111,7 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
     Vec3 n;
     if (light.type == LightType::Quad) {
       r.origin = light.position + u1 * light.edge1 + u2 * light.edge2;
-      n = quadNormal(light);
+      n = glm::normalize(glm::cross(light.edge1, light.edge2));
     } else {
       n = uniformSphere(u1, u2);
       r.origin = light.position + light.radius * n;

@@ -30,7 +30,22 @@ struct LightIncidence {
 // quad uniformly over its area (pdf d^2 / (A cos_l)), a sphere uniformly over the
 // cone it subtends (pdf 1 / (2 pi (1 - cos_max))); invalid where the quad faces
 // away or the point is inside the sphere.
-LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2);
+// What sampling one light from one point needs, computed once for all its samples
+// (the quad's normal and area, the sphere's cone and frame).
+struct LightSampler {
+  const Light* light = nullptr;
+  Vec3 p{0.0f};
+  Vec3 normal{0.0f};  // quad
+  float area = 0.0f;
+  Vec3 w{0.0f}, t{0.0f}, b{0.0f};  // sphere: towards the centre, and a frame about it
+  float dc = 0.0f, dc2 = 0.0f, r2 = 0.0f, cosMax = 1.0f;
+  bool outside = false;
+};
+LightSampler prepareLight(const Light& light, const Vec3& p);
+LightIncidence sampleLight(const LightSampler& sampler, float u1, float u2);
+inline LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
+  return sampleLight(prepareLight(light, p), u1, u2);
+}
 inline LightIncidence incidentLight(const Light& light, const Vec3& p) {
   return sampleLight(light, p, 0.5f, 0.5f);
 }

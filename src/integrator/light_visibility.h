@@ -44,13 +44,14 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   const Light& light = ctx.scene.lights[li];
   const int n = lightSampleCount(light, ctx.scene.render.lightSamples);
   Rng rng(hashKey(ts.sampleKey, ts.shadingPoint, li));
+  const LightSampler sampler = prepareLight(light, s.position);
   const bool shadows = ctx.scene.render.shadows;
   GateVerdict v = GateVerdict::Mixed;
   bool asked = false;
   Color sum(0.0f);
   for (int j = 0; j < n; ++j) {
     const Vec2 u = n > 1 ? stratified2D(j, n, rng) : Vec2(0.5f);
-    const LightIncidence in = sampleLight(light, s.position, u.x, u.y);
+    const LightIncidence in = sampleLight(sampler, u.x, u.y);
     Color f;
     if (!in.valid || !reflect(in, f)) continue;
     if (shadows && !asked) {
