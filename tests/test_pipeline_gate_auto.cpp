@@ -74,9 +74,9 @@ TEST(GateAuto, SoftShadowsGatedMatchesUngatedAndSkipsMostRays) {
   const double n = double(gated.image.pixels.size()), rmse = std::sqrt(se / n);
   mean /= n;
   EXPECT_LE(rmse, 0.005 * mean) << "RMSE " << rmse << ", mean " << mean;
-  const RayCounts& g = gated.stats.rays;
-  EXPECT_GT(g.shadowRaysAvoided, 4 * g.shadow) << "avoided " << g.shadowRaysAvoided << ", cast " << g.shadow;
-  EXPECT_EQ(g.shadowRaysAvoided + g.shadow, ungated.stats.rays.shadow);  // every test is one or the other
+  // The gated render casts under a fifth of the ungated render's shadow rays.
+  EXPECT_LT(5 * gated.stats.rays.shadow, ungated.stats.rays.shadow)
+      << "cast " << gated.stats.rays.shadow << " of " << ungated.stats.rays.shadow;
 }
 
 }  // namespace

@@ -229,4 +229,19 @@ Color albedoBsdf(const Bsdf& b) {
   return Color(0.0f);
 }
 
+Color lambertCoefficient(const Bsdf& b) {
+  switch (b.type) {
+    case BsdfType::ClassicPhong: return b.diffuse;
+    case BsdfType::Opaque: return (1.0f - b.kr) * b.diffuse * kInvPi;
+    case BsdfType::Dielectric: return Color(0.0f);
+  }
+  return Color(0.0f);
+}
+
+Bsdf glossyPart(const Bsdf& b) {
+  Bsdf g = b;
+  g.diffuse = Color(0.0f);
+  return g;
+}
+
 }  // namespace penumbra

@@ -53,6 +53,12 @@ struct BsdfSample {
 
 Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce);
 
+// The Lambertian part of evaluateBsdf is lambertCoefficient(b) x max(0, ns . wi)
+// (classic k_d; physical (1 - kr) rho / pi); glossyPart(b) evaluates to the rest.
+// Lets a caller integrate the diffuse part over an area light in closed form.
+Color lambertCoefficient(const Bsdf& b);
+Bsdf glossyPart(const Bsdf& b);
+
 // Union of the flags of the BSDF's lobes that have any weight.
 uint8_t bsdfFlags(const Bsdf& b);
 inline bool hasSmoothLobe(const Bsdf& b) { return bsdfFlags(b) & (kBsdfDiffuse | kBsdfGlossy); }

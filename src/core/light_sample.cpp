@@ -1,6 +1,7 @@
 // Point, directional, quad and sphere lights behind the light interface.
 #include "core/light_sample.h"
 #include "core/sampling.h"
+#include <algorithm>
 
 namespace penumbra {
 
@@ -81,6 +82,45 @@ LightIncidence sampleLight(const LightSampler& s, float u1, float u2) {
   }
   in.valid = true;
   return in;
+}
+
+bool unoccludedIrradiance(const LightSampler& s, const Vec3& n, Color& E) {
+  const Light& light = *s.light;
+  E = Color(0.0f);
+  if (light.type == LightType::Sphere) {
+    if (!s.outside) return false;
+    const float cosBeta = glm::dot(n, s.w), sin2Alpha = s.r2 / s.dc2;
+    if (cosBeta * cosBeta < sin2Alpha || cosBeta <= 0.0f) return false;  // cut by the horizon
+    E = light.radiance() * (kPi * sin2Alpha * cosBeta);
+    return true;
+  }
+  if (light.type != LightType::Quad) return false;
+  if (glm::dot(s.normal, s.p - light.position) <= 0.0f) return true;  // behind its emitting side
+  // The quad's corners relative to p, clipped to the half-space n . r >= 0.
+  const Vec3 corners[4] = {light.position - s.p, light.position + light.edge1 - s.p,
+                           light.position + light.edge1 + light.edge2 - s.p,
+                           light.position + light.edge2 - s.p};
+  Vec3 poly[8];
+  int m = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3& a = corners[i];
+    const Vec3& b = corners[(i + 1) % 4];
+    const float da = glm::dot(n, a), db = glm::dot(n, b);
+    if (da >= 0.0f) poly[m++] = a;
+    if ((da >= 0.0f) != (db >= 0.0f)) poly[m++] = a + (b - a) * (da / (da - db));
+  }
+  if (m < 3) return true;
+  // Lambert: E = L / 2 |sum_i theta_i (n . unit(r_i x r_i+1))|, theta_i the angle of edge i.
+  float sum = 0.0f;
+  for (int i = 0; i < m; ++i) {
+    const Vec3 a = glm::normalize(poly[i]), b = glm::normalize(poly[(i + 1) % m]);
+    const Vec3 c = glm::cross(a, b);
+    const float len = glm::length(c);
+    if (!(len > 1e-12f)) continue;
+    sum += std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f)) * glm::dot(n, c / len);
+  }
+  E = light.radiance() * (0.5f * std::abs(sum));
+  return true;
 }
 
 float lightArea(const Light& light) {

@@ -46,6 +46,13 @@ LightIncidence sampleLight(const LightSampler& sampler, float u1, float u2);
 inline LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
   return sampleLight(prepareLight(light, p), u1, u2);
 }
+// The unoccluded irradiance E = integral of L cos(theta) over the light, at the
+// sampler's point with unit normal n, in closed form: a quad by Lambert's polygon
+// formula (clipped to the hemisphere of n), a sphere wholly above the horizon as
+// pi L sin^2(alpha) cos(beta). False where there is none (a delta light, a sphere
+// cut by the horizon): the caller samples instead.
+bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, Color& E);
+
 inline LightIncidence incidentLight(const Light& light, const Vec3& p) {
   return sampleLight(light, p, 0.5f, 0.5f);
 }

@@ -1,6 +1,7 @@
 // How much of a light reaches a shading point: the photon-map ambiguity gate
 // decides when a shadow ray is needed; shadow rays through glass are tinted.
 #pragma once
+#include "core/bsdf.h"
 #include "core/light_sample.h"
 #include "core/rng.h"
 #include "core/sampling.h"
@@ -32,29 +33,33 @@ Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t ligh
 
 // Direct light from light `li` at a shading point: the mean over its samples (one
 // for a delta light, render.light_samples for an area light, stratified, from the
-// shading point's own random stream) of visibility x f x incidence. `reflect(in, f)`
-// gives the BSDF term for one sample, or false to skip it; `weigh(t, f, in)` the
-// sample's contribution at transmittance t (each model multiplies in the order its
-// images were made with). The gate is asked once, at the first sample that needs
-// it: lit -> no shadow ray at all, shadowed -> nothing, mixed -> one ray per sample.
-template <class Reflect, class Weigh>
+// shading point's own random stream) of visibility x f cos x incidence, with f the
+// BSDF and `weigh(t, f, in)` one sample's contribution at transmittance t (each
+// model multiplies in the order its images were made with). The gate is asked once,
+// at the first sample that reaches the surface: shadowed -> nothing; mixed -> one
+// ray per sample; lit -> no ray at all, and the Lambertian part in closed form
+// (unoccludedIrradiance), so only a glossy lobe still takes the samples.
+template <class Weigh>
 Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,
                       const CachedAnswer* cached, ThreadState& ts, std::string* note,
-                      Reflect&& reflect, Weigh&& weigh) {
+                      const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo, Weigh&& weigh) {
   const Light& light = ctx.scene.lights[li];
   const int n = lightSampleCount(light, ctx.scene.render.lightSamples);
   Rng rng(hashKey(ts.sampleKey, ts.shadingPoint, li));
   const LightSampler sampler = prepareLight(light, s.position);
   const bool shadows = ctx.scene.render.shadows;
-  GateVerdict v = GateVerdict::Mixed;
-  bool asked = false;
-  Color sum(0.0f);
+  const Bsdf* lobes = &bsdf;  // after a lit verdict: only what the closed form left out
+  Bsdf glossy;
+  GateVerdict v = shadows ? GateVerdict::Mixed : GateVerdict::Lit;
+  bool asked = !shadows;
+  Color closed(0.0f), sum(0.0f);
   for (int j = 0; j < n; ++j) {
     const Vec2 u = n > 1 ? stratified2D(j, n, rng) : Vec2(0.5f);
     const LightIncidence in = sampleLight(sampler, u.x, u.y);
-    Color f;
-    if (!in.valid || !reflect(in, f)) continue;
-    if (shadows && !asked) {
+    if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
+    Color f = evaluateBsdf(*lobes, frame, wo, in.wi);
+    if (!asked) {
+      if (maxComponent(f) <= 0.0f) continue;
       asked = true;
       v = gateVerdict(ctx, s, li, cached, ts, note);
       if (v == GateVerdict::Shadowed) {
@@ -62,7 +67,22 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
         return Color(0.0f);
       }
     }
-    if (!shadows || v == GateVerdict::Lit) {
+    if (v == GateVerdict::Lit && n > 1 && lobes == &bsdf) {
+      Color E;
+      const Color kd = lambertCoefficient(bsdf);
+      if (maxComponent(kd) > 0.0f && unoccludedIrradiance(sampler, s.ns, E)) {
+        closed = kd * E;
+        glossy = glossyPart(bsdf);
+        lobes = &glossy;
+        if (!(bsdfFlags(glossy) & kBsdfGlossy)) {
+          if (shadows) ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
+          return closed;
+        }
+        f = evaluateBsdf(glossy, frame, wo, in.wi);
+      }
+    }
+    if (maxComponent(f) <= 0.0f) continue;
+    if (v == GateVerdict::Lit) {
       if (shadows) ++ts.counts.shadowRaysAvoided;
       sum += weigh(Color(1.0f), f, in);
       continue;
@@ -70,7 +90,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     const Color t = shadowRay(ctx, s, li, in.wi, in.distance, ts);
     if (maxComponent(t) > 0.0f) sum += weigh(t, f, in);
   }
-  return n > 1 ? sum / static_cast<float>(n) : sum;
+  return closed + (n > 1 ? sum / static_cast<float>(n) : sum);
 }
 
 // The precomputed answer at a shading point, or null without a lookup cache.

@@ -22,12 +22,7 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
     if (maxComponent(lights[li].radiance()) <= 0.0f) continue;
     std::string one;
     sum += directFromLight(
-        ctx, s, li, cached, ts, note ? &one : nullptr,
-        [&](const LightIncidence& in, Color& f) {
-          if (glm::dot(s.ng, in.wi) <= 0.0f) return false;
-          f = evaluateBsdf(bsdf, frame, wo, in.wi);
-          return maxComponent(f) > 0.0f;
-        },
+        ctx, s, li, cached, ts, note ? &one : nullptr, bsdf, frame, wo,
         [](const Color& t, const Color& f, const LightIncidence& in) { return t * f * in.radiance; });
     if (note && !one.empty()) *note += (note->empty() ? "" : "; ") + one;
   }
