@@ -42,6 +42,21 @@ std::vector<ShadowPhoton> halfShadow(int n, float edge, uint8_t beyond, const Ve
   return out;
 }
 
+// A cache of gate verdicts alone over `map`, and the verdict of light 0 at p (facing +z).
+LookupCache gateCache(const ShadowPhotonMap& map, float cellSize, bool glassBlocks = false) {
+  LookupCacheParams params;
+  params.gate = true;
+  params.cellSize = cellSize;
+  params.gateParams.glassBlocks = glassBlocks;
+  LookupCache cache;
+  cache.build(&map, nullptr, params);
+  return cache;
+}
+GateVerdict verdictAt(const LookupCache& cache, const Vec3& p) {
+  LookupCache::Answer a = cache.find(p, Vec3(0, 0, 1));
+  return a.verdicts ? static_cast<GateVerdict>(a.verdicts[0]) : GateVerdict::Mixed;
+}
+
 TEST(LookupCache, UniformPlaneMatchesTheExactDensityAndTheAnalyticIrradiance) {
   const int n = 300;  // 90k photons of power 1e-4 over 1 m^2: irradiance 9 W/m^2
   IndirectPhotonMap map;
@@ -95,11 +110,8 @@ TEST(LookupCache, ClassicEstimateOfAConstantPowerIsAThirdOfIt) {
 TEST(LookupCache, GateNeverContradictsTheTruthAndIsConfidentAwayFromTheEdge) {
   ShadowPhotonMap map;
   map.build(halfShadow(400, 0.5f, kShadowOpaque, Vec3(0, 0, 1)), 1);
-  LookupCacheParams params;
-  params.gate = true;
-  params.cellSize = 0.02f;
-  LookupCache cache;
-  cache.build(&map, nullptr, params);
+  const float cellSize = 0.02f;
+  const LookupCache cache = gateCache(map, cellSize);
   ASSERT_TRUE(cache.hasGate());
   int lit = 0, shadowed = 0, mixed = 0;
   Rng rng(9);
@@ -112,7 +124,7 @@ TEST(LookupCache, GateNeverContradictsTheTruthAndIsConfidentAwayFromTheEdge) {
     if (v == GateVerdict::Shadowed) { EXPECT_GE(p.x, 0.5f) << p.x; ++shadowed; }
     if (v == GateVerdict::Mixed) {
       // Only the band of cells around the edge is undecided: <= 2 cells each side.
-      EXPECT_LT(std::abs(p.x - 0.5f), 2.0f * params.cellSize + 1e-3f) << p.x;
+      EXPECT_LT(std::abs(p.x - 0.5f), 2.0f * cellSize + 1e-3f) << p.x;
       ++mixed;
     }
   }
@@ -124,17 +136,12 @@ TEST(LookupCache, GateNeverContradictsTheTruthAndIsConfidentAwayFromTheEdge) {
 TEST(LookupCache, GlassShadowIsMixedUnlessGlassBlocks) {
   ShadowPhotonMap map;
   map.build(halfShadow(200, 0.5f, kShadowGlass, Vec3(0, 0, 1)), 1);
-  LookupCacheParams params;
-  params.gate = true;
-  params.cellSize = 0.03f;
-  LookupCache cache;
-  cache.build(&map, nullptr, params);
   const Vec3 behind(0.8f, 0.5f, 0.0f), front(0.2f, 0.5f, 0.0f);
-  EXPECT_EQ(static_cast<GateVerdict>(cache.find(behind, Vec3(0, 0, 1)).verdicts[0]), GateVerdict::Mixed);
-  EXPECT_EQ(static_cast<GateVerdict>(cache.find(front, Vec3(0, 0, 1)).verdicts[0]), GateVerdict::Lit);
-  params.gateParams.glassBlocks = true;  // the physical model: glass is a shadow
-  cache.build(&map, nullptr, params);
-  EXPECT_EQ(static_cast<GateVerdict>(cache.find(behind, Vec3(0, 0, 1)).verdicts[0]), GateVerdict::Shadowed);
+  const LookupCache classic = gateCache(map, 0.03f);
+  EXPECT_EQ(verdictAt(classic, behind), GateVerdict::Mixed);
+  EXPECT_EQ(verdictAt(classic, front), GateVerdict::Lit);
+  // The physical model: glass is a shadow.
+  EXPECT_EQ(verdictAt(gateCache(map, 0.03f, /*glassBlocks=*/true), behind), GateVerdict::Shadowed);
 }
 
 TEST(LookupCache, ThinWallSidesKeepTheirOwnAnswers) {
