@@ -100,12 +100,12 @@ TEST(AreaLight, ClosedFormIrradianceMatchesTheFormFactorAndSampling) {
   const Light q = quadLight(Vec3(-a / 2, h, -b / 2), Vec3(a, 0, 0), Vec3(0, 0, b), Color(1.0f), 3.0f);
   Color E;
   const Vec3 p(0.3f, 0.0f, 0.2f);
-  ASSERT_TRUE(unoccludedIrradiance(prepareLight(q, p), Vec3(0, 1, 0), E));
+  ASSERT_TRUE(unoccludedIrradiance(prepareLight(q, p), Vec3(0, 1, 0), Vec3(0, 1, 0), E));
   const double F = rectFactor(-a / 2 - p.x, a / 2 - p.x, -b / 2 - p.z, b / 2 - p.z, h);
   EXPECT_LT(rel(E.x, 3.0 * kPiD * F), 1e-4) << E.x;
   for (Vec3 n : {glm::normalize(Vec3(1, 0.3f, 0)), glm::normalize(Vec3(0.2f, 1, -0.7f)), Vec3(0, 0, 1)}) {
     const LightSampler sampler = prepareLight(q, Vec3(0.1f, 0.9f, 0.0f));
-    ASSERT_TRUE(unoccludedIrradiance(sampler, n, E));
+    ASSERT_TRUE(unoccludedIrradiance(sampler, n, n, E));
     double sum = 0.0;
     const int side = 256;
     for (int i = 0; i < side; ++i)
@@ -116,7 +116,7 @@ TEST(AreaLight, ClosedFormIrradianceMatchesTheFormFactorAndSampling) {
     EXPECT_LT(rel(E.x, sum / (side * side)), 2e-3) << n.x << "," << n.y << "," << n.z;
   }
   // Behind the emitting side: none, but answered.
-  ASSERT_TRUE(unoccludedIrradiance(prepareLight(q, Vec3(0, 2, 0)), Vec3(0, -1, 0), E));
+  ASSERT_TRUE(unoccludedIrradiance(prepareLight(q, Vec3(0, 2, 0)), Vec3(0, -1, 0), Vec3(0, -1, 0), E));
   EXPECT_EQ(E, Color(0.0f));
   // A sphere above the horizon: pi L sin^2 cos; cut by the horizon: no closed form.
   Light s;
@@ -125,9 +125,39 @@ TEST(AreaLight, ClosedFormIrradianceMatchesTheFormFactorAndSampling) {
   s.radius = 0.5f;
   s.intensity = 2.0f;
   const LightSampler ss = prepareLight(s, Vec3(0.0f));
-  ASSERT_TRUE(unoccludedIrradiance(ss, Vec3(0, 1, 0), E));
+  ASSERT_TRUE(unoccludedIrradiance(ss, Vec3(0, 1, 0), Vec3(0, 1, 0), E));
   EXPECT_LT(rel(E.x, kPiD * 2.0 * (0.25 / 5.0) * (2.0 / std::sqrt(5.0))), 1e-5);
-  EXPECT_FALSE(unoccludedIrradiance(ss, glm::normalize(Vec3(-2, 1, 0)), E));
+  EXPECT_FALSE(unoccludedIrradiance(ss, glm::normalize(Vec3(-2, 1, 0)), glm::normalize(Vec3(-2, 1, 0)), E));
+  // A geometric normal whose horizon cuts the sphere also forbids the closed form.
+  EXPECT_FALSE(unoccludedIrradiance(ss, Vec3(0, 1, 0), glm::normalize(Vec3(-2, 1, 0)), E));
+}
+
+TEST(AreaLight, SmallAndDistantLightsKeepTheirPrecision) {
+  // A 1 cm quad 10 m away, 60 degrees off the normal: the edge angles are ~1e-3 rad,
+  // where acos loses them; E ~ L A cos / d^2. And a sphere with r / d = 1e-4, where
+  // 1 - cos(theta_max) cancels in float: E = pi L (r / d)^2 cos, and samples see it.
+  const Vec3 n(0, 1, 0);
+  const float d = 10.0f, side = 0.01f, c60 = 0.5f, s60 = std::sqrt(3.0f) / 2;
+  const Vec3 centre = d * Vec3(s60, c60, 0.0f);
+  const Light q = quadLight(centre - Vec3(side / 2, 0, side / 2), Vec3(side, 0, 0), Vec3(0, 0, side),
+                            Color(1.0f), 1.0f);  // faces down (edge1 x edge2 = -y)
+  Color E;
+  ASSERT_TRUE(unoccludedIrradiance(prepareLight(q, Vec3(0.0f)), n, n, E));
+  // Solid angle ~ A cos_l / d^2 with cos_l = cos 60 (the light faces down), times cos 60 at p.
+  const double want = side * side * c60 / (d * d) * c60;
+  EXPECT_LT(rel(E.x, want), 2e-3) << E.x << " vs " << want;
+  Light s;
+  s.type = LightType::Sphere;
+  s.position = Vec3(0.0f, 1000.0f, 0.0f);
+  s.radius = 0.1f;
+  const LightSampler ss = prepareLight(s, Vec3(0.0f));
+  ASSERT_TRUE(unoccludedIrradiance(ss, n, n, E));
+  EXPECT_LT(rel(E.x, kPiD * 1e-8), 1e-3) << E.x;
+  const LightIncidence in = sampleLight(ss, 0.3f, 0.7f);
+  ASSERT_TRUE(in.valid);
+  EXPECT_LT(rel(in.radiance.x * in.wi.y, kPiD * 1e-8), 1e-3);  // one sample: L / pdf x cos
+  EXPECT_GE(in.distance, 999.89f);  // on the near side of the sphere
+  EXPECT_LE(in.distance, 1000.0f);
 }
 
 TEST(AreaLight, QuadGlowsOnItsEmittingSideOnly) {

@@ -20,7 +20,10 @@ LightSampler prepareLight(const Light& light, const Vec3& p) {
     if (s.outside) {
       s.dc = std::sqrt(s.dc2);
       s.w = toCentre / s.dc;
-      s.cosMax = std::sqrt(std::max(0.0f, 1.0f - s.r2 / s.dc2));
+      // 1 - cos(theta_max) as sin^2 / (1 + cos): the subtraction would cancel to 0
+      // for a small or distant sphere (r / d below ~2e-4 in float).
+      const float sin2Max = s.r2 / s.dc2;
+      s.oneMinusCosMax = sin2Max / (1.0f + std::sqrt(std::max(0.0f, 1.0f - sin2Max)));
       orthonormalBasis(s.w, s.t, s.b);
     }
   }
@@ -47,14 +50,15 @@ LightIncidence sampleQuad(const LightSampler& s, float u1, float u2) {
 LightIncidence sampleSphere(const LightSampler& s, float u1, float u2) {
   LightIncidence in;
   if (!s.outside) return in;  // inside (or on) the sphere
-  const float cosTheta = 1.0f - u1 * (1.0f - s.cosMax);
-  const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+  // Uniform over the cone: 1 - cos(theta) uniform in [0, 1 - cos(theta_max)].
+  const float t = u1 * s.oneMinusCosMax;
+  const float cosTheta = 1.0f - t, sinTheta = std::sqrt(std::max(0.0f, t * (2.0f - t)));
   const float phi = 2.0f * kPi * u2;
   in.wi = cosTheta * s.w + sinTheta * (std::cos(phi) * s.t + std::sin(phi) * s.b);
   // The near intersection along wi: dc cos - sqrt(r^2 - dc^2 sin^2), never < 0.
   const float disc = std::max(0.0f, s.r2 - s.dc2 * sinTheta * sinTheta);
   in.distance = std::max(0.0f, s.dc * cosTheta - std::sqrt(disc));
-  in.radiance = s.light->radiance() * (2.0f * kPi * (1.0f - s.cosMax));
+  in.radiance = s.light->radiance() * (2.0f * kPi * s.oneMinusCosMax);
   in.valid = in.distance > 0.0f;
   return in;
 }
@@ -84,40 +88,49 @@ LightIncidence sampleLight(const LightSampler& s, float u1, float u2) {
   return in;
 }
 
-bool unoccludedIrradiance(const LightSampler& s, const Vec3& n, Color& E) {
+bool unoccludedIrradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E) {
   const Light& light = *s.light;
   E = Color(0.0f);
   if (light.type == LightType::Sphere) {
     if (!s.outside) return false;
-    const float cosBeta = glm::dot(n, s.w), sin2Alpha = s.r2 / s.dc2;
-    if (cosBeta * cosBeta < sin2Alpha || cosBeta <= 0.0f) return false;  // cut by the horizon
+    const float cosBeta = glm::dot(n, s.w), cosGeo = glm::dot(ng, s.w), sin2Alpha = s.r2 / s.dc2;
+    // Cut by either horizon: no closed form.
+    if (cosBeta <= 0.0f || cosBeta * cosBeta < sin2Alpha || cosGeo <= 0.0f || cosGeo * cosGeo < sin2Alpha)
+      return false;
     E = light.radiance() * (kPi * sin2Alpha * cosBeta);
     return true;
   }
   if (light.type != LightType::Quad) return false;
   if (glm::dot(s.normal, s.p - light.position) <= 0.0f) return true;  // behind its emitting side
-  // The quad's corners relative to p, clipped to the half-space n . r >= 0.
-  const Vec3 corners[4] = {light.position - s.p, light.position + light.edge1 - s.p,
-                           light.position + light.edge1 + light.edge2 - s.p,
-                           light.position + light.edge2 - s.p};
-  Vec3 poly[8];
-  int m = 0;
-  for (int i = 0; i < 4; ++i) {
-    const Vec3& a = corners[i];
-    const Vec3& b = corners[(i + 1) % 4];
-    const float da = glm::dot(n, a), db = glm::dot(n, b);
-    if (da >= 0.0f) poly[m++] = a;
-    if ((da >= 0.0f) != (db >= 0.0f)) poly[m++] = a + (b - a) * (da / (da - db));
+  // The quad's corners relative to p, clipped to the half-spaces above both the
+  // shading and the geometric normal (samples below either are rejected too).
+  Vec3 poly[8] = {light.position - s.p, light.position + light.edge1 - s.p,
+                  light.position + light.edge1 + light.edge2 - s.p, light.position + light.edge2 - s.p};
+  int m = 4;
+  for (const Vec3& plane : {n, ng}) {
+    Vec3 clipped[8];
+    int k = 0;
+    for (int i = 0; i < m; ++i) {
+      const Vec3& a = poly[i];
+      const Vec3& b = poly[(i + 1) % m];
+      const float da = glm::dot(plane, a), db = glm::dot(plane, b);
+      if (da >= 0.0f) clipped[k++] = a;
+      if ((da >= 0.0f) != (db >= 0.0f)) clipped[k++] = a + (b - a) * (da / (da - db));
+    }
+    m = k;
+    std::copy(clipped, clipped + k, poly);
+    if (m < 3) return true;
   }
-  if (m < 3) return true;
-  // Lambert: E = L / 2 |sum_i theta_i (n . unit(r_i x r_i+1))|, theta_i the angle of edge i.
+  // Lambert: E = L / 2 |sum_i theta_i (n . unit(r_i x r_i+1))|, theta_i the angle of
+  // edge i, by atan2 (acos loses the small angles of a small or distant quad).
+  Vec3 unit[8];
+  for (int i = 0; i < m; ++i) unit[i] = glm::normalize(poly[i]);
   float sum = 0.0f;
   for (int i = 0; i < m; ++i) {
-    const Vec3 a = glm::normalize(poly[i]), b = glm::normalize(poly[(i + 1) % m]);
-    const Vec3 c = glm::cross(a, b);
+    const Vec3 c = glm::cross(unit[i], unit[(i + 1) % m]);
     const float len = glm::length(c);
-    if (!(len > 1e-12f)) continue;
-    sum += std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f)) * glm::dot(n, c / len);
+    if (!(len > 0.0f)) continue;
+    sum += std::atan2(len, glm::dot(unit[i], unit[(i + 1) % m])) * glm::dot(n, c / len);
   }
   E = light.radiance() * (0.5f * std::abs(sum));
   return true;

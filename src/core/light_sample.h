@@ -26,10 +26,6 @@ struct LightIncidence {
   bool valid = false;
 };
 
-// A delta light's incidence (u1, u2 unused), or one sample of an area light: a
-// quad uniformly over its area (pdf d^2 / (A cos_l)), a sphere uniformly over the
-// cone it subtends (pdf 1 / (2 pi (1 - cos_max))); invalid where the quad faces
-// away or the point is inside the sphere.
 // What sampling one light from one point needs, computed once for all its samples
 // (the quad's normal and area, the sphere's cone and frame).
 struct LightSampler {
@@ -38,24 +34,24 @@ struct LightSampler {
   Vec3 normal{0.0f};  // quad
   float area = 0.0f;
   Vec3 w{0.0f}, t{0.0f}, b{0.0f};  // sphere: towards the centre, and a frame about it
-  float dc = 0.0f, dc2 = 0.0f, r2 = 0.0f, cosMax = 1.0f;
+  float dc = 0.0f, dc2 = 0.0f, r2 = 0.0f, oneMinusCosMax = 0.0f;
   bool outside = false;
 };
 LightSampler prepareLight(const Light& light, const Vec3& p);
+// A delta light's incidence (u1, u2 unused), or one sample of an area light: a
+// quad uniformly over its area (pdf d^2 / (A cos_l)), a sphere uniformly over the
+// cone it subtends (pdf 1 / (2 pi (1 - cos_max))); invalid where the quad faces
+// away or the point is inside the sphere.
 LightIncidence sampleLight(const LightSampler& sampler, float u1, float u2);
 inline LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
   return sampleLight(prepareLight(light, p), u1, u2);
 }
 // The unoccluded irradiance E = integral of L cos(theta) over the light, at the
-// sampler's point with unit normal n, in closed form: a quad by Lambert's polygon
-// formula (clipped to the hemisphere of n), a sphere wholly above the horizon as
-// pi L sin^2(alpha) cos(beta). False where there is none (a delta light, a sphere
-// cut by the horizon): the caller samples instead.
-bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, Color& E);
-
-inline LightIncidence incidentLight(const Light& light, const Vec3& p) {
-  return sampleLight(light, p, 0.5f, 0.5f);
-}
+// sampler's point with unit shading normal n and geometric normal ng, in closed
+// form: a quad by Lambert's polygon formula (clipped to the hemispheres of n and
+// ng), a sphere wholly above both horizons as pi L sin^2(alpha) cos(beta). False
+// where there is none (a delta light, a sphere cut by a horizon): sample instead.
+bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, const Vec3& ng, Color& E);
 
 // Surface area of an area light (0 for a delta light).
 float lightArea(const Light& light);

@@ -10,24 +10,20 @@
 
 namespace penumbra {
 
-// How much of a light reaches a point (1 = unoccluded), from the gate or a shadow
-// ray. Classic: glass tints the ray; physical: glass blocks it like anything else
-// (light through glass arrives as caustic photons).
 // The gate's vote parameters for this scene (also what a lookup cache precomputes).
 GateParams gateParamsFor(const Scene& scene);
 
-// `cached` is the shading point's precomputed answer (null: ask the photon map).
+// A shading point's precomputed answer (null: ask the photon map).
 using CachedAnswer = LookupCache::Answer;
-Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
-                      const Vec3& toLight, float distance, const CachedAnswer* cached,
-                      ThreadState& ts, std::string* note);
 
 // The gate's verdict for one light at a shading point (Mixed when the gate is off
 // or has no photons of that light): from the cache when there is one, else by the
 // k-nearest vote. Counts the query and its outcome.
 GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                         const CachedAnswer* cached, ThreadState& ts, std::string* note);
-// One shadow ray (a tinted walk through classic glass), recorded under --trace-pixel.
+// One shadow ray, recorded under --trace-pixel. Classic: glass tints the ray (a
+// walk through every surface); physical: glass blocks it like anything else (light
+// through glass arrives as caustic photons).
 Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                 const Vec3& toLight, float distance, ThreadState& ts);
 
@@ -44,17 +40,20 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
                       const CachedAnswer* cached, ThreadState& ts, std::string* note,
                       const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo, Weigh&& weigh) {
   const Light& light = ctx.scene.lights[li];
+  const bool area = !isDeltaLight(light);
   const int n = lightSampleCount(light, ctx.scene.render.lightSamples);
-  Rng rng(hashKey(ts.sampleKey, ts.shadingPoint, li));
+  // Only an area light draws random numbers (a delta light's one sample is exact).
+  Rng rng(area ? hashKey(ts.sampleKey, ts.shadingPoint, li) : 0);
   const LightSampler sampler = prepareLight(light, s.position);
   const bool shadows = ctx.scene.render.shadows;
   const Bsdf* lobes = &bsdf;  // after a lit verdict: only what the closed form left out
   Bsdf glossy;
   GateVerdict v = shadows ? GateVerdict::Mixed : GateVerdict::Lit;
-  bool asked = !shadows;
+  bool asked = !shadows, closedTried = !area;
   Color closed(0.0f), sum(0.0f);
   for (int j = 0; j < n; ++j) {
-    const Vec2 u = n > 1 ? stratified2D(j, n, rng) : Vec2(0.5f);
+    // One sample of an area light is uniform, not its centre (stratified2D's n = 1).
+    const Vec2 u = !area ? Vec2(0.5f) : n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
     const LightIncidence in = sampleLight(sampler, u.x, u.y);
     if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
     Color f = evaluateBsdf(*lobes, frame, wo, in.wi);
@@ -67,10 +66,11 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
         return Color(0.0f);
       }
     }
-    if (v == GateVerdict::Lit && n > 1 && lobes == &bsdf) {
+    if (v == GateVerdict::Lit && !closedTried) {
+      closedTried = true;
       Color E;
       const Color kd = lambertCoefficient(bsdf);
-      if (maxComponent(kd) > 0.0f && unoccludedIrradiance(sampler, s.ns, E)) {
+      if (maxComponent(kd) > 0.0f && unoccludedIrradiance(sampler, s.ns, s.ng, E)) {
         closed = kd * E;
         glossy = glossyPart(bsdf);
         lobes = &glossy;
