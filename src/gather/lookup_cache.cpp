@@ -130,8 +130,8 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
                                      : shadow->photons(static_cast<uint32_t>(src - 1))[i].normal);
   };
 
-  // Cells are counted from one cell below the photons' box, so every neighbour of an
-  // occupied cell has a valid key; the cell grows if the box would need > 2^20 per axis.
+  // Cells are counted from below the photons' box, so every neighbour of an occupied
+  // cell has a valid key; the cell grows if the box would need > 2^20 per axis.
   Bounds box;
   for (size_t src = 0; src < sourceSize.size(); ++src)
     for (size_t i = 0; i < sourceSize[src]; ++i) box.extend(photonPos(src, i));
@@ -139,7 +139,9 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   const float widest = std::max({extent.x, extent.y, extent.z});
   cell_ = std::max(params.cellSize, widest / static_cast<float>(kAxisCells - 4));
   invCell_ = 1.0f / cell_;
-  origin_ = box.lo - Vec3(cell_);
+  // One and a half cells below the box: its faces (often the floor and outer walls)
+  // land mid-layer, not on a layer boundary a point could round across.
+  origin_ = box.lo - Vec3(1.5f * cell_);
 
   std::vector<Entry> entries(total);
   for (size_t src = 0; src < sourceSize.size(); ++src) {

@@ -1,6 +1,9 @@
 // Building and querying the shadow and indirect photon maps.
 #include "gather/photon_map.h"
 #include "gather/morton.h"
+#include "core/error.h"
+#include <fmt/format.h>
+#include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -18,6 +21,13 @@ std::vector<Photon> permuted(const std::vector<Photon>& photons, const std::vect
   });
   return out;
 }
+// Indices into a map are 32-bit (KD-tree, lookup cache): refuse what they cannot name.
+void checkIndexable(size_t count, const char* which) {
+  if (count > std::numeric_limits<uint32_t>::max()) {
+    throw InputError(fmt::format("photons: {} stored {} photons exceed the 2^32 one map can index; "
+                                 "emit fewer", count, which));
+  }
+}
 }  // namespace
 
 // ---- ShadowPhotonMap ------------------------------------------------------------
@@ -27,6 +37,7 @@ void ShadowPhotonMap::build(std::vector<ShadowPhoton> photons, size_t numLights,
   lights_.clear();
   lights_.resize(numLights);
   size_ = 0;
+  checkIndexable(photons.size(), "shadow");
   photons_ = std::move(photons);
   if (!photons_.empty() && numLights > 0) {
     // One sort does both jobs: the light index is the primary key, so each light's
@@ -95,6 +106,7 @@ PhotonRange<ShadowPhoton> ShadowPhotonMap::photons(uint32_t light) const {
 
 void IndirectPhotonMap::build(std::vector<IndirectPhoton> photons,
                               const MapBuildOptions& options) {
+  checkIndexable(photons.size(), "indirect");
   photons_ = std::move(photons);
   if (options.mortonSort && !photons_.empty()) {
     PositionView pos = positionsOf(photons_);

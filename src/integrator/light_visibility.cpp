@@ -118,18 +118,6 @@ Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t ligh
   return t;
 }
 
-Color lightVisibility(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
-                      const Vec3& toLight, float distance, const CachedAnswer* cached,
-                      ThreadState& ts, std::string* note) {
-  if (!ctx.scene.render.shadows) return Color(1.0f);
-  const GateVerdict v = gateVerdict(ctx, s, lightIndex, cached, ts, note);
-  if (v != GateVerdict::Mixed) {
-    ++ts.counts.shadowRaysAvoided;
-    return v == GateVerdict::Lit ? Color(1.0f) : Color(0.0f);
-  }
-  return shadowRay(ctx, s, lightIndex, toLight, distance, ts);
-}
-
 Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
                   const CachedAnswer* cached, ThreadState& ts) {
   if (!ctx.indirectMap || ctx.indirectMap->empty()) return m.ambient * ctx.scene.render.ambient;

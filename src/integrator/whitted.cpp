@@ -25,7 +25,6 @@ Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Mate
   for (uint32_t li = 0; li < lights.size(); ++li) {
     if (maxComponent(lights[li].radiance()) <= 0.0f) continue;  // nothing to add: skip the shadow test
     std::string note;
-    // A light behind the surface cannot reach it: no shadow test needed.
     lit += directFromLight(
         ctx, s, li, cached, ts, rec ? &note : nullptr, bsdf, frame, toEye,
         [](const Color& t, const Color& f, const LightIncidence& in) { return t * in.radiance * f; });
