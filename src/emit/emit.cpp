@@ -60,7 +60,7 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
 
 // Where a classic photon starts: a point light's position and a uniform direction
 // from two numbers (as always), an area light's surface point and cosine-weighted
-// direction from four, lifted off the emitter so its first ray misses it.
+// direction from four (emitterPhoton).
 PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
   PhotonRay r;
   const float u1 = rng.uniform(), u2 = rng.uniform();
@@ -70,12 +70,17 @@ PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
     return r;
   }
   const float u3 = rng.uniform(), u4 = rng.uniform();
-  r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
-  r.origin = offsetRayOrigin(r.origin, r.normal, r.dir);
-  return r;
+  return emitterPhoton(light, bounds, u1, u2, u3, u4);
 }
 
 }  // namespace
+
+PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
+                        float u3, float u4) {
+  PhotonRay r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
+  if (!isDeltaLight(light)) r.origin = offsetRayOrigin(r.origin, r.normal, r.dir);
+  return r;
+}
 
 std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total) {
   std::vector<double> power(scene.lights.size(), 0.0);

@@ -2,6 +2,7 @@
 // line) and indirect photons (bounced by Russian roulette) through the tracer's
 // Embree scene, in fixed-size batches scheduled by oneTBB.
 #pragma once
+#include "core/light_sample.h"
 #include "core/photon.h"
 #include "core/scene.h"
 #include "geometry/trace_scene.h"
@@ -24,5 +25,10 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
 
 // Photons per light for a budget, proportional to each point light's power.
 std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total);
+
+// sampleLightPhoton, with an area light's origin lifted off its own surface so the
+// photon's first ray misses the emitter. Shared by the classic and physical passes.
+PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
+                        float u3, float u4);
 
 }  // namespace penumbra

@@ -187,8 +187,7 @@ std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
         // Area lights are not aimed at the specular objects: their caustic photons
         // are the share of all photons whose path turns out L S+ D.
         float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
-        r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
-        if (!isDeltaLight(light)) r.origin = offsetRayOrigin(r.origin, r.normal, r.dir);
+        r = emitterPhoton(light, bounds, u1, u2, u3, u4);
       }
       t.emitted += glm::dvec3(power);
       if (maxComponent(power) <= 0.0f) continue;
