@@ -93,12 +93,12 @@ struct Fixture {
           if (glm::dot(s.ng, dir) <= 0.0f) continue;  // behind: the renderer tests nothing
           pt.front |= 1u << l;
           // The same ray light_visibility.cpp casts for an opaque blocker.
-          Ray r{offsetRayOrigin(s.position, s.ng, dir), dir};
+          Ray r{spawnOrigin(s, dir), dir};
           r.tMax = dist * (1.0f - 1e-4f);
           shadowRays.push_back(r);
         }
         const Vec3 dir = toWorld(cosineHemisphere(rng.uniform(), rng.uniform()), s.ng);
-        bounceRays.push_back(Ray{offsetRayOrigin(s.position, s.ng, dir), dir});
+        bounceRays.push_back(Ray{spawnOrigin(s, dir), dir});
         points.push_back(pt);
       }
     gateQueries = shadowRays.size();

@@ -274,26 +274,29 @@ TEST(Octahedral, RoundTripIsAccurate) {
   EXPECT_NEAR(up.z, 1.0f, 1e-6f);
 }
 
-TEST(Offset, EpsilonGrowsWithPositionMagnitude) {
-  EXPECT_FLOAT_EQ(offsetEpsilon(Vec3(0.0f)), kOffsetRelative);
-  EXPECT_FLOAT_EQ(offsetEpsilon(Vec3(3.0f, -1000.0f, 2.0f)), kOffsetRelative * 1001.0f);
-  EXPECT_FLOAT_EQ(offsetEpsilon(Vec3(0.5f, 0.25f, -0.75f)), kOffsetRelative * 1.75f);
-  float prev = 0.0f;
-  for (float m : {0.0f, 1.0f, 10.0f, 1e3f, 1e5f}) {
-    float eps = offsetEpsilon(Vec3(0.0f, -m, 0.0f));
-    EXPECT_GT(eps, prev);
-    // Always well above the float spacing at that magnitude (m * 2^-23).
-    EXPECT_GT(eps, 100.0f * m * 0x1p-23f);
-    prev = eps;
-  }
-  // The origin moves along +/-ng towards the side dir points to.
-  Vec3 p(100.0f, 0.0f, 0.0f), ng(0.0f, 0.0f, 1.0f);
-  float eps = offsetEpsilon(p);
-  Vec3 above = offsetRayOrigin(p, ng, Vec3(0.6f, 0.0f, 0.8f));
-  Vec3 below = offsetRayOrigin(p, ng, Vec3(0.6f, 0.0f, -0.8f));
-  EXPECT_FLOAT_EQ(above.z, eps);
-  EXPECT_FLOAT_EQ(below.z, -eps);
+TEST(Offset, MovesPastTheErrorBoundToDirsSide) {
+  // Exactly `error` along +/-ng, then one more ulp away on every axis ng moves.
+  const Vec3 p(100.0f, 0.0f, 3.0f), ng(0.0f, 0.0f, 1.0f);
+  const float error = gammaBound(7) * 100.0f;
+  const Vec3 above = offsetRayOrigin(p, ng, error, Vec3(0.6f, 0.0f, 0.8f));
+  const Vec3 below = offsetRayOrigin(p, ng, error, Vec3(0.6f, 0.0f, -0.8f));
+  EXPECT_EQ(above.z, std::nextafter(3.0f + error, kInf));
+  EXPECT_EQ(below.z, std::nextafter(3.0f - error, -kInf));
   EXPECT_EQ(above.x, p.x);
+  EXPECT_EQ(above.y, p.y);
+  // No absolute floor: the same hit scaled by 1e-6 moves 1e-6 as far (to rounding).
+  const float s = 1e-6f;
+  const Vec3 small = offsetRayOrigin(p * s, ng, error * s, Vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_NEAR((small.z - 3.0f * s) / s, above.z - 3.0f, 0.01f * (above.z - 3.0f));
+  // A zero error still leaves the plane: one ulp, even at 0.
+  const Vec3 off0 = offsetRayOrigin(Vec3(1.0f, 0.0f, 1.0f), Vec3(0.0f, 1.0f, 0.0f), 0.0f, Vec3(0, 1, 0));
+  EXPECT_GT(off0.y, 0.0f);
+}
+
+TEST(Offset, GammaBoundIsHighamsConstant) {
+  const double u = std::numeric_limits<float>::epsilon() * 0.5;
+  EXPECT_FLOAT_EQ(gammaBound(7), static_cast<float>(7 * u / (1 - 7 * u)));
+  EXPECT_GT(gammaBound(7), 7.0f * 0x1p-24f);
 }
 
 }  // namespace

@@ -31,6 +31,12 @@ LightSampler prepareLight(const Light& light, const Vec3& p) {
 }
 
 namespace {
+// Rounding of position + u e1 + v e2: a few ulps of the largest terms.
+float quadPointError(const Light& light) {
+  return gammaBound(6) * (maxComponent(glm::abs(light.position)) + maxComponent(glm::abs(light.edge1)) +
+                          maxComponent(glm::abs(light.edge2)));
+}
+
 LightIncidence sampleQuad(const LightSampler& s, float u1, float u2) {
   const Light& light = *s.light;
   LightIncidence in;
@@ -43,6 +49,11 @@ LightIncidence sampleQuad(const LightSampler& s, float u1, float u2) {
   const float cosLight = -glm::dot(s.normal, in.wi);
   if (cosLight <= 0.0f) return in;  // behind the emitting side
   in.radiance = light.radiance() * (cosLight * s.area / d2);
+  // The emitter's own triangles lie within rounding of y's plane: stop before that
+  // band, measured along the ray (longer at grazing angles), but never before half-way.
+  const float band = 2.0f * quadPointError(light);
+  in.point = y;
+  in.margin = std::min(0.5f * in.distance, in.distance * kShadowRayShortening + band / cosLight);
   in.valid = true;
   return in;
 }
@@ -59,6 +70,9 @@ LightIncidence sampleSphere(const LightSampler& s, float u1, float u2) {
   const float disc = std::max(0.0f, s.r2 - s.dc2 * sinTheta * sinTheta);
   in.distance = std::max(0.0f, s.dc * cosTheta - std::sqrt(disc));
   in.radiance = s.light->radiance() * (2.0f * kPi * s.oneMinusCosMax);
+  // Shadow rays to a sphere light identify the emitter they meet: no margin needed.
+  in.point = s.p + in.distance * in.wi;
+  in.margin = -in.distance * kShadowRayShortening;
   in.valid = in.distance > 0.0f;
   return in;
 }
@@ -75,6 +89,8 @@ LightIncidence sampleLight(const LightSampler& s, float u1, float u2) {
       in.distance = std::sqrt(d2);
       in.wi = d / in.distance;
       in.radiance = light.radiance() * (1.0f / d2);  // as the Whitted tracer always did: bit-identical images
+      in.point = light.position;
+      in.margin = in.distance * kShadowRayShortening;
       break;
     }
     case LightType::Directional:
@@ -165,9 +181,11 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
     if (light.type == LightType::Quad) {
       r.origin = light.position + u1 * light.edge1 + u2 * light.edge2;
       n = glm::normalize(glm::cross(light.edge1, light.edge2));
+      r.error = quadPointError(light);
     } else {
       n = uniformSphere(u1, u2);
       r.origin = light.position + light.radius * n;
+      r.error = gammaBound(5) * (maxComponent(glm::abs(light.position)) + light.radius);
     }
     r.dir = toWorld(cosineHemisphere(u3, u4), n);
     r.normal = n;

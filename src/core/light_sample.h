@@ -19,6 +19,8 @@ struct SceneSphere {
 struct LightIncidence {
   Vec3 wi{0.0f};          // unit, towards the light
   float distance = kInf;  // to the light's sample point; kInf for directional
+  Vec3 point{0.0f};       // the light's sample point (delta: its position); unused for directional
+  float margin = 0.0f;    // how far short of `point` a shadow ray stops: the light, not its occluders
   // I / d^2 for a point light, E for a directional one; for an area light the
   // sample's estimate L / pdf (pdf in solid angle), so that averaging
   // f cos * radiance over the samples is an unbiased estimate of reflected light.
@@ -74,6 +76,7 @@ struct PhotonRay {
   Vec3 origin{0.0f};
   Vec3 dir{0.0f, 0.0f, -1.0f};
   Vec3 normal{0.0f};  // an area light's surface normal at the origin (0 for delta lights)
+  float error = 0.0f;  // an area light's origin: its rounding error along normal
 };
 
 // A light's share of the classic photon budget, in the units of a point light's

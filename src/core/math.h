@@ -33,19 +33,29 @@ inline void orthonormalBasis(const Vec3& n, Vec3& t, Vec3& b) {
   b = Vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
-// Self-intersection offset. A float position of magnitude m carries an absolute
-// error of about m * 2^-23 per operation; after the handful of operations of a ray
-// hit that is a few hundred ulps. So the offset grows with the hit point's largest
-// coordinate instead of being a fixed epsilon that fails far from the origin and
-// over-shoots near it: eps = kOffsetRelative * (1 + max|p_i|).
-constexpr float kOffsetRelative = 1.0f / (1 << 15);  // ~3.05e-5, ~256 ulps
-inline float offsetEpsilon(const Vec3& p) {
-  return kOffsetRelative * (1.0f + maxComponent(glm::abs(p)));
+// Self-intersection offsets from floating-point error bounds (Higham's gamma_n,
+// as in pbrt-v4's robust spawned rays): a computed hit point lies within `error`
+// of the true surface along its normal, and that error follows the magnitudes the
+// point was computed from. No absolute floor: a 1e-6 scene is as safe as a 1e6 one.
+constexpr float kUnitRoundoff = std::numeric_limits<float>::epsilon() * 0.5f;
+constexpr float gammaBound(int n) { return n * kUnitRoundoff / (1.0f - n * kUnitRoundoff); }
+
+// Moves p by `error` along the geometric normal ng, to the side dir points to, then
+// rounds every moved coordinate one more ulp away, so the rounding of the addition
+// cannot pull the origin back into the error box.
+inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& ng, float error, const Vec3& dir) {
+  const Vec3 n = glm::dot(ng, dir) < 0.0f ? -ng : ng;
+  Vec3 o = p + error * n;
+  for (int i = 0; i < 3; ++i) {
+    if (n[i] > 0.0f) o[i] = std::nextafter(o[i], kInf);
+    else if (n[i] < 0.0f) o[i] = std::nextafter(o[i], -kInf);
+  }
+  return o;
 }
-// Moves p off the surface with geometric normal ng, towards the side dir points to.
-inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& ng, const Vec3& dir) {
-  float eps = offsetEpsilon(p);
-  return glm::dot(ng, dir) >= 0.0f ? p + eps * ng : p - eps * ng;
-}
+
+// Where a shadow ray towards an exactly known point (a point light) stops: a few
+// dozen ulps short, the rounding of the distance, and nothing more, so an occluder
+// 1e-5 of the distance from the light still blocks it.
+constexpr float kShadowRayShortening = 1.0f / (1 << 20);
 
 }  // namespace penumbra

@@ -27,7 +27,7 @@ void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& d
     SurfaceRecord s = tracer.surface(ray, hit, kSurfaceGeometric);
     out.push_back({s.position, encodeOctahedral(s.ng), light, kind});
     if (kind != kShadowOpaque) kind = materials[s.material].transparent ? kShadowGlass : kShadowOpaque;
-    ray.origin = offsetRayOrigin(s.position, s.ng, dir);
+    ray.origin = spawnOrigin(s, dir);
   }
 }
 
@@ -54,7 +54,7 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
     Vec3 dir = bs.wi;
     power *= bs.weight;
     if (maxComponent(power) <= 0.0f) return;
-    ray = Ray{offsetRayOrigin(s.position, s.ng, dir), dir};
+    ray = Ray{spawnOrigin(s, dir), dir};
   }
 }
 
@@ -78,7 +78,7 @@ PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
 PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                         float u3, float u4) {
   PhotonRay r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
-  if (!isDeltaLight(light)) r.origin = offsetRayOrigin(r.origin, r.normal, r.dir);
+  if (!isDeltaLight(light)) r.origin = offsetRayOrigin(r.origin, r.normal, r.error, r.dir);
   return r;
 }
 

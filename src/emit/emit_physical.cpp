@@ -143,7 +143,7 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ra
     if (!(maxComponent(next) > 0.0f)) return;
     power = next;
     if (delta) ++specularBounces; else ++diffuseBounces;
-    ray = Ray{offsetRayOrigin(s.position, s.ng, bs.wi), bs.wi};
+    ray = Ray{spawnOrigin(s, bs.wi), bs.wi};
   }
 }
 

@@ -151,10 +151,16 @@ SurfaceRecord TraceScene::surface(const Ray& ray, const Hit& hit, uint8_t fields
 SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const {
   const Sphere& s = scene_.spheres[hit.primId];
   SurfaceRecord rec;
-  Vec3 p = ray.origin + hit.t * ray.dir;
-  Vec3 n = glm::normalize(p - s.center);
-  // Re-project onto the sphere: removes the error of o + t d at large t.
+  // The normal in double: o + t d lands within float rounding of the centre's
+  // neighbourhood on a tiny sphere, where a float p - c would cancel to zero.
+  const glm::dvec3 c(s.center);
+  const glm::dvec3 d = glm::dvec3(ray.origin) + double(hit.t) * glm::dvec3(ray.dir) - c;
+  const double len = glm::length(d);
+  const Vec3 n = len > 0.0 ? Vec3(d / len) : -ray.dir;
+  // Re-project onto the sphere: removes the error of o + t d at large t. What is
+  // left is the rounding of c + r n: a few ulps of |c| + r per axis.
   rec.position = s.center + s.radius * n;
+  rec.error = gammaBound(5) * (maxComponent(glm::abs(s.center)) + s.radius);
   if (fields & kSurfaceUv) {
     rec.uv = sphericalUv(n);
     rec.uvPerWorld = sphericalUvPerWorld(s.radius);
@@ -175,6 +181,12 @@ SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit, uint8_t fi
   // plane, unlike o + t d, which drifts with the ray length.
   rec.position = w * p0 + hit.u * p1 + hit.v * p2;
   Vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  // The interpolation's rounding is a few ulps of the vertices' magnitudes. Bounding
+  // by the largest vertex coordinate on any axis (not the barycentric mix, not the
+  // normal's axis alone) also covers Embree's plane test, which mixes all three axes;
+  // it keeps an axis-aligned plane at y = 0, exact in y, from getting no offset.
+  const Vec3 extent = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
+  rec.error = gammaBound(7) * maxComponent(extent);
   Vec3 ns = ng;
   if ((fields & kSurfaceShadingNormal) && !mesh.normals.empty()) {
     Vec3 n = w * mesh.normals[tri[0]] + hit.u * mesh.normals[tri[1]] + hit.v * mesh.normals[tri[2]];

@@ -30,9 +30,15 @@ struct SurfaceRecord {
   Vec3 ns{0.0f, 0.0f, 1.0f};  // shading normal, facing the incoming ray
   Vec2 uv{0.0f};
   Vec2 uvPerWorld{1.0f};  // uv change per unit of world distance (u, v): texture filter widths
+  float error = 0.0f;  // bound on position's distance from the true surface along ng
   int material = 0;
   bool frontFace = true;
 };
+
+// A secondary ray's origin: the hit point moved past its own error bound, to dir's side.
+inline Vec3 spawnOrigin(const SurfaceRecord& s, const Vec3& dir) {
+  return offsetRayOrigin(s.position, s.ng, s.error, dir);
+}
 
 class TraceScene {
  public:

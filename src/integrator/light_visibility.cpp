@@ -16,11 +16,20 @@ namespace {
 // (Whitted's tinted shadows: cheap, no caustic focusing). A walk that meets the
 // light's own surface has arrived.
 Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
-                          const Vec3& toLight, float distance, ThreadState& ts) {
+                          const LightIncidence& in, ThreadState& ts) {
   ++ts.counts.shadow;
-  Ray ray{offsetRayOrigin(s.position, s.ng, toLight), toLight};
-  // Stop short of the light by the same relative margin used off surfaces.
-  ray.tMax = std::isinf(distance) ? kInf : distance * (1.0f - 1e-4f);
+  Ray ray{spawnOrigin(s, in.wi), in.wi};
+  const bool finite = std::isfinite(in.distance);
+  if (finite) {
+    // Aim from the lifted origin at the sample itself (pbrt's SpawnRayTo): measured
+    // from the shading point instead, a lift of e along n would move the ray's
+    // crossing of the light's plane by e / cos, more than the margin at grazing angles.
+    const Vec3 d = in.point - ray.origin;
+    const float len = glm::length(d);
+    if (!(len > in.margin)) return Color(1.0f);  // the origin is already at the light
+    ray.dir = d / len;
+    ray.tMax = len - in.margin;
+  }
   // The physical model's glass blocks shadow rays: its light arrives as caustic photons.
   const bool tinted = ctx.hasGlass && ctx.scene.render.model == ShadingModel::Classic;
   if (ctx.scene.lights[lightIndex].type == LightType::Sphere && !tinted) {
@@ -43,8 +52,8 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uin
     if (!m.transparent) return Color(0.0f);
     if (h.frontFace) t *= m.tint;
     if (maxComponent(t) < ctx.scene.render.minWeight) return Color(0.0f);
-    ray.origin = offsetRayOrigin(h.position, h.ng, toLight);
-    if (!std::isinf(ray.tMax)) ray.tMax -= hit.t;
+    ray.origin = spawnOrigin(h, ray.dir);
+    if (finite) ray.tMax = glm::dot(in.point - ray.origin, ray.dir) - in.margin;
     if (ray.tMax <= 0.0f) return t;
   }
   return Color(0.0f);
@@ -100,16 +109,16 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
 }
 
 Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
-                const Vec3& toLight, float distance, ThreadState& ts) {
-  Color t = shadowTransmittance(ctx, s, lightIndex, toLight, distance, ts);
+                const LightIncidence& in, ThreadState& ts) {
+  Color t = shadowTransmittance(ctx, s, lightIndex, in, ts);
   if (ts.recorder) {
     // The shadow ray joins the ray tree under the ray whose hit it lights.
     RayRecord r;
     r.kind = "shadow";
     r.parent = ts.currentRecord;
     r.depth = ts.currentRecord >= 0 ? (*ts.recorder)[ts.currentRecord].depth + 1 : 0;
-    r.origin = offsetRayOrigin(s.position, s.ng, toLight);
-    r.dir = toLight;
+    r.origin = spawnOrigin(s, in.wi);
+    r.dir = in.wi;
     r.hit = maxComponent(t) < 1.0f;  // blocked or filtered on the way to the light
     r.contribution = t;
     r.note = "light " + std::to_string(lightIndex) + (r.hit ? (maxComponent(t) > 0.0f ? ": through glass" : ": blocked") : ": clear");

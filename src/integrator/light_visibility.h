@@ -25,7 +25,7 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
 // walk through every surface); physical: glass blocks it like anything else (light
 // through glass arrives as caustic photons).
 Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
-                const Vec3& toLight, float distance, ThreadState& ts);
+                const LightIncidence& in, ThreadState& ts);
 
 // Direct light from light `li` at a shading point: the mean over its samples (one
 // for a delta light, render.light_samples for an area light, stratified, from the
@@ -87,7 +87,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
       sum += weigh(Color(1.0f), f, in);
       continue;
     }
-    const Color t = shadowRay(ctx, s, li, in.wi, in.distance, ts);
+    const Color t = shadowRay(ctx, s, li, in, ts);
     if (maxComponent(t) > 0.0f) sum += weigh(t, f, in);
   }
   return closed + (n > 1 ? sum / static_cast<float>(n) : sum);

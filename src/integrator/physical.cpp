@@ -103,7 +103,7 @@ Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const 
     auto follow = [&](const Vec3& dir, const Color& w, RayKind k) {
       Color next = throughput * w;
       if (maxComponent(next) <= rs.minWeight || ts.raysLeft <= 0) return;
-      Ray r{offsetRayOrigin(s.position, s.ng, dir), dir};
+      Ray r{spawnOrigin(s, dir), dir};
       color += w * tracePhysical(ctx, r, depth + 1, next, k, terms, recIndex, ts);
     };
     if (bsdf.type == BsdfType::Dielectric) {

@@ -106,12 +106,12 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
     auto reflectBranch = [&] {
       if (maxComponent(reflW) <= rs.minWeight || ts.raysLeft <= 0) return;
       Ray r{s.position, mirrorDirection(ray.dir, s)};
-      r.origin = offsetRayOrigin(s.position, s.ng, r.dir);
+      r.origin = spawnOrigin(s, r.dir);
       color += kr * traceRay(ctx, r, depth + 1, reflW, footprint, RayKind::Reflection, recIndex, ts);
     };
     auto refractBranch = [&] {
       if (!transmits || maxComponent(transW) <= rs.minWeight || ts.raysLeft <= 0) return;
-      Ray r{offsetRayOrigin(s.position, s.ng, tdir), tdir};
+      Ray r{spawnOrigin(s, tdir), tdir};
       color += kt * traceRay(ctx, r, depth + 1, transW, footprint, RayKind::Refraction, recIndex, ts);
     };
     if (maxComponent(reflW) >= maxComponent(transW)) {
@@ -123,7 +123,7 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
     }
   } else if (deeper && m.kr > 0.0f && maxComponent(weight) * m.kr > rs.minWeight && ts.raysLeft > 0) {
     Vec3 rdir = mirrorDirection(ray.dir, s);
-    Ray r{offsetRayOrigin(s.position, s.ng, rdir), rdir};
+    Ray r{spawnOrigin(s, rdir), rdir};
     color += m.kr * traceRay(ctx, r, depth + 1, weight * m.kr, footprint, RayKind::Reflection, recIndex, ts);
   }
 
