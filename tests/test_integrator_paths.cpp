@@ -284,5 +284,39 @@ TEST(Render, NestedGlassTreeIsBoundedPerSample) {
   for (const Color& c : image.pixels) EXPECT_TRUE(isFinite(c));
 }
 
+// The non-finite guard: a NaN light (the loader refuses one; a bug could still make
+// one) makes every lit sample NaN. Those samples are dropped and counted, never
+// written; the unlit pixels and a finite light are untouched.
+TEST(Render, NonFiniteSamplesAreDroppedAndCounted) {
+  Scene scene;
+  scene.materials.push_back(makeMaterial("m", Color(0.0f), Color(0.8f)));
+  scene.meshes.push_back(makeQuad(Vec3(-1, -1, 0), Vec3(2, 0, 0), Vec3(0, 1, 0), 0));  // lower half only
+  scene.camera = axisCamera(Vec3(0, 0, 4), Vec3(0.0f), 40.0f);
+  scene.camera.width = 8;
+  scene.camera.height = 8;
+  scene.camera.spp = 4;
+  scene.render.ambient = Color(0.0f);
+  scene.lights.push_back(point(Vec3(0, 0, 3), Color(1.0f), 10.0f));
+  RayCounts finiteCounts;
+  const Image lit = renderImage(Rig(scene).ctx, RenderOptions{}, finiteCounts);
+  EXPECT_EQ(finiteCounts.nonfiniteSamples, 0u);
+  int litPixels = 0;
+  for (const Color& c : lit.pixels) litPixels += c.r > 0.0f;
+  ASSERT_GT(litPixels, 8);
+  ASSERT_LT(litPixels, 64);
+
+  scene.lights[0].color = Color(std::nanf(""));
+  Rig rig(scene);
+  RayCounts counts;
+  const Image image = renderImage(rig.ctx, RenderOptions{}, counts);
+  for (const Color& c : image.pixels) {
+    EXPECT_TRUE(isFinite(c));
+    EXPECT_EQ(c.r, 0.0f);
+  }
+  // Every sample that met the plane was NaN; pixels on the edge lose only some.
+  EXPECT_GE(counts.nonfiniteSamples, static_cast<uint64_t>(4 * (litPixels - 8)));
+  EXPECT_LE(counts.nonfiniteSamples, static_cast<uint64_t>(4 * (litPixels + 8)));
+}
+
 }  // namespace
 }  // namespace penumbra

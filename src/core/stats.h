@@ -16,6 +16,8 @@ struct RayCounts {
   uint64_t gatherQueries = 0, gatherNeighbours = 0;
   // Precomputed lookups: cache queries, and estimates that fell back to an exact gather.
   uint64_t cacheLookups = 0, cacheFallbacks = 0;
+  // Samples whose radiance came out NaN or infinite: dropped from their pixel.
+  uint64_t nonfiniteSamples = 0;
 
   RayCounts& operator+=(const RayCounts& o) {
     camera += o.camera; shadow += o.shadow; reflection += o.reflection; refraction += o.refraction;
@@ -23,6 +25,7 @@ struct RayCounts {
     gateMixed += o.gateMixed; shadowRaysAvoided += o.shadowRaysAvoided;
     gatherQueries += o.gatherQueries; gatherNeighbours += o.gatherNeighbours;
     cacheLookups += o.cacheLookups; cacheFallbacks += o.cacheFallbacks;
+    nonfiniteSamples += o.nonfiniteSamples;
     return *this;
   }
 };

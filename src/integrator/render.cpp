@@ -10,6 +10,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <atomic>
+#include <limits>
 #include <numeric>
 
 namespace penumbra {
@@ -88,7 +89,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
       for (int y = y0; y < y1; ++y) {
         for (int x = x0; x < x1; ++x) {
           uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
-          Color sum(0.0f);
+          glm::dvec3 sum(0.0);  // double: many finite samples near float's top cannot overflow
           int counted = 0;
           // A progressive pass continues the sample sequence where earlier passes stopped.
           const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
@@ -97,12 +98,21 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
             Vec2 off = stratified2D(s, cam.spp, rng);
             beginSample(ts, hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
             Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
+            // A NaN or Inf sample would poison the pixel (or be written as 0 and hide):
+            // drop it, count it, and let the pixel's other samples stand.
+            if (!isFinite(c)) {
+              ++ts.counts.nonfiniteSamples;
+              continue;
+            }
             // Depth averages only the samples that hit: a miss is "no depth", not -1 m.
             if (options.aov == Aov::Depth && c.r < 0.0f) continue;
-            sum += c;
+            sum += glm::dvec3(c);
             ++counted;
           }
-          image.at(x, y) = counted > 0 ? sum / static_cast<float>(counted) : Color(-1.0f);
+          // A mean above float range is clamped to it (the writer clamps further).
+          const double top = std::numeric_limits<float>::max();
+          image.at(x, y) = counted > 0 ? Color(glm::min(sum / double(counted), glm::dvec3(top)))
+                           : options.aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
         }
       }
       int done = ++tilesDone;

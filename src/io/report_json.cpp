@@ -44,6 +44,7 @@ std::string statsToJson(const RenderStats& s) {
   j["lookup"] = {{"mode", s.lookup}, {"cells", s.cacheRecords}, {"cell_size", s.cacheCell},
                  {"queries", r.cacheLookups}, {"exact_fallbacks", r.cacheFallbacks}};
   j["memory"] = {{"photon_maps_bytes", s.photonMapBytes}, {"lookup_cache_bytes", s.cacheBytes}};
+  j["numeric"] = {{"nonfinite_samples", r.nonfiniteSamples}};
   j["peak_rss_bytes"] = s.peakRssBytes;
   return j.dump(2) + "\n";
 }
@@ -96,6 +97,11 @@ std::string statsSummary(const RenderStats& s) {
       s.time.load, s.time.buildBvh, s.time.emit, s.time.buildMaps,
       s.cacheRecords ? fmt::format("precompute {:.2f}, ", s.time.precompute) : "", s.time.render,
       r.camera, r.shadow, r.reflection, r.refraction);
+  if (r.nonfiniteSamples) {
+    out += fmt::format("  warning: {} sample{} came out NaN or infinite and {} dropped (numeric.nonfinite_samples)\n",
+                       r.nonfiniteSamples, r.nonfiniteSamples == 1 ? "" : "s",
+                       r.nonfiniteSamples == 1 ? "was" : "were");
+  }
   if (s.cacheRecords) {
     out += fmt::format("  lookup: precomputed, {} cells of {:.4g}, {:.1f} MB; {} queries, {} exact fallbacks\n",
                        s.cacheRecords, s.cacheCell, s.cacheBytes / 1e6, r.cacheLookups, r.cacheFallbacks);
