@@ -94,7 +94,7 @@ struct Fixture {
           pt.front |= 1u << l;
           // The same ray light_visibility.cpp casts for an opaque blocker.
           Ray r{spawnOrigin(s, dir), dir};
-          r.tMax = dist * (1.0f - 1e-4f);
+          r.tMax = dist * (1.0f - kShadowRayShortening);
           shadowRays.push_back(r);
         }
         const Vec3 dir = toWorld(cosineHemisphere(rng.uniform(), rng.uniform()), s.ng);

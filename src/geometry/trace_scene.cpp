@@ -49,11 +49,12 @@ Vec2 sphericalUv(const Vec3& d) {
   return {u, v};
 }
 
-TraceScene::TraceScene(const Scene& scene) : scene_(scene) {
+TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(device_, onEmbreeError, &embreeError_);
   rtcScene_ = rtcNewScene(device_);
+  if (robust) rtcSetSceneFlags(rtcScene_, RTC_SCENE_FLAG_ROBUST);
 
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const TriangleMesh& mesh = scene.meshes[m];

@@ -42,7 +42,10 @@ inline Vec3 spawnOrigin(const SurfaceRecord& s, const Vec3& dir) {
 
 class TraceScene {
  public:
-  explicit TraceScene(const Scene& scene);
+  // robust: Embree's watertight mode (RTC_SCENE_FLAG_ROBUST). Without it, rays through
+  // a shared edge of two triangles can slip between them (holes in a scaled room);
+  // docs/PERFORMANCE.md measures what it costs. Off only for that measurement.
+  explicit TraceScene(const Scene& scene, bool robust = true);
   ~TraceScene();
   TraceScene(const TraceScene&) = delete;
   TraceScene& operator=(const TraceScene&) = delete;
