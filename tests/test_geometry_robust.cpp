@@ -134,5 +134,23 @@ TEST(RobustTrace, MicronSlabHasTwoFaces) {
   }
 }
 
+// Rays Embree would abort on (NaN, beyond +-1.844e18, negative tnear) are misses for
+// intersect and blocked for occluded: the process lives and no light arrives.
+TEST(RobustTrace, RaysOutsideEmbreesDomainAreRefusedNotFatal) {
+  const Scene scene = boxScene(1.0f, Vec3(-1.0f), Vec3(1.0f));
+  const TraceScene tracer(scene);
+  const float nan = std::nanf("");
+  const Ray bad[] = {Ray{Vec3(nan, 0, 0), Vec3(0, 0, 1)}, Ray{Vec3(0.0f), Vec3(0, nan, 1)},
+                     Ray{Vec3(2e18f, 0, 0), Vec3(-1, 0, 0)}, Ray{Vec3(0.0f), Vec3(0, 0, 1), -1.0f},
+                     Ray{Vec3(0.0f), Vec3(0, 0, 1), 0.0f, nan}};
+  for (const Ray& r : bad) {
+    Hit hit;
+    EXPECT_FALSE(tracer.intersect(r, hit));
+    EXPECT_TRUE(tracer.occluded(r));
+  }
+  Hit hit;
+  EXPECT_TRUE(tracer.intersect(Ray{Vec3(0.0f), Vec3(0, 0, 1)}, hit));  // the guard passes real rays
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -34,6 +34,16 @@ RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
   return geom;
 }
 
+// Embree asserts (and aborts the process) on a ray outside its domain: a coordinate or
+// direction component beyond +-1.844e18 or NaN, a negative or NaN tnear, a NaN tfar. A
+// NaN born upstream (an overflowed Fresnel term, say) must cost one pixel, not the run.
+bool embreeAccepts(const Ray& r) {
+  constexpr float kLarge = 1.844e18f;
+  const Vec3 o = glm::abs(r.origin), d = glm::abs(r.dir);
+  return maxComponent(glm::max(o, d)) <= kLarge && !std::isnan(o.x + o.y + o.z + d.x + d.y + d.z) &&
+         r.tMin >= 0.0f && r.tMin <= kInf && !std::isnan(r.tMax);
+}
+
 }  // namespace
 
 Vec2 sphericalUvPerWorld(float radius) {
@@ -98,6 +108,7 @@ TraceScene::~TraceScene() {
 }
 
 bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
+  if (!embreeAccepts(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -124,6 +135,7 @@ bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
 }
 
 bool TraceScene::occluded(const Ray& ray) const {
+  if (!embreeAccepts(ray)) return true;  // no light along a ray that is not one
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r;
