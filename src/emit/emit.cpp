@@ -53,7 +53,8 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
     if (!bs.valid) return;  // absorbed
     Vec3 dir = bs.wi;
     power *= bs.weight;
-    if (maxComponent(power) <= 0.0f) return;
+    // Written so a NaN or Inf power (an overflowed weight) ends the path, never gets stored.
+    if (!(maxComponent(power) > 0.0f) || !isFinite(power)) return;
     ray = Ray{spawnOrigin(s, dir), dir};
   }
 }

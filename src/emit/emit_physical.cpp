@@ -140,7 +140,7 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ra
     float q = std::min(1.0f, maxComponent(bs.weight));
     Color next = uRr < q ? power * bs.weight / q : Color(0.0f);
     tally.absorbed += glm::dvec3(power) - glm::dvec3(next);
-    if (!(maxComponent(next) > 0.0f)) return;
+    if (!(maxComponent(next) > 0.0f) || !isFinite(next)) return;  // NaN or Inf: never stored
     power = next;
     if (delta) ++specularBounces; else ++diffuseBounces;
     ray = Ray{spawnOrigin(s, bs.wi), bs.wi};
