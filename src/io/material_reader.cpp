@@ -2,6 +2,7 @@
 // Russian-roulette probabilities, and the textures materials reference.
 #include "io/scene_sections.h"
 #include "core/color.h"
+#include "io/float_checks.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -64,7 +65,7 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
     JsonNode transparent = node.child("transparent");
     transparent.allowKeys({"ior", "tint"});
     m.transparent = true;
-    m.ior = transparent.floatOr("ior", m.ior, Range::above(0.0));
+    m.ior = transparent.floatOr("ior", m.ior, Range::between(kMinIor, kMaxIor));
     m.tint = transparent.colorOr("tint", m.tint);
   }
   // Photon probabilities default to what the shading does: reflect as often as

@@ -3,6 +3,7 @@
 #include "io/scene_loader.h"
 
 #include "core/error.h"
+#include "io/float_checks.h"
 #include "io/json_reader.h"
 #include "io/overrides.h"
 #include "io/scene_sections.h"
@@ -96,6 +97,7 @@ Scene buildScene(const json& document, const LoadContext& context) {
   readMaterials(root, scene);
   readObjects(root, scene);
   addEmitters(scene);
+  checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
   return scene;
 }

@@ -1,6 +1,10 @@
 // The scene's settings sections: camera, render and photons.
 #include "io/scene_sections.h"
 
+#include "io/float_checks.h"
+
+#include <cmath>
+
 namespace penumbra {
 
 namespace {
@@ -9,34 +13,40 @@ namespace {
 // tens of gigabytes, which is a typo rather than a plan.
 constexpr uint64_t kMaxPhotons = 1'000'000'000;
 
-glm::dvec3 toDouble(const Vec3& v) { return glm::dvec3(v); }
+// A normalised float vector that came out as one: not NaN, not a denormal mess.
+bool isUnit(const Vec3& v) {
+  return isFinite(v) && std::fabs(glm::length(v) - 1.0f) < 1e-3f;
+}
 
 }  // namespace
 
 void readCamera(const JsonNode& node, Camera& out) {
   node.allowKeys({"position", "look_at", "up", "fov", "width", "height", "spp"});
-  out.position = node.vec3Or("position", out.position);
-  out.lookAt = node.vec3Or("look_at", out.lookAt);
+  if (node.has("position")) out.position = readPosition(node.child("position"));
+  if (node.has("look_at")) out.lookAt = readPosition(node.child("look_at"));
   out.up = node.vec3Or("up", out.up);
   out.fovY = node.floatOr("fov", out.fovY, Range{0.0, 180.0, true, true});
   out.width = node.intOr("width", out.width, 1, 16384);
   out.height = node.intOr("height", out.height, 1, 16384);
   out.spp = node.intOr("spp", out.spp, 1, 4096);
 
-  // Check the frame in double precision: the camera builds its basis from these
-  // with a normalize and a cross product, which must not produce NaNs.
-  glm::dvec3 view = toDouble(out.lookAt) - toDouble(out.position);
-  double viewLength = glm::length(view);
-  if (!(viewLength > 0.0) || !std::isfinite(viewLength)) {
-    const JsonNode& at = node.has("look_at") ? node.child("look_at") : node;
-    at.fail("look_at equals position, so the view direction is undefined");
+  // Check the frame in float, exactly as CameraRays builds it: forward =
+  // normalize(look_at - position), right = normalize(cross(forward, up)). A
+  // length of 1e-30 is fine in double but its square underflows in float: NaN.
+  const JsonNode& at = node.has("look_at") ? node.child("look_at") : node;
+  const Vec3 forward = glm::normalize(out.lookAt - out.position);
+  if (!isUnit(forward)) {
+    at.fail("look_at equals position, or is too close to it for a view direction in single precision");
   }
-  glm::dvec3 up = toDouble(out.up);
-  double upLength = glm::length(up);
   const JsonNode& upNode = node.has("up") ? node.child("up") : node;
-  if (!(upLength > 0.0) || !std::isfinite(upLength)) upNode.fail("up must be non-zero");
-  double sine = glm::length(glm::cross(view / viewLength, up / upLength));
-  if (!(sine > 1e-6)) upNode.fail("up is parallel to the view direction (look_at - position)");
+  if (!isUnit(glm::normalize(out.up))) {
+    upNode.fail("up has no direction in single precision (zero, or too short or long to normalise)");
+  }
+  const float sine = glm::length(glm::cross(forward, glm::normalize(out.up)));
+  const Vec3 right = glm::normalize(glm::cross(forward, out.up));
+  if (!(sine > 1e-6f) || !isUnit(right)) {
+    upNode.fail("up is parallel to the view direction (look_at - position)");
+  }
 }
 
 void readRender(const JsonNode& node, RenderSettings& out) {
