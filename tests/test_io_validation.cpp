@@ -170,6 +170,18 @@ TEST(FloatValidation, TotalLightPowerIsBoundedAndTheBoundLoads) {
   EXPECT_TRUE(std::isfinite(classicPhotonWeight(s.lights[0])));
 }
 
+TEST(FloatValidation, GatherRadiiHaveAFiniteNonZeroSquare) {
+  // 1e-30 squared is 0 in float (a division by zero); 1e20 squared is +inf.
+  expectRefused(sceneText(), "photons.radius", "must be 0 or between 1e-18 and 1e+15",
+                {"photons.radius=1e-30"});
+  expectRefused(sceneText(), "photons.max_radius", "its square must be a normal float",
+                {"photons.max_radius=1e20"});
+  Scene s = parseScene(sceneText(), "v.json", {"photons.radius=1e-18", "photons.max_radius=1e15"});
+  EXPECT_GT(s.photons.radius * s.photons.radius, 0.0f);
+  EXPECT_TRUE(std::isfinite(s.photons.maxRadius * s.photons.maxRadius));
+  EXPECT_EQ(errorOf(sceneText(), {"photons.radius=0", "photons.max_radius=0"}), "");
+}
+
 TEST(FloatValidation, OverriddenValuesGetTheSameChecks) {
   const std::string message = errorOf(sceneText(), {"objects[0].radius=1e-9"});
   EXPECT_EQ(message.rfind("v.json: objects[0].radius: ", 0), 0u) << message;

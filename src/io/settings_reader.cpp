@@ -18,6 +18,20 @@ bool isUnit(const Vec3& v) {
   return isFinite(v) && std::fabs(glm::length(v) - 1.0f) < 1e-3f;
 }
 
+// A gather radius: 0 (none given), or one whose square, which the gathers and
+// density estimates divide by, is a normal float and finite: 1e-18..1e15 (the
+// coordinate limit; a larger radius covers the whole scene anyway).
+float gatherRadius(const JsonNode& node, const char* key, float fallback) {
+  if (!node.has(key)) return fallback;
+  const JsonNode value = node.child(key);
+  const float r = value.asFloat(Range::atLeast(0.0));
+  if (r != 0.0f && !(r >= 1e-18f && r <= static_cast<float>(kMaxCoordinate))) {
+    value.fail("must be 0 or between 1e-18 and 1e+15 (its square must be a normal float), got " +
+               describeJson(value.value()));
+  }
+  return r;
+}
+
 }  // namespace
 
 void readCamera(const JsonNode& node, Camera& out) {
@@ -75,7 +89,7 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
   out.indirectPhotons = node.uintOr("indirect", out.indirectPhotons, 0, kMaxPhotons);
   out.kShadow = node.intOr("k_shadow", out.kShadow, 1, 10000);
   out.kIndirect = node.intOr("k_indirect", out.kIndirect, 1, 10000);
-  out.maxRadius = node.floatOr("max_radius", out.maxRadius, Range::atLeast(0.0));
+  out.maxRadius = gatherRadius(node, "max_radius", out.maxRadius);
   size_t estimator = node.enumOr("estimator", out.estimator == IndirectEstimator::Density,
                                  {"classic", "density"});
   out.estimator = estimator == 0 ? IndirectEstimator::Classic : IndirectEstimator::Density;
@@ -102,7 +116,7 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
   out.kCaustic = node.intOr("k_caustic", out.kCaustic, 1, 10000);
   out.passes = node.intOr("passes", out.passes, 1, 100000);
   out.alpha = node.floatOr("alpha", out.alpha, Range{0.0, 1.0, true, false});
-  out.radius = node.floatOr("radius", out.radius, Range::atLeast(0.0));
+  out.radius = gatherRadius(node, "radius", out.radius);
   size_t lookup = node.enumOr("lookup", out.lookup == PhotonLookup::Precomputed,
                               {"exact", "precomputed"});
   out.lookup = lookup == 0 ? PhotonLookup::Exact : PhotonLookup::Precomputed;
