@@ -124,6 +124,8 @@ void checkLights(const JsonNode& root, const Scene& scene) {
 }
 
 void checkSpheres(const JsonNode& root, const Scene& scene, float extent) {
+  // Scene::spheres holds the objects' spheres in "objects" order, then (from
+  // addEmitters) the sphere lights': walk both lists to name the JSON path.
   size_t sphere = 0;
   if (root.has("objects")) {
     const JsonNode objects = root.child("objects");
