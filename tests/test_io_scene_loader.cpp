@@ -2,6 +2,8 @@
 // overrides apply, and every malformed scene in tests/data/bad fails with a
 // one-line, path-qualified message.
 #include "core/error.h"
+#include "core/image.h"
+#include "io/image_io.h"
 #include "io/scene_loader.h"
 
 #include <gtest/gtest.h>
@@ -81,7 +83,8 @@ const char* kFullScene = R"({
 
 TEST(SceneLoader, FullSceneParsesIntoExpectedValues) {
   TempDir dir;
-  dir.write("planet.png", "not really a png; only its existence is checked");
+  // A real (tiny) image: textures are decoded at load time.
+  writeImage((dir.path() / "planet.png").string(), Image(4, 2));
   fs::path file = dir.write("full.json", kFullScene);
   Scene s = loadScene(file.string());
 

@@ -2,6 +2,7 @@
 #include "io/json_reader.h"
 
 #include "core/error.h"
+#include "io/float_checks.h"
 #include "io/suggest.h"
 
 #include <cctype>
@@ -163,7 +164,17 @@ double JsonNode::asNumber(const Range& range) const {
 float JsonNode::asFloat(const Range& range) const {
   double v = asNumber(range);
   if (std::fabs(v) > FLT_MAX) fail("is too large for single precision, got " + describeJson(*value_));
-  return static_cast<float>(v);
+  const float f = static_cast<float>(v);
+  // The renderer sees f, not v: 1e-50 passes "> 0" in double but is 0 in float.
+  // Rounding is monotonic, so comparing against the rounded bounds only refuses
+  // values that collapse onto an open bound.
+  Range rounded{static_cast<float>(range.lo), static_cast<float>(range.hi), range.loOpen,
+                range.hiOpen};
+  if (!inRange(f, rounded)) {
+    fail("must be " + describeRange(range) + ", got " + describeJson(*value_) + " (" +
+         formatNumber(f) + " in single precision)");
+  }
+  return f;
 }
 
 int64_t JsonNode::asInt(int64_t lo, int64_t hi) const {
@@ -220,14 +231,24 @@ Vec3 JsonNode::asVec3() const {
   return Vec3(element(0).asFloat(), element(1).asFloat(), element(2).asFloat());
 }
 
+// A colour component: >= 0, and bounded like radiance (io/float_checks.h) so
+// products of colours and lights stay finite.
+float JsonNode::asColorComponent() const {
+  const float c = asFloat(Range::atLeast(0.0));
+  if (c > kMaxColorComponent) {
+    fail("must be <= 1e+30 (single-precision headroom for products and sums), got " +
+         describeJson(*value_));
+  }
+  return c;
+}
+
 Color JsonNode::asColor() const {
-  if (value_->is_number()) return Color(asFloat(Range::atLeast(0.0)));
+  if (value_->is_number()) return Color(asColorComponent());
   if (!value_->is_array() || value_->size() != 3) {
     fail("must be a colour [r, g, b] or a grey number, got " + describeJson(*value_));
   }
-  Range nonNegative = Range::atLeast(0.0);
-  return Color(element(0).asFloat(nonNegative), element(1).asFloat(nonNegative),
-               element(2).asFloat(nonNegative));
+  return Color(element(0).asColorComponent(), element(1).asColorComponent(),
+               element(2).asColorComponent());
 }
 
 size_t JsonNode::asEnum(const std::vector<std::string>& names) const {

@@ -65,6 +65,7 @@ class JsonNode {
   std::string asString() const;
   Vec3 asVec3() const;                             // [x, y, z], finite
   Color asColor() const;                           // [r, g, b] or one grey number, >= 0
+  float asColorComponent() const;                  // >= 0 and <= kMaxColorComponent
   size_t asEnum(const std::vector<std::string>& names) const;  // index into names
 
   // Optional keys: the default when absent, else the checked value.

@@ -1,6 +1,7 @@
 // The "lights" section: point and directional lights, and the quad and sphere
 // area lights, whose surfaces also join the scene as emitting objects.
 #include "core/light_sample.h"
+#include "io/float_checks.h"
 #include "io/scene_sections.h"
 #include "io/shapes.h"
 #include <cmath>
@@ -26,18 +27,24 @@ void readEmission(const JsonNode& item, Light& light) {
 
 void readQuadLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "corner", "edge1", "edge2", "color", "radiance", "power"});
-  light.position = item.required("corner", " for a quad light").asVec3();
+  light.position = readPosition(item.required("corner", " for a quad light"));
   light.edge1 = item.required("edge1", " for a quad light").asVec3();
   JsonNode edge2 = item.required("edge2", " for a quad light");
   light.edge2 = edge2.asVec3();
+  const Vec3 p = light.position, e1 = light.edge1, e2 = light.edge2;
+  checkPositions(edge2, {p + e1, p + e2, p + e1 + e2}, "the quad's corners");
+  // The float cross product is what lightArea() and the quad's normal use.
   const float area = glm::length(glm::cross(light.edge1, light.edge2));
   if (!(area > 1e-12f) || !std::isfinite(area)) edge2.fail("edge1 and edge2 span no area");
 }
 
 void readSphereLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "center", "radius", "color", "radiance", "power"});
-  light.position = item.required("center", " for a sphere light").asVec3();
-  light.radius = item.required("radius", " for a sphere light").asFloat(Range::above(0.0));
+  light.position = readPosition(item.required("center", " for a sphere light"));
+  JsonNode radius = item.required("radius", " for a sphere light");
+  light.radius = radius.asFloat(Range::above(0.0));
+  checkPositions(radius, {light.position - Vec3(light.radius), light.position + Vec3(light.radius)},
+                 "center +- radius");
 }
 
 }  // namespace
@@ -58,7 +65,7 @@ void readLights(const JsonNode& node, std::vector<Light>& out) {
     light.type = static_cast<LightType>(type);
     if (light.type == LightType::Point) {
       item.allowKeys({"type", "position", "color", "intensity"});
-      light.position = item.required("position", " for a point light").asVec3();
+      light.position = readPosition(item.required("position", " for a point light"));
     } else if (light.type == LightType::Directional) {
       item.allowKeys({"type", "direction", "color", "intensity"});
       JsonNode dir = item.required("direction", " for a directional light");

@@ -2,6 +2,8 @@
 // Russian-roulette probabilities, and the textures materials reference.
 #include "io/scene_sections.h"
 #include "core/color.h"
+#include "io/float_checks.h"
+#include "io/texture_check.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -14,8 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // Texture paths of this form name a procedural texture instead of a file.
-// HOOK: they are stored verbatim in Texture::path, unchecked; the texture
-// stage resolves "builtin:NAME" (e.g. "builtin:planet", "builtin:checker").
+// They are stored verbatim in Texture::path; the name and width are checked
+// here, and the pipeline generates (or reuses) the image from its cache.
 constexpr const char* kBuiltinPrefix = "builtin:";
 
 // Texture path -> index into Scene::textures, so materials sharing a file share it.
@@ -27,7 +29,8 @@ int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureI
   std::string file = fileNode.asString();
   if (file.empty()) fileNode.fail("must not be empty");
   std::string path;
-  if (file.rfind(kBuiltinPrefix, 0) == 0) {
+  const bool builtin = file.rfind(kBuiltinPrefix, 0) == 0;
+  if (builtin) {
     if (file.size() == std::char_traits<char>::length(kBuiltinPrefix)) {
       fileNode.fail("builtin texture needs a name, e.g. \"builtin:checker\"");
     }
@@ -40,7 +43,12 @@ int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureI
   size_t blend = node.enumOr("blend", 0, {"multiply", "add"});
   material.textureBlend = blend == 0 ? TextureBlend::Multiply : TextureBlend::Add;
   auto [it, inserted] = index.try_emplace(path, static_cast<int>(scene.textures.size()));
-  if (inserted) scene.textures.push_back(Texture{path});
+  if (inserted) {
+    // Decoded now, once per file: a truncated image must fail here, not render black.
+    const std::string problem = builtin ? builtinTextureProblem(file) : textureFileProblem(path);
+    if (!problem.empty()) fileNode.fail(problem);
+    scene.textures.push_back(Texture{path});
+  }
   return it->second;
 }
 
@@ -64,7 +72,7 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
     JsonNode transparent = node.child("transparent");
     transparent.allowKeys({"ior", "tint"});
     m.transparent = true;
-    m.ior = transparent.floatOr("ior", m.ior, Range::above(0.0));
+    m.ior = transparent.floatOr("ior", m.ior, Range::between(kMinIor, kMaxIor));
     m.tint = transparent.colorOr("tint", m.tint);
   }
   // Photon probabilities default to what the shading does: reflect as often as

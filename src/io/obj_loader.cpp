@@ -5,7 +5,12 @@
 
 #include <tiny_obj_loader.h>
 
+#include <cfloat>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <unordered_map>
 
 namespace penumbra {
@@ -40,6 +45,32 @@ void checkIndex(int index, size_t count, const char* what, const std::string& pa
   }
 }
 
+// tinyobjloader reads "nan", "inf" and other non-numbers in v/vn/vt lines as 0,
+// so a broken file would render as a silently wrong mesh. Scan those lines
+// first and refuse any field that is not a finite float, with its line number.
+void checkVertexNumbers(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  for (size_t lineNumber = 1; std::getline(in, line); ++lineNumber) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream fields(line);
+    std::string tag, field;
+    fields >> tag;
+    const char* what = tag == "v" ? "vertex" : tag == "vn" ? "normal" : tag == "vt" ? "texture coordinate" : nullptr;
+    if (!what) continue;
+    while (fields >> field) {
+      char* end = nullptr;
+      const double value = std::strtod(field.c_str(), &end);
+      const bool number = end != field.c_str() && *end == '\0';
+      if (!number || !std::isfinite(value) || std::fabs(value) > FLT_MAX) {
+        std::string shown = field.size() > 24 ? field.substr(0, 24) + "..." : field;
+        throw ObjError("OBJ file " + path + ":" + std::to_string(lineNumber) + ": " + what +
+                       " field \"" + shown + "\" is not a finite single-precision number");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 TriangleMesh loadObj(const std::string& path) {
@@ -47,6 +78,7 @@ TriangleMesh loadObj(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw ObjError("cannot open OBJ file " + path);
   }
+  checkVertexNumbers(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;

@@ -18,8 +18,9 @@ class ObjError : public std::runtime_error {
 // file's normals are used (renormalised) when every face corner has one;
 // otherwise angle-weighted smooth normals are computed over shared positions.
 // UVs are kept, unflipped, when every corner has one. Throws ObjError for a
-// missing or unparsable file, out-of-range indices, non-finite positions or a
-// file without triangles.
+// missing or unparsable file, out-of-range indices, a v/vn/vt field that is not
+// a finite float (with its line: tinyobjloader would read "nan" as 0) or a file
+// without triangles.
 TriangleMesh loadObj(const std::string& path);
 
 }  // namespace penumbra

@@ -2,6 +2,7 @@
 // teapots become transformed TriangleMeshes bound to a material index.
 #include "io/scene_sections.h"
 
+#include "io/float_checks.h"
 #include "io/obj_loader.h"
 #include "io/mesh_cleanup.h"
 #include "io/shapes.h"
@@ -58,8 +59,11 @@ class MaterialLookup {
 Sphere readSphere(const JsonNode& node) {
   node.allowKeys({"type", "center", "radius", "material"});
   Sphere s;
-  s.center = node.required("center", " for a sphere").asVec3();
-  s.radius = node.required("radius", " for a sphere").asFloat(Range::above(0.0));
+  s.center = readPosition(node.required("center", " for a sphere"));
+  JsonNode radius = node.required("radius", " for a sphere");
+  s.radius = radius.asFloat(Range::above(0.0));
+  checkPositions(radius, {s.center - Vec3(s.radius), s.center + Vec3(s.radius)},
+                 "center +- radius");
   return s;
 }
 
@@ -143,9 +147,7 @@ void readObject(const JsonNode& node, const MaterialLookup& materials, Scene& sc
                       : type == ObjectType::Box  ? readBox(node)
                                                  : readTeapot(node);
   applyTransform(transform, mesh);
-  for (const Vec3& p : mesh.positions) {
-    if (!isFinite(p)) node.fail("transformed positions are not finite (scale or translate too large)");
-  }
+  checkPositions(node, mesh.positions, "transformed positions");
   // Triangles whose normal cannot be computed in float (zero area, or a scale so
   // small the cross product underflows) would hit with NaN normals: drop them.
   if (dropDegenerateTriangles(mesh) > 0 && mesh.triangles.empty()) {

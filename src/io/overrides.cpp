@@ -1,6 +1,7 @@
 // Parses and applies --set KEY=VALUE overrides to a scene document.
 #include "io/overrides.h"
 
+#include "io/json_parse.h"
 #include "io/json_reader.h"
 
 #include <cctype>
@@ -83,8 +84,10 @@ std::string applyOne(json& document, const std::string& text) {
   std::vector<Step> steps = parsePath(path, text);
 
   // Plain words are strings: --set photons.estimator=density needs no quoting.
-  json value = json::parse(valueText, nullptr, /*allow_exceptions=*/false);
-  if (value.is_discarded()) value = valueText;
+  json value;
+  std::string duplicate;
+  if (!parseJsonValue(valueText, value, duplicate)) value = valueText;
+  if (!duplicate.empty()) overrideError(text, duplicate + ": duplicate key in the value");
 
   if (!document.is_object()) overrideError(text, "the scene is not a JSON object");
   json* node = &document;

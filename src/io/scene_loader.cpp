@@ -1,8 +1,10 @@
-// Entry points of the scene loader: reads the file, turns JSON syntax errors
-// into FILE:LINE:COLUMN messages, applies --set overrides, then validates.
+// Entry points of the scene loader: reads the file, parses it strictly
+// (io/json_parse.h), applies --set overrides, then validates.
 #include "io/scene_loader.h"
 
 #include "core/error.h"
+#include "io/float_checks.h"
+#include "io/json_parse.h"
 #include "io/json_reader.h"
 #include "io/overrides.h"
 #include "io/scene_sections.h"
@@ -17,55 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-// 1-based line and column of the 0-based byte offset in text.
-std::string lineColumn(const std::string& text, size_t offset) {
-  offset = std::min(offset, text.size());
-  size_t line = 1, lineStart = 0;
-  for (size_t i = 0; i < offset; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      lineStart = i + 1;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(offset - lineStart + 1);
-}
-
-// nlohmann's what() is "[json.exception.parse_error.101] parse error at line 3,
-// column 4: syntax error while ..."; keep only the part after the position.
-std::string parseProblem(const std::string& what) {
-  size_t at = what.find("column ");
-  size_t colon = what.find(": ", at == std::string::npos ? 0 : at);
-  if (colon != std::string::npos) return what.substr(colon + 2);
-  size_t bracket = what.find("] ");
-  return bracket == std::string::npos ? what : what.substr(bracket + 2);
-}
-
-json parseJson(const std::string& text, const std::string& file) {
-  try {
-    return json::parse(text);
-  } catch (const json::parse_error& e) {
-    // e.byte is 1-based: the offending character sits at offset byte - 1.
-    size_t offset = e.byte > 0 ? e.byte - 1 : 0;
-    throwInputError(file + ":" + lineColumn(text, offset) +
-                    ": JSON syntax error: " + parseProblem(e.what()));
-  } catch (const json::out_of_range& e) {
-    // Raised for numbers beyond double range ("1e400"); nlohmann gives no
-    // position, so locate the literal it quotes.
-    std::string problem = parseProblem(e.what());
-    size_t q1 = problem.find('\''), q2 = problem.rfind('\'');
-    if (q1 != std::string::npos && q2 > q1) {
-      size_t offset = text.find(problem.substr(q1 + 1, q2 - q1 - 1));
-      if (offset != std::string::npos) {
-        throwInputError(file + ":" + lineColumn(text, offset) + ": JSON number error: " +
-                        problem + " (numbers must be finite)");
-      }
-    }
-    throwInputError(file + ": JSON number error: " + problem);
-  } catch (const json::exception& e) {
-    throwInputError(file + ": JSON error: " + parseProblem(e.what()));
-  }
-}
 
 fs::path folderOf(const std::string& file) {
   std::error_code ec;
@@ -96,6 +49,7 @@ Scene buildScene(const json& document, const LoadContext& context) {
   readMaterials(root, scene);
   readObjects(root, scene);
   addEmitters(scene);
+  checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
   return scene;
 }
@@ -107,7 +61,7 @@ Scene parseScene(const std::string& jsonText, const std::string& fileName,
   LoadContext context;
   context.file = fileName.empty() ? "<scene>" : fileName;
   context.baseDir = folderOf(fileName);
-  json document = parseJson(jsonText, context.file);
+  json document = parseJsonDocument(jsonText, context.file);
   context.overridden = applyOverrides(document, overrides);
   try {
     Scene scene = buildScene(document, context);

@@ -1,6 +1,10 @@
 // The scene's settings sections: camera, render and photons.
 #include "io/scene_sections.h"
 
+#include "io/float_checks.h"
+
+#include <cmath>
+
 namespace penumbra {
 
 namespace {
@@ -9,34 +13,54 @@ namespace {
 // tens of gigabytes, which is a typo rather than a plan.
 constexpr uint64_t kMaxPhotons = 1'000'000'000;
 
-glm::dvec3 toDouble(const Vec3& v) { return glm::dvec3(v); }
+// A normalised float vector that came out as one: not NaN, not a denormal mess.
+bool isUnit(const Vec3& v) {
+  return isFinite(v) && std::fabs(glm::length(v) - 1.0f) < 1e-3f;
+}
+
+// A gather radius: 0 (none given), or one whose square, which the gathers and
+// density estimates divide by, is a normal float and finite: 1e-18..1e15 (the
+// coordinate limit; a larger radius covers the whole scene anyway).
+float gatherRadius(const JsonNode& node, const char* key, float fallback) {
+  if (!node.has(key)) return fallback;
+  const JsonNode value = node.child(key);
+  const float r = value.asFloat(Range::atLeast(0.0));
+  if (r != 0.0f && !(r >= 1e-18f && r <= static_cast<float>(kMaxCoordinate))) {
+    value.fail("must be 0 or between 1e-18 and 1e+15 (its square must be a normal float), got " +
+               describeJson(value.value()));
+  }
+  return r;
+}
 
 }  // namespace
 
 void readCamera(const JsonNode& node, Camera& out) {
   node.allowKeys({"position", "look_at", "up", "fov", "width", "height", "spp"});
-  out.position = node.vec3Or("position", out.position);
-  out.lookAt = node.vec3Or("look_at", out.lookAt);
+  if (node.has("position")) out.position = readPosition(node.child("position"));
+  if (node.has("look_at")) out.lookAt = readPosition(node.child("look_at"));
   out.up = node.vec3Or("up", out.up);
   out.fovY = node.floatOr("fov", out.fovY, Range{0.0, 180.0, true, true});
   out.width = node.intOr("width", out.width, 1, 16384);
   out.height = node.intOr("height", out.height, 1, 16384);
   out.spp = node.intOr("spp", out.spp, 1, 4096);
 
-  // Check the frame in double precision: the camera builds its basis from these
-  // with a normalize and a cross product, which must not produce NaNs.
-  glm::dvec3 view = toDouble(out.lookAt) - toDouble(out.position);
-  double viewLength = glm::length(view);
-  if (!(viewLength > 0.0) || !std::isfinite(viewLength)) {
-    const JsonNode& at = node.has("look_at") ? node.child("look_at") : node;
-    at.fail("look_at equals position, so the view direction is undefined");
+  // Check the frame in float, exactly as CameraRays builds it: forward =
+  // normalize(look_at - position), right = normalize(cross(forward, up)). A
+  // length of 1e-30 is fine in double but its square underflows in float: NaN.
+  const JsonNode& at = node.has("look_at") ? node.child("look_at") : node;
+  const Vec3 forward = glm::normalize(out.lookAt - out.position);
+  if (!isUnit(forward)) {
+    at.fail("look_at equals position, or is too close to it for a view direction in single precision");
   }
-  glm::dvec3 up = toDouble(out.up);
-  double upLength = glm::length(up);
   const JsonNode& upNode = node.has("up") ? node.child("up") : node;
-  if (!(upLength > 0.0) || !std::isfinite(upLength)) upNode.fail("up must be non-zero");
-  double sine = glm::length(glm::cross(view / viewLength, up / upLength));
-  if (!(sine > 1e-6)) upNode.fail("up is parallel to the view direction (look_at - position)");
+  if (!isUnit(glm::normalize(out.up))) {
+    upNode.fail("up has no direction in single precision (zero, or too short or long to normalise)");
+  }
+  const float sine = glm::length(glm::cross(forward, glm::normalize(out.up)));
+  const Vec3 right = glm::normalize(glm::cross(forward, out.up));
+  if (!(sine > 1e-6f) || !isUnit(right)) {
+    upNode.fail("up is parallel to the view direction (look_at - position)");
+  }
 }
 
 void readRender(const JsonNode& node, RenderSettings& out) {
@@ -65,7 +89,7 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
   out.indirectPhotons = node.uintOr("indirect", out.indirectPhotons, 0, kMaxPhotons);
   out.kShadow = node.intOr("k_shadow", out.kShadow, 1, 10000);
   out.kIndirect = node.intOr("k_indirect", out.kIndirect, 1, 10000);
-  out.maxRadius = node.floatOr("max_radius", out.maxRadius, Range::atLeast(0.0));
+  out.maxRadius = gatherRadius(node, "max_radius", out.maxRadius);
   size_t estimator = node.enumOr("estimator", out.estimator == IndirectEstimator::Density,
                                  {"classic", "density"});
   out.estimator = estimator == 0 ? IndirectEstimator::Classic : IndirectEstimator::Density;
@@ -92,7 +116,7 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
   out.kCaustic = node.intOr("k_caustic", out.kCaustic, 1, 10000);
   out.passes = node.intOr("passes", out.passes, 1, 100000);
   out.alpha = node.floatOr("alpha", out.alpha, Range{0.0, 1.0, true, false});
-  out.radius = node.floatOr("radius", out.radius, Range::atLeast(0.0));
+  out.radius = gatherRadius(node, "radius", out.radius);
   size_t lookup = node.enumOr("lookup", out.lookup == PhotonLookup::Precomputed,
                               {"exact", "precomputed"});
   out.lookup = lookup == 0 ? PhotonLookup::Exact : PhotonLookup::Precomputed;

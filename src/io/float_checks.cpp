@@ -1,0 +1,174 @@
+// Whole-scene float checks: positions within kMaxCoordinate, sphere radii
+// resolvable against the scene's extent, light radiance and power bounded.
+#include "io/float_checks.h"
+
+#include "core/light_sample.h"
+#include "io/json_reader.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace penumbra {
+
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+float largestAbs(const Vec3& p) {
+  return std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
+}
+
+bool withinLimit(const Vec3& p) {
+  return isFinite(p) && largestAbs(p) <= static_cast<float>(kMaxCoordinate);
+}
+
+// The tracer's bounding sphere (the box of all geometry, area-light surfaces
+// included); directional lights' power is E pi R^2 over it.
+SceneSphere geometryBounds(const Scene& scene) {
+  Vec3 lo(kInf), hi(-kInf);
+  for (const Sphere& s : scene.spheres) {
+    lo = glm::min(lo, s.center - Vec3(s.radius));
+    hi = glm::max(hi, s.center + Vec3(s.radius));
+  }
+  for (const TriangleMesh& m : scene.meshes) {
+    for (const Vec3& p : m.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+  }
+  SceneSphere bounds;
+  if (glm::all(glm::lessThanEqual(lo, hi))) {
+    bounds.center = 0.5f * (lo + hi);
+    bounds.radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
+  }
+  return bounds;
+}
+
+// The scene's largest |coordinate|: what the precision of every hit point is
+// measured against.
+float sceneExtent(const Scene& scene) {
+  float m = std::max(largestAbs(scene.camera.position), largestAbs(scene.camera.lookAt));
+  for (const Light& l : scene.lights) {
+    if (l.type == LightType::Directional) continue;
+    m = std::max(m, largestAbs(l.position));
+  }
+  for (const Sphere& s : scene.spheres) m = std::max(m, largestAbs(s.center) + s.radius);
+  for (const TriangleMesh& mesh : scene.meshes) {
+    for (const Vec3& p : mesh.positions) m = std::max(m, largestAbs(p));
+  }
+  return m;
+}
+
+void checkRadius(const JsonNode& radius, float r, float extent) {
+  const double least = kMinRadiusRatio * extent;
+  if (r < least) {
+    radius.fail("must be >= 2^-18 x the scene's largest coordinate (" + number(extent) + ") = " +
+                number(least) + ", got " + number(r) +
+                ": a hit point could not be told from the centre in single precision");
+  }
+}
+
+// Where a light's brightness was given, so the message points at the key to change.
+JsonNode brightnessNode(const JsonNode& light) {
+  for (const char* key : {"power", "intensity", "radiance", "color"}) {
+    if (light.has(key)) return light.child(key);
+  }
+  return light;
+}
+
+bool withinPower(const Color& c, float limit) {
+  return isFinite(c) && maxComponent(c) <= limit;
+}
+
+std::string powerFormula(const Light& light) {
+  switch (light.type) {
+    case LightType::Point: return "4 pi x color x intensity";
+    case LightType::Directional: return "pi R^2 x color x intensity over the scene's bounding disc";
+    default: return "pi x area x color x radiance";
+  }
+}
+
+void checkLights(const JsonNode& root, const Scene& scene) {
+  if (scene.lights.empty()) return;
+  const JsonNode lights = root.child("lights");
+  const SceneSphere bounds = geometryBounds(scene);
+  const std::string headroom =
+      " (1e+30 keeps photon budgets and pixel sums finite in single precision)";
+  Color total(0.0f);
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    const JsonNode node = brightnessNode(lights.element(i));
+    const Color radiance = light.radiance();
+    if (!withinPower(radiance, kMaxRadiance)) {
+      const char* what = isDeltaLight(light) ? "color x intensity" : "color x radiance";
+      const std::string shown = isFinite(radiance) ? number(maxComponent(radiance)) : "inf";
+      node.fail(std::string(what) + " = " + shown + " exceeds 1e+30" + headroom);
+    }
+    const Color power = lightPower(light, bounds);
+    if (!withinPower(power, kMaxPower)) {
+      const std::string shown = isFinite(power) ? number(maxComponent(power)) : "inf";
+      node.fail("light power " + powerFormula(light) + " = " + shown + " W exceeds 1e+30" +
+                headroom);
+    }
+    total += power;
+    if (!withinPower(total, kMaxPower)) {
+      node.fail("the total power of lights[0.." + std::to_string(i) + "] reaches " +
+                number(maxComponent(total)) + " W, above 1e+30" + headroom);
+    }
+  }
+}
+
+void checkSpheres(const JsonNode& root, const Scene& scene, float extent) {
+  // Scene::spheres holds the objects' spheres in "objects" order, then (from
+  // addEmitters) the sphere lights': walk both lists to name the JSON path.
+  size_t sphere = 0;
+  if (root.has("objects")) {
+    const JsonNode objects = root.child("objects");
+    for (size_t i = 0; i < objects.arraySize(); ++i) {
+      const JsonNode object = objects.element(i);
+      if (object.child("type").asString() != "sphere") continue;
+      checkRadius(object.child("radius"), scene.spheres[sphere++].radius, extent);
+    }
+  }
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    if (light.type != LightType::Sphere) continue;
+    const JsonNode radius = root.child("lights").element(i).child("radius");
+    checkRadius(radius, light.radius, extent);
+    // Its area 4 pi r^2 divides power and weights photons: it must not underflow.
+    if (!(lightArea(light) > 0.0f)) radius.fail("is too small: 4 pi r^2 is 0 in single precision");
+  }
+}
+
+}  // namespace
+
+Vec3 readPosition(const JsonNode& node) {
+  const Vec3 p = node.asVec3();
+  if (!withinLimit(p)) {
+    node.fail("every coordinate must be within +-1e+15 (Embree's ray range with float "
+              "precision to spare), got " + number(largestAbs(p)));
+  }
+  return p;
+}
+
+void checkPositions(const JsonNode& node, const std::vector<Vec3>& points, const char* what) {
+  for (const Vec3& p : points) {
+    if (!withinLimit(p)) {
+      const std::string shown = isFinite(p) ? number(largestAbs(p)) : "not finite";
+      node.fail(std::string(what) + " must be within +-1e+15 on every axis (Embree's ray range "
+                "with float precision to spare), got " + shown);
+    }
+  }
+}
+
+void checkSceneNumbers(const JsonNode& root, const Scene& scene) {
+  checkSpheres(root, scene, sceneExtent(scene));
+  checkLights(root, scene);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,51 @@
+// The single-precision limits of the scene format: bounds on positions, sphere
+// radii, colours, light radiance and power that keep every float the renderer
+// derives from them finite (docs/scene-format.md, "Limits", says why each).
+#pragma once
+#include "core/scene.h"
+#include <vector>
+
+namespace penumbra {
+
+class JsonNode;
+
+// Largest |coordinate| of any point: camera, lights, sphere extents and mesh
+// vertices after their transform. Embree asserts on ray origins beyond ~1.8e18;
+// 1e15 leaves three orders of magnitude for photon discs and ray offsets outside
+// the geometry, and keeps squared distances (<= ~1.2e31) far inside float range.
+inline constexpr double kMaxCoordinate = 1e15;
+
+// Largest colour component, light radiance component, light power and total
+// power of all lights: eight orders of magnitude below FLT_MAX (3.4e38), the
+// headroom that photon budgets, 4 pi / pi A factors and sums over samples and
+// pixels (spp x light_samples <= 4.2e6) need so none of them overflows.
+inline constexpr double kMaxColorComponent = 1e30;
+inline constexpr float kMaxRadiance = 1e30f;
+inline constexpr float kMaxPower = 1e30f;
+
+// Smallest sphere radius relative to the scene's largest coordinate M (camera,
+// lights, geometry). A hit point o + t d, with |o| <= M and t <= 2 sqrt(3) M, is
+// known to about 8 float ulps of M (one ulp <= 2^-23 M); r >= 2^-18 M is >= 32
+// such ulps, so the hit stays apart from the centre and the normal
+// (p - c) / |p - c| is defined. Below it a dead-centre hit can give p == c: NaN.
+inline constexpr double kMinRadiusRatio = 1.0 / 262144.0;
+
+// Index of refraction. Real media are 1..4; ratios below 1 (a bubble in glass)
+// are valid. Fresnel and Snell work with ior^2 and 1 - ior^2 sin^2: [0.01, 100]
+// keeps those well inside float and every refraction direction finite.
+inline constexpr double kMinIor = 0.01;
+inline constexpr double kMaxIor = 100.0;
+
+// A vec3 that names a point: finite floats with |coordinate| <= kMaxCoordinate.
+Vec3 readPosition(const JsonNode& node);
+
+// Fails at `node` unless every point is within kMaxCoordinate; `what` names them
+// in the message ("transformed positions").
+void checkPositions(const JsonNode& node, const std::vector<Vec3>& points, const char* what);
+
+// The checks that need the whole scene, computed in float as the renderer does:
+// every sphere's radius against the scene's extent, each light's radiance and
+// power, and the sum of all lights' power. Runs after addEmitters.
+void checkSceneNumbers(const JsonNode& root, const Scene& scene);
+
+}  // namespace penumbra

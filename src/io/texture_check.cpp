@@ -1,0 +1,111 @@
+// Texture checks for the material reader: OpenImageIO decodes every pixel of an
+// image file (in bands of rows, so memory stays small), and builtin names are
+// matched against the generator's list.
+#include "io/texture_check.h"
+
+#include "io/texture_gen.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace penumbra {
+
+namespace {
+
+// OIIO stacks one line per layer ("Read error: hit end of file", "PNG read
+// error: ...", "PNG library error"); the first says what happened.
+std::string firstLine(const std::string& s) {
+  std::string line = s.substr(0, s.find('\n'));
+  return line.empty() ? "unknown error" : line;
+}
+
+// libpng prints its own "libpng error: ..." to stderr before OIIO sees the
+// error; the one-line InputError says it all, so stderr is muted while decoding.
+// The loader runs before any worker prints, so nothing else is lost.
+class MutedStderr {
+ public:
+  MutedStderr() {
+    std::fflush(stderr);
+    saved_ = ::dup(STDERR_FILENO);
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (saved_ >= 0 && null >= 0) ::dup2(null, STDERR_FILENO);
+    if (null >= 0) ::close(null);
+  }
+  ~MutedStderr() {
+    std::fflush(stderr);
+    if (saved_ >= 0) {
+      ::dup2(saved_, STDERR_FILENO);
+      ::close(saved_);
+    }
+  }
+  MutedStderr(const MutedStderr&) = delete;
+  MutedStderr& operator=(const MutedStderr&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
+}  // namespace
+
+std::string textureFileProblem(const std::string& path) {
+  MutedStderr muted;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return "cannot read texture " + path + ": " + firstLine(OIIO::geterror());
+  const OIIO::ImageSpec spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    return "texture " + path + " has no pixels";
+  }
+  // Tiled files are read a row of tiles at a time, scanline files 64 rows at a time.
+  const bool tiled = spec.tile_width > 0 && spec.tile_height > 0;
+  const int band = tiled ? spec.tile_height : 64;
+  std::vector<float> pixels(size_t(spec.width) * size_t(band) * size_t(spec.nchannels));
+  const int yEnd = spec.y + spec.height;
+  for (int y = spec.y; y < yEnd; y += band) {
+    const int rows = std::min(band, yEnd - y);
+    const bool read =
+        tiled ? in->read_tiles(0, 0, spec.x, spec.x + spec.width, y, y + rows, spec.z, spec.z + 1, 0,
+                               spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())
+              : in->read_scanlines(0, 0, y, y + rows, spec.z, 0, spec.nchannels,
+                                   OIIO::TypeDesc::FLOAT, pixels.data());
+    if (!read || in->has_error()) {
+      return "texture " + path + " is truncated or corrupt: " + firstLine(in->geterror());
+    }
+    const size_t count = size_t(spec.width) * size_t(rows) * size_t(spec.nchannels);
+    for (size_t i = 0; i < count; ++i) {
+      if (!std::isfinite(pixels[i])) {
+        return "texture " + path + " has a non-finite value in row " +
+               std::to_string(y - spec.y + int(i / (size_t(spec.width) * spec.nchannels)));
+      }
+    }
+  }
+  return "";
+}
+
+std::string builtinTextureProblem(const std::string& spec) {
+  const std::string prefix = "builtin:";
+  std::string name = spec.substr(std::min(spec.size(), prefix.size()));
+  if (const size_t at = name.find('@'); at != std::string::npos) {
+    const std::string digits = name.substr(at + 1);
+    name.resize(at);
+    char* end = nullptr;
+    const long width = digits.empty() ? 0 : std::strtol(digits.c_str(), &end, 10);
+    if (digits.empty() || *end != '\0' || width < 2 || width > 16384) {
+      return "builtin texture width must be an integer in [2, 16384], got \"" + digits + "\"";
+    }
+  }
+  const std::vector<std::string>& names = builtinTextureNames();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return "";
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  return "unknown builtin texture \"" + name + "\" (valid: " + list + ")";
+}
+
+}  // namespace penumbra
