@@ -111,18 +111,21 @@ TEST(FloatValidation, PositionsBeyondTheCoordinateLimitAreRefused) {
   EXPECT_FLOAT_EQ(s.camera.position.z, -1e15f);
 }
 
-TEST(FloatValidation, SphereRadiusMustBeResolvableAgainstTheScene) {
-  // The scene's largest coordinate is the camera's z = 5: radius >= 5 / 2^18.
-  const double least = kMinRadiusRatio * 5.0;
-  expectRefused(sceneText(), "objects[0].radius", "2^-18 x the scene's largest coordinate",
-                {"objects[0].radius=1e-9"});
-  expectRefused(sceneText(), "objects[0].radius", "a hit point could not be told from the centre",
-                {"objects[0].radius=" + num(least * 0.99)});
-  Scene s = parseScene(sceneText(), "v.json", {"objects[0].radius=" + num(least * 1.01)});
+TEST(FloatValidation, SphereRadiusMustBeResolvableAgainstItsCentre) {
+  // The sphere sits at the origin: any positive float radius is representable there.
+  Scene tiny = parseScene(sceneText(), "v.json", {"objects[0].radius=1e-9"});
+  EXPECT_EQ(tiny.spheres[0].radius, 1e-9f);
+  // Moved to x = 4, its radius must be >= 4 / 2^18.
+  const double least = kMinRadiusRatio * 4.0;
+  expectRefused(sceneText(), "objects[0].radius", "2^-18 x its centre's largest coordinate",
+                {"objects[0].center=[4,0,0]", "objects[0].radius=1e-9"});
+  expectRefused(sceneText(), "objects[0].radius", "could not be told from its centre",
+                {"objects[0].center=[4,0,0]", "objects[0].radius=" + num(least * 0.99)});
+  Scene s = parseScene(sceneText(), "v.json", {"objects[0].center=[4,0,0]", "objects[0].radius=" + num(least * 1.01)});
   EXPECT_GE(s.spheres[0].radius, static_cast<float>(least));
   // Sphere lights are spheres in the scene too.
   expectRefused(sceneText(kSphere, R"([{"type": "sphere", "center": [0, 3, 0], "radius": 1e-9}])"),
-                "lights[0].radius", "2^-18 x the scene's largest coordinate");
+                "lights[0].radius", "2^-18 x its centre's largest coordinate");
 }
 
 TEST(FloatValidation, LightRadianceIsBoundedAsAProductInFloat) {
@@ -183,7 +186,7 @@ TEST(FloatValidation, GatherRadiiHaveAFiniteNonZeroSquare) {
 }
 
 TEST(FloatValidation, OverriddenValuesGetTheSameChecks) {
-  const std::string message = errorOf(sceneText(), {"objects[0].radius=1e-9"});
+  const std::string message = errorOf(sceneText(), {"objects[0].radius=1e-50"});
   EXPECT_EQ(message.rfind("v.json: objects[0].radius: ", 0), 0u) << message;
   EXPECT_NE(message.find("(value from --set)"), std::string::npos) << message;
 }

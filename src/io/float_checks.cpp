@@ -49,27 +49,15 @@ SceneSphere geometryBounds(const Scene& scene) {
   return bounds;
 }
 
-// The scene's largest |coordinate|: what the precision of every hit point is
-// measured against.
-float sceneExtent(const Scene& scene) {
-  float m = std::max(largestAbs(scene.camera.position), largestAbs(scene.camera.lookAt));
-  for (const Light& l : scene.lights) {
-    if (l.type == LightType::Directional) continue;
-    m = std::max(m, largestAbs(l.position));
-  }
-  for (const Sphere& s : scene.spheres) m = std::max(m, largestAbs(s.center) + s.radius);
-  for (const TriangleMesh& mesh : scene.meshes) {
-    for (const Vec3& p : mesh.positions) m = std::max(m, largestAbs(p));
-  }
-  return m;
-}
-
-void checkRadius(const JsonNode& radius, float r, float extent) {
-  const double least = kMinRadiusRatio * extent;
+// The sphere's surface points c + r n are rounded to the float grid at |c|: a radius
+// below a few dozen ulps of the centre collapses the sphere onto it.
+void checkRadius(const JsonNode& radius, float r, const Vec3& center) {
+  const float m = largestAbs(center);
+  const double least = kMinRadiusRatio * m;
   if (r < least) {
-    radius.fail("must be >= 2^-18 x the scene's largest coordinate (" + number(extent) + ") = " +
+    radius.fail("must be >= 2^-18 x its centre's largest coordinate (" + number(m) + ") = " +
                 number(least) + ", got " + number(r) +
-                ": a hit point could not be told from the centre in single precision");
+                ": its surface could not be told from its centre in single precision");
   }
 }
 
@@ -123,7 +111,7 @@ void checkLights(const JsonNode& root, const Scene& scene) {
   }
 }
 
-void checkSpheres(const JsonNode& root, const Scene& scene, float extent) {
+void checkSpheres(const JsonNode& root, const Scene& scene) {
   // Scene::spheres holds the objects' spheres in "objects" order, then (from
   // addEmitters) the sphere lights': walk both lists to name the JSON path.
   size_t sphere = 0;
@@ -132,14 +120,15 @@ void checkSpheres(const JsonNode& root, const Scene& scene, float extent) {
     for (size_t i = 0; i < objects.arraySize(); ++i) {
       const JsonNode object = objects.element(i);
       if (object.child("type").asString() != "sphere") continue;
-      checkRadius(object.child("radius"), scene.spheres[sphere++].radius, extent);
+      const Sphere& sp = scene.spheres[sphere++];
+      checkRadius(object.child("radius"), sp.radius, sp.center);
     }
   }
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& light = scene.lights[i];
     if (light.type != LightType::Sphere) continue;
     const JsonNode radius = root.child("lights").element(i).child("radius");
-    checkRadius(radius, light.radius, extent);
+    checkRadius(radius, light.radius, light.position);
     // Its area 4 pi r^2 divides power and weights photons: it must not underflow.
     if (!(lightArea(light) > 0.0f)) radius.fail("is too small: 4 pi r^2 is 0 in single precision");
   }
@@ -167,7 +156,7 @@ void checkPositions(const JsonNode& node, const std::vector<Vec3>& points, const
 }
 
 void checkSceneNumbers(const JsonNode& root, const Scene& scene) {
-  checkSpheres(root, scene, sceneExtent(scene));
+  checkSpheres(root, scene);
   checkLights(root, scene);
 }
 

@@ -23,11 +23,10 @@ inline constexpr double kMaxColorComponent = 1e30;
 inline constexpr float kMaxRadiance = 1e30f;
 inline constexpr float kMaxPower = 1e30f;
 
-// Smallest sphere radius relative to the scene's largest coordinate M (camera,
-// lights, geometry). A hit point o + t d, with |o| <= M and t <= 2 sqrt(3) M, is
-// known to about 8 float ulps of M (one ulp <= 2^-23 M); r >= 2^-18 M is >= 32
-// such ulps, so the hit stays apart from the centre and the normal
-// (p - c) / |p - c| is defined. Below it a dead-centre hit can give p == c: NaN.
+// Smallest sphere radius relative to its centre's largest coordinate m. The surface
+// point c + r n is rounded to the float grid at m (one ulp <= 2^-23 m); r >= 2^-18 m
+// keeps >= 32 ulps between surface and centre. (Hits are safe below it too: normals
+// are taken in double from o + t d. The bound is about representing the sphere.)
 inline constexpr double kMinRadiusRatio = 1.0 / 262144.0;
 
 // Index of refraction. Real media are 1..4; ratios below 1 (a bubble in glass)

@@ -26,8 +26,8 @@ class DuplicateKeyGuard {
  public:
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     switch (event) {
-      case json::parse_event_t::object_start: frames_.push_back(Frame{false}); break;
-      case json::parse_event_t::array_start: frames_.push_back(Frame{true}); break;
+      case json::parse_event_t::object_start: frames_.push_back(Frame{false, 0, {}, {}}); break;
+      case json::parse_event_t::array_start: frames_.push_back(Frame{true, 0, {}, {}}); break;
       case json::parse_event_t::key: {
         Frame& frame = frames_.back();
         frame.key = parsed.get<std::string>();
