@@ -24,6 +24,34 @@ constexpr size_t kMaxOverrides = 8;
 // tests/data, so seeds can name its small OBJ files (quad_normals.obj, ...).
 const std::string kSceneFile = std::string(PENUMBRA_SOURCE_DIR) + "/tests/data/fuzz.json";
 
+// A teapot costs subdivisions^2 patches: 64 takes ~3 s under ASan, which would
+// turn every mutation of one seed into a timeout report. Inputs asking for more
+// than kMaxSubdivisions, or more than kMaxTeapots of them, are skipped (a cost
+// cap on raw text, not a parser: escapes can slip past, and that only costs time).
+constexpr long kMaxSubdivisions = 8;
+constexpr size_t kMaxTeapots = 2;
+
+bool tooExpensive(const std::string& input) {
+  size_t teapots = 0;
+  for (size_t at = input.find("teapot"); at != std::string::npos; at = input.find("teapot", at + 1)) {
+    if (++teapots > kMaxTeapots) return true;
+  }
+  const std::string key = "subdivisions";
+  for (size_t at = input.find(key); at != std::string::npos; at = input.find(key, at + 1)) {
+    size_t i = at + key.size();
+    while (i < input.size() && (input[i] == '"' || input[i] == ':' || input[i] == '=' ||
+                                input[i] == ' ' || input[i] == '\t' || input[i] == '\n')) {
+      ++i;
+    }
+    long value = 0;
+    while (i < input.size() && input[i] >= '0' && input[i] <= '9' && value <= kMaxSubdivisions) {
+      value = value * 10 + (input[i++] - '0');
+    }
+    if (value > kMaxSubdivisions) return true;
+  }
+  return false;
+}
+
 // A broken invariant is a finding: say which, then abort so libFuzzer saves the input.
 [[noreturn]] void broken(const char* what) {
   std::fprintf(stderr, "fuzz_scene_loader: invariant broken: %s\n", what);
@@ -87,6 +115,7 @@ void checkScene(const penumbra::Scene& scene) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string input(reinterpret_cast<const char*>(data), size);
+  if (tooExpensive(input)) return -1;  // -1: libFuzzer keeps it out of the corpus
   std::string json = input;
   std::vector<std::string> overrides;
   const size_t marker = input.find(kSetMarker);
