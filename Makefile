@@ -108,7 +108,7 @@ fuzz: san-deps
 	       -max_len=$(FUZZ_MAX_LEN) -timeout=$(FUZZ_TIMEOUT) -rss_limit_mb=$(FUZZ_RSS_MB) \
 	       -print_final_stats=1 -artifact_prefix=$$work/artifacts/ $$dict \
 	       $$work/corpus > $$work/log.txt 2>&1; then \
-	    grep -E '^#[0-9]+ +(INITED|DONE)|^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' $$work/log.txt; \
+	    grep -E '^#[0-9]+[[:space:]]+(INITED|DONE)|^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' $$work/log.txt; \
 	  else \
 	    tail -n 60 $$work/log.txt; ls $$work/artifacts; \
 	    echo "$$t: FINDING, reproducer in $$work/artifacts (see docs/TESTING.md)"; exit 1; \
