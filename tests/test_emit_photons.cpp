@@ -2,6 +2,7 @@
 // the solid angle a sphere blocks, uniform emission over the cube's faces,
 // Russian-roulette path lengths (geometric: 1/(1-p) and p/(1-p) stored per
 // photon), budget splitting, and byte-identical maps for 1 and 2 threads.
+#include "emit/budget.h"
 #include "emit/emit.h"
 #include "io/shapes.h"
 #include "support/scene_fixtures.h"
@@ -9,6 +10,7 @@
 #include <tbb/global_control.h>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace penumbra {
 namespace {
@@ -343,6 +345,17 @@ TEST(SplitBudget, ProportionalToLuminanceAndExact) {
   EXPECT_TRUE(maps.indirect.empty());
   EXPECT_EQ(maps.emittedShadow, 0u);
   EXPECT_EQ(maps.emittedIndirect, 0u);
+}
+
+// A light whose weight overflowed (inf) or is undefined (NaN) gets nothing; the others
+// still share the whole budget exactly. (UBSan: a NaN share cast to uint64 is undefined.)
+TEST(SplitBudget, NonFiniteWeightsGetNoPhotons) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+  EXPECT_EQ(splitByWeight({1.0, inf, 3.0}, 100), (std::vector<uint64_t>{25, 0, 75}));
+  EXPECT_EQ(splitByWeight({nan, 2.0}, 9), (std::vector<uint64_t>{0, 9}));
+  EXPECT_EQ(splitByWeight({inf, nan}, 9), (std::vector<uint64_t>{0, 0}));
+  // Finite weights whose sum overflows double are not a case float lights can make.
+  EXPECT_EQ(splitByWeight({1e300, 1e300}, 4), (std::vector<uint64_t>{2, 2}));
 }
 
 // A line through a glass ball records glass-only shadows behind it; a line through

@@ -2,6 +2,7 @@
 // counts add up exactly) and cut into fixed-size batches, each its own random stream.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -10,18 +11,21 @@ namespace penumbra {
 
 // Counts proportional to `weights` (>= 0) summing to exactly `total` (or all 0
 // when no weight is positive). Ties in the remainders go to the lower index.
+// A NaN or infinite weight (the loader refuses the lights that would give one) counts
+// as 0: inf / inf would make a NaN share, and casting that to a count is undefined.
 inline std::vector<uint64_t> splitByWeight(const std::vector<double>& weights, uint64_t total) {
+  auto usable = [](double w) { return std::isfinite(w) ? std::max(0.0, w) : 0.0; };
   double sum = 0.0;
-  for (double w : weights) sum += std::max(0.0, w);
+  for (double w : weights) sum += usable(w);
   std::vector<uint64_t> count(weights.size(), 0);
-  if (!(sum > 0.0) || total == 0) return count;
+  if (!(sum > 0.0) || !std::isfinite(sum) || total == 0) return count;
   std::vector<std::pair<double, size_t>> remainders;
   uint64_t given = 0;
   for (size_t l = 0; l < weights.size(); ++l) {
-    double share = total * (std::max(0.0, weights[l]) / sum);
+    const double share = std::min(static_cast<double>(total), total * (usable(weights[l]) / sum));
     count[l] = static_cast<uint64_t>(share);
     given += count[l];
-    if (weights[l] > 0.0) remainders.push_back({share - count[l], l});
+    if (usable(weights[l]) > 0.0) remainders.push_back({share - count[l], l});
   }
   std::stable_sort(remainders.begin(), remainders.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
