@@ -4,6 +4,7 @@
 #include "cli/resource_estimate.h"
 #include "core/light_sample.h"
 #include "core/photon.h"
+#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <algorithm>
@@ -14,21 +15,27 @@ namespace {
 
 // Bytes. The KD index is one 64-bit slot per photon plus its parts' nodes (fig14
 // measured 32.05 B per indirect photon, the closed box 32.14: 24 + 8.14); the base is the process before any scene
-// data (libraries, TBB and Embree arenas: ~40 MB RSS for a tiny scene).
+// data (libraries, TBB, Embree and OIIO set-up: fig03 and fig07 peak at 138 MB RSS
+// with no photons and a 0.9 MB frame).
 constexpr double kIndexBytes = 8.25;
 constexpr double kBvhBytesPerPrimitive = 70.0;  // Embree's default BVH, triangles or spheres
 constexpr double kCacheBytesPerRecord = 64.0;   // a LookupCache slot plus its verdicts, padded
-constexpr double kBaseBytes = 64.0 * 1024 * 1024;
+constexpr double kBaseBytes = 140.0 * 1024 * 1024;
+// Textures: OIIO's cache holds a MIP pyramid (4/3 of the texels) in the file's own
+// format, up to the cache size texture_lookup.cpp sets (1024 MB).
+constexpr double kTextureCacheBytes = 1024.0 * 1024 * 1024;
+constexpr int kBuiltinTextureWidth = 2048;  // texture_gen.cpp's default; "@W" overrides
 constexpr int kMaxHitsPerLine = 64;  // EmitOptions::maxHitsPerLine
 
 // Nanoseconds on one core (PERFORMANCE.md: bench_photons, bench_lookup, fig14, showcase).
 constexpr double kPhotonSegmentNs = 140.0;     // one photon ray + surface + store: 2.74 s / 20M rays
 constexpr double kBuildNsPerPhoton = 200.0;    // KD build: 2.38 s / 11.75M photons
 constexpr double kRayNs = 100.0;               // a camera, shadow or specular ray with its shading
-constexpr double kGatherNsPerNeighbour = 250.0;  // exact k-nearest gather: fig14 k = 200 ~ 50 us
+constexpr double kGatherNsPerNeighbour = 60.0;  // exact gathers: fig14 k = 200, cornell_physical 66
 constexpr double kLookupNs = 80.0;             // one precomputed lookup (gate + indirect)
 constexpr double kExactVoteNs = 3000.0;        // one exact gate vote per light
 constexpr double kAvoidable = 0.85;            // shadow tests a gate answers without a ray
+constexpr double kStartupSeconds = 0.2;        // load, BVH, set-up of a small scene (fig03: 0.26 s)
 
 bool hasPhotonLight(const Scene& scene) {
   for (const Light& l : scene.lights) {
@@ -84,6 +91,24 @@ double survivalSeries(double s, int from, int to) {
 }
 
 std::string gib(double bytes) { return formatBytes(bytes); }
+
+// From the file's header only (no pixels are read); a builtin texture from its name.
+double textureBytes(const Scene& scene) {
+  double bytes = 0.0;
+  for (const Texture& t : scene.textures) {
+    if (t.path.rfind("builtin:", 0) == 0) {
+      const size_t at = t.path.find('@');
+      const double w = at == std::string::npos ? kBuiltinTextureWidth : std::atof(t.path.c_str() + at + 1);
+      bytes += w * (w / 2) * 3.0 * 4.0 / 3.0;
+      continue;
+    }
+    auto in = OIIO::ImageInput::open(t.path);
+    if (!in) continue;  // the texture stage reports unreadable files
+    const OIIO::ImageSpec& spec = in->spec();
+    bytes += double(spec.width) * spec.height * spec.nchannels * spec.format.size() * 4.0 / 3.0;
+  }
+  return std::min(bytes, kTextureCacheBytes);
+}
 
 }  // namespace
 
@@ -160,7 +185,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
                  m.triangles.size() * 12.0;
   }
   e.bvhBytes = primitives * kBvhBytesPerPrimitive;
-  e.sceneBytes = meshBytes;
+  e.sceneBytes = meshBytes + textureBytes(scene);
   e.baseBytes = kBaseBytes;
 
   // Time: each stored photon is one traced segment, plus the one that escapes.
@@ -186,8 +211,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   if (p.global > 0) lookupNs += gather(ps.kGlobal);
   if (p.caustic > 0) lookupNs += gather(ps.kCaustic);
   // Mirrors and glass repeat the shading at each level of the recursion.
-  const double depth = lit && hasSpecular(scene) ? 1.0 + 0.5 * std::min(scene.render.maxDepth, 4) : 1.0;
-  e.renderSeconds = samples * (rays * kRayNs + lookupNs) * depth * p.passes / e.threads * 1e-9;
+  // (cornell_physical, depth 10: 2.3 gathers per camera sample).
+  const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;
+  e.renderSeconds = kStartupSeconds +
+                    samples * (rays * kRayNs + lookupNs) * depth * p.passes / e.threads * 1e-9;
   return e;
 }
 
