@@ -170,6 +170,8 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // while the maps build side by side.
   e.photonPeakBytes = e.photonBytes + shadow * sizeof(ShadowPhoton) +
                       (indirect + global + caustic) * sizeof(IndirectPhoton);
+  // A progressive pass emits its photons while the previous pass's maps still stand.
+  if (p.passes > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
   const PhotonSettings& ps = scene.photons;
   if (ps.lookup == PhotonLookup::Precomputed) {
     const double k = std::max(1, scene.render.model == ShadingModel::Classic ? ps.kIndirect : ps.kGlobal);
