@@ -88,7 +88,7 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   }
   if (!statsPath.empty()) req.statsPaths.push_back(statsPath);
   // The estimate of a long job, before it starts; --quiet silences it like every note.
-  if (!quiet) req.notice = [](const std::string& note) { std::cerr << "penumbra: note: " << note << "\n"; };
+  if (!quiet) req.notice = [](const std::string& note) { std::cerr << "note: " << note << "\n"; };
   ProgressBar bar(!quiet);
   req.progress = [&bar](const char* phase, double f) { bar.update(phase, f); };
   RenderResult result = runRender(req);
