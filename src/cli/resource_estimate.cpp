@@ -35,6 +35,8 @@ constexpr double kGatherNsPerNeighbour = 60.0;  // exact gathers: fig14 k = 200,
 constexpr double kLookupNs = 80.0;             // one precomputed lookup (gate + indirect)
 constexpr double kExactVoteNs = 3000.0;        // one exact gate vote per light
 constexpr double kAvoidable = 0.85;            // shadow tests a gate answers without a ray
+constexpr double kCacheFriendlyBytes = 256.0 * 1024 * 1024;  // photon data that still runs at full speed
+constexpr double kSpillSlowdown = 0.3;  // extra cost per doubling beyond it
 constexpr double kStartupSeconds = 0.2;        // load, BVH, set-up of a small scene (fig03: 0.26 s)
 
 bool hasPhotonLight(const Scene& scene) {
@@ -193,7 +195,11 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // Time: each stored photon is one traced segment, plus the one that escapes.
   const double emitted = double(p.shadow + p.indirect + p.global + p.caustic);
   const double photonNs = (e.storedPhotons + emitted) * kPhotonSegmentNs + e.storedPhotons * kBuildNsPerPhoton;
-  e.photonSeconds = photonNs * p.passes / e.threads * 1e-9;
+  // Past the caches the emission's stores and the build's gathers wait on memory:
+  // 1M paths x 1024 bounces in a closed box (251M stored, 8 GB) took 227 core-s,
+  // 2.2x the flat per-photon costs; fig14 (0.45 GB) is within 10% of them.
+  const double spill = std::max(1.0, e.photonPeakBytes / kCacheFriendlyBytes);
+  e.photonSeconds = photonNs * (1.0 + kSpillSlowdown * std::log2(spill)) * p.passes / e.threads * 1e-9;
   const double samples = options.tracePixel ? 1.0 : pixels * scene.camera.spp;
   double rays = 1.0, lookupNs = 0.0;
   const bool lit = options.aov != Aov::Depth && options.aov != Aov::Normal;
