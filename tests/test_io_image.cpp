@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <set>
+#include <stdexcept>
 
 namespace fs = std::filesystem;
 using namespace penumbra;
@@ -57,14 +58,15 @@ Image rowImage(const std::vector<float>& values) {
 }  // namespace
 
 TEST_F(ImageIoTest, PngEncodesTheStandardSrgbCurveRoundedToNearest) {
-  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = kInf;
+  const float inf = kInf;
   // 0.0031308 sits at the curve's linear/power boundary: 12.92 * it = 0.04045 -> 10.3 -> 10.
-  Image image = rowImage({0.0f, 0.5f, 1.0f, 0.0031308f, 0.001f, 0.2f, 2.0f, -1.0f, nan, inf});
+  // +Inf is brighter than white, not black; -Inf is black.
+  Image image = rowImage({0.0f, 0.5f, 1.0f, 0.0031308f, 0.001f, 0.2f, 2.0f, -1.0f, -inf, inf});
   writeImage(file("ramp.png"), image);
   int channels = 0;
   std::vector<uint8_t> bytes = readBytes(file("ramp.png"), channels);
   ASSERT_EQ(channels, 3);
-  const uint8_t expected[] = {0, 188, 255, 10, 3, 124, 255, 0, 0, 0};
+  const uint8_t expected[] = {0, 188, 255, 10, 3, 124, 255, 0, 0, 255};
   for (size_t i = 0; i < std::size(expected); ++i)
     for (int c = 0; c < 3; ++c) EXPECT_EQ(bytes[i * 3 + c], expected[i]) << "pixel " << i;
 }
@@ -85,7 +87,7 @@ TEST_F(ImageIoTest, PngRoundTripsEvery8BitCode) {
 
 TEST_F(ImageIoTest, ExrRoundTripIsExactToHalfPrecision) {
   Image image(3, 2);
-  const float values[] = {0.0f, 0.1f, 0.5f, 1.0f, 3.14159f, 1234.5f, -0.25f, 1e-3f, 42.0f};
+  const float values[] = {0.0f, 0.1f, 0.5f, 1.0f, 3.14159f, 1234.5f, 0.25f, 1e-3f, 42.0f};
   for (size_t i = 0; i < image.pixels.size(); ++i)
     image.pixels[i] = Color(values[i % 9], values[(i + 3) % 9], values[(i + 6) % 9]);
   writeImage(file("linear.exr"), image);
@@ -97,14 +99,38 @@ TEST_F(ImageIoTest, ExrRoundTripIsExactToHalfPrecision) {
       EXPECT_EQ(back.pixels[i][c], static_cast<float>(Imath::half(image.pixels[i][c])));
 }
 
-TEST_F(ImageIoTest, NonFiniteAndOverflowingValuesNeverReachTheFile) {
-  Image image = rowImage({std::numeric_limits<float>::quiet_NaN(), kInf, -kInf, 1e9f});
-  writeImage(file("bad.exr"), image);
-  Image back = readImage(file("bad.exr"));
-  EXPECT_EQ(back.pixels[0].r, 0.0f);
-  EXPECT_EQ(back.pixels[1].r, 0.0f);
-  EXPECT_EQ(back.pixels[2].r, 0.0f);
-  EXPECT_EQ(back.pixels[3].r, 65504.0f);  // largest finite half, not +Inf
+TEST_F(ImageIoTest, InfinitiesAndOverflowClampToTheHalfRange) {
+  // +Inf and values past half range are the brightest half, not black and not +Inf;
+  // radiance is never negative, so -Inf and negatives write 0.
+  Image image = rowImage({kInf, -kInf, 1e9f, 65504.0f, -3.0f, 70000.0f});
+  writeImage(file("bright.exr"), image);
+  Image back = readImage(file("bright.exr"));
+  const float expected[] = {65504.0f, 0.0f, 65504.0f, 65504.0f, 0.0f, 65504.0f};
+  for (size_t i = 0; i < std::size(expected); ++i)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(back.pixels[i][c], expected[i]) << "pixel " << i;
+}
+
+TEST_F(ImageIoTest, NanIsAnInternalErrorAndWritesNothing) {
+  // The render drops non-finite samples: a NaN reaching the writer is a bug, thrown
+  // before any temp file exists, and an old output stays as it was.
+  for (const char* name : {"old.png", "old.exr"}) {
+    writeImage(file(name), rowImage({0.25f, 0.5f}));
+    const auto before = fs::file_size(file(name));
+    const auto stamp = fs::last_write_time(file(name));
+    Image image = rowImage({0.5f, 1.0f, 0.0f});
+    image.pixels[2].g = std::numeric_limits<float>::quiet_NaN();
+    try {
+      writeImage(file(name), image);
+      ADD_FAILURE() << name << ": a NaN was written";
+    } catch (const InputError&) {
+      ADD_FAILURE() << name << ": a NaN is not the user's error";
+    } catch (const std::logic_error& e) {
+      EXPECT_NE(std::string(e.what()).find("pixel (2, 0)"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(fs::file_size(file(name)), before);
+    EXPECT_EQ(fs::last_write_time(file(name)), stamp);
+  }
+  EXPECT_EQ(listing(), (std::set<std::string>{"old.png", "old.exr"}));
 }
 
 TEST_F(ImageIoTest, ExtensionIsCaseInsensitive) {

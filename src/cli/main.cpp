@@ -1,12 +1,15 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
 // 0 ok, 2 bad input (one-line message), 1 internal error.
+#include "cli/memory_limit.h"
 #include "cli/pipeline.h"
 #include "cli/progress_bar.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/report_json.h"
+#include "io/temp_file.h"
 #include "io/texture_gen.h"
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <charconv>
 #include <iostream>
 
@@ -28,11 +31,64 @@ std::pair<int, int> parsePixel(const std::string& arg) {
   return {x, y};
 }
 
+// A seed is a 64-bit unsigned number; from_chars into uint64_t refuses a sign, so
+// "-1" is an error instead of 2^64 - 1.
+uint64_t parseSeed(const std::string& arg) {
+  uint64_t seed = 0;
+  const char* end = arg.data() + arg.size();
+  auto [next, ec] = std::from_chars(arg.data(), end, seed);
+  if (ec != std::errc() || next != end) {
+    throw InputError("--seed: expected an integer 0.." + std::to_string(UINT64_MAX) + ", got '" + arg + "'");
+  }
+  return seed;
+}
+
+// Well-formed UTF-8 (no overlongs, surrogates or code points past U+10FFFF): the
+// stats and image metadata are JSON and UTF-8, so a bad byte would fail the write
+// after the render. Returns the offset of the first bad byte, or npos.
+size_t firstBadUtf8(const std::string& s) {
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  for (size_t i = 0; i < s.size();) {
+    const unsigned c = p[i];
+    const size_t n = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : 4;
+    if (n == 4 || i + n >= s.size()) return i;  // a stray continuation byte, or cut short
+    unsigned cp = n == 0 ? c : n == 1 ? (c & 0x1F) : n == 2 ? (c & 0x0F) : (c & 0x07);
+    for (size_t k = 1; k <= n; ++k) {
+      if ((p[i + k] & 0xC0) != 0x80) return i;
+      cp = (cp << 6) | (p[i + k] & 0x3F);
+    }
+    const unsigned minimum[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < minimum[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return i;
+    i += n + 1;
+  }
+  return std::string::npos;
+}
+
+void checkOverrides(const std::vector<std::string>& overrides) {
+  for (const std::string& o : overrides) {
+    const size_t bad = firstBadUtf8(o);
+    if (bad != std::string::npos) {
+      throw InputError("--set: argument is not valid UTF-8 (byte " + std::to_string(bad) + " of '" +
+                       o.substr(0, bad) + "...')");
+    }
+  }
+}
+
+// The pipeline's stats plus the up-front estimate, in one JSON object.
+std::string statsWithEstimate(const RenderResult& result) {
+  nlohmann::json stats = nlohmann::json::parse(statsToJson(result.stats));
+  stats["estimate"] = nlohmann::json::parse(estimateToJson(result.estimate));
+  return stats.dump(2) + "\n";
+}
+
 int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std::string& tracePixelArg,
                      bool quiet) {
   if (!tracePixelArg.empty()) {
     req.tracePixel = parsePixel(tracePixelArg);
   }
+  if (!statsPath.empty()) req.statsPaths.push_back(statsPath);
+  // The estimate of a long job, before it starts; --quiet silences it like every note.
+  if (!quiet) req.notice = [](const std::string& note) { std::cerr << "note: " << note << "\n"; };
   ProgressBar bar(!quiet);
   req.progress = [&bar](const char* phase, double f) { bar.update(phase, f); };
   RenderResult result = runRender(req);
@@ -40,9 +96,9 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   if (req.tracePixel) {
     std::string json = rayTreeToJson(result.rayTree, req.tracePixel->first, req.tracePixel->second);
     if (req.outputPath.empty() || req.outputPath == "-") std::cout << json;
-    else writeTextFile(req.outputPath, json);
+    else writeTextFileAtomic(req.outputPath, json);
   }
-  if (!statsPath.empty()) writeTextFile(statsPath, statsToJson(result.stats));
+  if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsWithEstimate(result));
   if (!quiet) {
     for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
     std::cerr << statsSummary(result.stats);
@@ -60,7 +116,7 @@ int main(int argc, char** argv) {
   RenderRequest req;
   std::string statsPath, tracePixelArg;
   bool quiet = false, noGate = false;
-  std::optional<uint64_t> seed;
+  std::string seedArg, maxMemoryArg;
   std::optional<int> spp;
   CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
   render->add_option("scene", req.scenePath, "Scene file (JSON, see docs/scene-format.md)")->required();
@@ -68,7 +124,10 @@ int main(int argc, char** argv) {
                      "Output image: .png (8-bit sRGB) or .exr (linear half); with --trace-pixel, "
                      "the JSON file (default stdout)");
   render->add_option("--threads", req.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
-  render->add_option("--seed", seed, "Random seed (overrides render.seed)");
+  render->add_option("--seed", seedArg, "Random seed, 0..2^64-1 (overrides render.seed)");
+  render->add_option("--max-memory", maxMemoryArg,
+                     "Refuse (exit 2) a render estimated to need more, e.g. 8G, 512M (default: "
+                     "the memory available when it starts)");
   render->add_option("--spp", spp, "Samples per pixel (overrides camera.spp)")->check(CLI::Range(1, 4096));
   render->add_option("--set", req.overrides,
                      "Override a scene value, e.g. --set render.max_depth=8 --set objects[0].radius=2")
@@ -93,6 +152,8 @@ int main(int argc, char** argv) {
   texture->add_option("--width", textureWidth, "Width in pixels; height is width / 2")->check(CLI::Range(2, 16384));
   texture->add_option("--seed", textureSeed, "Noise seed");
 
+  // From here on an interrupt removes our temp files, never an old output.
+  installTempFileCleanup();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -103,7 +164,9 @@ int main(int argc, char** argv) {
   try {
     if (*render) {
       if (req.outputPath.empty() && tracePixelArg.empty()) throw InputError("render: -o OUT is required");
-      if (seed) req.overrides.push_back("render.seed=" + std::to_string(*seed));
+      checkOverrides(req.overrides);
+      if (!maxMemoryArg.empty()) req.maxMemoryBytes = parseMemorySize(maxMemoryArg);
+      if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
       if (!gateMode.empty()) req.overrides.push_back("photons.gate=" + gateMode);
       if (noGate) req.overrides.push_back("photons.gate=false");

@@ -2,6 +2,7 @@
 // build both photon maps concurrently, trace tiles, write the image.
 #include "cli/pipeline.h"
 #include "cli/gate_decision.h"
+#include "cli/job_admission.h"
 #include "core/error.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
@@ -244,13 +245,15 @@ RenderResult runRender(const RenderRequest& request) {
     throw InputError(scene.file + ": view '" + aovName +
                      "' needs the physical model (render.model: \"physical\")");
   }
-  // Bad output paths and pixels fail now, not after minutes of photons and tiles.
-  if (!request.outputPath.empty() && !request.tracePixel) checkImageOutputPath(request.outputPath);
+  // Bad pixels, outputs and oversized jobs fail now, not after minutes of photons and tiles.
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
+  Admission admission = admitRender(scene, request, aov, threads);
 
   phase = Stopwatch();
   TraceScene tracer(scene);
   stats.time.buildBvh = phase.seconds();
+  confirmRender(admission, scene, tracer, request);
+  result.estimate = admission.estimate;
   std::unique_ptr<TextureLookup> textures = loadTextures(scene);
 
   Maps maps;

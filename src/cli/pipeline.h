@@ -1,5 +1,6 @@
 // The whole render, wired once: io -> emit -> gather -> trace -> io.
 #pragma once
+#include "cli/resource_estimate.h"
 #include "core/image.h"
 #include "core/ray_record.h"
 #include "core/stats.h"
@@ -20,6 +21,11 @@ struct RenderRequest {
   std::optional<std::pair<int, int>> tracePixel;  // record this pixel's ray tree instead
   // Called with the phase ("photons", "maps", "render") and its completed fraction.
   std::function<void(const char* phase, double fraction)> progress;
+  // Files the caller writes after the render (--stats): checked with -o before any work.
+  std::vector<std::string> statsPaths;
+  uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available when it starts
+  // Told before the photons start, e.g. that the job is estimated to take hours.
+  std::function<void(const std::string& note)> notice;
 };
 
 struct RenderResult {
@@ -27,6 +33,7 @@ struct RenderResult {
   RenderStats stats;
   RayTree rayTree;  // filled for tracePixel requests
   std::vector<std::string> notes;  // things the user should know ("no point lights: ...")
+  ResourceEstimate estimate;       // made before any allocation (cli/resource_estimate.h)
 };
 
 RenderResult runRender(const RenderRequest& request);

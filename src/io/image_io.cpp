@@ -4,6 +4,7 @@
 #include "core/color.h"
 
 #include "core/error.h"
+#include "io/temp_file.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <stdexcept>
 #include <system_error>
 
 namespace penumbra {
@@ -25,17 +27,32 @@ namespace fs = std::filesystem;
 
 enum class Encoding { Srgb8, LinearHalf };
 
+// NaN never gets here (writeImage refuses it); +Inf is the brightest value there
+// is, so it saturates to white like any other value above 1, and -Inf to black.
 uint8_t toSrgb8(float linear) {
-  if (!std::isfinite(linear) || linear <= 0.0f) return 0;
+  if (!(linear > 0.0f)) return 0;
   if (linear >= 1.0f) return 255;
   return static_cast<uint8_t>(std::floor(srgbEncode(linear) * 255.0 + 0.5));
 }
 
-// Largest finite half: anything brighter would become +Inf in the EXR.
+// Largest finite half: anything brighter (+Inf included) would become +Inf in the
+// EXR, so it clamps there; radiance is never negative, so -Inf and negatives are 0.
 constexpr float kHalfMax = 65504.0f;
 float toHalfSafe(float linear) {
-  if (!std::isfinite(linear)) return 0.0f;
-  return std::clamp(linear, -kHalfMax, kHalfMax);
+  if (!(linear > 0.0f)) return 0.0f;
+  return std::min(linear, kHalfMax);
+}
+
+// The render drops non-finite samples, so a NaN here is a bug upstream: say where,
+// rather than write a pixel that silently looks black.
+void refuseNan(const std::string& path, const Image& image) {
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const Color& c = image.pixels[i];
+    if (std::isnan(c.r) || std::isnan(c.g) || std::isnan(c.b)) {
+      throw std::logic_error(path + ": image has a NaN at pixel (" + std::to_string(i % image.width) +
+                             ", " + std::to_string(i / image.width) + "); nothing was written");
+    }
+  }
 }
 
 // OIIO error strings can span lines; InputError messages are one line.
@@ -97,6 +114,7 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
       image.pixels.size() != static_cast<size_t>(image.width) * image.height) {
     writeFailed(path, "image is empty or its pixel count does not match its size");
   }
+  refuseNan(path, image);
 
   const size_t count = image.pixels.size() * 3;
   std::vector<uint8_t> bytes;
@@ -125,6 +143,8 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
   for (const auto& [key, value] : metadata) spec.attribute(key, value);
 
   fs::path temp = tempPathFor(target);
+  // Registered before it exists: a SIGINT during the write removes it (temp_file.h).
+  TempFileGuard guard(temp.string());
   try {
     writeFile(temp, path, spec, pixelType, pixels);
   } catch (...) {

@@ -1,0 +1,25 @@
+// Output paths checked before any work: each must be writable, of a supported
+// kind, distinct from the others, and never one of the render's own inputs.
+#pragma once
+#include "core/scene.h"
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct OutputPath {
+  std::string path;
+  std::string what;  // "-o", "--stats", ...: names the option in messages
+  bool image = false;  // an image: .png or .exr, checked by image_io
+};
+
+// Every file the render reads: the scene file, its OBJ meshes (from the scene's
+// JSON: Scene keeps only their triangles) and its texture files.
+std::vector<std::string> sceneInputs(const Scene& scene, const std::string& scenePath);
+
+// Throws InputError naming the option unless every output's directory exists and
+// is writable, it is not a directory, no two outputs name the same file and none
+// names an input (compared canonically, and by inode where both exist).
+void checkOutputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
+
+}  // namespace penumbra

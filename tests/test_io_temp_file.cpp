@@ -1,0 +1,97 @@
+// Temp files: the SIGINT/SIGTERM cleanup removes registered temp files and only
+// them, then the process still dies of the signal; text writes are all or nothing.
+#include "core/error.h"
+#include "io/temp_file.h"
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace penumbra;
+
+namespace {
+
+class TempFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "penumbra-temp-XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir = pattern;
+  }
+  void TearDown() override { fs::remove_all(dir); }
+  std::string make(const std::string& name, const std::string& text) const {
+    std::ofstream((dir / name).string(), std::ios::binary) << text;
+    return (dir / name).string();
+  }
+  static std::string read(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  fs::path dir;
+};
+
+// Forks a child that registers `temp`, installs the cleanup and raises `sig`.
+int dieOf(int sig, const std::string& temp, bool registered) {
+  const pid_t child = fork();
+  if (child == 0) {
+    installTempFileCleanup();
+    if (registered) {
+      TempFileGuard guard(temp);
+      std::raise(sig);
+    }
+    std::raise(sig);
+    _exit(0);  // the signal should have ended us
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  return status;
+}
+
+}  // namespace
+
+TEST_F(TempFileTest, SignalRemovesTheRegisteredTempFileAndStillKills) {
+  for (int sig : {SIGINT, SIGTERM}) {
+    const std::string temp = make("out.tmp123-0.exr", "partial");
+    const std::string target = make("out.exr", "old");
+    const int status = dieOf(sig, temp, true);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << "status " << status;
+    EXPECT_FALSE(fs::exists(temp));
+    EXPECT_EQ(read(target), "old");  // only the temp file goes
+  }
+}
+
+TEST_F(TempFileTest, UnregisteredFilesSurviveTheSignal) {
+  const std::string keep = make("keep.tmp1-0.png", "not ours any more");
+  const int status = dieOf(SIGINT, keep, false);
+  EXPECT_TRUE(WIFSIGNALED(status)) << status;
+  EXPECT_TRUE(fs::exists(keep));
+  {
+    TempFileGuard guard(keep);
+  }  // released: a later signal must not remove it
+  removeRegisteredTempFiles();
+  EXPECT_TRUE(fs::exists(keep));
+  TempFileGuard again(keep);
+  removeRegisteredTempFiles();
+  EXPECT_FALSE(fs::exists(keep));
+}
+
+TEST_F(TempFileTest, TextWritesReplaceWholeOrNotAtAll) {
+  const std::string path = make("stats.json", "old");
+  writeTextFileAtomic(path, "{\"new\": 1}\n");
+  EXPECT_EQ(read(path), "{\"new\": 1}\n");
+  EXPECT_THROW(writeTextFileAtomic((dir / "missing" / "s.json").string(), "x"), InputError);
+  fs::create_directory(dir / "target_is_dir");
+  EXPECT_THROW(writeTextFileAtomic((dir / "target_is_dir").string(), "x"), InputError);
+  size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    ++entries;
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  }
+  EXPECT_EQ(entries, 2u);
+}

@@ -1,0 +1,143 @@
+// The resource estimate against what renders actually store: an upper bound on the
+// photon maps within 2x on the Cornell box, a closed many-bounce box and the
+// physical model; gallery scenes always admitted; sizes parsed; long jobs told.
+#include "cli/job_admission.h"
+#include "cli/memory_limit.h"
+#include "cli/pipeline.h"
+#include "core/error.h"
+#include "io/scene_loader.h"
+#include <gtest/gtest.h>
+#include <filesystem>
+#include <fstream>
+
+using namespace penumbra;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kScenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/";
+
+RenderResult render(const std::string& scene, std::vector<std::string> overrides) {
+  RenderRequest req;
+  req.scenePath = scene;
+  req.overrides = std::move(overrides);
+  return runRender(req);
+}
+
+void expectBounds(const RenderResult& r, const char* what) {
+  const double actual = double(r.stats.photonMapBytes), estimate = r.estimate.photonBytes;
+  ASSERT_GT(actual, 0.0) << what;
+  EXPECT_GE(estimate, actual) << what << ": the estimate must be an upper bound";
+  EXPECT_LE(estimate, 2.0 * actual) << what << ": the estimate is too pessimistic";
+}
+
+// A closed box lit from inside: no photon escapes, so every path runs until its
+// roulette (p_r 0.9 -> ~10 stores) or the bounce cap ends it.
+std::string closedBox(const fs::path& dir) {
+  const fs::path path = dir / "closed_box.json";
+  std::ofstream(path) << R"({"name": "closed_box",
+    "camera": {"position": [0, 0, 0.5], "look_at": [0, 0, -1], "width": 16, "height": 16},
+    "lights": [{"type": "point", "position": [0, 0.5, 0], "intensity": 1}],
+    "materials": {"wall": {"diffuse": 0.9, "p_r": 0.9}},
+    "objects": [{"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": "wall"}],
+    "photons": {"shadow": 0, "indirect": 200000, "max_bounces": 64}})";
+  return path.string();
+}
+
+}  // namespace
+
+TEST(ResourceEstimate, PhotonBytesBoundTheCornellBoxMaps) {
+  const RenderResult r = render(kScenes + "fig14_cornell.json",
+                                {"camera.width=32", "camera.height=32", "photons.gate=on",
+                                 "photons.shadow=400000", "photons.indirect=400000"});
+  ASSERT_GT(r.stats.storedShadow, 0u);
+  EXPECT_TRUE(r.estimate.rates.measured);  // 9 surfaces a line could cross: the pilot ran
+  expectBounds(r, "fig14");
+}
+
+TEST(ResourceEstimate, PhotonBytesBoundAClosedBoxWithManyBounces) {
+  const fs::path dir = fs::temp_directory_path() / ("penumbra-estimate-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const RenderResult r = render(closedBox(dir), {});
+  expectBounds(r, "closed box");
+  // The analytic bound alone (no pilot) is exact here up to noise: nothing escapes.
+  const Scene scene = loadScene(closedBox(dir));
+  const ResourceEstimate analytic = estimateResources(scene, {}, analyticStoreRates(scene));
+  EXPECT_GE(analytic.photonBytes, double(r.stats.photonMapBytes));
+  EXPECT_LE(analytic.photonBytes, 1.1 * double(r.stats.photonMapBytes));
+  fs::remove_all(dir);
+}
+
+TEST(ResourceEstimate, PhotonBytesBoundThePhysicalMaps) {
+  const RenderResult r = render(kScenes + "cornell_physical.json",
+                                {"camera.width=16", "camera.height=16", "photons.passes=1"});
+  expectBounds(r, "cornell_physical");
+}
+
+TEST(ResourceEstimate, EveryGallerySceneIsAdmittedWithRoomToSpare) {
+  // The estimate must never refuse a documented scene on this 24 GiB machine.
+  for (const auto& entry : fs::directory_iterator(kScenes)) {
+    if (entry.path().extension() != ".json") continue;
+    Scene scene = loadScene(entry.path().string());
+    RenderRequest req;
+    req.scenePath = entry.path().string();
+    req.maxMemoryBytes = 16ull << 30;
+    Admission a = admitRender(scene, req, parseAov(scene.render.aov), 2);
+    TraceScene tracer(scene);
+    EXPECT_NO_THROW(confirmRender(a, scene, tracer, req)) << entry.path();
+    EXPECT_LT(a.estimate.totalBytes(), 4.0 * (1ull << 30)) << entry.path() << describeMemory(a.estimate);
+  }
+}
+
+TEST(ResourceEstimate, BillionShadowPhotonsNeedMoreThanThisMachine) {
+  Scene scene = loadScene(kScenes + "fig14_cornell.json", {"photons.shadow=1000000000", "photons.gate=on"});
+  scene.photons.gate = true;
+  RenderRequest req;
+  req.scenePath = kScenes + "fig14_cornell.json";
+  req.maxMemoryBytes = 24ull << 30;
+  Admission a = admitRender(scene, req, Aov::Beauty, 2);
+  TraceScene tracer(scene);
+  EXPECT_THROW(confirmRender(a, scene, tracer, req), InputError);
+  EXPECT_GT(a.estimate.photonPeakBytes, double(24ull << 30));
+  EXPECT_EQ(scene.photons.shadowPhotons, 1000000000u);  // the pilot gave the count back
+}
+
+TEST(ResourceEstimate, AHugeFrameSaysItsEstimateBeforeAnyPhotonOrTile) {
+  // 16384^2 at 4096 spp: days, told through the notice before the first progress report.
+  RenderRequest req;
+  req.scenePath = kScenes + "fig03_shadows.json";
+  req.overrides = {"camera.width=16384", "camera.height=16384", "camera.spp=4096"};
+  std::string note;
+  bool progressed = false;
+  struct Stop {};
+  req.notice = [&](const std::string& n) { note = n; throw Stop{}; };
+  req.progress = [&](const char*, double) { progressed = true; };
+  EXPECT_THROW(runRender(req), Stop);
+  EXPECT_FALSE(progressed);
+  EXPECT_NE(note.find("estimated ~"), std::string::npos) << note;
+  EXPECT_NE(note.find(" h on "), std::string::npos) << note;
+}
+
+TEST(ResourceEstimate, SmallJobsSayNothing) {
+  RenderRequest req;
+  req.scenePath = kScenes + "fig03_shadows.json";
+  req.overrides = {"camera.width=32", "camera.height=24", "photons.shadow=1000"};
+  bool told = false;
+  req.notice = [&](const std::string&) { told = true; };
+  const RenderResult r = runRender(req);
+  EXPECT_FALSE(told);
+  EXPECT_LT(r.estimate.seconds(), kLongJobSeconds);
+  EXPECT_GT(r.estimate.imageBytes, 32.0 * 24 * 12);
+}
+
+TEST(MemoryLimit, SizesParseInBinaryUnits) {
+  EXPECT_EQ(parseMemorySize("8G"), 8ull << 30);
+  EXPECT_EQ(parseMemorySize("512M"), 512ull << 20);
+  EXPECT_EQ(parseMemorySize("1.5GiB"), 3ull << 29);
+  EXPECT_EQ(parseMemorySize("64k"), 64ull << 10);
+  EXPECT_EQ(parseMemorySize("2048"), 2048u);
+  for (const char* bad : {"", "G", "0", "-1G", "8Q", "nan", "1e30G"}) {
+    EXPECT_THROW(parseMemorySize(bad), InputError) << bad;
+  }
+  EXPECT_GT(availableMemoryBytes(), 0u);
+}
