@@ -68,26 +68,6 @@ std::string rayTreeToJson(const RayTree& tree, int x, int y) {
   return nlohmann::json({{"pixel", {x, y}}, {"rays", rays}}).dump(2) + "\n";
 }
 
-void writeTextFile(const std::string& path, const std::string& text) {
-  std::string tmp = path + ".tmp" + std::to_string(getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.flush();
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw InputError(path + ": cannot write file");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError(path + ": cannot write file: " + ec.message());
-  }
-}
-
 std::string statsSummary(const RenderStats& s) {
   const RayCounts& r = s.rays;
   std::string out = fmt::format(

@@ -9,9 +9,6 @@ namespace penumbra {
 std::string statsToJson(const RenderStats& stats);
 std::string rayTreeToJson(const RayTree& tree, int x, int y);
 
-// Writes text to `path` via a temporary file and a rename; throws InputError.
-void writeTextFile(const std::string& path, const std::string& text);
-
 // The short human summary printed to stderr after a render.
 std::string statsSummary(const RenderStats& stats);
 
