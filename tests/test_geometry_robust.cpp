@@ -52,13 +52,23 @@ TEST(RobustTrace, ClosedBoxHasNoHolesAtAnyScale) {
 // A ray spawned off a wall of a box, into the box, can only meet another wall: meeting
 // the same plane again is self-intersection. Grazing bounces are the hard part.
 TEST(RobustTrace, SpawnedRaysNeverMeetTheirOwnWall) {
-  for (float s : kScales) {
-    const Scene scene = boxScene(s, Vec3(-1.0f, -0.9f, -1.2f), Vec3(1.3f, 2.0f, 1.0f));
+  for (float s : kScales)
+  for (bool tilted : {false, true}) {
+    Scene scene = boxScene(s, Vec3(-1.0f, -0.9f, -1.2f), Vec3(1.3f, 2.0f, 1.0f));
+    if (tilted) {
+      // Walls off the axes: the offset must cover the rounding of every axis it mixes.
+      const glm::mat3 r = glm::mat3(glm::cos(0.7f), glm::sin(0.7f), 0.0f, -glm::sin(0.7f), glm::cos(0.7f), 0.0f,
+                                    0.0f, 0.0f, 1.0f) *
+                          glm::mat3(1.0f, 0.0f, 0.0f, 0.0f, glm::cos(0.4f), glm::sin(0.4f), 0.0f,
+                                    -glm::sin(0.4f), glm::cos(0.4f));
+      for (Vec3& p : scene.meshes[0].positions) p = r * p + Vec3(0.3f, -0.2f, 0.1f) * s;
+    }
     const TraceScene tracer(scene);
     Rng rng(11);
     int selfHits = 0, escapes = 0;
     for (int i = 0; i < 20000; ++i) {
-      Ray ray{Vec3(0.1f, 0.4f, -0.1f) * s, uniformSphere(rng.uniform(), rng.uniform())};
+      const Vec3 centre = tilted ? Vec3(0.3f, -0.2f, 0.1f) * s : Vec3(0.1f, 0.4f, -0.1f) * s;
+      Ray ray{centre, uniformSphere(rng.uniform(), rng.uniform())};
       Hit hit;
       ASSERT_TRUE(tracer.intersect(ray, hit));
       const SurfaceRecord rec = tracer.surface(ray, hit, kSurfaceGeometric);
@@ -74,8 +84,8 @@ TEST(RobustTrace, SpawnedRaysNeverMeetTheirOwnWall) {
       const SurfaceRecord nrec = tracer.surface(bounce, next, kSurfaceGeometric);
       if (glm::dot(nrec.ng, rec.ng) > 0.999f) ++selfHits;
     }
-    EXPECT_EQ(selfHits, 0) << "scale " << s;
-    EXPECT_EQ(escapes, 0) << "scale " << s;
+    EXPECT_EQ(selfHits, 0) << "scale " << s << (tilted ? ", tilted" : "");
+    EXPECT_EQ(escapes, 0) << "scale " << s << (tilted ? ", tilted" : "");
   }
 }
 

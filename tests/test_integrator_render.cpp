@@ -112,9 +112,10 @@ TEST(Render, ShadowedPointIsAmbientOnly) {
 
 // A horizontal mirror (y = 0) under a sphere at (0,1,0), r = 0.5. The camera
 // ray hits the mirror at M = (0,0,2) and reflects straight at the sphere centre.
-// The reflection ray starts a few ulps above the mirror (its error bound), which
-// moves its hit on the ball by ~1e-6; the analytic value follows that exact ray. Lambert is view independent, so the mirror shows kr x
-// what a direct view of the same ball point sees.
+// The reflection ray starts its error bound above the mirror (2^-40 of its reach),
+// which moves its hit on the ball by ~1e-11; the analytic value follows that ray.
+// Lambert is view independent, so the mirror shows kr x what a direct view of the
+// same ball point sees.
 struct MirrorScene {
   Scene scene;
   MirrorScene(float kr, int maxDepth) {
@@ -132,7 +133,8 @@ struct MirrorScene {
   // Where the reflection ray meets the ball, in double precision.
   glm::dvec3 ballHit() const {
     const Vec3 m(0, 0, 2);
-    glm::dvec3 o(m.x, m.y + gammaBound(7) * 10.0f, m.z);  // the quad's largest coordinate is 10
+    // The mirror lies in y = 0, exact in y: only the 2^-40 floor of its reach (10).
+    glm::dvec3 o(m.x, m.y + 0x1p-40 * 10.0, m.z);
     glm::dvec3 d = glm::normalize(glm::dvec3(0, 1, -2));
     glm::dvec3 f = o - glm::dvec3(0, 1, 0);
     double b = -glm::dot(f, d), perp2 = glm::dot(f + b * d, f + b * d);

@@ -66,8 +66,8 @@ PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
   PhotonRay r;
   const float u1 = rng.uniform(), u2 = rng.uniform();
   if (light.type == LightType::Point) {
-    r.origin = light.position;
     r.dir = uniformSphere(u1, u2);
+    r.origin = pointLightOrigin(light, r.dir, bounds);
     return r;
   }
   const float u3 = rng.uniform(), u4 = rng.uniform();
@@ -79,7 +79,11 @@ PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
 PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                         float u3, float u4) {
   PhotonRay r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
-  if (!isDeltaLight(light)) r.origin = offsetRayOrigin(r.origin, r.normal, r.error, r.dir);
+  if (!isDeltaLight(light)) {
+    r.origin = offsetRayOrigin(r.origin, r.normal, r.error, r.dir);
+  } else if (light.type == LightType::Point) {
+    r.origin = pointLightOrigin(light, r.dir, bounds);
+  }
   return r;
 }
 

@@ -88,6 +88,7 @@ float sampleAimed(const Light& light, const SceneSphere& bounds, const Aim& aim,
     float phi = 2.0f * kPi * u2;
     Vec3 local(sinT * std::cos(phi), sinT * std::sin(phi), cosT);
     r.dir = d > 0.0f ? toWorld(local, axis / d) : uniformSphere(u1, u2);
+    r.origin = pointLightOrigin(light, r.dir, bounds);
   } else {
     float rad = t.radius * std::sqrt(u1), phi = 2.0f * kPi * u2;
     Vec3 tt, bb;

@@ -173,7 +173,7 @@ SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit, uint8_t 
   // Re-project onto the sphere: removes the error of o + t d at large t. What is
   // left is the rounding of c + r n: a few ulps of |c| + r per axis.
   rec.position = s.center + s.radius * n;
-  rec.error = gammaBound(5) * (maxComponent(glm::abs(s.center)) + s.radius);
+  rec.error = rec.spread = gammaBound(5) * (maxComponent(glm::abs(s.center)) + s.radius);
   if (fields & kSurfaceUv) {
     rec.uv = sphericalUv(n);
     rec.uvPerWorld = sphericalUvPerWorld(s.radius);
@@ -194,12 +194,17 @@ SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit, uint8_t fi
   // plane, unlike o + t d, which drifts with the ray length.
   rec.position = w * p0 + hit.u * p1 + hit.v * p2;
   Vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-  // The interpolation's rounding is a few ulps of the vertices' magnitudes. Bounding
-  // by the largest vertex coordinate on any axis (not the barycentric mix, not the
-  // normal's axis alone) also covers Embree's plane test, which mixes all three axes;
-  // it keeps an axis-aligned plane at y = 0, exact in y, from getting no offset.
+  // The interpolation's rounding is a few ulps of the vertices' magnitudes on each
+  // axis; along the normal that is dot(|n|, per-axis bound). Bounding by the largest
+  // vertex per axis (not the barycentric mix) also covers Embree's plane test, whose
+  // error in dot(n, v - o) is the same sum. A face normal to z at z ~ 0 gets an offset
+  // of ulps of z, not of its 3-unit width, so a wide 1e-6 slab keeps two faces.
+  // A plane at exactly z = 0 is exact in z and would get a 1-ulp (denormal) offset,
+  // which Embree's products flush to 0, hitting the plane again at t = 0: a floor of
+  // 2^-40 of the triangle's reach keeps those products normal at any scale.
   const Vec3 extent = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
-  rec.error = gammaBound(7) * maxComponent(extent);
+  rec.error = std::max(gammaBound(7) * glm::dot(glm::abs(ng), extent), 0x1p-40f * maxComponent(extent));
+  rec.spread = gammaBound(7) * maxComponent(extent);
   Vec3 ns = ng;
   if ((fields & kSurfaceShadingNormal) && !mesh.normals.empty()) {
     Vec3 n = w * mesh.normals[tri[0]] + hit.u * mesh.normals[tri[1]] + hit.v * mesh.normals[tri[2]];

@@ -31,6 +31,7 @@ struct SurfaceRecord {
   Vec2 uv{0.0f};
   Vec2 uvPerWorld{1.0f};  // uv change per unit of world distance (u, v): texture filter widths
   float error = 0.0f;  // bound on position's distance from the true surface along ng
+  float spread = 0.0f; // bound on its error in any direction (along the surface too)
   int material = 0;
   bool frontFace = true;
 };

@@ -19,6 +19,10 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uin
                           const LightIncidence& in, ThreadState& ts) {
   ++ts.counts.shadow;
   Ray ray{spawnOrigin(s, in.wi), in.wi};
+  // A point on the edge where two faces meet (a room's corner) may sit a rounding
+  // error behind the other face and see it at t ~ 0: occluders nearer than a few
+  // times the point's own error cannot be told from it, so they do not shadow.
+  ray.tMin = 4.0f * s.spread;
   const bool finite = std::isfinite(in.distance);
   if (finite) {
     // Aim from the lifted origin at the sample itself (pbrt's SpawnRayTo): measured

@@ -73,13 +73,38 @@ TEST(HardLights, LightsInsideClosedObjectsLightNothingOutside) {
 }
 
 // The physical beauty of the same scenes: global photons all land inside the closed
-// object, yet outside surfaces gather them. The k-nearest gather has no radius limit
-// in the physical model, so a floor point with no photon near it reaches through the
-// box wall to the k photons on the box's inner bottom face (same plane, same normal)
-// and the walls to those on the inner side faces.
-TEST(HardLights, PhotonsOfALightInsideAClosedObjectStayInside) {
-  expectDark(pointAt(0, 0.5, 0), "point in the box", true);
-  expectDark(kQuadInBox, "quad light in the box", true);
+// object, yet outside surfaces gather them. Known limitation (docs/photon-maps.md):
+// with no radius limit a floor point far from any photon reaches through the box
+// wall to the k photons on its inner faces; with photons.max_radius the leak shrinks
+// to the floor within that radius of the box's base, where the box's inner bottom
+// face lies in the floor's own plane with the floor's normal (only a per-photon
+// surface id would tell them apart). Asserted: no pixel leaks more than the radius
+// allows (the ring around the base: <= 8% of the pixels here; measured 5.7% for the
+// point light, 2.2% for the quad), and the rest of the
+// room stays below a residual 1e-4.
+TEST(HardLights, PhotonsOfALightInsideAClosedObjectLeakOnlyAtTheBase) {
+  // Radiance inside the box is ~1; what rounding lets through its edges stays below
+  // 1e-4 of that (a photon hitting within ulps of an edge can start on the far side
+  // of the other face: measured ~6e-6 per pixel).
+  const float kResidual = 1e-4f;
+  for (const std::string& light : {pointAt(0, 0.5, 0), kQuadInBox}) {
+    for (const char* gate : {"off", "on"}) {
+      const std::string w = light.substr(0, 20) + ", gate " + gate;
+      RenderResult r = renderJson(closedJson("physical", light),
+                                  {std::string("photons.gate=") + gate, "photons.max_radius=0.02"});
+      dump(w, r.image);
+      expectSane(r, 10.0, w);
+      int lit = 0;
+      for (const Color& c : r.image.pixels) lit += maxComponent(c) > kResidual;
+      EXPECT_LE(lit, static_cast<int>(0.08 * r.image.pixels.size())) << w << ": " << lit << " pixels lit";
+      // Above the box's base the room is dark: the top rows see walls and ceiling only.
+      float top = 0.0f;
+      for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < r.image.width; ++x) top = std::max(top, maxComponent(r.image.at(x, y)));
+      EXPECT_LE(top, kResidual) << w;
+      std::printf("%s: %d pixels above %g, brightest top-row pixel %g\n", w.c_str(), lit, kResidual, top);
+    }
+  }
 }
 
 // Lights exactly on surfaces. A point light on the floor plane (y = 0) and one on

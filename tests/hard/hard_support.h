@@ -125,6 +125,27 @@ inline int countHoles(const Image& ref, const Image& other, float bright = 0.2f,
   return n;
 }
 
+// Holes that are not flips between faces: a pixel whose centre lies on an edge may
+// show the face beside it at another scale, which a neighbour shows too. A hole is
+// darker than `fraction` of every reference pixel in its 3 x 3 neighbourhood (a black
+// speck where all around was bright), so flips to a darker neighbour do not count.
+inline int countIsolatedHoles(const Image& ref, const Image& other, float bright = 0.2f,
+                              float fraction = 0.25f) {
+  int n = 0;
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x) {
+      if (meanOf(ref.at(x, y)) <= bright) continue;
+      float darkest = kInf;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int u = x + dx, v = y + dy;
+          if (u >= 0 && v >= 0 && u < ref.width && v < ref.height) darkest = std::min(darkest, meanOf(ref.at(u, v)));
+        }
+      if (meanOf(other.at(x, y)) < fraction * darkest) ++n;
+    }
+  return n;
+}
+
 inline int differingPixels(const Image& a, const Image& b, float tol) {
   int n = 0;
   for (size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i)
