@@ -51,41 +51,38 @@ TEST(HardLimits, ZeroPhotonsRender) {
 // k larger than the map: the estimate uses every photon there is, so it equals the
 // estimate with k = the map's size exactly (the same photons, sorted the same way;
 // 1e-6 RMSE for summation order). The maps are kept to a few hundred photons.
-TEST(HardLimits, KLargerThanTheMapEqualsKEqualsTheMap) {
-  const std::vector<std::string> tiny = {"photons.global=150", "photons.caustic=100", "photons.max_bounces=2"};
+// One model's two maps: render with both k keys at 10000, then with each k equal to
+// the photons its map stored (`stored` reads those two counts from the stats).
+void expectKBeyondTheMapIsTheMap(const std::string& model, const std::vector<std::string>& base,
+                                 const std::string& k1, const std::string& k2,
+                                 std::pair<uint64_t, uint64_t> (*stored)(const RenderStats&)) {
   auto with = [&](std::vector<std::string> more) {
-    std::vector<std::string> o = tiny;
+    std::vector<std::string> o = base;
     o.insert(o.end(), more.begin(), more.end());
     return o;
   };
-  RenderResult big = renderJson(roomJson("physical", kSpheres), with({"photons.k_global=10000", "photons.k_caustic=10000"}));
-  expectSane(big, roomBound("physical"), "physical k 10000");
-  ASSERT_GT(big.stats.storedGlobal, 0u);
-  ASSERT_GT(big.stats.storedCaustic, 0u);
-  ASSERT_LT(big.stats.storedGlobal, 10000u);
-  ASSERT_LT(big.stats.storedCaustic, 10000u);
-  RenderResult all = renderJson(roomJson("physical", kSpheres),
-                                with({"photons.k_global=" + std::to_string(big.stats.storedGlobal),
-                                      "photons.k_caustic=" + std::to_string(big.stats.storedCaustic)}));
-  EXPECT_LE(rmse(big.image, all.image), 1e-6);
+  RenderResult big = renderJson(roomJson(model, kSpheres), with({k1 + "=10000", k2 + "=10000"}));
+  expectSane(big, roomBound(model), model + " k 10000");
+  const auto [n1, n2] = stored(big.stats);
+  ASSERT_GT(n1, 0u);
+  ASSERT_GT(n2, 0u);
+  ASSERT_LT(n1, 10000u);
+  ASSERT_LT(n2, 10000u);
+  RenderResult all = renderJson(roomJson(model, kSpheres),
+                                with({k1 + "=" + std::to_string(n1), k2 + "=" + std::to_string(n2)}));
+  EXPECT_LE(rmse(big.image, all.image), 1e-6) << model;
+}
 
-  // Classic: the indirect map and the gate's shadow map, k_indirect / k_shadow above them.
-  const std::vector<std::string> classic = {"photons.indirect=200", "photons.shadow=300", "photons.gate=on"};
-  auto cwith = [&](std::vector<std::string> more) {
-    std::vector<std::string> o = classic;
-    o.insert(o.end(), more.begin(), more.end());
-    return o;
-  };
-  RenderResult cbig = renderJson(roomJson("classic", kSpheres), cwith({"photons.k_indirect=10000", "photons.k_shadow=10000"}));
-  expectSane(cbig, roomBound("classic"), "classic k 10000");
-  ASSERT_GT(cbig.stats.storedIndirect, 0u);
-  ASSERT_GT(cbig.stats.storedShadow, 0u);
-  ASSERT_LT(cbig.stats.storedIndirect, 10000u);
-  ASSERT_LT(cbig.stats.storedShadow, 10000u);
-  RenderResult call = renderJson(roomJson("classic", kSpheres),
-                                 cwith({"photons.k_indirect=" + std::to_string(cbig.stats.storedIndirect),
-                                        "photons.k_shadow=" + std::to_string(cbig.stats.storedShadow)}));
-  EXPECT_LE(rmse(cbig.image, call.image), 1e-6);
+TEST(HardLimits, KLargerThanTheMapEqualsKEqualsTheMap) {
+  expectKBeyondTheMapIsTheMap(
+      "physical", {"photons.global=150", "photons.caustic=100", "photons.max_bounces=2"},
+      "photons.k_global", "photons.k_caustic",
+      [](const RenderStats& s) { return std::pair<uint64_t, uint64_t>(s.storedGlobal, s.storedCaustic); });
+  // Classic: the indirect map and the gate's shadow map.
+  expectKBeyondTheMapIsTheMap(
+      "classic", {"photons.indirect=200", "photons.shadow=300", "photons.gate=on"},
+      "photons.k_indirect", "photons.k_shadow",
+      [](const RenderStats& s) { return std::pair<uint64_t, uint64_t>(s.storedIndirect, s.storedShadow); });
 }
 
 // max_depth 0: no mirror or glass ray at all, so the physical mirror (kr = 1) and
