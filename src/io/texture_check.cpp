@@ -16,6 +16,23 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PENUMBRA_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(PENUMBRA_ASAN)
+#include <sanitizer/lsan_interface.h>
+// OIIO 2.4's PNG reader builds its error string in the libpng read callback and then
+// libpng longjmps out of a truncated file past that string's destructor: 31 bytes
+// leak per truncated PNG, in OIIO, not here. Leak checking skips just that decode.
+#define PENUMBRA_THIRD_PARTY_LEAKS_BEGIN __lsan_disable()
+#define PENUMBRA_THIRD_PARTY_LEAKS_END __lsan_enable()
+#else
+#define PENUMBRA_THIRD_PARTY_LEAKS_BEGIN ((void)0)
+#define PENUMBRA_THIRD_PARTY_LEAKS_END ((void)0)
+#endif
+
 namespace penumbra {
 
 namespace {
@@ -70,11 +87,13 @@ std::string textureFileProblem(const std::string& path) {
   const int yEnd = spec.y + spec.height;
   for (int y = spec.y; y < yEnd; y += band) {
     const int rows = std::min(band, yEnd - y);
+    PENUMBRA_THIRD_PARTY_LEAKS_BEGIN;
     const bool read =
         tiled ? in->read_tiles(0, 0, spec.x, spec.x + spec.width, y, y + rows, spec.z, spec.z + 1, 0,
                                spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())
               : in->read_scanlines(0, 0, y, y + rows, spec.z, 0, spec.nchannels,
                                    OIIO::TypeDesc::FLOAT, pixels.data());
+    PENUMBRA_THIRD_PARTY_LEAKS_END;
     if (!read || in->has_error()) {
       return "texture " + path + " is truncated or corrupt: " + firstLine(in->geterror());
     }
