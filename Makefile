@@ -68,6 +68,8 @@ CLANG_CXX ?= clang++
 FUZZ_BUILD ?= build-fuzz
 ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
+# Debian's oneTBB rebuilt with ThreadSanitizer (fuzz/sanitizers/build_tsan_tbb.sh).
+TSAN_TBB ?= $(TSAN_BUILD)/tbb
 # Seconds per fuzz target. Inputs up to FUZZ_MAX_LEN bytes (the largest shipped
 # scene is 3.6 kB); one input taking FUZZ_TIMEOUT s is a hang finding.
 FUZZ_SECONDS ?= 60
@@ -121,8 +123,16 @@ test-asan: san-deps
 	$(SAN_ENV) cmake --build $(ASAN_BUILD) -j $(JOBS) --target penumbra_tests
 	cd $(ASAN_BUILD) && $(SAN_ENV) ctest --output-on-failure -j $(JOBS)
 
-# ThreadSanitizer on the determinism tests (renders with 1 and 2 threads).
+# ThreadSanitizer on the determinism tests (renders with 1 and 2 threads),
+# linked against Debian's oneTBB rebuilt with -fsanitize=thread so the races
+# inside TBB tasks are checked too; the check below refuses to run against the
+# uninstrumented system libtbb.
 test-tsan: san-deps
-	cmake -S . -B $(TSAN_BUILD) $(SAN_CMAKE) -DPENUMBRA_SANITIZE=thread
+	JOBS=$(JOBS) fuzz/sanitizers/build_tsan_tbb.sh $(TSAN_TBB)
+	cmake -S . -B $(TSAN_BUILD) $(SAN_CMAKE) -DPENUMBRA_SANITIZE=thread \
+	      -DTBB_DIR=$(CURDIR)/$(TSAN_TBB)/lib/cmake/TBB
 	$(SAN_ENV) cmake --build $(TSAN_BUILD) -j $(JOBS) --target test_pipeline_determinism
-	cd $(TSAN_BUILD) && $(SAN_ENV) ctest --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)'
+	@ldd $(TSAN_BUILD)/tests/test_pipeline_determinism | grep -q '$(CURDIR)/$(TSAN_TBB)/lib/libtbb.so.12' || \
+	  { echo "test-tsan: not linked against the TSan libtbb in $(TSAN_TBB)"; exit 1; }
+	cd $(TSAN_BUILD) && LD_LIBRARY_PATH=$(CURDIR)/$(TSAN_TBB)/lib $(SAN_ENV) \
+	  ctest --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)'
