@@ -17,6 +17,12 @@ class BatchBuffers {
  public:
   explicit BatchBuffers(size_t batches) : batches_(batches) {}
   std::vector<Photon>& batch(size_t b) { return batches_[b]; }
+  // Photons each batch stored, in batch order (before merge()).
+  std::vector<size_t> sizes() const {
+    std::vector<size_t> n(batches_.size());
+    for (size_t i = 0; i < batches_.size(); ++i) n[i] = batches_[i].size();
+    return n;
+  }
 
   // All batches' photons in batch order; each batch is freed once copied.
   std::vector<Photon> merge() {

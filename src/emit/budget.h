@@ -33,19 +33,30 @@ inline std::vector<uint64_t> splitByWeight(const std::vector<double>& weights, u
   return count;
 }
 
+// A run of one light's photons: its `index`-th batch, photons [first, first + count)
+// of that light's sequence.
 struct PhotonBatch {
   uint32_t light;
   uint64_t count;
+  uint64_t index = 0;
+  uint64_t first = 0;
 };
 
 inline std::vector<PhotonBatch> makeBatches(const std::vector<uint64_t>& perLight, uint32_t batchSize) {
   std::vector<PhotonBatch> batches;
   for (uint32_t l = 0; l < perLight.size(); ++l) {
     for (uint64_t done = 0; done < perLight[l]; done += batchSize) {
-      batches.push_back({l, std::min<uint64_t>(batchSize, perLight[l] - done)});
+      batches.push_back({l, std::min<uint64_t>(batchSize, perLight[l] - done), done / batchSize, done});
     }
   }
   return batches;
+}
+
+// The random stream of a batch, keyed by its light and its index within that light,
+// so a light's first n photons are the same whatever the budget of the other lights
+// (emit/photon_prefix.h reuses them). Light 0 keeps the plain batch index.
+inline uint64_t batchStreamKey(const PhotonBatch& batch) {
+  return batch.index + (static_cast<uint64_t>(batch.light) << 40);
 }
 
 }  // namespace penumbra

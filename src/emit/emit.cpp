@@ -1,5 +1,5 @@
 // Shadow and indirect photon emission. Each batch draws from its own random
-// stream keyed by (seed, map, batch index); per-batch buffers are merged in
+// stream keyed by (seed, map, light, batch index within the light); per-batch buffers are merged in
 // batch order, so the stored arrays do not depend on the thread count.
 #include "emit/emit.h"
 #include "core/bsdf.h"
@@ -87,14 +87,22 @@ PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1,
   return r;
 }
 
-std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total) {
+namespace {
+std::vector<double> classicWeights(const Scene& scene) {
   std::vector<double> power(scene.lights.size(), 0.0);
   for (size_t l = 0; l < scene.lights.size(); ++l) power[l] = classicPhotonWeight(scene.lights[l]);
-  return splitByWeight(power, total);
+  return power;
+}
+}  // namespace
+
+std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total) {
+  return splitByWeight(classicWeights(scene), total);
 }
 
-PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options) {
+PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options,
+                       ClassicCuts* cuts) {
   PhotonMaps maps;
+  const std::vector<double> weights = classicWeights(scene);
   const PhotonSettings& ps = scene.photons;
   const SceneSphere bounds = tracer.boundingSphere();
   const uint64_t seed = scene.render.seed;
@@ -105,23 +113,34 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? ps.shadowPhotons : 0);
   std::vector<PhotonBatch> shadowBatches = makeBatches(shadowCounts, options.batchSize);
   BatchBuffers<ShadowPhoton> shadowBuffers(shadowBatches.size());
+  PrefixCuts* shadowCuts = nullptr;
+  if (cuts && !options.prefixBudgets.empty()) {
+    cuts->shadow = PrefixCuts(weights, shadowCounts, options.prefixBudgets, shadowBatches);
+    shadowCuts = &cuts->shadow;
+  }
   tbb::parallel_for(size_t(0), shadowBatches.size(), [&](size_t b) {
     const PhotonBatch& batch = shadowBatches[b];
     const Light& light = scene.lights[batch.light];
-    Rng rng(hashKey(seed, kShadowStream, b));
+    Rng rng(hashKey(seed, kShadowStream, batchStreamKey(batch)));
     auto& out = shadowBuffers.batch(b);
-    for (uint64_t i = 0; i < batch.count; ++i) {
+    traceBatch(shadowCuts, b, batch.count, out, [&](uint64_t) {
       const PhotonRay r = startPhoton(light, bounds, rng);
       traceShadowLine(tracer, r.origin, r.dir, static_cast<uint16_t>(batch.light),
                       options.maxHitsPerLine, out);
-    }
+    });
   });
+  if (shadowCuts) shadowCuts->finish(shadowBuffers.sizes());
   maps.shadow = shadowBuffers.merge();
 
   std::vector<uint64_t> indirectCounts = splitBudget(scene, options.indirectMap ? ps.indirectPhotons : 0);
   std::vector<PhotonBatch> indirectBatches = makeBatches(indirectCounts, options.batchSize);
   bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
   BatchBuffers<IndirectPhoton> indirectBuffers(indirectBatches.size());
+  PrefixCuts* indirectCuts = nullptr;
+  if (cuts && !options.prefixBudgets.empty()) {
+    cuts->indirect = PrefixCuts(weights, indirectCounts, options.prefixBudgets, indirectBatches);
+    indirectCuts = &cuts->indirect;
+  }
   tbb::parallel_for(size_t(0), indirectBatches.size(), [&](size_t b) {
     const PhotonBatch& batch = indirectBatches[b];
     const Light& light = scene.lights[batch.light];
@@ -129,13 +148,14 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
     const float count = static_cast<float>(indirectCounts[batch.light]);
     Color power = light.type == LightType::Point ? light.radiance() * (4.0f * kPi / count)
                                                  : lightPower(light, bounds) * (1.0f / count);
-    Rng rng(hashKey(seed, kIndirectStream, b));
+    Rng rng(hashKey(seed, kIndirectStream, batchStreamKey(batch)));
     auto& out = indirectBuffers.batch(b);
-    for (uint64_t i = 0; i < batch.count; ++i) {
+    traceBatch(indirectCuts, b, batch.count, out, [&](uint64_t) {
       const PhotonRay r = startPhoton(light, bounds, rng);
       traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power, rng, storeFirstHit, out);
-    }
+    });
   });
+  if (indirectCuts) indirectCuts->finish(indirectBuffers.sizes());
   maps.indirect = indirectBuffers.merge();
 
   for (uint64_t c : shadowCounts) maps.emittedShadow += c;

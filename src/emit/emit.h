@@ -5,6 +5,7 @@
 #include "core/light_sample.h"
 #include "core/photon.h"
 #include "core/scene.h"
+#include "emit/photon_prefix.h"
 #include "geometry/trace_scene.h"
 
 namespace penumbra {
@@ -16,12 +17,20 @@ struct EmitOptions {
   bool indirectMap = true;    // false: shadow photons only (the physical model's gate)
   bool globalMap = true;      // physical model: false skips the global pass (views that do not read it)
   bool causticMap = true;     // physical model: false skips the caustic pass
+  // Smaller budgets to record inside this emission (emit/photon_prefix.h), for every
+  // map emitted: a budget below a map's own is cut out of it afterwards.
+  std::vector<uint64_t> prefixBudgets;
 };
 
 // Splits each budget across point lights by luminous intensity (largest
 // remainder, so the counts add up exactly). The result is identical for any
 // thread count: batches are merged in batch order.
-PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options = {});
+// `cuts`, if given, receives the shadow and indirect maps' prefix cuts.
+struct ClassicCuts {
+  PrefixCuts shadow, indirect;
+};
+PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options = {},
+                       ClassicCuts* cuts = nullptr);
 
 // Photons per light for a budget, proportional to each point light's power.
 std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total);

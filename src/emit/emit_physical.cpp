@@ -150,7 +150,7 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ra
 
 std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, PassKind kind,
                                     uint64_t pass, uint64_t total, const EmitOptions& options,
-                                    uint64_t& emitted, PhotonTally& tally) {
+                                    uint64_t& emitted, PhotonTally& tally, PrefixCuts& cuts) {
   const SceneSphere bounds = tracer.boundingSphere();
   std::vector<SceneSphere> targets = kind == PassKind::Caustic ? specularTargets(scene)
                                                                : std::vector<SceneSphere>{};
@@ -170,16 +170,21 @@ std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
   std::vector<uint64_t> counts = splitByWeight(weights, total);
   std::vector<PhotonBatch> batches = makeBatches(counts, options.batchSize);
   BatchBuffers<IndirectPhoton> buffers(batches.size());
+  PrefixCuts* prefix = nullptr;
+  if (!options.prefixBudgets.empty()) {
+    cuts = PrefixCuts(weights, counts, options.prefixBudgets, batches);
+    prefix = &cuts;
+  }
   tbb::enumerable_thread_specific<PhotonTally> tallies;
   const uint64_t stream = kind == PassKind::Caustic ? kCausticStream : kGlobalStream;
   tbb::parallel_for(size_t(0), batches.size(), [&](size_t b) {
     const PhotonBatch& batch = batches[b];
     const Light& light = scene.lights[batch.light];
     const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
-    Rng rng(hashKey(hashKey(scene.render.seed, pass), stream, b));
+    Rng rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch)));
     auto& out = buffers.batch(b);
     PhotonTally& t = tallies.local();
-    for (uint64_t i = 0; i < batch.count; ++i) {
+    traceBatch(prefix, b, batch.count, out, [&](uint64_t) {
       PhotonRay r;
       Color power = share;
       if (kind == PassKind::Caustic && isDeltaLight(light)) {
@@ -191,10 +196,11 @@ std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
         r = emitterPhoton(light, bounds, u1, u2, u3, u4);
       }
       t.emitted += glm::dvec3(power);
-      if (maxComponent(power) <= 0.0f) continue;
+      if (maxComponent(power) <= 0.0f) return;
       tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);
-    }
+    });
   });
+  if (prefix) prefix->finish(buffers.sizes());
   for (const PhotonTally& t : tallies) tally += t;
   emitted = 0;
   for (uint64_t c : counts) emitted += c;
@@ -228,10 +234,10 @@ PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer
   const PhotonSettings& ps = scene.photons;
   out.global = runPass(scene, tracer, PassKind::Global, pass,
                        options.globalMap ? ps.globalPhotons : 0, options, out.emittedGlobal,
-                       out.globalTally);
+                       out.globalTally, out.globalCuts);
   out.caustic = runPass(scene, tracer, PassKind::Caustic, pass,
                         options.causticMap ? ps.causticPhotons : 0, options, out.emittedCaustic,
-                        out.causticTally);
+                        out.causticTally, out.causticCuts);
   return out;
 }
 

@@ -22,6 +22,7 @@ struct PhysicalPhotons {
   std::vector<IndirectPhoton> caustic, global;
   uint64_t emittedCaustic = 0, emittedGlobal = 0;
   PhotonTally causticTally, globalTally;
+  PrefixCuts causticCuts, globalCuts;  // options.prefixBudgets (tallies cover the full emission)
 };
 
 // Pass `pass` of a progressive render draws from its own random streams, so
