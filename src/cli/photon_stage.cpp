@@ -1,0 +1,124 @@
+// Emission and map builds for one render or a group of renders sharing photons.
+#include "cli/photon_stage.h"
+#include "core/stats.h"
+#include <tbb/parallel_invoke.h>
+
+namespace penumbra {
+namespace {
+
+// The classic passes (and every gate) emit from point and area lights.
+bool hasPhotonLight(const Scene& scene) {
+  for (const Light& l : scene.lights) {
+    if (l.type != LightType::Directional) return true;
+  }
+  return false;
+}
+
+template <class Photon>
+std::vector<Photon> photonsFor(std::vector<Photon>& all, const PrefixCuts& cuts, uint64_t full,
+                               uint64_t wanted, bool consume, bool& ok) {
+  if (wanted == full) return consume ? std::move(all) : all;
+  const PrefixCut* cut = cuts.find(wanted);
+  if (!cut) {
+    ok = false;
+    return {};
+  }
+  return takePrefix(all, *cut);
+}
+
+}  // namespace
+
+PhotonBudgets budgetsOf(const Scene& scene) {
+  const PhotonSettings& ps = scene.photons;
+  return {ps.shadowPhotons, ps.indirectPhotons, ps.globalPhotons, ps.causticPhotons};
+}
+
+PhotonNeeds photonNeeds(const Scene& scene, Aov aov) {
+  PhotonNeeds needs;
+  if (!hasPhotonLight(scene) || aov == Aov::Depth || aov == Aov::Normal) return needs;
+  const bool gate = scene.photons.gate && scene.render.shadows;
+  if (scene.render.model == ShadingModel::Classic) {
+    needs.shadow = gate && aov == Aov::Beauty;
+    needs.indirect = aov == Aov::Beauty || aov == Aov::Indirect;
+  } else {
+    needs.shadow = gate && (aov == Aov::Beauty || aov == Aov::Direct);
+    needs.global = aov == Aov::Beauty || aov == Aov::Indirect;
+    needs.caustic = aov == Aov::Beauty || aov == Aov::Caustic;
+  }
+  return needs;
+}
+
+Emission emitForView(const Scene& scene, const TraceScene& tracer, Aov aov, uint32_t pass,
+                     const std::vector<uint64_t>& smaller) {
+  Emission e;
+  e.physical = scene.render.model == ShadingModel::Physical;
+  e.numLights = scene.lights.size();
+  const PhotonNeeds needs = photonNeeds(scene, aov);
+  if (!needs.any()) {
+    if (!hasPhotonLight(scene) && !scene.lights.empty() && aov != Aov::Depth && aov != Aov::Normal) {
+      e.notes.push_back("only directional lights: rendering without photon maps");
+    }
+    return e;
+  }
+  Stopwatch clock;
+  EmitOptions options;
+  options.prefixBudgets = smaller;
+  // The physical gate's shadow photons do not change between passes: pass 0 only.
+  options.shadowMap = needs.shadow && (!e.physical || pass == 0);
+  options.indirectMap = needs.indirect;
+  if (options.shadowMap || options.indirectMap) {
+    e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
+  }
+  if (e.physical) {
+    options.globalMap = needs.global;
+    options.causticMap = needs.caustic;
+    e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
+  }
+  e.budgets = {e.classic.emittedShadow, e.classic.emittedIndirect, e.photons.emittedGlobal,
+               e.photons.emittedCaustic};
+  e.seconds = clock.seconds();
+  return e;
+}
+
+bool buildStage(Emission& e, const PhotonBudgets& wanted, bool consume, PhotonStage& stage) {
+  bool ok = true;
+  // A map the emission left empty (not needed, or no light) stays empty at any budget.
+  auto budget = [](uint64_t emitted, uint64_t want) { return emitted == 0 ? 0 : want; };
+  const PhotonBudgets b{budget(e.budgets.shadow, wanted.shadow), budget(e.budgets.indirect, wanted.indirect),
+                        budget(e.budgets.global, wanted.global), budget(e.budgets.caustic, wanted.caustic)};
+  auto shadow = photonsFor(e.classic.shadow, e.classicCuts.shadow, e.budgets.shadow, b.shadow, consume, ok);
+  auto indirect = photonsFor(e.classic.indirect, e.classicCuts.indirect, e.budgets.indirect, b.indirect,
+                             consume, ok);
+  auto global = photonsFor(e.photons.global, e.photons.globalCuts, e.budgets.global, b.global, consume, ok);
+  auto caustic = photonsFor(e.photons.caustic, e.photons.causticCuts, e.budgets.caustic, b.caustic,
+                            consume, ok);
+  if (!ok) return false;
+
+  stage.budgets = b;
+  stage.fromPrefix = !(b == e.budgets);
+  stage.emittedShadow = b.shadow;
+  stage.emittedIndirect = b.indirect;
+  stage.emittedGlobal = b.global;
+  stage.emittedCaustic = b.caustic;
+  // A prefix's own emission was not timed: charge it its share of the photons
+  // (emission time is linear in the photons traced; docs/sweep.md).
+  const double full = double(e.budgets.shadow + e.budgets.indirect + e.budgets.global + e.budgets.caustic);
+  const double part = double(b.shadow + b.indirect + b.global + b.caustic);
+  stage.emitSeconds = full > 0.0 ? e.seconds * part / full : e.seconds;
+  stage.notes = e.notes;
+  // Converts stored flux back into photon colour: emitted / (4 pi x summed intensity).
+  stage.classicScale = e.classic.classicScale;
+  if (stage.fromPrefix && e.budgets.indirect > 0) {
+    stage.classicScale = e.classic.classicScale * float(double(b.indirect) / double(e.budgets.indirect));
+  }
+  Stopwatch clock;
+  // nanoflann builds single-threaded: build the trees side by side.
+  tbb::parallel_invoke([&] { stage.shadow.build(std::move(shadow), e.numLights); },
+                       [&] { stage.indirect.build(std::move(indirect)); },
+                       [&] { stage.global.build(std::move(global)); },
+                       [&] { stage.caustic.build(std::move(caustic)); });
+  stage.buildSeconds = clock.seconds();
+  return true;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,71 @@
+// A render's photon maps as one value that several renders can share: emitted
+// once (optionally recording smaller budgets as prefix cuts), then built into
+// maps for the full budget or any recorded smaller one (penumbra sweep reuses
+// them across k, depth, spp and the gate; runRender builds one and uses it).
+#pragma once
+#include "core/photon.h"
+#include "core/scene.h"
+#include "emit/emit.h"
+#include "emit/emit_physical.h"
+#include "gather/photon_map.h"
+#include "geometry/trace_scene.h"
+#include "integrator/render.h"
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+// The budgets of every map, the part of a render's photons that a sweep varies.
+struct PhotonBudgets {
+  uint64_t shadow = 0, indirect = 0, global = 0, caustic = 0;
+  bool operator==(const PhotonBudgets& o) const {
+    return shadow == o.shadow && indirect == o.indirect && global == o.global && caustic == o.caustic;
+  }
+};
+PhotonBudgets budgetsOf(const Scene& scene);
+
+// One emission (pass 0 of the physical model, or the classic pass) with the raw
+// photons of every map the view reads, and the prefix cuts asked for.
+struct Emission {
+  bool physical = false;
+  PhotonMaps classic;          // classic maps; the physical model's gate photons (shadow)
+  ClassicCuts classicCuts;
+  PhysicalPhotons photons;     // physical caustic and global photons
+  PhotonBudgets budgets;       // what was emitted
+  size_t numLights = 0;
+  double seconds = 0.0;
+  std::vector<std::string> notes;
+};
+
+// Which maps `aov` reads, for this scene (the gate only where it is on).
+struct PhotonNeeds {
+  bool shadow = false, indirect = false, global = false, caustic = false;
+  bool any() const { return shadow || indirect || global || caustic; }
+};
+PhotonNeeds photonNeeds(const Scene& scene, Aov aov);
+
+// Emits `scene`'s photons for progressive pass `pass`, recording `smaller` budgets.
+Emission emitForView(const Scene& scene, const TraceScene& tracer, Aov aov, uint32_t pass,
+                     const std::vector<uint64_t>& smaller = {});
+
+// Built photon maps and what they cost.
+struct PhotonStage {
+  ShadowPhotonMap shadow;
+  IndirectPhotonMap indirect, caustic, global;
+  float classicScale = 1.0f;
+  PhotonBudgets budgets;
+  uint64_t emittedShadow = 0, emittedIndirect = 0, emittedCaustic = 0, emittedGlobal = 0;
+  double emitSeconds = 0.0, buildSeconds = 0.0;
+  bool fromPrefix = false;  // cut out of a larger emission
+  std::vector<std::string> notes;
+  size_t bytes() const {
+    return shadow.memoryBytes() + indirect.memoryBytes() + caustic.memoryBytes() + global.memoryBytes();
+  }
+};
+
+// Maps for `budgets` out of `emission`: the full budgets (then the photons are
+// moved out when `consume`, else copied) or a recorded smaller one. Returns false,
+// leaving `stage` untouched, when some map's budget is neither.
+bool buildStage(Emission& emission, const PhotonBudgets& budgets, bool consume, PhotonStage& stage);
+
+}  // namespace penumbra

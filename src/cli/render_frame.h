@@ -1,0 +1,34 @@
+// The stages after the photons: a scene's Embree scene and textures (shareable by
+// every render of the same geometry), and one frame rendered from built photon
+// maps, with its precomputed lookups and progressive passes.
+#pragma once
+#include "cli/photon_stage.h"
+#include "cli/pipeline.h"
+#include "geometry/trace_scene.h"
+#include "integrator/texture_lookup.h"
+#include <memory>
+
+namespace penumbra {
+
+// Built once per geometry; the tracer reads the Scene it was built from, which
+// must outlive it (a sweep keeps that scene beside it).
+struct SceneAssets {
+  std::unique_ptr<TraceScene> tracer;
+  std::unique_ptr<TextureLookup> textures;
+  double bvhSeconds = 0.0;
+};
+SceneAssets prepareAssets(const Scene& scene);
+
+struct FrameOptions {
+  Aov aov = Aov::Beauty;
+  std::optional<std::pair<int, int>> tracePixel;
+  std::function<void(const char* phase, double fraction)> progress;
+};
+
+// Renders every pass of `scene` into result.image (or its ray tree), pass 0 from
+// `stage`; later physical passes emit their own photons. Fills result.stats'
+// photon, lookup, ray and render fields (not load, BVH or write).
+void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& stage,
+                 const FrameOptions& options, RenderResult& result);
+
+}  // namespace penumbra
