@@ -3,6 +3,7 @@
 #include "cli/memory_limit.h"
 #include "cli/pipeline.h"
 #include "cli/progress_bar.h"
+#include "cli/sweep_command.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/report_json.h"
@@ -152,6 +153,8 @@ int main(int argc, char** argv) {
   texture->add_option("--width", textureWidth, "Width in pixels; height is width / 2")->check(CLI::Range(2, 16384));
   texture->add_option("--seed", textureSeed, "Noise seed");
 
+  SweepCommand sweep(app);
+
   // From here on an interrupt removes our temp files, never an old output.
   installTempFileCleanup();
   try {
@@ -172,6 +175,7 @@ int main(int argc, char** argv) {
       if (noGate) req.overrides.push_back("photons.gate=false");
       return runRenderCommand(req, statsPath, tracePixelArg, quiet);
     }
+    if (sweep.selected()) return sweep.run();
     if (*texture) {
       writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),
                  {{"penumbra:texture", textureName}});

@@ -1,0 +1,56 @@
+// Reuse keys: the scene document minus what cannot change the shared piece.
+// Conservative by construction: a key not named here stays in, so an unknown or
+// new setting can only prevent sharing, never share wrongly.
+#include "cli/reuse_key.h"
+#include "core/error.h"
+#include "io/json_parse.h"
+#include "io/overrides.h"
+#include <fstream>
+#include <sstream>
+
+namespace penumbra {
+
+const std::vector<std::string>& gatherOnlyPhotonKeys() {
+  // The budgets go too: a smaller one is cut out of the larger emission.
+  static const std::vector<std::string> keys = {
+      "shadow", "indirect", "global", "caustic",           // budgets (prefix reuse)
+      "k_shadow", "k_indirect", "k_global", "k_caustic",   // gathers
+      "max_radius", "radius", "alpha", "gate", "lookup", "lookup_cell"};
+  return keys;
+}
+
+ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>& overrides) {
+  std::ifstream in(scenePath, std::ios::binary);
+  if (!in) throw InputError(scenePath + ": cannot open scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json doc = parseJsonDocument(text.str(), scenePath);
+  applyOverrides(doc, overrides);
+  if (!doc.is_object()) throw InputError(scenePath + ": a scene must be a JSON object");
+
+  ReuseKeys keys;
+  nlohmann::json geometry = doc;
+  geometry.erase("camera");
+  geometry.erase("photons");
+  geometry.erase("name");
+  nlohmann::json model = doc.contains("render") && doc["render"].is_object() && doc["render"].contains("model")
+                             ? doc["render"]["model"]
+                             : nlohmann::json("classic");
+  geometry["render"] = {{"model", model}};
+  keys.geometry = scenePath + "\n" + geometry.dump();
+
+  nlohmann::json photons = doc;
+  photons.erase("camera");
+  photons.erase("name");
+  if (photons.contains("render") && photons["render"].is_object()) {
+    photons["render"].erase("max_depth");  // camera-side recursion; photons use max_bounces
+    photons["render"].erase("aov");        // the view decides which maps are read, not emitted
+  }
+  if (photons.contains("photons") && photons["photons"].is_object()) {
+    for (const std::string& k : gatherOnlyPhotonKeys()) photons["photons"].erase(k);
+  }
+  keys.photons = scenePath + "\n" + photons.dump();
+  return keys;
+}
+
+}  // namespace penumbra

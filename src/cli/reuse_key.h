@@ -1,0 +1,24 @@
+// What renders of one scene can share, decided from the scene document after
+// its overrides: equal geometry keys share the loaded geometry, the Embree scene
+// and the textures; equal photon keys share one photon emission, whatever their
+// camera, spp, depth, k or gate (a smaller photon budget is a prefix of a larger).
+#pragma once
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct ReuseKeys {
+  std::string geometry;  // objects, materials, lights, render.model
+  std::string photons;   // everything but the camera and the gather/render-only settings
+};
+
+// Reads `scenePath`, applies `overrides` and derives both keys (canonical JSON
+// text). Throws InputError as loadScene would for unreadable or malformed files.
+ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>& overrides);
+
+// The settings left out of the photon key: they change how photons are gathered
+// or which are read, never which are emitted.
+const std::vector<std::string>& gatherOnlyPhotonKeys();
+
+}  // namespace penumbra

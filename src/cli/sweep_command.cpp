@@ -1,0 +1,95 @@
+// Options of `penumbra sweep`, the progress line, and the closing summary.
+#include "cli/sweep_command.h"
+#include "cli/sweep_run.h"
+#include "core/error.h"
+#include "io/scene_loader.h"
+#include <fmt/format.h>
+#include <unistd.h>
+#include <filesystem>
+#include <iostream>
+
+namespace penumbra {
+
+struct SweepCommand::Options {
+  CLI::App* command = nullptr;
+  std::string scene, out, reference, aov, photons, k, depth, spp;
+  std::vector<std::string> vary, overrides;
+  int threads = 0;
+  bool force = false, noGateCompare = false, quiet = false;
+};
+
+SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
+  Options& o = *o_;
+  o.command = app.add_subcommand("sweep", "Render every combination of settings and measure time against error");
+  CLI::App* c = o.command;
+  c->add_option("scene", o.scene, "Scene file (JSON)")->required();
+  c->add_option("-o,--output", o.out, "Folder for results.csv, report.md, tradeoff.png and the images")->required();
+  c->add_option("--photons", o.photons, "Photon budgets, e.g. 1e4,1e5,1e6 (classic: photons.indirect; physical: photons.global and photons.caustic)");
+  c->add_option("--k", o.k, "Photons per estimate, e.g. 10,50,200 (classic: k_indirect; physical: k_global and k_caustic)");
+  c->add_option("--depth", o.depth, "render.max_depth values, e.g. 1,2,4,8");
+  c->add_option("--spp", o.spp, "camera.spp values, e.g. 1,4");
+  c->add_option("--vary", o.vary, "Any scene key and its values: --vary photons.shadow=1e5,1e6 (repeatable)");
+  c->add_option("--set", o.overrides, "Override a scene value in every run")->take_all()->allow_extra_args(false);
+  c->add_option("--reference", o.reference, "Reference image (EXR) for the error (default: the run at every knob's highest value)");
+  c->add_option("--aov", o.aov, "View to render (default: the scene's render.aov)");
+  c->add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
+  c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
+  c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
+}
+
+SweepCommand::~SweepCommand() = default;
+
+bool SweepCommand::selected() const { return o_->command->parsed(); }
+
+int SweepCommand::run() {
+  Options& o = *o_;
+  // The knobs' keys depend on the model: load the scene once with the sweep's --set.
+  const Scene base = loadScene(o.scene, o.overrides);
+  std::vector<SweepKnob> knobs;
+  const std::pair<const char*, const std::string*> named[] = {
+      {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
+  for (const auto& [name, list] : named) {
+    if (!list->empty()) knobs.push_back(namedKnob(name, *list, base.render.model));
+  }
+  for (const std::string& v : o.vary) knobs.push_back(keyKnob(v));
+
+  SweepRequest req;
+  req.scenePath = o.scene;
+  req.outDir = o.out;
+  req.spec = expandGrid(knobs, o.overrides);
+  req.referencePath = o.reference;
+  req.aov = o.aov;
+  req.threads = o.threads;
+  req.force = o.force;
+  req.compareGate = !o.noGateCompare;
+  const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
+  req.plotScript = std::filesystem::exists(script) ? script.string() : "";
+  const bool tty = isatty(STDERR_FILENO);
+  std::string last;
+  if (!o.quiet) {
+    // On a terminal one line redrawn in place; otherwise a line per finished run.
+    req.progress = [tty, &last](const std::string& line) {
+      if (tty) {
+        std::cerr << "\r\033[K" << line << std::flush;
+      } else if (line.find("| done |") != std::string::npos && line != last) {
+        std::cerr << line << "\n";
+      }
+      last = line;
+    };
+  }
+  SweepOutcome out = runSweep(req);
+  if (!o.quiet) {
+    if (tty) std::cerr << "\n";
+    for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
+    const SweepTotals& t = out.totals;
+    std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {} emission(s), {} prefix cut(s), {} map "
+                             "build(s), {} BVH build(s)\n",
+                             out.rows.size(), t.resumed, t.wallSeconds, t.emissions, t.prefixCuts, t.mapBuilds,
+                             t.bvhBuilds);
+    std::cerr << "wrote " << (std::filesystem::path(o.out) / "report.md").string() << "\n";
+  }
+  return 0;
+}
+
+}  // namespace penumbra

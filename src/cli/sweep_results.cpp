@@ -1,0 +1,202 @@
+// results.csv rows both ways, the Pareto front, and the markdown report.
+#include "cli/sweep_results.h"
+#include "core/error.h"
+#include <fmt/format.h>
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+namespace penumbra {
+namespace {
+
+// Columns after the run id and the knobs, in order; csvLine and parseRow agree on it.
+const std::vector<std::string>& fixedColumns() {
+  static const std::vector<std::string> cols = {
+      "reference", "load_s", "bvh_s", "emit_s", "maps_s", "precompute_s", "render_s", "total_s",
+      "spent_s", "camera_rays", "shadow_rays", "reflection_rays", "refraction_rays", "gate_queries",
+      "shadow_rays_avoided", "gather_queries", "photons_emitted", "photons_stored", "rmse", "rel_mse",
+      "psnr", "worst1pct_rmse", "gate", "ungated_render_s", "ungated_shadow_rays", "gate_rmse",
+      "reused", "image"};
+  return cols;
+}
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream in(line);
+  std::string cell;
+  while (std::getline(in, cell, ',')) out.push_back(cell);
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+std::string joinCsv(const std::vector<std::string>& cells) {
+  std::string line;
+  for (size_t i = 0; i < cells.size(); ++i) line += (i ? "," : "") + cells[i];
+  return line;
+}
+
+std::string secs(double s) { return fmt::format("{:.4f}", s); }
+std::string sci(double v) { return fmt::format("{:.6g}", v); }
+
+SweepRow parseRow(const std::vector<std::string>& c, size_t knobs) {
+  SweepRow r;
+  size_t i = 0;
+  r.id = c[i++];
+  for (size_t k = 0; k < knobs; ++k) r.values.push_back(c[i++]);
+  auto d = [&] { return std::stod(c[i++]); };
+  auto u = [&] { return static_cast<uint64_t>(std::stoull(c[i++])); };
+  r.reference = c[i++] == "1";
+  r.load = d(); r.bvh = d(); r.emit = d(); r.maps = d(); r.precompute = d(); r.render = d();
+  r.total = d(); r.spent = d();
+  r.cameraRays = u(); r.shadowRays = u(); r.reflectionRays = u(); r.refractionRays = u();
+  r.gateQueries = u(); r.shadowRaysAvoided = u(); r.gatherQueries = u();
+  r.photonsEmitted = u(); r.photonsStored = u();
+  r.rmse = d(); r.relMse = d(); r.psnr = d(); r.worstRmse = d();
+  r.gate = c[i++] == "1";
+  r.ungatedRender = d(); r.ungatedShadowRays = u(); r.gateRmse = d();
+  r.reused = c[i++];
+  r.image = c[i++];
+  return r;
+}
+
+std::string knobList(const SweepSpec& spec) {
+  std::string s;
+  for (const SweepKnob& k : spec.knobs) {
+    std::string keys;
+    for (const std::string& key : k.keys) keys += (keys.empty() ? "" : ", ") + key;
+    s += fmt::format("- `{}` ({}): {}\n", k.name, keys, joinCsv(k.values));
+  }
+  return s;
+}
+
+std::string settings(const SweepSpec& spec, const SweepRow& r) {
+  std::string s;
+  for (size_t k = 0; k < spec.knobs.size(); ++k) s += fmt::format(" {} |", r.values[k]);
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs) {
+  std::vector<std::string> h = {"run"};
+  for (const SweepKnob& k : knobs) h.push_back(k.name);
+  for (const std::string& c : fixedColumns()) h.push_back(c);
+  return h;
+}
+
+std::string csvLine(const SweepRow& r) {
+  std::vector<std::string> c = {r.id};
+  for (const std::string& v : r.values) c.push_back(v);
+  for (std::string v : {r.reference ? "1" : "0"}) c.push_back(v);
+  for (double t : {r.load, r.bvh, r.emit, r.maps, r.precompute, r.render, r.total, r.spent}) c.push_back(secs(t));
+  for (uint64_t n : {r.cameraRays, r.shadowRays, r.reflectionRays, r.refractionRays, r.gateQueries,
+                     r.shadowRaysAvoided, r.gatherQueries, r.photonsEmitted, r.photonsStored}) {
+    c.push_back(std::to_string(n));
+  }
+  for (double e : {r.rmse, r.relMse, r.psnr, r.worstRmse}) c.push_back(sci(e));
+  c.push_back(r.gate ? "1" : "0");
+  c.push_back(secs(r.ungatedRender));
+  c.push_back(std::to_string(r.ungatedShadowRays));
+  c.push_back(sci(r.gateRmse));
+  c.push_back(r.reused);
+  c.push_back(r.image);
+  return joinCsv(c);
+}
+
+std::map<std::string, SweepRow> readFinishedRows(const std::string& path, const std::vector<SweepKnob>& knobs) {
+  std::map<std::string, SweepRow> rows;
+  std::ifstream in(path);
+  if (!in) return rows;
+  std::string line;
+  const std::string header = joinCsv(csvHeader(knobs));
+  if (!std::getline(in, line)) return rows;
+  if (line != header) {
+    throw InputError(path + ": written by a sweep with other knobs (header differs); use another -o folder "
+                     "or --force to start again");
+  }
+  const size_t columns = csvHeader(knobs).size();
+  while (std::getline(in, line)) {
+    const std::vector<std::string> cells = splitCsv(line);
+    if (cells.size() != columns) continue;  // never written by us: skip, the run is redone
+    try {
+      SweepRow r = parseRow(cells, knobs.size());
+      rows[r.id] = r;
+    } catch (const std::exception&) {
+      continue;
+    }
+  }
+  return rows;
+}
+
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows) {
+  std::vector<size_t> front;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].reference) continue;
+    bool beaten = false;
+    for (size_t j = 0; j < rows.size() && !beaten; ++j) {
+      if (j == i || rows[j].reference) continue;
+      const SweepRow& a = rows[j];
+      const SweepRow& b = rows[i];
+      beaten = a.total <= b.total && a.rmse <= b.rmse && (a.total < b.total || a.rmse < b.rmse);
+    }
+    if (!beaten) front.push_back(i);
+  }
+  std::sort(front.begin(), front.end(), [&](size_t a, size_t b) { return rows[a].total < rows[b].total; });
+  return front;
+}
+
+std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, const std::vector<SweepRow>& rows,
+                           const SweepTotals& t) {
+  std::string md = fmt::format("# Sweep of {}\n\n{} runs. Knobs (`--set` keys they write):\n\n{}\n", scene,
+                               rows.size(), knobList(spec));
+  md += fmt::format("**Reference:** {}\n\n", t.referenceNote);
+  md += "**Error:** RMSE, relative MSE (mean of (a-r)^2/(r^2+0.01)) and PSNR (on values clamped to [0,1]) "
+        "from OpenImageIO's ImageBufAlgo against the reference; `worst 1%` is the RMSE over the 1% of pixels "
+        "with the largest squared error in that run.\n\n"
+        "**Time** is what a run costs as a standalone render: every stage it needs, shared or not (a prefix's "
+        "emission counted as its share of the largest emission's time).\n\n";
+  const double denom = t.photonSeconds + t.renderSeconds;
+  md += fmt::format(
+      "## What was reused\n\n- Embree scenes built: {}\n- photon emissions: {} (smaller budgets cut out of "
+      "them as prefixes: {})\n- photon map builds: {}\n- runs resumed from an earlier results.csv: {}\n\n"
+      "Sweep wall time {:.2f} s; its distinct photon passes {:.2f} s plus its render passes {:.2f} s = "
+      "{:.2f} s; ratio {:.2f}.\n\n",
+      t.bvhBuilds, t.emissions, t.prefixCuts, t.mapBuilds, t.resumed, t.wallSeconds, t.photonSeconds,
+      t.renderSeconds, denom, denom > 0 ? t.wallSeconds / denom : 0.0);
+
+  std::string head = "|";
+  std::string rule = "|";
+  for (const SweepKnob& k : spec.knobs) { head += " " + k.name + " |"; rule += "---|"; }
+  head += " time s | RMSE | relMSE | PSNR | worst 1% |\n";
+  rule += "---|---|---|---|---|\n";
+  auto line = [&](const SweepRow& r) {
+    return "|" + settings(spec, r) +
+           fmt::format(" {:.3f} | {:.4g} | {:.4g} | {:.2f} | {:.4g} |{}\n", r.total, r.rmse, r.relMse, r.psnr,
+                       r.worstRmse, r.reference ? " (reference)" : "");
+  };
+  md += "## Pareto front\n\nRuns that no other run beats on both time and RMSE, fastest first:\n\n" + head + rule;
+  for (size_t i : paretoFront(rows)) md += line(rows[i]);
+
+  bool anyGate = false;
+  for (const SweepRow& r : rows) anyGate = anyGate || r.gate;
+  if (anyGate) {
+    md += "\n## The gate's trade-off\n\nEach gated run rendered again with every shadow ray cast (the same "
+          "maps): the shadow rays the gate avoided, and the error it adds against that ungated image.\n\n|";
+    for (const SweepKnob& k : spec.knobs) md += " " + k.name + " |";
+    md += " shadow rays | avoided | ungated shadow rays | render s | ungated render s | RMSE gated vs ungated |\n|";
+    for (size_t k = 0; k < spec.knobs.size(); ++k) md += "---|";
+    md += "---|---|---|---|---|---|\n";
+    for (const SweepRow& r : rows) {
+      if (!r.gate) continue;
+      md += "|" + settings(spec, r) +
+            fmt::format(" {} | {} | {} | {:.3f} | {:.3f} | {:.4g} |\n", r.shadowRays, r.shadowRaysAvoided,
+                        r.ungatedShadowRays, r.render, r.ungatedRender, r.gateRmse);
+    }
+  }
+  md += "\n## Every run\n\n" + head + rule;
+  for (const SweepRow& r : rows) md += line(r);
+  md += "\nPer-stage times, ray and photon counts: `results.csv`. Plot: `tradeoff.png`.\n";
+  return md;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,54 @@
+// penumbra sweep's results: one row per run, results.csv (rewritten atomically
+// after every run, read back to resume), the Pareto front, and report.md.
+#pragma once
+#include "cli/sweep_spec.h"
+#include <map>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+// One finished run. Times are what the run costs as a standalone render (shared
+// stages counted in full, a prefix's emission by its share of the photons);
+// `spentSeconds` is what the sweep actually spent on it.
+struct SweepRow {
+  std::string id;
+  std::vector<std::string> values;  // one per knob
+  bool reference = false;           // the default reference itself (error 0)
+  double load = 0, bvh = 0, emit = 0, maps = 0, precompute = 0, render = 0, total = 0, spent = 0;
+  uint64_t cameraRays = 0, shadowRays = 0, reflectionRays = 0, refractionRays = 0;
+  uint64_t gateQueries = 0, shadowRaysAvoided = 0, gatherQueries = 0;
+  uint64_t photonsEmitted = 0, photonsStored = 0;
+  double rmse = 0, relMse = 0, psnr = 0, worstRmse = 0;
+  bool gate = false;
+  double ungatedRender = 0, gateRmse = 0;  // gated runs: the same run with every shadow ray cast
+  uint64_t ungatedShadowRays = 0;
+  std::string reused;  // what came from earlier runs: "bvh", "photons(prefix of N)", "maps"
+  std::string image;   // relative to the sweep folder
+};
+
+// The CSV header for these knobs.
+std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs);
+std::string csvLine(const SweepRow& row);
+
+// Rows of an earlier results.csv with the same header, by run id; an absent file
+// gives none. Throws InputError when the file exists but has another header.
+std::map<std::string, SweepRow> readFinishedRows(const std::string& path,
+                                                    const std::vector<SweepKnob>& knobs);
+
+// Rows no other row beats on both total time and RMSE (the reference excluded),
+// fastest first.
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows);
+
+struct SweepTotals {
+  double wallSeconds = 0;       // the whole sweep
+  double photonSeconds = 0;     // sum over distinct photon settings: emission (share) + map build
+  double renderSeconds = 0;     // sum of every render pass (precompute + render, ungated ones too)
+  size_t emissions = 0, prefixCuts = 0, mapBuilds = 0, bvhBuilds = 0, resumed = 0;
+  std::string referenceNote;    // which reference the errors are against
+};
+
+std::string reportMarkdown(const std::string& scene, const SweepSpec& spec,
+                           const std::vector<SweepRow>& rows, const SweepTotals& totals);
+
+}  // namespace penumbra

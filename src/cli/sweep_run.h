@@ -1,0 +1,37 @@
+// penumbra sweep: renders every run of a grid with one loaded geometry, one
+// Embree scene and one photon emission per group of runs that can share them,
+// measures each run's stages and error, and writes results.csv, report.md, the
+// runs' images and tradeoff.png into one folder; a rerun resumes.
+#pragma once
+#include "cli/sweep_results.h"
+#include "cli/sweep_spec.h"
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct SweepRequest {
+  std::string scenePath;
+  std::string outDir;
+  SweepSpec spec;
+  std::string referencePath;  // an EXR; empty: the run at every knob's highest value
+  std::string aov;            // empty: the scene's
+  int threads = 0;
+  bool force = false;         // redo every run, even those results.csv has
+  bool compareGate = true;    // gated runs: render again ungated for the gate's trade-off
+  std::string plotScript;     // scripts/plot_tradeoff.py; empty: no plot
+  // One line describing the sweep's progress (run i of n, phase, elapsed, ETA).
+  std::function<void(const std::string& line)> progress;
+};
+
+struct SweepOutcome {
+  std::vector<SweepRow> rows;  // in grid order
+  SweepTotals totals;
+  std::vector<std::string> notes;  // e.g. the plot could not be drawn
+};
+
+// Every run is loaded and checked (InputError, naming the run) before the first renders.
+SweepOutcome runSweep(const SweepRequest& request);
+
+}  // namespace penumbra

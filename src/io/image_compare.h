@@ -1,0 +1,25 @@
+// Error of an image against a reference through OpenImageIO's ImageBufAlgo:
+// RMSE and PSNR from ImageBufAlgo::compare, relative MSE from its pixel maths,
+// and the RMSE over the worst pixels (penumbra sweep's error figures).
+#pragma once
+#include "core/image.h"
+
+namespace penumbra {
+
+struct ImageError {
+  double rmse = 0.0;      // sqrt(mean over pixels and channels of (a - r)^2)
+  double relMse = 0.0;    // mean of (a - r)^2 / (r^2 + 0.01), per channel (pbrt's and Mitsuba's relMSE)
+  double psnr = 0.0;      // 20 log10(1 / rmse) on values clamped to [0, 1]: display-referred
+  double worstRmse = 0.0; // RMSE over the worst 1% of pixels (below)
+  double maxError = 0.0;  // largest per-channel difference
+};
+
+// The worst pixels are the 1% (at least one) with the largest squared error summed
+// over channels, in this image against the reference: the error where it is
+// worst, e.g. a caustic or a shadow edge that the whole-image RMSE averages away.
+constexpr double kWorstPixelFraction = 0.01;
+
+// Throws InputError when the sizes differ.
+ImageError compareImages(const Image& image, const Image& reference);
+
+}  // namespace penumbra

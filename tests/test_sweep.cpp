@@ -1,0 +1,189 @@
+// penumbra sweep against independent renders: every run's image equals a plain
+// runRender of the same settings (byte for byte at the largest photon budget,
+// within the power packing's rounding for prefix-cut budgets), a rerun resumes
+// without rendering, the gate's trade-off is measured, and bad runs fail first.
+#include "cli/pipeline.h"
+#include "cli/reuse_key.h"
+#include "cli/sweep_run.h"
+#include "core/error.h"
+#include "io/image_compare.h"
+#include "io/image_io.h"
+#include "support/cli_run.h"
+#include <gtest/gtest.h>
+#include <fmt/format.h>
+#include <filesystem>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kCornell = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell_physical.json";
+const std::string kShadows = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/fig03_shadows.json";
+
+SweepRequest cornellSweep(const std::string& dir) {
+  const std::vector<std::string> base = {"camera.width=48", "camera.height=48"};
+  SweepRequest req;
+  req.scenePath = kCornell;
+  req.outDir = dir;
+  req.spec = expandGrid({namedKnob("photons", "3e3,2e4", ShadingModel::Physical),
+                         namedKnob("k", "8,40", ShadingModel::Physical),
+                         namedKnob("spp", "1,2", ShadingModel::Physical)},
+                        base);
+  req.threads = 2;
+  return req;
+}
+
+// A plain render of the same settings, through the same EXR writer as the sweep's images.
+Image standalone(const std::string& scene, const std::vector<std::string>& overrides, const fs::path& exr) {
+  RenderRequest r;
+  r.scenePath = scene;
+  r.overrides = overrides;
+  r.threads = 2;
+  r.outputPath = exr.string();
+  runRender(r);
+  return readImage(exr.string());
+}
+
+TEST(Sweep, GridExpandsEveryCombinationWithIntegerCounts) {
+  SweepSpec spec = expandGrid({namedKnob("photons", "1e4,1e5", ShadingModel::Classic),
+                               namedKnob("depth", "1,8,4", ShadingModel::Classic)},
+                              {"camera.spp=1"});
+  ASSERT_EQ(spec.runs.size(), 6u);
+  EXPECT_EQ(spec.runs[0].id, "photons=1e4 depth=1");
+  EXPECT_EQ(spec.runs[0].overrides,
+            (std::vector<std::string>{"camera.spp=1", "photons.indirect=10000", "render.max_depth=1"}));
+  EXPECT_EQ(spec.runs[spec.highest].id, "photons=1e5 depth=8");  // numeric, not the last listed
+  EXPECT_THROW(expandGrid({namedKnob("spp", "1,2", ShadingModel::Classic), keyKnob("camera.spp=3")}, {}),
+               InputError);
+  EXPECT_THROW(keyKnob("photons.k_shadow"), InputError);
+  EXPECT_THROW(splitValues("1,,2", "--k"), InputError);
+}
+
+TEST(Sweep, ParetoFrontKeepsOnlyUnbeatenRuns) {
+  auto row = [](double t, double e) { SweepRow r; r.total = t; r.rmse = e; return r; };
+  std::vector<SweepRow> rows = {row(1, 0.5), row(2, 0.2), row(3, 0.3), row(4, 0.1), row(2, 0.4)};
+  SweepRow ref = row(9, 0.0);
+  ref.reference = true;
+  rows.push_back(ref);
+  EXPECT_EQ(paretoFront(rows), (std::vector<size_t>{0, 1, 3}));
+}
+
+TEST(Sweep, RunsEqualStandaloneRendersAndRerunsResume) {
+  testing::ScratchDir dir;
+  SweepRequest req = cornellSweep(dir.path().string());
+  SweepOutcome first = runSweep(req);
+  ASSERT_EQ(first.rows.size(), 8u);
+  EXPECT_EQ(first.totals.emissions, 1u) << "one emission, the smaller budget cut out of it";
+  EXPECT_EQ(first.totals.prefixCuts, 1u);
+  EXPECT_EQ(first.totals.mapBuilds, 2u);
+  EXPECT_EQ(first.totals.bvhBuilds, 1u);
+  const Image reference = readImage((dir / "reference.exr").string());
+  for (size_t i = 0; i < first.rows.size(); ++i) {
+    const SweepRow& row = first.rows[i];
+    const Image swept = readImage((dir / row.image).string());
+    const Image alone = standalone(kCornell, req.spec.runs[i].overrides, dir / "alone.exr");
+    const ImageError diff = compareImages(swept, alone);
+    if (row.values[0] == "2e4") {
+      // Full budget: the same photons, maps and samples.
+      EXPECT_EQ(diff.maxError, 0.0) << row.id;
+    } else {
+      // A prefix: powers repacked (2^-8) -> far below the run's own error.
+      EXPECT_LT(diff.rmse, 0.02 * row.rmse) << row.id;
+    }
+    EXPECT_NEAR(row.rmse, compareImages(swept, reference).rmse, 1e-3 * row.rmse + 1e-6) << row.id;
+    EXPECT_EQ(row.reference, row.id == "photons=2e4 k=40 spp=2");
+  }
+  // More photons, k and samples: the cheapest run is the worst.
+  EXPECT_GT(first.rows.front().rmse, first.rows[6].rmse);
+
+  const auto written = fs::last_write_time(dir / first.rows[0].image);
+  SweepOutcome again = runSweep(req);
+  EXPECT_EQ(again.totals.resumed, 8u);
+  EXPECT_EQ(again.totals.emissions, 0u);
+  EXPECT_EQ(fs::last_write_time(dir / first.rows[0].image), written);
+  ASSERT_EQ(again.rows.size(), 8u);
+  EXPECT_EQ(again.rows[3].rmse, std::stod(fmt::format("{:.6g}", first.rows[3].rmse)));
+  EXPECT_TRUE(fs::exists(dir / "report.md"));
+}
+
+TEST(Sweep, GatedRunsReportTheRaysAvoidedAndTheErrorTheGateAdds) {
+  testing::ScratchDir dir;
+  SweepRequest req;
+  req.scenePath = kShadows;
+  req.outDir = dir.path().string();
+  req.spec = expandGrid({keyKnob("photons.shadow=2e4,1e5")},
+                        {"camera.width=64", "camera.height=48", "photons.gate=on"});
+  req.threads = 2;
+  SweepOutcome out = runSweep(req);
+  ASSERT_EQ(out.rows.size(), 2u);
+  for (const SweepRow& r : out.rows) {
+    EXPECT_TRUE(r.gate) << r.id;
+    EXPECT_GT(r.shadowRaysAvoided, 0u) << r.id;
+    EXPECT_EQ(r.shadowRays + r.shadowRaysAvoided, r.ungatedShadowRays) << r.id;
+    EXPECT_LT(r.gateRmse, 0.05) << r.id;
+  }
+  EXPECT_EQ(out.totals.prefixCuts, 1u) << "2e4 shadow photons cut out of the 1e5 emission";
+}
+
+TEST(Sweep, ABadRunFailsBeforeAnyRender) {
+  testing::ScratchDir dir;
+  SweepRequest req = cornellSweep(dir.path().string());
+  req.spec = expandGrid({keyKnob("render.max_depth=2,-3")}, {"camera.width=16", "camera.height=16"});
+  try {
+    runSweep(req);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sweep run 'render.max_depth=-3'"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_empty(dir / "runs"));
+  EXPECT_FALSE(fs::exists(dir / "results.csv"));
+}
+
+// The keys decide what runs share: each photon input changes the photon key,
+// camera and gather settings keep it, and only geometry inputs change the other.
+TEST(ReuseKey, ChangesExactlyWithTheInputsThatMatter) {
+  const std::vector<std::string> base = {"camera.width=32"};
+  const ReuseKeys keys = reuseKeys(kCornell, base);
+  auto with = [&](const std::string& o) {
+    std::vector<std::string> v = base;
+    v.push_back(o);
+    return reuseKeys(kCornell, v);
+  };
+  for (const char* same : {"camera.position=[0,1,3]", "camera.spp=16", "camera.fov=40", "render.max_depth=3",
+                           "photons.k_global=7", "photons.global=1000", "photons.caustic=10",
+                           "photons.gate=true", "photons.lookup=\"precomputed\"", "name=\"other\""}) {
+    const ReuseKeys k = with(same);
+    EXPECT_EQ(k.photons, keys.photons) << same;
+    EXPECT_EQ(k.geometry, keys.geometry) << same;
+  }
+  for (const char* photon : {"render.seed=2", "photons.max_bounces=3", "photons.passes=2",
+                             "photons.sampling=\"uniform\""}) {
+    const ReuseKeys k = with(photon);
+    EXPECT_NE(k.photons, keys.photons) << photon;
+    EXPECT_EQ(k.geometry, keys.geometry) << photon;
+  }
+  for (const char* geometry : {"objects[5].radius=0.3", "materials.white.diffuse=0.5", "lights[0].intensity=2",
+                               "render.model=\"classic\""}) {
+    const ReuseKeys k = with(geometry);
+    EXPECT_NE(k.photons, keys.photons) << geometry;
+    EXPECT_NE(k.geometry, keys.geometry) << geometry;
+  }
+}
+
+TEST(ImageCompare, KnownDifferences) {
+  Image ref(10, 10), img(10, 10);
+  for (Color& c : ref.pixels) c = Color(0.5f);
+  img = ref;
+  img.at(3, 4) = Color(1.5f);  // one pixel off by 1 in every channel
+  const ImageError e = compareImages(img, ref);
+  EXPECT_NEAR(e.rmse, std::sqrt(1.0 / 100.0), 1e-6);
+  EXPECT_NEAR(e.relMse, 1.0 / (0.25 + 0.01) / 100.0, 1e-5);
+  EXPECT_NEAR(e.worstRmse, 1.0, 1e-6);  // the worst 1% is that pixel
+  EXPECT_NEAR(e.maxError, 1.0, 1e-6);
+  // PSNR on display values: 1.5 clamps to 1, off by 0.5 in one pixel of 100.
+  EXPECT_NEAR(e.psnr, 20.0 * std::log10(1.0 / std::sqrt(0.25 / 100.0)), 1e-3);
+  EXPECT_THROW(compareImages(Image(3, 3), ref), InputError);
+}
+
+}  // namespace
+}  // namespace penumbra
