@@ -77,6 +77,18 @@ std::string settings(const SweepSpec& spec, const SweepRow& r) {
 
 }  // namespace
 
+void fillCounts(SweepRow& row, const RenderStats& st) {
+  row.cameraRays = st.rays.camera;
+  row.shadowRays = st.rays.shadow;
+  row.reflectionRays = st.rays.reflection;
+  row.refractionRays = st.rays.refraction;
+  row.gateQueries = st.rays.gateQueries;
+  row.shadowRaysAvoided = st.rays.shadowRaysAvoided;
+  row.gatherQueries = st.rays.gatherQueries;
+  row.photonsEmitted = st.emittedShadow + st.emittedIndirect + st.emittedGlobal + st.emittedCaustic;
+  row.photonsStored = st.storedShadow + st.storedIndirect + st.storedGlobal + st.storedCaustic;
+}
+
 std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs) {
   std::vector<std::string> h = {"run"};
   for (const SweepKnob& k : knobs) h.push_back(k.name);

@@ -2,6 +2,7 @@
 // after every run, read back to resume), the Pareto front, and report.md.
 #pragma once
 #include "cli/sweep_spec.h"
+#include "core/stats.h"
 #include <map>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ struct SweepRow {
   std::string reused;  // what came from earlier runs: "bvh", "photons(prefix of N)", "maps"
   std::string image;   // relative to the sweep folder
 };
+
+// Rays and photons of a finished render, into its row.
+void fillCounts(SweepRow& row, const RenderStats& stats);
 
 // The CSV header for these knobs.
 std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs);

@@ -3,6 +3,7 @@
 // from largest to smallest, and every run of a budget on the same maps.
 #include "cli/sweep_run.h"
 #include "cli/gate_decision.h"
+#include "cli/plot_script.h"
 #include "cli/render_frame.h"
 #include "cli/reuse_key.h"
 #include "core/error.h"
@@ -18,10 +19,6 @@
 #include <map>
 #include <set>
 #include <memory>
-#include <spawn.h>
-#include <sys/wait.h>
-
-extern char** environ;
 
 namespace penumbra {
 namespace {
@@ -46,19 +43,6 @@ struct GeometryGroup {
   SceneAssets assets;
   bool built = false;
 };
-
-// Runs a program with arguments (no shell) and returns its exit status, 127 if it
-// could not start.
-int runProgram(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return 127;
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0) return 127;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
 
 std::string duration(double s) {
   const int t = static_cast<int>(s + 0.5);
@@ -290,15 +274,7 @@ class Sweep {
     row.precompute = st.time.precompute;
     row.render = st.time.render;
     row.total = row.load + row.bvh + row.emit + row.maps + row.precompute + row.render;
-    row.cameraRays = st.rays.camera;
-    row.shadowRays = st.rays.shadow;
-    row.reflectionRays = st.rays.reflection;
-    row.refractionRays = st.rays.refraction;
-    row.gateQueries = st.rays.gateQueries;
-    row.shadowRaysAvoided = st.rays.shadowRaysAvoided;
-    row.gatherQueries = st.rays.gatherQueries;
-    row.photonsEmitted = st.emittedShadow + st.emittedIndirect + st.emittedGlobal + st.emittedCaustic;
-    row.photonsStored = st.storedShadow + st.storedIndirect + st.storedGlobal + st.storedCaustic;
+    fillCounts(row, st);
     row.gate = p.photons.gate && st.rays.gateQueries > 0;
     std::vector<std::string> reused;
     if (reuse.bvh) reused.push_back("bvh");
@@ -336,19 +312,11 @@ class Sweep {
     showProgress();
   }
 
-  // tradeoff.png from results.csv by the project's matplotlib script; a machine
-  // without matplotlib still gets every result, and a note saying why no plot.
+  // A machine without matplotlib still gets every result, and a note saying why no plot.
   void plot(const fs::path& dir) {
-    const std::string csv = (dir / "results.csv").string(), png = (dir / "tradeoff.png").string();
-    // Debian's interpreter first: python3-matplotlib (make deps) is installed for it,
-    // and a python3 earlier on PATH (pyenv, a venv) may not have it.
-    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const std::vector<std::string> args = {python, req_.plotScript, csv, png, "--title", sceneName_};
-    const int status = runProgram(args);
-    if (status != 0) {
-      notes_.push_back(fmt::format("tradeoff.png not drawn: {} exited with {} (python3-matplotlib "
-                                   "missing? make deps installs it)", req_.plotScript, status));
-    }
+    const std::string note = drawTradeoffPlot(req_.plotScript, (dir / "results.csv").string(),
+                                              (dir / "tradeoff.png").string(), sceneName_);
+    if (!note.empty()) notes_.push_back(note);
   }
 
   void writeCsv() {

@@ -1,0 +1,12 @@
+// Runs the project's plotting script (scripts/plot_tradeoff.py) on a sweep's
+// results.csv without a shell, with Debian's python3, where matplotlib lives.
+#pragma once
+#include <string>
+
+namespace penumbra {
+
+// Draws `png` from `csv`; returns "" on success, else one line saying why not.
+std::string drawTradeoffPlot(const std::string& script, const std::string& csv, const std::string& png,
+                             const std::string& title);
+
+}  // namespace penumbra
