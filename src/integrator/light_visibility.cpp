@@ -18,22 +18,13 @@ namespace {
 Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                           const LightIncidence& in, ThreadState& ts) {
   ++ts.counts.shadow;
-  Ray ray{spawnOrigin(s, in.wi), in.wi};
-  // A point on the edge where two faces meet (a room's corner) may sit a rounding
-  // error behind the other face and see it at t ~ 0: occluders nearer than a few
-  // times the point's own error cannot be told from it, so they do not shadow.
-  ray.tMin = 4.0f * s.spread;
-  const bool finite = std::isfinite(in.distance);
-  if (finite) {
-    // Aim from the lifted origin at the sample itself (pbrt's SpawnRayTo): measured
-    // from the shading point instead, a lift of e along n would move the ray's
-    // crossing of the light's plane by e / cos, more than the margin at grazing angles.
-    const Vec3 d = in.point - ray.origin;
-    const float len = glm::length(d);
-    if (!(len > in.margin)) return Color(1.0f);  // the origin is already at the light
-    ray.dir = d / len;
-    ray.tMax = len - in.margin;
+  Ray ray;
+  if (!shadowRayTo(s, in, ray)) return Color(1.0f);  // the origin is already at the light
+  if (ts.shadingPoint == 1 && lightIndex < 32 && ((ts.knownShadows >> lightIndex) & 1u)) {
+    // This very ray was traced ahead in a packet (primary_shadows.h).
+    return ((ts.blockedShadows >> lightIndex) & 1u) ? Color(0.0f) : Color(1.0f);
   }
+  const bool finite = std::isfinite(in.distance);
   // The physical model's glass blocks shadow rays: its light arrives as caustic photons.
   const bool tinted = ctx.hasGlass && ctx.scene.render.model == ShadingModel::Classic;
   if (ctx.scene.lights[lightIndex].type == LightType::Sphere && !tinted) {
@@ -64,6 +55,25 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uin
 }
 
 }  // namespace
+
+bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray) {
+  ray = Ray{spawnOrigin(s, in.wi), in.wi};
+  // A point on the edge where two faces meet (a room's corner) may sit a rounding
+  // error behind the other face and see it at t ~ 0: occluders nearer than a few
+  // times the point's own error cannot be told from it, so they do not shadow.
+  ray.tMin = 4.0f * s.spread;
+  if (std::isfinite(in.distance)) {
+    // Aim from the lifted origin at the sample itself (pbrt's SpawnRayTo): measured
+    // from the shading point instead, a lift of e along n would move the ray's
+    // crossing of the light's plane by e / cos, more than the margin at grazing angles.
+    const Vec3 d = in.point - ray.origin;
+    const float len = glm::length(d);
+    if (!(len > in.margin)) return false;
+    ray.dir = d / len;
+    ray.tMax = len - in.margin;
+  }
+  return true;
+}
 
 GateParams gateParamsFor(const Scene& scene) {
   GateParams params;

@@ -21,6 +21,10 @@ using CachedAnswer = LookupCache::Answer;
 // k-nearest vote. Counts the query and its outcome.
 GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                         const CachedAnswer* cached, ThreadState& ts, std::string* note);
+// The shadow ray from a shading point towards a light sample: from the lifted origin,
+// ignoring occluders within 4 x spread, stopping `margin` short of the light. False
+// when the origin is already at the light (nothing can block it).
+bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray);
 // One shadow ray, recorded under --trace-pixel. Classic: glass tints the ray (a
 // walk through every surface); physical: glass blocks it like anything else (light
 // through glass arrives as caustic photons).
