@@ -65,6 +65,8 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"fig11_gate_shadows", "", {"photons.gate=true"}},         // the gate decides: no shadow packets
         Case{"fig07_glass_in_box", "", {kNoGate}},                     // classic glass: tinted walks stay single
         Case{"fig13_cornell_indirect", "", {"photons.indirect=20000"}},  // indirect view
+        Case{"fig14_cornell", "", {"photons.lookup=precomputed"}},    // gate verdicts from the cache
+        Case{"showcase", "", {"camera.spp=1"}},                        // everything at once
         Case{"fig15_globe", "", {"camera.spp=2"}},                     // textured sphere
         Case{"fig16_texture_add", "", {"camera.spp=2", kNoGate}},      // textured, added
         Case{"soft_shadows", "", {"render.light_samples=2", "camera.spp=2"}},  // area lights stay single

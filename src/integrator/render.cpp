@@ -6,7 +6,6 @@
 #include "integrator/camera.h"
 #include "integrator/light_visibility.h"
 #include "integrator/physical.h"
-#include "integrator/primary_shadows.h"
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

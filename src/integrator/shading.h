@@ -56,7 +56,7 @@ struct ThreadState {
   uint64_t sampleKey = 0;
   uint32_t shadingPoint = 0;
   // Shadow rays of this sample's camera hit (shading point 1) already traced in a
-  // packet (integrator/primary_shadows.h): bit li of `knownShadows` says light li's
+  // packet (tracePrimaryShadows, light_visibility.h): bit li of `knownShadows` says light li's
   // answer is in bit li of `blockedShadows`. Zero outside the packet path.
   uint32_t knownShadows = 0, blockedShadows = 0;
 };
