@@ -41,7 +41,7 @@ TEST(Teapot, CountsFollowTheGrid) {
 
 TEST(Teapot, RejectsSubdivisionsOutOfRange) {
   EXPECT_THROW(makeTeapot(0), InputError);
-  EXPECT_THROW(makeTeapot(65), InputError);
+  EXPECT_THROW(makeTeapot(129), InputError);
   EXPECT_NO_THROW(makeTeapot(1));
 }
 

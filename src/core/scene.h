@@ -92,6 +92,7 @@ struct RenderSettings {
   bool shadows = true;      // false: lights reach every surface facing them
   std::string aov = "beauty";  // default view; the CLI's --aov overrides it
   int lightSamples = 16;       // samples per area light per shading point
+  bool packets = true;  // camera rays (and their shadow rays) as Embree packets; same image
 };
 
 enum class IndirectEstimator { Classic, Density };

@@ -23,4 +23,14 @@ struct Hit {
   bool valid() const { return geomId != kInvalidId; }
 };
 
+// Embree asserts (and aborts the process) on a ray outside its domain: a coordinate or
+// direction component beyond +-1.844e18 or NaN, a negative or NaN tnear, a NaN tfar. A
+// NaN born upstream (an overflowed Fresnel term, say) must cost one pixel, not the run.
+inline bool embreeAccepts(const Ray& r) {
+  constexpr float kLarge = 1.844e18f;
+  const Vec3 o = glm::abs(r.origin), d = glm::abs(r.dir);
+  return maxComponent(glm::max(o, d)) <= kLarge && !std::isnan(o.x + o.y + o.z + d.x + d.y + d.z) &&
+         r.tMin >= 0.0f && r.tMin <= kInf && !std::isnan(r.tMax);
+}
+
 }  // namespace penumbra

@@ -34,16 +34,6 @@ RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
   return geom;
 }
 
-// Embree asserts (and aborts the process) on a ray outside its domain: a coordinate or
-// direction component beyond +-1.844e18 or NaN, a negative or NaN tnear, a NaN tfar. A
-// NaN born upstream (an overflowed Fresnel term, say) must cost one pixel, not the run.
-bool embreeAccepts(const Ray& r) {
-  constexpr float kLarge = 1.844e18f;
-  const Vec3 o = glm::abs(r.origin), d = glm::abs(r.dir);
-  return maxComponent(glm::max(o, d)) <= kLarge && !std::isnan(o.x + o.y + o.z + d.x + d.y + d.z) &&
-         r.tMin >= 0.0f && r.tMin <= kInf && !std::isnan(r.tMax);
-}
-
 }  // namespace
 
 Vec2 sphericalUvPerWorld(float radius) {
@@ -65,6 +55,11 @@ TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene) {
   rtcSetDeviceErrorFunction(device_, onEmbreeError, &embreeError_);
   rtcScene_ = rtcNewScene(device_);
   if (robust) rtcSetSceneFlags(rtcScene_, RTC_SCENE_FLAG_ROBUST);
+  nativePacketWidth_ = rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) ? 16
+                       : rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) ? 8
+                       : rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED) ? 4
+                                                                                                    : 1;
+  packetWidth_ = nativePacketWidth_;
 
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const TriangleMesh& mesh = scene.meshes[m];

@@ -55,6 +55,18 @@ class TraceScene {
   bool occluded(const Ray& ray) const;
   SurfaceRecord surface(const Ray& ray, const Hit& hit, uint8_t fields = kSurfaceAll) const;
 
+  // Coherent rays (camera rays of a tile, their shadow rays to one light) as Embree
+  // packets of packetWidth() lanes with the coherent flag (geometry/packet_trace.cpp).
+  // Ray by ray the answers equal intersect's and occluded's: a miss leaves hits[i]
+  // invalid (Hit{}), blocked[i] is 1 where occluded would say true.
+  void intersectPacket(const Ray* rays, int n, Hit* hits) const;
+  void occludedPacket(const Ray* rays, int n, uint8_t* blocked) const;
+  // 16, 8 or 4: the widest packet the device runs natively; 1 when it has none (then
+  // the packet calls loop over single rays).
+  int packetWidth() const { return packetWidth_; }
+  // Narrower packets for tests and benchmarks: 1, 4, 8 or 16, capped at the native width.
+  void setPacketWidth(int width);
+
   // The material index of a hit, without building its record: lets a caller
   // decide which fields it needs (uv only for textured materials).
   int materialOf(const Hit& hit) const;
@@ -79,6 +91,8 @@ class TraceScene {
   std::vector<Vec3> meshCentres_;        // for spherical UVs on meshes without uvs
   std::vector<float> meshRadii_;         // half-diagonal: spherical-uv scale on meshes without uvs
   std::string embreeError_;              // first error Embree reported, if any
+  int packetWidth_ = 1;
+  int nativePacketWidth_ = 1;
   SceneSphere bounds_;
 };
 

@@ -2,6 +2,8 @@
 // Only the penumbra (photons disagree) pays for a real shadow ray.
 #include "integrator/light_visibility.h"
 #include "gather/photon_map.h"
+#include "core/bsdf.h"
+#include "core/light_sample.h"
 
 namespace penumbra {
 
@@ -18,22 +20,13 @@ namespace {
 Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                           const LightIncidence& in, ThreadState& ts) {
   ++ts.counts.shadow;
-  Ray ray{spawnOrigin(s, in.wi), in.wi};
-  // A point on the edge where two faces meet (a room's corner) may sit a rounding
-  // error behind the other face and see it at t ~ 0: occluders nearer than a few
-  // times the point's own error cannot be told from it, so they do not shadow.
-  ray.tMin = 4.0f * s.spread;
-  const bool finite = std::isfinite(in.distance);
-  if (finite) {
-    // Aim from the lifted origin at the sample itself (pbrt's SpawnRayTo): measured
-    // from the shading point instead, a lift of e along n would move the ray's
-    // crossing of the light's plane by e / cos, more than the margin at grazing angles.
-    const Vec3 d = in.point - ray.origin;
-    const float len = glm::length(d);
-    if (!(len > in.margin)) return Color(1.0f);  // the origin is already at the light
-    ray.dir = d / len;
-    ray.tMax = len - in.margin;
+  Ray ray;
+  if (!shadowRayTo(s, in, ray)) return Color(1.0f);  // the origin is already at the light
+  if (ts.shadingPoint == 1 && lightIndex < 32 && ((ts.knownShadows >> lightIndex) & 1u)) {
+    // This very ray was traced ahead in a packet (tracePrimaryShadows).
+    return ((ts.blockedShadows >> lightIndex) & 1u) ? Color(0.0f) : Color(1.0f);
   }
+  const bool finite = std::isfinite(in.distance);
   // The physical model's glass blocks shadow rays: its light arrives as caustic photons.
   const bool tinted = ctx.hasGlass && ctx.scene.render.model == ShadingModel::Classic;
   if (ctx.scene.lights[lightIndex].type == LightType::Sphere && !tinted) {
@@ -64,6 +57,25 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uin
 }
 
 }  // namespace
+
+bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray) {
+  ray = Ray{spawnOrigin(s, in.wi), in.wi};
+  // A point on the edge where two faces meet (a room's corner) may sit a rounding
+  // error behind the other face and see it at t ~ 0: occluders nearer than a few
+  // times the point's own error cannot be told from it, so they do not shadow.
+  ray.tMin = 4.0f * s.spread;
+  if (std::isfinite(in.distance)) {
+    // Aim from the lifted origin at the sample itself (pbrt's SpawnRayTo): measured
+    // from the shading point instead, a lift of e along n would move the ray's
+    // crossing of the light's plane by e / cos, more than the margin at grazing angles.
+    const Vec3 d = in.point - ray.origin;
+    const float len = glm::length(d);
+    if (!(len > in.margin)) return false;
+    ray.dir = d / len;
+    ray.tMax = len - in.margin;
+  }
+  return true;
+}
 
 GateParams gateParamsFor(const Scene& scene) {
   GateParams params;
@@ -157,6 +169,61 @@ Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Mater
   auto e = ctx.indirectMap->classic(s.position, s.ng, ps.kIndirect, ps.maxRadius, *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
   return m.ambient * e.value * ctx.classicScale;
+}
+
+// Shadow packets: the same shadow rays shadowTransmittance builds (shadowRayTo from the
+// same surface record and light sample), only traced 16 at a time.
+
+uint32_t packetShadowLights(const ShadingContext& ctx, bool direct) {
+  const Scene& scene = ctx.scene;
+  const bool tinted = ctx.hasGlass && scene.render.model == ShadingModel::Classic;
+  if (!direct || !scene.render.shadows || tinted) return 0;
+  uint32_t mask = 0;
+  for (uint32_t li = 0; li < scene.lights.size() && li < 32; ++li) {
+    const Light& light = scene.lights[li];
+    if (!isDeltaLight(light) || maxComponent(light.radiance()) <= 0.0f) continue;
+    // As gateVerdict: with a gate for this light the verdict, not the ray, comes first.
+    const bool gated = scene.photons.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(li);
+    if (!gated) mask |= 1u << li;
+  }
+  return mask;
+}
+
+void tracePrimaryShadows(const ShadingContext& ctx, uint32_t lights, const Ray* rays,
+                         const Hit* hits, int n, uint32_t* known, uint32_t* blocked,
+                         PrimaryShadowScratch& scratch) {
+  for (int i = 0; i < n; ++i) known[i] = blocked[i] = 0;
+  if (lights == 0) return;
+  const Scene& scene = ctx.scene;
+  scratch.rays.resize(static_cast<size_t>(n));
+  scratch.owner.resize(static_cast<size_t>(n));
+  scratch.blocked.resize(static_cast<size_t>(n));
+  for (uint32_t li = 0; li < scene.lights.size() && li < 32; ++li) {
+    if (!((lights >> li) & 1u)) continue;
+    const Light& light = scene.lights[li];
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+      if (!hits[i].valid()) continue;
+      const Material& m = scene.materials[ctx.tracer.materialOf(hits[i])];
+      if (maxComponent(m.emission) > 0.0f) continue;  // an emitter only glows
+      if (scene.render.model == ShadingModel::Physical &&
+          !hasSmoothLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling)) && m.texture < 0)
+        continue;  // a mirror or glass: no direct term (a texture may add a lobe: keep it)
+      // The record the integrators build (position, normals and error bounds do not
+      // depend on the uv fields).
+      const SurfaceRecord s = ctx.tracer.surface(rays[i], hits[i], kSurfaceShadingNormal);
+      // A delta light's one sample, as directFromLight draws it.
+      const LightIncidence in = sampleLight(prepareLight(light, s.position), 0.5f, 0.5f);
+      if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
+      known[i] |= 1u << li;
+      if (!shadowRayTo(s, in, scratch.rays[static_cast<size_t>(count)])) continue;  // at the light: clear
+      scratch.owner[static_cast<size_t>(count++)] = i;
+    }
+    ctx.tracer.occludedPacket(scratch.rays.data(), count, scratch.blocked.data());
+    for (int j = 0; j < count; ++j) {
+      if (scratch.blocked[static_cast<size_t>(j)]) blocked[scratch.owner[static_cast<size_t>(j)]] |= 1u << li;
+    }
+  }
 }
 
 }  // namespace penumbra

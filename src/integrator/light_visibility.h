@@ -7,6 +7,7 @@
 #include "core/sampling.h"
 #include "gather/lookup_cache.h"
 #include "integrator/shading.h"
+#include <vector>
 
 namespace penumbra {
 
@@ -21,6 +22,10 @@ using CachedAnswer = LookupCache::Answer;
 // k-nearest vote. Counts the query and its outcome.
 GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                         const CachedAnswer* cached, ThreadState& ts, std::string* note);
+// The shadow ray from a shading point towards a light sample: from the lifted origin,
+// ignoring occluders within 4 x spread, stopping `margin` short of the light. False
+// when the origin is already at the light (nothing can block it).
+bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray);
 // One shadow ray, recorded under --trace-pixel. Classic: glass tints the ray (a
 // walk through every surface); physical: glass blocks it like anything else (light
 // through glass arrives as caustic photons).
@@ -101,5 +106,31 @@ const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
 // the material's ambient colour times the global ambient when there is no map.
 Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
                   const CachedAnswer* cached, ThreadState& ts);
+
+// ---- Shadow packets: the shadow rays of a packet of camera hits, traced ahead as
+// occlusion packets (one per light) and read back by the shading that would cast them.
+
+// The lights (bit li, li < 32) whose shadow ray at a camera hit can be traced ahead:
+// delta lights (one exact sample, no random numbers) that emit, with shadows on, a
+// plain occlusion test (not the classic model's walk through glass) and no gate to
+// consult (the gate decides whether a ray is cast at all). `direct`: the view adds
+// direct light (classic beauty; physical beauty and direct); zero otherwise.
+uint32_t packetShadowLights(const ShadingContext& ctx, bool direct);
+
+// Reused buffers: one packet's worth of shadow rays and the hits they belong to.
+struct PrimaryShadowScratch {
+  std::vector<Ray> rays;
+  std::vector<int> owner;
+  std::vector<uint8_t> blocked;
+};
+
+// For n camera rays and their first hits (invalid: a miss), traces for every light
+// of `lights` the shadow ray directFromLight would cast at that hit (shading point 1
+// of its sample), as packets. Bit li of known[i] says hit i's answer for light li is
+// in bit li of blocked[i]; hits that cannot cast one stay unknown and are answered by
+// a single ray if shading asks after all, so the image never depends on this.
+void tracePrimaryShadows(const ShadingContext& ctx, uint32_t lights, const Ray* rays,
+                         const Hit* hits, int n, uint32_t* known, uint32_t* blocked,
+                         PrimaryShadowScratch& scratch);
 
 }  // namespace penumbra

@@ -50,16 +50,25 @@ Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k,
 
 Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const Color& throughput,
                     RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts) {
+  Hit hit;
+  const bool found = ctx.tracer.intersect(ray, hit);
+  return tracePhysicalHit(ctx, ray, found ? &hit : nullptr, depth, throughput, kind, terms,
+                          parentRecord, ts);
+}
+
+Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, int depth,
+                       const Color& throughput, RayKind kind, uint8_t terms, int parentRecord,
+                       ThreadState& ts) {
   countRay(kind, ts.counts);
   --ts.raysLeft;
   int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, throughput, parentRecord) : -1;
 
-  Hit hit;
-  if (!ctx.tracer.intersect(ray, hit)) {
+  if (!found) {
     Color c = (terms & kTermMissed) ? ctx.scene.render.background : Color(0.0f);
     if (recIndex >= 0) (*ts.recorder)[recIndex].contribution = throughput * c;
     return c;
   }
+  const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
   if (maxComponent(m.emission) > 0.0f) {

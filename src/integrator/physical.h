@@ -18,5 +18,10 @@ enum PhysicalTerms : uint8_t {
 // lobes' weights so far; recursion stops at max_depth or below min_weight.
 Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const Color& throughput,
                     RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts);
+// The same for a ray already traced (a camera ray of a packet): `hit` is its first
+// hit, null on a miss.
+Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* hit, int depth,
+                       const Color& throughput, RayKind kind, uint8_t terms, int parentRecord,
+                       ThreadState& ts);
 
 }  // namespace penumbra

@@ -39,21 +39,105 @@ uint8_t physicalTerms(Aov aov) {
   }
 }
 
-Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
+// `hit`: the ray's first hit, already traced (alone or in a packet); null on a miss.
+Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov aov, ThreadState& ts) {
   ts.raysLeft = kMaxRaysPerSample;
   if (ctx.scene.render.model == ShadingModel::Physical && aov != Aov::Depth && aov != Aov::Normal) {
-    return tracePhysical(ctx, ray, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts);
+    return tracePhysicalHit(ctx, ray, hit, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts);
   }
-  if (aov == Aov::Beauty) return traceRay(ctx, ray, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  if (aov == Aov::Beauty) return traceRayHit(ctx, ray, hit, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
   ++ts.counts.camera;
-  Hit hit;
-  if (!ctx.tracer.intersect(ray, hit)) return aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
-  if (aov == Aov::Depth) return Color(hit.t);
-  SurfaceRecord s = ctx.tracer.surface(ray, hit, kSurfaceShadingNormal);
+  if (!hit) return aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
+  if (aov == Aov::Depth) return Color(hit->t);
+  SurfaceRecord s = ctx.tracer.surface(ray, *hit, kSurfaceShadingNormal);
   if (aov == Aov::Normal) return s.ns * 0.5f + 0.5f;
   const Material& m = ctx.scene.materials[s.material];
   CachedAnswer storage;  // Aov::Indirect
   return ambientTerm(ctx, s, m, lookupAt(ctx, s, storage, ts), ts);
+}
+
+Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
+  Hit hit;
+  const bool found = ctx.tracer.intersect(ray, hit);
+  return shadeTraced(ctx, ray, found ? &hit : nullptr, aov, ts);
+}
+
+// One sample into its pixel's running sum. A NaN or Inf sample would poison the pixel
+// (or be written as 0 and hide): drop it, count it, and let the pixel's other samples
+// stand. Depth averages only the samples that hit: a miss is "no depth", not -1 m.
+void addSample(const Color& c, Aov aov, glm::dvec3& sum, int& counted, ThreadState& ts) {
+  if (!isFinite(c)) {
+    ++ts.counts.nonfiniteSamples;
+    return;
+  }
+  if (aov == Aov::Depth && c.r < 0.0f) return;
+  sum += glm::dvec3(c);
+  ++counted;
+}
+
+// A mean above float range is clamped to it (the writer clamps further).
+Color pixelMean(const glm::dvec3& sum, int counted, Aov aov) {
+  const double top = std::numeric_limits<float>::max();
+  return counted > 0 ? Color(glm::min(sum / double(counted), glm::dvec3(top)))
+         : aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
+}
+
+// The packet path's per-thread buffers, sized for one tile on first use.
+struct TileBuffers {
+  std::vector<glm::ivec2> pixels;
+  std::vector<uint64_t> keys;
+  std::vector<Ray> rays;
+  std::vector<Hit> hits;
+  std::vector<glm::dvec3> sums;
+  std::vector<int> counted;
+  std::vector<uint32_t> known, blocked;
+  PrimaryShadowScratch shadows;
+};
+
+// One tile with its camera rays as packets: per sample index, every pixel's camera ray
+// (the same jitter, from the same (seed, pixel, sample) stream) is traced in packets,
+// then their shadow rays to eligible lights, then each pixel is shaded from its hit.
+// Each pixel still adds its samples in sample order, so the sums equal the single path's.
+void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov aov,
+                       uint32_t shadowLights, int x0, int y0, int x1, int y1, TileBuffers& b,
+                       ThreadState& ts, Image& image) {
+  const Camera& cam = ctx.scene.camera;
+  const size_t cap = static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0);
+  if (b.pixels.size() < cap) {
+    b.pixels.resize(cap); b.keys.resize(cap); b.rays.resize(cap); b.hits.resize(cap); b.sums.resize(cap);
+    b.counted.resize(cap); b.known.resize(cap); b.blocked.resize(cap);
+  }
+  // Pixels in 4x4 blocks: a 16-ray packet covers a square of the film, not a row.
+  int n = 0;
+  for (int by = y0; by < y1; by += 4)
+    for (int bx = x0; bx < x1; bx += 4)
+      for (int y = by; y < std::min(by + 4, y1); ++y)
+        for (int x = bx; x < std::min(bx + 4, x1); ++x) b.pixels[static_cast<size_t>(n++)] = {x, y};
+  for (int i = 0; i < n; ++i) { b.sums[i] = glm::dvec3(0.0); b.counted[i] = 0; }
+  const uint64_t seed = ctx.scene.render.seed;
+  const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
+  for (int s = 0; s < cam.spp; ++s) {
+    for (int i = 0; i < n; ++i) {
+      const glm::ivec2 p = b.pixels[i];
+      const uint64_t pixel = static_cast<uint64_t>(p.y) * cam.width + p.x;
+      b.keys[i] = hashKey(seed, pixel, first + static_cast<uint64_t>(s));
+      Rng rng(b.keys[i]);
+      const Vec2 off = stratified2D(s, cam.spp, rng);
+      b.rays[i] = camera.generate(p.x + off.x, p.y + off.y);
+    }
+    ctx.tracer.intersectPacket(b.rays.data(), n, b.hits.data());
+    tracePrimaryShadows(ctx, shadowLights, b.rays.data(), b.hits.data(), n, b.known.data(),
+                        b.blocked.data(), b.shadows);
+    for (int i = 0; i < n; ++i) {
+      beginSample(ts, b.keys[i]);
+      ts.knownShadows = b.known[i];
+      ts.blockedShadows = b.blocked[i];
+      const Hit* hit = b.hits[i].valid() ? &b.hits[i] : nullptr;
+      addSample(shadeTraced(ctx, b.rays[i], hit, aov, ts), aov, b.sums[i], b.counted[i], ts);
+    }
+  }
+  ts.knownShadows = ts.blockedShadows = 0;
+  for (int i = 0; i < n; ++i) image.at(b.pixels[i].x, b.pixels[i].y) = pixelMean(b.sums[i], b.counted[i], aov);
 }
 
 // Depth view as in the report: near black, far white, misses white.
@@ -79,40 +163,37 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   const int numTiles = tilesX * tilesY;
   const uint64_t seed = ctx.scene.render.seed;
   tbb::enumerable_thread_specific<ThreadState> states;
+  tbb::enumerable_thread_specific<TileBuffers> buffers;
   std::atomic<int> tilesDone{0};
+  const bool packets = ctx.scene.render.packets;
+  const bool physical = ctx.scene.render.model == ShadingModel::Physical;
+  const bool direct = options.aov == Aov::Beauty || (physical && options.aov == Aov::Direct);
+  const uint32_t shadowLights = packets ? packetShadowLights(ctx, direct) : 0;
 
   tbb::parallel_for(tbb::blocked_range<int>(0, numTiles, 1), [&](const tbb::blocked_range<int>& r) {
     ThreadState& ts = states.local();
     for (int t = r.begin(); t != r.end(); ++t) {
       int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
       int x1 = std::min(x0 + tile, cam.width), y1 = std::min(y0 + tile, cam.height);
-      for (int y = y0; y < y1; ++y) {
-        for (int x = x0; x < x1; ++x) {
-          uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
-          glm::dvec3 sum(0.0);  // double: many finite samples near float's top cannot overflow
-          int counted = 0;
-          // A progressive pass continues the sample sequence where earlier passes stopped.
-          const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
-          for (int s = 0; s < cam.spp; ++s) {
-            Rng rng(hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
-            Vec2 off = stratified2D(s, cam.spp, rng);
-            beginSample(ts, hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
-            Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
-            // A NaN or Inf sample would poison the pixel (or be written as 0 and hide):
-            // drop it, count it, and let the pixel's other samples stand.
-            if (!isFinite(c)) {
-              ++ts.counts.nonfiniteSamples;
-              continue;
+      if (packets) {
+        renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, buffers.local(), ts, image);
+      } else {
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) {
+            uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
+            glm::dvec3 sum(0.0);  // double: many finite samples near float's top cannot overflow
+            int counted = 0;
+            // A progressive pass continues the sample sequence where earlier passes stopped.
+            const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
+            for (int s = 0; s < cam.spp; ++s) {
+              Rng rng(hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
+              Vec2 off = stratified2D(s, cam.spp, rng);
+              beginSample(ts, hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
+              Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
+              addSample(c, options.aov, sum, counted, ts);
             }
-            // Depth averages only the samples that hit: a miss is "no depth", not -1 m.
-            if (options.aov == Aov::Depth && c.r < 0.0f) continue;
-            sum += glm::dvec3(c);
-            ++counted;
+            image.at(x, y) = pixelMean(sum, counted, options.aov);
           }
-          // A mean above float range is clamped to it (the writer clamps further).
-          const double top = std::numeric_limits<float>::max();
-          image.at(x, y) = counted > 0 ? Color(glm::min(sum / double(counted), glm::dvec3(top)))
-                           : options.aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
         }
       }
       int done = ++tilesDone;

@@ -55,12 +55,17 @@ struct ThreadState {
   // light): the same numbers for any thread count.
   uint64_t sampleKey = 0;
   uint32_t shadingPoint = 0;
+  // Shadow rays of this sample's camera hit (shading point 1) already traced in a
+  // packet (tracePrimaryShadows, light_visibility.h): bit li of `knownShadows` says light li's
+  // answer is in bit li of `blockedShadows`. Zero outside the packet path.
+  uint32_t knownShadows = 0, blockedShadows = 0;
 };
 
 // A camera sample starts: its key seeds every light sample of its ray tree.
 inline void beginSample(ThreadState& ts, uint64_t key) {
   ts.sampleKey = key ^ 0x6c69676874736d70ull;  // "lightsmp": a stream apart from the pixel's
   ts.shadingPoint = 0;
+  ts.knownShadows = ts.blockedShadows = 0;
 }
 
 enum class RayKind { Camera, Reflection, Refraction };
@@ -70,6 +75,10 @@ enum class RayKind { Camera, Reflection, Refraction };
 // footprint width at its origin, for texture filtering.
 Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color& weight,
                float cone, RayKind kind, int parentRecord, ThreadState& ts);
+// The same for a ray already traced (a camera ray of a packet): `hit` is its first
+// hit, null on a miss.
+Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* hit, int depth,
+                  const Color& weight, float cone, RayKind kind, int parentRecord, ThreadState& ts);
 
 bool sceneHasGlass(const Scene& scene);
 

@@ -45,6 +45,13 @@ bool sceneHasGlass(const Scene& scene) {
 
 Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color& weight,
                float cone, RayKind kind, int parentRecord, ThreadState& ts) {
+  Hit hit;
+  const bool found = ctx.tracer.intersect(ray, hit);
+  return traceRayHit(ctx, ray, found ? &hit : nullptr, depth, weight, cone, kind, parentRecord, ts);
+}
+
+Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, int depth,
+                  const Color& weight, float cone, RayKind kind, int parentRecord, ThreadState& ts) {
   countRay(kind, ts.counts);
   --ts.raysLeft;
   int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, weight, parentRecord) : -1;
@@ -57,10 +64,8 @@ Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color
     return c;
   };
 
-  Hit hit;
-  if (!ctx.tracer.intersect(ray, hit)) {
-    return finish(ctx.scene.render.background, [](RayRecord&) {});
-  }
+  if (!found) return finish(ctx.scene.render.background, [](RayRecord&) {});
+  const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
   auto recordHit = [&](RayRecord& r) {

@@ -103,7 +103,7 @@ TriangleMesh readObjMesh(const JsonNode& node) {
 }
 
 TriangleMesh readTeapot(const JsonNode& node) {
-  int subdivisions = node.intOr("subdivisions", 8, 1, 64);
+  int subdivisions = node.intOr("subdivisions", 8, 1, 128);
 #if PENUMBRA_HAS_TEAPOT
   TriangleMesh mesh = makeTeapot(subdivisions);
   if (mesh.name.empty()) mesh.name = "teapot";

@@ -65,7 +65,7 @@ void readCamera(const JsonNode& node, Camera& out) {
 
 void readRender(const JsonNode& node, RenderSettings& out) {
   node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
-                  "aov", "light_samples"});
+                  "aov", "light_samples", "packets"});
   size_t model = node.enumOr("model", out.model == ShadingModel::Physical, {"classic", "physical"});
   out.model = model == 0 ? ShadingModel::Classic : ShadingModel::Physical;
   out.maxDepth = node.intOr("max_depth", out.maxDepth, 0, 64);
@@ -79,6 +79,7 @@ void readRender(const JsonNode& node, RenderSettings& out) {
                                           "caustic"};
   if (node.has("aov")) out.aov = views[node.child("aov").asEnum(views)];
   out.lightSamples = node.intOr("light_samples", out.lightSamples, 1, 1024);
+  out.packets = node.boolOr("packets", out.packets);
 }
 
 void readPhotons(const JsonNode& node, PhotonSettings& out) {

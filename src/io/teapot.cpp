@@ -22,10 +22,10 @@ namespace {
 using DVec3 = glm::dvec3;
 
 constexpr int kPatchCount = 32;
-constexpr int kMaxSubdivisions = 64;
+constexpr int kMaxSubdivisions = 128;
 constexpr double kScale = 1.0 / 3.15;  // data height (knob top z = 3.15) -> 1
 // Positions closer than this (after scaling) are one point. Patch evaluations
-// of a shared edge differ by ~1e-16; distinct grid points at N = 64 are >1e-5 apart.
+// of a shared edge differ by ~1e-16; distinct grid points at N = 128 are >5e-6 apart.
 constexpr double kWeldTolerance = 1e-7;
 constexpr double kWeldCell = 1e-6;
 // Normals of coincident vertices are averaged only when they roughly agree, so
@@ -137,7 +137,7 @@ class PositionWelder {
 
 TriangleMesh makeTeapot(int subdivisions) {
   if (subdivisions < 1 || subdivisions > kMaxSubdivisions) {
-    throw InputError("teapot: subdivisions must be in [1, 64], got " +
+    throw InputError("teapot: subdivisions must be in [1, 128], got " +
                      std::to_string(subdivisions));
   }
   const int n = subdivisions;

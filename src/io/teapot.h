@@ -6,7 +6,7 @@
 namespace penumbra {
 
 // Tessellates each of the 32 bicubic patches on an (N+1)x(N+1) grid of its
-// (u, v) parameters, N = subdivisions in [1, 64] (InputError otherwise).
+// (u, v) parameters, N = subdivisions in [1, 128] (InputError otherwise).
 //
 // Frame: the data set is z-up; it is rotated -90 degrees about x, so
 // (x, y, z)_data -> (x, z, -y), then uniformly scaled by 1/3.15 (the data's
