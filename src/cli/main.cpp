@@ -3,6 +3,7 @@
 #include "cli/memory_limit.h"
 #include "cli/pipeline.h"
 #include "cli/progress_bar.h"
+#include "cli/plan_command.h"
 #include "cli/sweep_command.h"
 #include "core/error.h"
 #include "io/image_io.h"
@@ -143,6 +144,8 @@ int main(int argc, char** argv) {
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-q,--quiet", quiet, "No progress bar and no summary on stderr");
+  std::vector<std::string> enablePasses, disablePasses;
+  addPassOptions(*render, enablePasses, disablePasses);
 
   std::string textureName, textureOut;
   int textureWidth = 2048;
@@ -154,6 +157,7 @@ int main(int argc, char** argv) {
   texture->add_option("--seed", textureSeed, "Noise seed");
 
   SweepCommand sweep(app);
+  PlanCommand plan(app);
 
   // From here on an interrupt removes our temp files, never an old output.
   installTempFileCleanup();
@@ -168,6 +172,7 @@ int main(int argc, char** argv) {
     if (*render) {
       if (req.outputPath.empty() && tracePixelArg.empty()) throw InputError("render: -o OUT is required");
       checkOverrides(req.overrides);
+      req.plan = passOverrides(enablePasses, disablePasses);
       if (!maxMemoryArg.empty()) req.maxMemoryBytes = parseMemorySize(maxMemoryArg);
       if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
@@ -176,6 +181,7 @@ int main(int argc, char** argv) {
       return runRenderCommand(req, statsPath, tracePixelArg, quiet);
     }
     if (sweep.selected()) return sweep.run();
+    if (plan.selected()) return plan.run();
     if (*texture) {
       writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),
                  {{"penumbra:texture", textureName}});

@@ -6,14 +6,6 @@
 namespace penumbra {
 namespace {
 
-// The classic passes (and every gate) emit from point and area lights.
-bool hasPhotonLight(const Scene& scene) {
-  for (const Light& l : scene.lights) {
-    if (l.type != LightType::Directional) return true;
-  }
-  return false;
-}
-
 template <class Photon>
 std::vector<Photon> photonsFor(std::vector<Photon>& all, const PrefixCuts& cuts, uint64_t full,
                                uint64_t wanted, bool consume, bool& ok) {
@@ -33,33 +25,21 @@ PhotonBudgets budgetsOf(const Scene& scene) {
   return {ps.shadowPhotons, ps.indirectPhotons, ps.globalPhotons, ps.causticPhotons};
 }
 
-PhotonNeeds photonNeeds(const Scene& scene, Aov aov) {
+PhotonNeeds photonNeeds(const RenderPlan& plan) {
   PhotonNeeds needs;
-  if (!hasPhotonLight(scene) || aov == Aov::Depth || aov == Aov::Normal) return needs;
-  const bool gate = scene.photons.gate && scene.render.shadows;
-  if (scene.render.model == ShadingModel::Classic) {
-    needs.shadow = gate && aov == Aov::Beauty;
-    needs.indirect = aov == Aov::Beauty || aov == Aov::Indirect;
-  } else {
-    needs.shadow = gate && (aov == Aov::Beauty || aov == Aov::Direct);
-    needs.global = aov == Aov::Beauty || aov == Aov::Indirect;
-    needs.caustic = aov == Aov::Beauty || aov == Aov::Caustic;
-  }
+  needs.shadow = plan[Pass::Gate].on;
+  needs.indirect = plan[Pass::IndirectPhotons].on;
+  needs.global = plan[Pass::GlobalPhotons].on;
+  needs.caustic = plan[Pass::CausticPhotons].on;
   return needs;
 }
 
-Emission emitForView(const Scene& scene, const TraceScene& tracer, Aov aov, uint32_t pass,
-                     const std::vector<uint64_t>& smaller) {
+Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const PhotonNeeds& needs, uint32_t pass,
+                        const std::vector<uint64_t>& smaller) {
   Emission e;
   e.physical = scene.render.model == ShadingModel::Physical;
   e.numLights = scene.lights.size();
-  const PhotonNeeds needs = photonNeeds(scene, aov);
-  if (!needs.any()) {
-    if (!hasPhotonLight(scene) && !scene.lights.empty() && aov != Aov::Depth && aov != Aov::Normal) {
-      e.notes.push_back("only directional lights: rendering without photon maps");
-    }
-    return e;
-  }
+  if (!needs.any()) return e;
   Stopwatch clock;
   EmitOptions options;
   options.prefixBudgets = smaller;

@@ -9,6 +9,7 @@
 #include "emit/emit_physical.h"
 #include "gather/photon_map.h"
 #include "geometry/trace_scene.h"
+#include "cli/render_plan.h"
 #include "integrator/render.h"
 #include <string>
 #include <vector>
@@ -37,16 +38,20 @@ struct Emission {
   std::vector<std::string> notes;
 };
 
-// Which maps `aov` reads, for this scene (the gate only where it is on).
+// Which maps to emit and build: the render plan's photon passes (cli/render_plan.h).
 struct PhotonNeeds {
   bool shadow = false, indirect = false, global = false, caustic = false;
   bool any() const { return shadow || indirect || global || caustic; }
+  PhotonNeeds& operator|=(const PhotonNeeds& o) {
+    shadow |= o.shadow; indirect |= o.indirect; global |= o.global; caustic |= o.caustic;
+    return *this;
+  }
 };
-PhotonNeeds photonNeeds(const Scene& scene, Aov aov);
+PhotonNeeds photonNeeds(const RenderPlan& plan);
 
 // Emits `scene`'s photons for progressive pass `pass`, recording `smaller` budgets.
-Emission emitForView(const Scene& scene, const TraceScene& tracer, Aov aov, uint32_t pass,
-                     const std::vector<uint64_t>& smaller = {});
+Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const PhotonNeeds& needs, uint32_t pass,
+                        const std::vector<uint64_t>& smaller = {});
 
 // Built photon maps and what they cost.
 struct PhotonStage {

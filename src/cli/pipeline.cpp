@@ -4,6 +4,7 @@
 #include "cli/gate_decision.h"
 #include "cli/job_admission.h"
 #include "cli/render_frame.h"
+#include "cli/render_plan.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
@@ -60,15 +61,6 @@ RenderResult runRender(const RenderRequest& request) {
   Stopwatch phase;
   Scene scene = loadScene(request.scenePath, request.overrides);
   stats.time.load = phase.seconds();
-  // photons.gate = auto: build the shadow map only where it is estimated to pay.
-  const GateMode gateMode = scene.photons.gateMode;
-  stats.gateMode = gateMode == GateMode::Auto ? "auto" : gateMode == GateMode::On ? "on" : "off";
-  if (gateMode == GateMode::Auto) {
-    const GateDecision decision = decideGate(scene);
-    scene.photons.gate = decision.gate;
-    stats.gateReason = decision.reason;
-  }
-  stats.gate = scene.photons.gate;
   const std::string aovName = request.aov.empty() ? scene.render.aov : request.aov;
   Aov aov = parseAov(aovName);
   const bool physical = scene.render.model == ShadingModel::Physical;
@@ -76,11 +68,22 @@ RenderResult runRender(const RenderRequest& request) {
     throw InputError(scene.file + ": view '" + aovName +
                      "' needs the physical model (render.model: \"physical\")");
   }
+  // Before any work: what runs and why (photons.gate = auto is decided here too).
+  const GateMode gateMode = scene.photons.gateMode;
+  stats.gateMode = gateMode == GateMode::Auto ? "auto" : gateMode == GateMode::On ? "on" : "off";
+  const RenderPlan plan = makePlan(scene, aov, request.plan);
+  applyPlan(plan, scene);
+  stats.plan = planJson(plan);
+  stats.gate = scene.photons.gate;
+  stats.gateReason = plan[Pass::Gate].reason;
+  for (const PassDecision& d : plan.passes) {
+    if (d.overridden && d.changesImage) result.notes.push_back("plan override: " + d.reason);
+  }
   // Bad pixels, outputs and oversized jobs fail now, not after minutes of photons and tiles.
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
   Admission admission = admitRender(scene, request, aov, threads);
 
-  SceneAssets assets = prepareAssets(scene);
+  SceneAssets assets = prepareAssets(scene, plan[Pass::Textures].on);
   stats.time.buildBvh = assets.bvhSeconds;
   confirmRender(admission, scene, *assets.tracer, request);
   result.estimate = admission.estimate;
@@ -95,12 +98,14 @@ RenderResult runRender(const RenderRequest& request) {
   stats.lookup = scene.photons.lookup == PhotonLookup::Precomputed ? "precomputed" : "exact";
 
   reportProgress(request, "photons", 0.0);
-  Emission emission = emitForView(scene, *assets.tracer, aov, 0);
+  const PhotonNeeds needs = photonNeeds(plan);
+  Emission emission = emitPhotonsFor(scene, *assets.tracer, needs, 0);
   reportProgress(request, "maps", 0.0);
   PhotonStage stage;
   buildStage(emission, emission.budgets, true, stage);
   FrameOptions frame;
   frame.aov = aov;
+  frame.needs = needs;
   frame.tracePixel = request.tracePixel;
   frame.progress = request.progress;
   renderFrame(scene, assets, stage, frame, result);

@@ -1,5 +1,6 @@
 // The whole render, wired once: io -> emit -> gather -> trace -> io.
 #pragma once
+#include "cli/render_plan.h"
 #include "cli/resource_estimate.h"
 #include "core/image.h"
 #include "core/ray_record.h"
@@ -24,6 +25,7 @@ struct RenderRequest {
   // Files the caller writes after the render (--stats): checked with -o before any work.
   std::vector<std::string> statsPaths;
   uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available when it starts
+  PlanOverrides plan;  // --enable / --disable PASS
   // Told before the photons start, e.g. that the job is estimated to take hours.
   std::function<void(const std::string& note)> notice;
 };

@@ -80,12 +80,12 @@ std::unique_ptr<TextureLookup> loadTextures(const Scene& scene) {
 
 }  // namespace
 
-SceneAssets prepareAssets(const Scene& scene) {
+SceneAssets prepareAssets(const Scene& scene, bool textures) {
   SceneAssets assets;
   Stopwatch clock;
   assets.tracer = std::make_unique<TraceScene>(scene);
   assets.bvhSeconds = clock.seconds();
-  assets.textures = loadTextures(scene);
+  if (textures) assets.textures = loadTextures(scene);
   return assets;
 }
 
@@ -118,7 +118,9 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     if (pass > 0) {
       if (options.progress) options.progress("photons", static_cast<double>(pass) / passes);
       later = PhotonStage();
-      Emission e = emitForView(scene, *assets.tracer, aov, static_cast<uint32_t>(pass));
+      PhotonNeeds needs = options.needs;
+      needs.shadow = false;  // the gate's photons are pass 0's, for every pass
+      Emission e = emitPhotonsFor(scene, *assets.tracer, needs, static_cast<uint32_t>(pass));
       buildStage(e, e.budgets, true, later);
       maps = &later;
     }

@@ -17,10 +17,12 @@ struct SceneAssets {
   std::unique_ptr<TextureLookup> textures;
   double bvhSeconds = 0.0;
 };
-SceneAssets prepareAssets(const Scene& scene);
+// textures = false: the plan skips them (a view that reads no colour, or --disable textures).
+SceneAssets prepareAssets(const Scene& scene, bool textures = true);
 
 struct FrameOptions {
   Aov aov = Aov::Beauty;
+  PhotonNeeds needs;  // the plan's photon passes, for progressive passes >= 1
   std::optional<std::pair<int, int>> tracePixel;
   std::function<void(const char* phase, double fraction)> progress;
 };

@@ -2,7 +2,6 @@
 // reference first, then each group's photon emission once, its budgets' maps
 // from largest to smallest, and every run of a budget on the same maps.
 #include "cli/sweep_run.h"
-#include "cli/gate_decision.h"
 #include "cli/plot_script.h"
 #include "cli/render_frame.h"
 #include "cli/reuse_key.h"
@@ -33,6 +32,8 @@ struct PlannedRun {
   PhotonSettings photons;
   ReuseKeys keys;
   PhotonBudgets budgets;
+  PhotonNeeds needs;      // the run's plan: which maps it reads
+  bool textures = false;  // ... and whether it reads textures
   double loadSeconds = 0.0;
   bool done = false;  // finished by an earlier sweep into the same folder
 };
@@ -95,17 +96,18 @@ class Sweep {
         throw InputError("sweep run '" + run.id + "': " + e.what());
       }
       p.loadSeconds = clock.seconds();
-      if (scene.photons.gateMode == GateMode::Auto) scene.photons.gate = decideGate(scene).gate;
+      if (i == 0) aov_ = parseAov(req_.aov.empty() ? scene.render.aov : req_.aov);
+      const RenderPlan plan = makePlan(scene, aov_);
+      applyPlan(plan, scene);
+      p.needs = photonNeeds(plan);
+      p.textures = plan[Pass::Textures].on;
       p.camera = scene.camera;
       p.render = scene.render;
       p.photons = scene.photons;
       p.budgets = budgetsOf(scene);
       auto f = finished.find(run.id);
       p.done = f != finished.end() && fs::exists(fs::path(req_.outDir) / f->second.image);
-      if (i == 0) {
-        sceneName_ = scene.name;
-        aov_ = parseAov(req_.aov.empty() ? scene.render.aov : req_.aov);
-      }
+      if (i == 0) sceneName_ = scene.name;
       if (!geometry_.count(p.keys.geometry)) {
         geometry_[p.keys.geometry] = std::make_unique<GeometryGroup>();
         geometry_[p.keys.geometry]->scene = std::move(scene);
@@ -153,7 +155,7 @@ class Sweep {
   GeometryGroup& assetsFor(const PlannedRun& p) {
     GeometryGroup& g = *geometry_[p.keys.geometry];
     if (!g.built) {
-      g.assets = prepareAssets(g.scene);
+      g.assets = prepareAssets(g.scene, p.textures);
       g.built = true;
       ++totals_.bvhBuilds;
       bvhSeconds_[p.keys.geometry] = g.assets.bvhSeconds;
@@ -172,7 +174,9 @@ class Sweep {
     PhotonBudgets top;
     std::vector<uint64_t> smaller;
     std::vector<PhotonBudgets> budgets;
+    PhotonNeeds needs;
     for (size_t i : group) {
+      needs |= runs_[i].needs;
       const PlannedRun& p = runs_[i];
       top.shadow = std::max(top.shadow, p.budgets.shadow);
       top.indirect = std::max(top.indirect, p.budgets.indirect);
@@ -189,7 +193,7 @@ class Sweep {
     scene.photons.causticPhotons = top.caustic;
     status_ = "photons";
     showProgress();
-    Emission emission = emitForView(scene, *geo.assets.tracer, aov_, 0, smaller);
+    Emission emission = emitPhotonsFor(scene, *geo.assets.tracer, needs, 0, smaller);
     ++totals_.emissions;
     // The reference's budget first, then the largest to the smallest.
     std::sort(budgets.begin(), budgets.end(), [](const PhotonBudgets& a, const PhotonBudgets& b) {
@@ -209,7 +213,7 @@ class Sweep {
         alone.photons.indirectPhotons = b.indirect;
         alone.photons.globalPhotons = b.global;
         alone.photons.causticPhotons = b.caustic;
-        Emission own = emitForView(alone, *geo.assets.tracer, aov_, 0);
+        Emission own = emitPhotonsFor(alone, *geo.assets.tracer, needs, 0);
         ++totals_.emissions;
         buildStage(own, own.budgets, true, stage);
       } else if (stage.fromPrefix) {
@@ -243,6 +247,7 @@ class Sweep {
     RenderResult result;
     FrameOptions frame;
     frame.aov = aov_;
+    frame.needs = p.needs;
     frame.progress = [this](const char* phase, double f) {
       status_ = fmt::format("{} {:.0f}%", phase, 100.0 * f);
       showProgress();

@@ -51,6 +51,7 @@ struct RenderStats {
   std::string gateMode = "auto";     // photons.gate as given
   bool gate = false;                 // ... and as decided
   std::string gateReason;            // why (auto: the cost model's estimate)
+  std::string plan;                  // the render plan as JSON (cli/render_plan.h)
   uint64_t cacheRecords = 0;         // precomputed: cells (last pass)
   float cacheCell = 0.0f;            // precomputed: cell size (last pass)
   uint64_t cacheBytes = 0;

@@ -39,6 +39,7 @@ std::string statsToJson(const RenderStats& s) {
                {"queries", r.gateQueries},      {"lit", r.gateLit},
                {"shadowed", r.gateShadowed},    {"mixed", r.gateMixed},
                {"shadow_rays_cast", r.shadow},  {"shadow_rays_avoided", r.shadowRaysAvoided}};
+  if (!s.plan.empty()) j["plan"] = nlohmann::json::parse(s.plan);
   j["gather"] = {{"queries", r.gatherQueries},
                  {"mean_neighbours", r.gatherQueries ? double(r.gatherNeighbours) / r.gatherQueries : 0.0}};
   j["lookup"] = {{"mode", s.lookup}, {"cells", s.cacheRecords}, {"cell_size", s.cacheCell},

@@ -1,0 +1,47 @@
+// The plan subcommand: load, decide, print; nothing is built or emitted.
+#include "cli/plan_command.h"
+#include "core/error.h"
+#include "io/scene_loader.h"
+#include <iostream>
+
+namespace penumbra {
+
+void addPassOptions(CLI::App& command, std::vector<std::string>& enable, std::vector<std::string>& disable) {
+  command.add_option("--enable", enable, "Force a pass on (see penumbra plan): gate, indirect-photons, "
+                                         "global-photons, caustic-photons, shadow-rays, reflection, refraction, "
+                                         "textures, light-samples, packets, precompute")
+      ->take_all()->allow_extra_args(false);
+  command.add_option("--disable", disable, "Force a pass off (an override that changes the image is said so)")
+      ->take_all()->allow_extra_args(false);
+}
+
+PlanOverrides passOverrides(const std::vector<std::string>& enable, const std::vector<std::string>& disable) {
+  PlanOverrides o;
+  for (const std::string& e : enable) o.enable.push_back(parsePass(e));
+  for (const std::string& d : disable) o.disable.push_back(parsePass(d));
+  for (Pass e : o.enable) {
+    for (Pass d : o.disable) {
+      if (e == d) throw InputError(std::string("--enable and --disable both name ") + passName(e));
+    }
+  }
+  return o;
+}
+
+PlanCommand::PlanCommand(CLI::App& app) {
+  command_ = app.add_subcommand("plan", "Print what a render would run, and why, without rendering");
+  command_->add_option("scene", scene_, "Scene file (JSON)")->required();
+  command_->add_option("--aov", aov_, "View (default: the scene's render.aov)");
+  command_->add_option("--set", overrides_, "Override a scene value")->take_all()->allow_extra_args(false);
+  command_->add_flag("--json", json_, "Print the plan as JSON (as in --stats)");
+  addPassOptions(*command_, enable_, disable_);
+}
+
+int PlanCommand::run() {
+  Scene scene = loadScene(scene_, overrides_);
+  const Aov aov = parseAov(aov_.empty() ? scene.render.aov : aov_);
+  const RenderPlan plan = makePlan(scene, aov, passOverrides(enable_, disable_));
+  std::cout << (json_ ? planJson(plan) + "\n" : planText(plan));
+  return 0;
+}
+
+}  // namespace penumbra

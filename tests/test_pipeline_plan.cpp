@@ -1,0 +1,131 @@
+// The render plan against forced renders: for every shipped scene, forcing on every
+// pass the plan turned off gives a byte-identical image (it had nothing to add),
+// skipped passes cost no photons or rays, and the approximations the plan may pick
+// (the gate, precomputed lookups) stay within the noise of a second seed.
+#include "cli/pipeline.h"
+#include "cli/render_plan.h"
+#include "io/image_compare.h"
+#include "io/scene_loader.h"
+#include <gtest/gtest.h>
+#include <filesystem>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> shippedScenes() {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(fs::path(PENUMBRA_SOURCE_DIR) / "scenes")) {
+    // teapot_1m is fig05's teapot at 1M triangles, for the packet benchmark: its
+    // tessellation alone takes ~2.5 s per render, and it has no pass fig05 lacks.
+    if (e.path().extension() == ".json" && e.path().stem() != "teapot_1m") out.push_back(e.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Small and quick; budgets cut so the photon passes that do run stay short.
+std::vector<std::string> quick(uint64_t seed = 1) {
+  return {"camera.width=48", "camera.height=32", "camera.spp=1", "photons.shadow=20000",
+          "photons.indirect=20000", "photons.global=20000", "photons.caustic=20000",
+          "render.seed=" + std::to_string(seed)};
+}
+
+RenderResult render(const std::string& scene, const PlanOverrides& plan, uint64_t seed = 1) {
+  RenderRequest r;
+  r.scenePath = scene;
+  r.overrides = quick(seed);
+  r.threads = 2;
+  r.plan = plan;
+  return runRender(r);
+}
+
+// Every pass the automatic plan left off, except the two that trade exactness for
+// speed by design (the gate's verdicts replace shadow rays; precomputed lookups
+// replace gathers): those are checked against the noise below.
+// Shadow rays forced on where render.shadows is false add the shadows the scene
+// asked not to have: the plan says such an override changes the image (checked).
+PlanOverrides everyOffPassOn(const Scene& scene, const RenderPlan& plan, bool approximations) {
+  PlanOverrides o;
+  for (size_t i = 0; i < kPassCount; ++i) {
+    const Pass p = static_cast<Pass>(i);
+    const bool approx = p == Pass::Gate || p == Pass::Precompute;
+    if (!plan.passes[i].on && (approximations || !approx)) o.enable.push_back(p);
+  }
+  const RenderPlan forced = makePlan(scene, plan.aov, o);
+  PlanOverrides unchanged;
+  for (Pass p : o.enable) {
+    const bool expected = p == Pass::Gate || p == Pass::Precompute || (p == Pass::ShadowRays && !scene.render.shadows);
+    EXPECT_EQ(forced[p].changesImage, expected) << passName(p);
+    const bool approx = p == Pass::Gate || p == Pass::Precompute;
+    if (!forced[p].changesImage || (approximations && approx)) unchanged.enable.push_back(p);
+  }
+  return unchanged;
+}
+
+class PlanScenes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PlanScenes, ForcingOnWhatThePlanSkippedChangesNoByte) {
+  Scene scene = loadScene(GetParam(), quick());
+  const Aov aov = parseAov(scene.render.aov);
+  const RenderPlan plan = makePlan(scene, aov);
+  const RenderResult automatic = render(GetParam(), {});
+  const RenderResult forced = render(GetParam(), everyOffPassOn(scene, plan, false));
+  ASSERT_EQ(automatic.image.pixels.size(), forced.image.pixels.size());
+  EXPECT_EQ(compareImages(forced.image, automatic.image).maxError, 0.0) << GetParam();
+  // Skipped passes cost nothing: no photons or rays of that kind.
+  const RenderStats& s = automatic.stats;
+  if (!plan[Pass::Gate].on) EXPECT_EQ(s.emittedShadow + s.rays.gateQueries, 0u);
+  if (!plan[Pass::IndirectPhotons].on) EXPECT_EQ(s.emittedIndirect, 0u);
+  if (!plan[Pass::GlobalPhotons].on) EXPECT_EQ(s.emittedGlobal, 0u);
+  if (!plan[Pass::CausticPhotons].on) EXPECT_EQ(s.emittedCaustic, 0u);
+  if (!plan[Pass::ShadowRays].on) EXPECT_EQ(s.rays.shadow, 0u);
+  if (!plan[Pass::Reflection].on) EXPECT_EQ(s.rays.reflection, 0u);
+  if (!plan[Pass::Refraction].on) EXPECT_EQ(s.rays.refraction, 0u);
+  if (!plan[Pass::Precompute].on) EXPECT_EQ(s.cacheRecords, 0u);
+}
+
+// The gate and precomputed lookups are approximations: forced on where the plan
+// left them off, the image may move, but by less than the Monte Carlo noise of the
+// render itself (RMSE against the same render with another seed).
+TEST_P(PlanScenes, ApproximationsThePlanSkippedStayWithinTheNoise) {
+  Scene scene = loadScene(GetParam(), quick());
+  const RenderPlan plan = makePlan(scene, parseAov(scene.render.aov));
+  if (plan[Pass::Gate].on && plan[Pass::Precompute].on) GTEST_SKIP() << "nothing skipped";
+  const RenderResult automatic = render(GetParam(), {});
+  const RenderResult forced = render(GetParam(), everyOffPassOn(scene, plan, true));
+  const RenderResult other = render(GetParam(), {}, 2);
+  const double change = compareImages(forced.image, automatic.image).rmse;
+  const double noise = compareImages(other.image, automatic.image).rmse;
+  // Noise-free views (no jitter at 1 spp, no photons): the change must be tiny instead.
+  EXPECT_LE(change, std::max(noise, 0.01)) << GetParam() << ": noise " << noise;
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, PlanScenes, ::testing::ValuesIn(shippedScenes()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return fs::path(info.param).stem().string();
+                         });
+
+TEST(Plan, ReasonsNameWhyAPassIsOff) {
+  Scene scene;
+  scene.lights.push_back(Light{});
+  scene.materials.push_back(Material{});
+  scene.photons.estimator = IndirectEstimator::Density;
+  scene.photons.indirectPhotons = 1000;
+  const RenderPlan plan = makePlan(scene, Aov::Beauty);
+  EXPECT_FALSE(plan[Pass::IndirectPhotons].on);
+  EXPECT_EQ(plan[Pass::IndirectPhotons].reason, "no surface can bounce a photon: every p_r and p_t is 0");
+  EXPECT_EQ(plan[Pass::Refraction].reason, "no transparent material");
+  const RenderPlan depth = makePlan(scene, Aov::Depth);
+  EXPECT_FALSE(depth[Pass::ShadowRays].on);
+  EXPECT_FALSE(depth[Pass::Textures].on);
+  const RenderPlan forced = makePlan(scene, Aov::Beauty, {{Pass::IndirectPhotons}, {Pass::ShadowRays}});
+  EXPECT_TRUE(forced[Pass::IndirectPhotons].on);
+  EXPECT_EQ(forced[Pass::IndirectPhotons].budget, 1000u);
+  EXPECT_FALSE(forced[Pass::ShadowRays].on);
+  EXPECT_TRUE(forced[Pass::ShadowRays].changesImage);
+}
+
+}  // namespace
+}  // namespace penumbra
