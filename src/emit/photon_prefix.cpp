@@ -74,30 +74,32 @@ const PrefixCut* PrefixCuts::find(uint64_t budget) const {
   return nullptr;
 }
 
-std::vector<ShadowPhoton> takePrefix(const std::vector<ShadowPhoton>& all, const PrefixCut& cut) {
-  std::vector<ShadowPhoton> out;
+namespace {
+
+// Each light's range of the cut, in light order, through `adjust(photon, light)`.
+template <class Photon, class Adjust>
+std::vector<Photon> copyRanges(const std::vector<Photon>& all, const PrefixCut& cut, Adjust&& adjust) {
+  std::vector<Photon> out;
   size_t n = 0;
   for (size_t l = 0; l < cut.begin.size(); ++l) n += cut.end[l] - cut.begin[l];
   out.reserve(n);
   for (size_t l = 0; l < cut.begin.size(); ++l) {
-    out.insert(out.end(), all.begin() + cut.begin[l], all.begin() + cut.end[l]);
+    for (size_t i = cut.begin[l]; i < cut.end[l]; ++i) out.push_back(adjust(all[i], l));
   }
   return out;
 }
 
+}  // namespace
+
+std::vector<ShadowPhoton> takePrefix(const std::vector<ShadowPhoton>& all, const PrefixCut& cut) {
+  return copyRanges(all, cut, [](const ShadowPhoton& p, size_t) { return p; });
+}
+
 std::vector<IndirectPhoton> takePrefix(const std::vector<IndirectPhoton>& all, const PrefixCut& cut) {
-  std::vector<IndirectPhoton> out;
-  size_t n = 0;
-  for (size_t l = 0; l < cut.begin.size(); ++l) n += cut.end[l] - cut.begin[l];
-  out.reserve(n);
-  for (size_t l = 0; l < cut.begin.size(); ++l) {
-    for (size_t i = cut.begin[l]; i < cut.end[l]; ++i) {
-      IndirectPhoton p = all[i];
-      p.power = PackedPower(p.power.color() * cut.powerScale[l]);
-      out.push_back(p);
-    }
-  }
-  return out;
+  return copyRanges(all, cut, [&](IndirectPhoton p, size_t light) {
+    p.power = PackedPower(p.power.color() * cut.powerScale[light]);
+    return p;
+  });
 }
 
 }  // namespace penumbra
