@@ -4,6 +4,7 @@
 #include "emit/emit.h"
 #include "gather/photon_map.h"
 #include "io/scene_loader.h"
+#include "bench/bench_common.h"
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_invoke.h>
@@ -22,11 +23,13 @@ void BM_EmitCornell(benchmark::State& state) {
   Scene scene = cornell();
   TraceScene tracer(scene);
   uint64_t emitted = 0, stored = 0;
+  const penumbra::bench::CpuShare cpu;
   for (auto _ : state) {
     PhotonMaps maps = emitPhotons(scene, tracer);
     emitted += maps.emittedShadow + maps.emittedIndirect;
     stored += maps.shadow.size() + maps.indirect.size();
   }
+  cpu.report(state, static_cast<int>(state.range(0)));
   state.SetItemsProcessed(static_cast<int64_t>(emitted));
   state.counters["stored_per_iter"] = benchmark::Counter(double(stored), benchmark::Counter::kAvgIterations);
 }
@@ -53,7 +56,8 @@ void BM_BuildMapsCornell(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_EmitCornell)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
-BENCHMARK(BM_BuildMapsCornell)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+// `make bench` runs 3 repetitions, interleaved; run alone, raise --benchmark_repetitions.
+BENCHMARK(BM_EmitCornell)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_BuildMapsCornell)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
-BENCHMARK_MAIN();
+PENUMBRA_BENCHMARK_MAIN()
