@@ -89,7 +89,7 @@ def bench_table(runs):
 
 
 def scaling_table(runs):
-    out = ["| scene | stage | 1T s | 2T s | speed-up |", "|---|---|---:|---:|---:|"]
+    out = ["| scene | stage | 1T s | 2T s | speed-up | CPU share 1T / 2T |", "|---|---|---:|---:|---:|---|"]
     # Stages of the fastest repetition of each (the fastest total).
     for key, label in SCENES:
         r1, r2 = (find(runs, rf"^BM_Scene{key}/threads:{t}/", t) for t in (1, 2))
@@ -100,13 +100,14 @@ def scaling_table(runs):
             if a < 1e-3 and b < 1e-3:
                 continue  # a stage this scene does not have
             sp = f"{a / b:.2f}" if b > 0 else "-"
-            out.append(f"| {label} | {name} | {a:.3f} | {b:.3f} | {sp} |")
+            out.append(f"| {label} | {name} | {a:.3f} | {b:.3f} | {sp} | {share(r1)} / {share(r2)} |")
     for figure, pattern in (("emission (trace + store + merge)", r"^BM_EmitCornell/{T}/"),
                             ("both maps built", r"^BM_BuildMapsCornell/{T}/")):
         r1, r2 = find(runs, pattern, 1), find(runs, pattern, 2)
         if r1 and r2:
             a, b = seconds(r1), seconds(r2)
-            out.append(f"| fig14 photon pass, 5M+5M | {figure} | {a:.3f} | {b:.3f} | {a / b:.2f} |")
+            out.append(f"| fig14 photon pass, 5M+5M | {figure} | {a:.3f} | {b:.3f} | {a / b:.2f} | "
+                       f"{share(r1)} / {share(r2)} |")
     return out
 
 

@@ -15,7 +15,9 @@ calls (penumbra's sphereIntersect/sphereOccluded/intersectSphere); nanoflann = s
 named nanoflann:: (header-only, so by symbol; whatever the compiler inlined into a
 penumbra function counts as penumbra, so this share is a lower bound). TraceScene's own
 wrapper around each call (intersect/occluded: the ray checks and RTCRay fill) is shown
-apart as "wrapper": it is ours, not the library's."""
+apart as "wrapper", and the KD facade around nanoflann (gather/kd_tree.cpp: parts, hints,
+the packed result set, into which nanoflann's searchLevel may be inlined) as "facade":
+both are ours, not the library's."""
 import collections
 import json
 import os
@@ -40,6 +42,8 @@ def category(sym, dso):
         return "nanoflann"
     if any(w in sym for w in WRAPPER):
         return "wrapper"
+    if "PhotonKdTree<" in sym:
+        return "facade"
     if base.startswith("libtbb"):
         return "tbb"
     if "kernel" in dso:
@@ -75,16 +79,19 @@ def attribute(perf_data, windows):
 
 
 def raw_library_seconds(r, raw):
-    """Render-phase library work at the raw rates: rays x ns per ray, gathers x ns per kNN."""
+    """Render-phase library work at the raw rates: rays x ns per ray; gathers x ns per kNN
+    through the facade the renderer calls, and through one plain nanoflann tree."""
     rays = (r["camera_rays"] * raw["camera_ns"] + r["shadow_rays"] * raw["shadow_ns"]
             + r["secondary_rays"] * raw["incoherent_ns"]) * 1e-9
     if "knn_global_ns" in raw:  # physical: one caustic and one global gather per diffuse hit
         knn = r["gathers"] * 0.5 * (raw["knn_global_ns"] + raw["knn_caustic_ns"]) * 1e-9
+        plain = r["gathers"] * 0.5 * (raw["nanoflann_global_ns"] + raw["nanoflann_caustic_ns"]) * 1e-9
     else:
         # classic: gathers (fallbacks from the cache included) and exact gate votes
         knn = (r["gathers"] * raw.get("knn_indirect_ns", 0.0)
                + r["gate_queries"] * raw.get("knn_shadow_ns", 0.0)) * 1e-9
-    return rays, knn
+        plain = r["gathers"] * raw.get("nanoflann_indirect_ns", 0.0) * 1e-9
+    return rays, knn, plain
 
 
 def pct(c, cat):
@@ -112,24 +119,24 @@ def main():
             counts, others = attribute(data, run["renders"])
             raw = run["raw"]
             r = min(run["renders"], key=lambda x: x["total_s"])
-            ray_s, knn_s = raw_library_seconds(r, raw)
-            rows.append((label, threads, r, counts, raw, ray_s, knn_s))
+            ray_s, knn_s, plain_s = raw_library_seconds(r, raw)
+            rows.append((label, threads, r, counts, raw, ray_s, knn_s, plain_s))
             top = ", ".join(f"{s} {100.0 * n / max(1, sum(counts['render'].values())):.1f}%"
                             for s, n in others.most_common(5))
             notes.append(f"- {label}, {threads}T, render phase, top non-library symbols: {top}")
     print("| render | T | total s | render s | perf: Embree | nanoflann | libraries (whole run) "
-          "| render phase: Embree | nanoflann | libraries | wrapper | at raw rates: rays s | kNN s | raw / render |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for label, threads, r, c, raw, ray_s, knn_s in rows:
+          "| render phase: Embree | nanoflann | libraries | wrapper | KD facade | at raw rates: rays s | kNN s | raw / render | kNN s, plain nanoflann |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for label, threads, r, c, raw, ray_s, knn_s, plain_s in rows:
         w, p = c["whole"], c["render"]
         print(f"| {label} | {threads} | {r['total_s']:.3f} | {r['render_s']:.3f} | "
               f"{pct(w, 'embree'):.1f}% | {pct(w, 'nanoflann'):.1f}% | "
               f"**{pct(w, 'embree') + pct(w, 'nanoflann'):.1f}%** | {pct(p, 'embree'):.1f}% | "
               f"{pct(p, 'nanoflann'):.1f}% | **{pct(p, 'embree') + pct(p, 'nanoflann'):.1f}%** | "
-              f"{pct(p, 'wrapper'):.1f}% | "
-              f"{ray_s:.3f} | {knn_s:.3f} | {(ray_s + knn_s) / r['render_s']:.2f} |")
+              f"{pct(p, 'wrapper'):.1f}% | {pct(p, 'facade'):.1f}% | "
+              f"{ray_s:.3f} | {knn_s:.3f} | {(ray_s + knn_s) / r['render_s']:.2f} | {plain_s:.3f} |")
     print("\nRaw rates (same run, same thread count, ns of wall time per call):")
-    for label, threads, r, c, raw, ray_s, knn_s in rows:
+    for label, threads, r, c, raw, ray_s, knn_s, plain_s in rows:
         keys = [k for k in raw if k.endswith("_ns")]
         print(f"- {label}, {threads}T: " + ", ".join(f"{k[:-3]} {raw[k]:.0f} ns" for k in keys)
               + f"; render counts: {r['camera_rays']} camera, {r['shadow_rays']} shadow, "
