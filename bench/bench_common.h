@@ -53,7 +53,6 @@ inline int benchmarkMain(int argc, char** argv) {
   return 0;
 }
 
-
 inline std::string scenePath(const std::string& name) {
   return std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + name;
 }

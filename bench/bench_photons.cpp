@@ -1,6 +1,6 @@
-// The photon pass on the Cornell-style box (5M shadow + 5M indirect photons):
-// emission throughput at 1 and 2 threads, and the two KD-tree builds, for the
-// "emit + build <= 2.0 s" target in docs/PERFORMANCE.md.
+// The photon pass on the Cornell-style box (5M shadow + 5M indirect photons): emission
+// throughput, the batch merge that ends it, and the two KD-tree builds, at 1 and 2
+// threads (docs/PERFORMANCE.md: the photon pass and the scaling targets).
 #include "emit/batch_buffers.h"
 #include "emit/emit.h"
 #include "gather/photon_map.h"

@@ -1,8 +1,6 @@
-// Driver for the distance-to-the-limit profile (scripts/profile_render.py): renders one
-// scene REPS times through runRender, writing each render's CLOCK_MONOTONIC window and
-// render phase (for perf samples), its counters, and in the same run the raw rates of
-// Embree and nanoflann on that scene's camera/shadow/incoherent rays and first-hit points.
-//   profile_render SCENE.json THREADS REPS OUT.json [key=value ...]
+// Driver of the distance-to-the-limit profile (scripts/profile_render.py): REPS renders of
+// one scene with their CLOCK_MONOTONIC windows and counters for perf, then in the same run
+// the raw Embree and nanoflann rates on that scene's rays and first-hit points.
 #include "bench/bench_common.h"
 #include "cli/pipeline.h"
 #include "emit/emit.h"
@@ -131,6 +129,7 @@ void rawGatherRates(const Scene& scene, const TraceScene& tracer, const RaySets&
 
 }  // namespace
 
+// profile_render SCENE.json THREADS REPS OUT.json [key=value ...]
 int main(int argc, char** argv) {
   if (argc < 5) {
     std::fprintf(stderr, "usage: %s SCENE.json THREADS REPS OUT.json [key=value ...]\n", argv[0]);
