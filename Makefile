@@ -10,8 +10,8 @@ PKGS := cmake ninja-build g++ pkg-config libtbb-dev libembree-dev libglm-dev \
         fonts-dejavu-core python3 python3-matplotlib
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build renderer render test bench gallery convergence clean \
-        san-deps fuzz test-asan test-tsan
+.PHONY: all deps configure build renderer render test bench scaling bench-profile gallery \
+        convergence clean san-deps fuzz test-asan test-tsan
 all: build
 
 # Installs those of the packages in $(1) that are missing.
@@ -48,8 +48,38 @@ render: renderer
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# Benchmark suite (docs/PERFORMANCE.md, "Benchmark suite and 1-vs-2-core scaling"): each
+# executable writes Google Benchmark JSON to $(RESULTS)/NAME.json and its console output to
+# NAME.log; the tables are printed from the JSON. A few minutes in all.
+RESULTS ?= bench/results
+GATHER_FILTER := (Knn50|Classify)/1M/.*morton:1/leaf:24/threads:[12]/shuffled:0
+# Three repetitions with 1- and 2-thread runs interleaved; the tables take the fastest.
+BENCH_REPS ?= 3
+define run_bench
+	@mkdir -p $(RESULTS)
+	@echo "== $(1) $(2)"
+	@$(BUILD)/bench/$(1) --benchmark_out=$(RESULTS)/$(1).json --benchmark_out_format=json \
+	  --benchmark_repetitions=$(BENCH_REPS) --benchmark_enable_random_interleaving=true $(2) \
+	  > $(RESULTS)/$(1).log 2>&1 || { tail -n 20 $(RESULTS)/$(1).log; exit 1; }
+endef
+
 bench: build
-	@for b in $(BUILD)/bench/bench_*; do $$b; done
+	$(call run_bench,bench_rays,)
+	$(call run_bench,bench_photons,)
+	$(call run_bench,bench_gather,--benchmark_filter='$(GATHER_FILTER)')
+	$(call run_bench,bench_render,--benchmark_filter=BM_Scene)
+	@scripts/bench_table.py bench $(RESULTS)
+
+# Per scene and stage (stats.time.* through runRender), 1 and 2 threads, and the speed-up.
+scaling: build
+	$(call run_bench,bench_photons,)
+	$(call run_bench,bench_render,--benchmark_filter=BM_Scene)
+	@scripts/bench_table.py scaling $(RESULTS)
+
+# Share of each benchmarked render's time inside Embree and nanoflann (perf samples),
+# against the libraries' raw rates on the same rays and points (about 3 minutes).
+bench-profile: build
+	scripts/profile_render.py $(BUILD) $(RESULTS)/profile
 
 gallery: renderer
 	scripts/gallery.sh $(BUILD)/penumbra $(OUT)/gallery

@@ -6,6 +6,7 @@
 // mentions 5M, e.g.  bench_gather --benchmark_filter=5M
 #include "core/rng.h"
 #include "gather/photon_map.h"
+#include "bench/bench_common.h"
 #include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -135,12 +136,14 @@ void runQueries(benchmark::State& state, int threads, bool shuffled, Fn fn) {
   const std::vector<Query>& qs = queries(shuffled);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   tbb::enumerable_thread_specific<GatherScratch> scratch;
+  const bench::CpuShare cpu;
   for (auto _ : state) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, qs.size(), 64), [&](const auto& r) {
       GatherScratch& s = scratch.local();
       for (size_t i = r.begin(); i != r.end(); ++i) fn(qs[i], s);
     });
   }
+  cpu.report(state, threads);
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * qs.size()));
   // Share of queries that started from a search hint / whose hint ball was too small.
   uint64_t hinted = 0, reruns = 0;
@@ -277,9 +280,5 @@ int main(int argc, char** argv) {
   bool with5M = false;
   for (int i = 1; i < argc; ++i) with5M |= std::strstr(argv[i], "5M") != nullptr;
   penumbra::registerAll(with5M);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return penumbra::bench::benchmarkMain(argc, argv);
 }

@@ -10,6 +10,7 @@
 #include "integrator/camera.h"
 #include "integrator/light_visibility.h"
 #include "io/scene_loader.h"
+#include "bench/bench_common.h"
 #include <benchmark/benchmark.h>
 #include <algorithm>
 #include <chrono>
@@ -270,4 +271,4 @@ BENCHMARK(BM_IndirectExact)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LookupPrecomputed)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_LookupRatios)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 
-BENCHMARK_MAIN();
+PENUMBRA_BENCHMARK_MAIN()

@@ -1,6 +1,7 @@
-// Whole-frame render throughput of the Whitted core (photon maps off) and of the
-// full two-pass renderer, at 1 and 2 threads: the speed-up is the figure that
-// matters on this 2-core machine (docs/PERFORMANCE.md).
+// Whole renders through runRender at 1 and 2 threads: the Whitted core (photon maps
+// off) and three scenes at their own settings, with per-stage times (stats.time.*)
+// and ray/gather counts as counters for `make scaling` and docs/PERFORMANCE.md.
+#include "bench/bench_common.h"
 #include "cli/pipeline.h"
 #include <benchmark/benchmark.h>
 #include <string>
@@ -14,17 +15,36 @@ void renderScene(benchmark::State& state, const std::string& scene, std::vector<
   req.scenePath = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + scene;
   req.threads = static_cast<int>(state.range(0));
   req.overrides = std::move(overrides);
-  double render = 0.0, total = 0.0;
+  Timings sum;
+  RayCounts rays;  // of the last frame (every frame casts the same)
   int64_t pixels = 0;
+  const penumbra::bench::CpuShare cpu;
   for (auto _ : state) {
     RenderResult r = runRender(req);
-    render += r.stats.time.render;
-    total += r.stats.time.total;
+    const Timings& t = r.stats.time;
+    sum.load += t.load; sum.buildBvh += t.buildBvh; sum.emit += t.emit;
+    sum.buildMaps += t.buildMaps; sum.precompute += t.precompute; sum.render += t.render;
+    sum.total += t.total;
+    rays = r.stats.rays;
     pixels += int64_t(r.stats.width) * r.stats.height;
     benchmark::DoNotOptimize(r.image.pixels.data());
   }
-  state.counters["render_s"] = benchmark::Counter(render, benchmark::Counter::kAvgIterations);
-  state.counters["total_s"] = benchmark::Counter(total, benchmark::Counter::kAvgIterations);
+  cpu.report(state, req.threads);
+  auto avg = [&](const char* name, double v) {
+    state.counters[name] = benchmark::Counter(v, benchmark::Counter::kAvgIterations);
+  };
+  avg("load_s", sum.load + sum.buildBvh);  // scene, meshes and the Embree BVH
+  avg("emit_s", sum.emit);
+  avg("maps_s", sum.buildMaps);
+  avg("precompute_s", sum.precompute);
+  avg("render_s", sum.render);
+  avg("total_s", sum.total);
+  state.counters["camera_rays"] = double(rays.camera);
+  state.counters["shadow_rays"] = double(rays.shadow);
+  state.counters["secondary_rays"] = double(rays.reflection + rays.refraction);
+  state.counters["gathers"] = double(rays.gatherQueries);
+  state.counters["gate_queries"] = double(rays.gateQueries);
+  state.counters["cache_lookups"] = double(rays.cacheLookups);
   state.SetItemsProcessed(pixels);
 }
 
@@ -36,8 +56,17 @@ void BM_WhittedGlassBox(benchmark::State& s) { renderScene(s, "fig07_glass_in_bo
 void BM_WhittedTeapot64(benchmark::State& s) {
   renderScene(s, "fig05_reflective_mesh.json", {"photons.shadow=0", "objects[1].subdivisions=64"});
 }
-// Full renderer with the default 5M-photon shadow map and the gate on.
+// fig03 at its own settings (5M shadow photons; photons.gate auto decides).
 void BM_GatedShadows(benchmark::State& s) { renderScene(s, "fig03_shadows.json", {}); }
+
+// The three whole-render scenes of the suite (docs/PERFORMANCE.md, "Benchmark suite"):
+// a Whitted glass box (rays only), the showcase (both photon maps, precomputed lookups)
+// and the physical Cornell room at 1 spp (exact caustic and global gathers).
+void BM_SceneGlassBox(benchmark::State& s) { renderScene(s, "fig07_glass_in_box.json", {}); }
+void BM_SceneShowcase(benchmark::State& s) { renderScene(s, "showcase.json", {}); }
+void BM_SceneCornellPhysical(benchmark::State& s) {
+  renderScene(s, "cornell_physical.json", {"camera.spp=1"});
+}
 
 }  // namespace
 
@@ -45,5 +74,13 @@ BENCHMARK(BM_WhittedShadows)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Use
 BENCHMARK(BM_WhittedGlassBox)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_WhittedTeapot64)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_GatedShadows)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+// One frame per repetition for the long ones: `make bench` asks for 3 repetitions,
+// 1- and 2-thread runs interleaved, so drift on the shared machine hits both alike.
+BENCHMARK(BM_SceneGlassBox)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)
+    ->UseRealTime()->MinTime(0.5);
+BENCHMARK(BM_SceneShowcase)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)
+    ->UseRealTime()->Iterations(1);
+BENCHMARK(BM_SceneCornellPhysical)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)
+    ->UseRealTime()->Iterations(1);
 
-BENCHMARK_MAIN();
+PENUMBRA_BENCHMARK_MAIN()

@@ -7,6 +7,7 @@
 #include "geometry/trace_scene.h"
 #include "integrator/camera.h"
 #include "io/scene_loader.h"
+#include "bench/bench_common.h"
 #include <benchmark/benchmark.h>
 #include <algorithm>
 #include <chrono>
@@ -121,4 +122,4 @@ using namespace penumbra;
 BENCHMARK(BM_RobustShowcase)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 BENCHMARK(BM_RobustCornell1e4)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 BENCHMARK(BM_EdgeHoles)->DenseRange(-5, 6, 1)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_MAIN();
+PENUMBRA_BENCHMARK_MAIN()
