@@ -89,6 +89,28 @@ void writeFile(const fs::path& file, const std::string& target, const OIIO::Imag
   if (!out->close()) writeFailed(target, out->geterror());
 }
 
+// Writes to a temp file beside the target, then renames it into place.
+void writeAtomically(const fs::path& target, const std::string& path, const OIIO::ImageSpec& spec,
+                     OIIO::TypeDesc pixelType, const void* pixels) {
+  fs::path temp = tempPathFor(target);
+  // Registered before it exists: a SIGINT during the write removes it (temp_file.h).
+  TempFileGuard guard(temp.string());
+  try {
+    writeFile(temp, path, spec, pixelType, pixels);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    throw;
+  }
+  std::error_code ec;
+  fs::rename(temp, target, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temp, ignored);
+    writeFailed(path, ec.message());
+  }
+}
+
 }  // namespace
 
 void checkImageOutputPath(const std::string& path) {
@@ -142,23 +164,46 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
   spec.attribute("Software", "penumbra");
   for (const auto& [key, value] : metadata) spec.attribute(key, value);
 
-  fs::path temp = tempPathFor(target);
-  // Registered before it exists: a SIGINT during the write removes it (temp_file.h).
-  TempFileGuard guard(temp.string());
-  try {
-    writeFile(temp, path, spec, pixelType, pixels);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw;
+  writeAtomically(target, path, spec, pixelType, pixels);
+}
+
+void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::string, Image>>& layers,
+                     const ImageMetadata& metadata) {
+  checkImageOutputPath(path);
+  if (layers.empty()) writeFailed(path, "no layers");
+  const Image& first = layers.front().second;
+  std::vector<std::string> names;
+  for (const auto& [name, image] : layers) {
+    if (image.width != first.width || image.height != first.height || image.pixels.empty()) {
+      writeFailed(path, "layer '" + name + "' is empty or not the size of the others");
+    }
+    refuseNan(path, image);
+    for (const char* c : {".R", ".G", ".B"}) names.push_back(name + c);
   }
-  std::error_code ec;
-  fs::rename(temp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    writeFailed(path, ec.message());
+  const size_t n = layers.size() * 3;
+  OIIO::ImageSpec spec(first.width, first.height, static_cast<int>(n), OIIO::TypeDesc::HALF);
+  spec.channelnames = names;
+  spec.attribute("oiio:ColorSpace", "Linear");
+  spec.attribute("Software", "penumbra");
+  for (const auto& [key, value] : metadata) spec.attribute(key, value);
+  std::vector<float> floats(first.pixels.size() * n);
+  for (size_t i = 0; i < first.pixels.size(); ++i) {
+    for (size_t l = 0; l < layers.size(); ++l) {
+      for (int c = 0; c < 3; ++c) floats[i * n + l * 3 + c] = toHalfSafe(layers[l].second.pixels[i][c]);
+    }
   }
+  writeAtomically(fs::path(path), path, spec, OIIO::TypeDesc::FLOAT, floats.data());
+}
+
+std::string readImageAttribute(const std::string& path, const std::string& name) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    (void)OIIO::geterror();  // clear OIIO's pending error: a missing file is a plain answer here
+    return "";
+  }
+  const std::string value = in->spec().get_string_attribute(name);
+  in->close();
+  return value;
 }
 
 Image readImage(const std::string& path) {

@@ -17,6 +17,14 @@ void checkImageOutputPath(const std::string& path);
 // Throws InputError for an unsupported extension or an unwritable path.
 void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {});
 
+// Several views of one render in one EXR: layer NAME's channels are NAME.R, NAME.G,
+// NAME.B (linear half). Same checks and temp-file write as writeImage.
+void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::string, Image>>& layers,
+                     const ImageMetadata& metadata = {});
+
+// A string attribute of an image file's header ("" if the file or attribute is missing).
+std::string readImageAttribute(const std::string& path, const std::string& name);
+
 // Reads any OIIO-readable image as linear RGB (sRGB PNG/JPEG are linearised).
 Image readImage(const std::string& path);
 
