@@ -8,6 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat4x4.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -156,7 +157,10 @@ void addCamera(const tinygltf::Model& m, int index, const dmat4& world, LoadedMo
   if (g.type != "perspective") return;  // penumbra's camera is a pinhole
   Camera c;
   c.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
-  c.lookAt = Vec3(world * glm::dvec4(0.0, 0.0, -1.0, 1.0));
+  // One unit ahead, or more far from the origin, so look_at stays apart in float.
+  const glm::dvec3 eye(c.position), ahead = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+  const double reach = std::max({1.0, std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)});
+  c.lookAt = Vec3(eye + glm::normalize(ahead) * reach);
   c.up = Vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0.0, 1.0, 0.0)));
   c.fovY = static_cast<float>(g.perspective.yfov * 180.0 / 3.14159265358979323846);
   if (g.perspective.aspectRatio > 0.0) {

@@ -12,6 +12,7 @@
 #include "io/transform.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 namespace penumbra {
@@ -28,13 +29,16 @@ std::string lowerExtension(const std::string& path) {
 // model's surfaces reflect at most what arrives and glass filters never amplify, so
 // specular gives way to diffuse and tints are clamped to 1; classic photon roulette
 // follows the shading as its defaults do.
+// A value the file gave as NaN (an MTL "Kd nan") counts as 0, never reaches a ray.
+float bounded(float v, float lo, float hi) { return std::isnan(v) ? lo : std::clamp(v, lo, hi); }
+
 Material fitToModel(Material m, ShadingModel model) {
-  for (int c = 0; c < 3; ++c) {
-    m.diffuse[c] = std::clamp(m.diffuse[c], 0.0f, 1e30f);
-    m.specular[c] = std::clamp(m.specular[c], 0.0f, 1e30f);
-    m.emission[c] = std::clamp(m.emission[c], 0.0f, 1e30f);
+  for (Color* c : {&m.ambient, &m.diffuse, &m.specular, &m.emission, &m.tint}) {
+    for (int k = 0; k < 3; ++k) (*c)[k] = bounded((*c)[k], 0.0f, 1e30f);
   }
-  m.ior = std::clamp(m.ior, 0.01f, 100.0f);
+  m.shininess = bounded(m.shininess, 0.0f, 1e30f);
+  m.kr = bounded(m.kr, 0.0f, 1.0f);
+  m.ior = std::isnan(m.ior) ? 1.5f : std::clamp(m.ior, 0.01f, 100.0f);
   if (model == ShadingModel::Physical) {
     m.diffuse = glm::min(m.diffuse, Color(1.0f));
     if (m.shininess > 0.0f) m.specular = glm::min(m.specular, Color(1.0f) - m.diffuse);
