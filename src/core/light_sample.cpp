@@ -1,5 +1,6 @@
-// Point, directional, quad and sphere lights behind the light interface.
+// Point, directional, quad, sphere and mesh lights behind the light interface.
 #include "core/light_sample.h"
+#include "core/mesh_light.h"
 #include "core/sampling.h"
 #include <algorithm>
 
@@ -12,6 +13,8 @@ LightSampler prepareLight(const Light& light, const Vec3& p) {
   if (light.type == LightType::Quad) {
     s.normal = glm::normalize(glm::cross(light.edge1, light.edge2));
     s.area = lightArea(light);
+  } else if (light.type == LightType::Mesh) {
+    s.area = meshLightArea(light);
   } else if (light.type == LightType::Sphere) {
     const Vec3 toCentre = light.position - p;
     s.dc2 = glm::dot(toCentre, toCentre);
@@ -99,6 +102,7 @@ LightIncidence sampleLight(const LightSampler& s, float u1, float u2) {
       break;
     case LightType::Quad: return sampleQuad(s, u1, u2);
     case LightType::Sphere: return sampleSphere(s, u1, u2);
+    case LightType::Mesh: return sampleMeshLight(s, u1, u2);
   }
   in.valid = true;
   return in;
@@ -116,45 +120,23 @@ bool unoccludedIrradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, 
     E = light.radiance() * (kPi * sin2Alpha * cosBeta);
     return true;
   }
+  if (light.type == LightType::Mesh) return meshLightIrradiance(s, n, ng, E);
   if (light.type != LightType::Quad) return false;
   if (glm::dot(s.normal, s.p - light.position) <= 0.0f) return true;  // behind its emitting side
   // The quad's corners relative to p, clipped to the half-spaces above both the
   // shading and the geometric normal (samples below either are rejected too).
-  Vec3 poly[8] = {light.position - s.p, light.position + light.edge1 - s.p,
-                  light.position + light.edge1 + light.edge2 - s.p, light.position + light.edge2 - s.p};
-  int m = 4;
-  for (const Vec3& plane : {n, ng}) {
-    Vec3 clipped[8];
-    int k = 0;
-    for (int i = 0; i < m; ++i) {
-      const Vec3& a = poly[i];
-      const Vec3& b = poly[(i + 1) % m];
-      const float da = glm::dot(plane, a), db = glm::dot(plane, b);
-      if (da >= 0.0f) clipped[k++] = a;
-      if ((da >= 0.0f) != (db >= 0.0f)) clipped[k++] = a + (b - a) * (da / (da - db));
-    }
-    m = k;
-    std::copy(clipped, clipped + k, poly);
-    if (m < 3) return true;
-  }
-  // Lambert: E = L / 2 |sum_i theta_i (n . unit(r_i x r_i+1))|, theta_i the angle of
-  // edge i, by atan2 (acos loses the small angles of a small or distant quad).
-  Vec3 unit[8];
-  for (int i = 0; i < m; ++i) unit[i] = glm::normalize(poly[i]);
-  float sum = 0.0f;
-  for (int i = 0; i < m; ++i) {
-    const Vec3 c = glm::cross(unit[i], unit[(i + 1) % m]);
-    const float len = glm::length(c);
-    if (!(len > 0.0f)) continue;
-    sum += std::atan2(len, glm::dot(unit[i], unit[(i + 1) % m])) * glm::dot(n, c / len);
-  }
-  E = light.radiance() * (0.5f * std::abs(sum));
+  const Vec3 corners[4] = {light.position - s.p, light.position + light.edge1 - s.p,
+                           light.position + light.edge1 + light.edge2 - s.p,
+                           light.position + light.edge2 - s.p};
+  const float factor = clippedPolygonFactor(corners, 4, n, ng);
+  if (factor > 0.0f) E = light.radiance() * factor;
   return true;
 }
 
 float lightArea(const Light& light) {
   if (light.type == LightType::Quad) return glm::length(glm::cross(light.edge1, light.edge2));
   if (light.type == LightType::Sphere) return 4.0f * kPi * light.radius * light.radius;
+  if (light.type == LightType::Mesh) return meshLightArea(light);
   return 0.0f;
 }
 
@@ -176,6 +158,7 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
     r.dir = uniformSphere(u1, u2);
     return r;
   }
+  if (light.type == LightType::Mesh) return meshLightPhoton(light, u1, u2, u3, u4);
   if (light.type == LightType::Quad || light.type == LightType::Sphere) {
     Vec3 n;
     if (light.type == LightType::Quad) {

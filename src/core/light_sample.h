@@ -1,7 +1,7 @@
 // The light interface: incident light at a point (one sample of an area light),
 // emitted photons, total power, delta-ness; dispatched on Light::type. Units: a
 // point light's colour x intensity is its radiant intensity (W/sr), a directional
-// light's its irradiance (W/m^2), a quad or sphere light's its radiance (W/(sr m^2)).
+// light's its irradiance (W/m^2), a quad, sphere or mesh light's its radiance (W/(sr m^2)).
 #pragma once
 #include "core/scene.h"
 
@@ -42,16 +42,17 @@ struct LightSampler {
 LightSampler prepareLight(const Light& light, const Vec3& p);
 // A delta light's incidence (u1, u2 unused), or one sample of an area light: a
 // quad uniformly over its area (pdf d^2 / (A cos_l)), a sphere uniformly over the
-// cone it subtends (pdf 1 / (2 pi (1 - cos_max))); invalid where the quad faces
-// away or the point is inside the sphere.
+// cone it subtends (pdf 1 / (2 pi (1 - cos_max))), a mesh uniformly by area over
+// all its triangles (core/mesh_light.h); invalid where the quad (the sampled
+// triangle) faces away or the point is inside the sphere.
 LightIncidence sampleLight(const LightSampler& sampler, float u1, float u2);
 inline LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
   return sampleLight(prepareLight(light, p), u1, u2);
 }
 // The unoccluded irradiance E = integral of L cos(theta) over the light, at the
 // sampler's point with unit shading normal n and geometric normal ng, in closed
-// form: a quad by Lambert's polygon formula (clipped to the hemispheres of n and
-// ng), a sphere wholly above both horizons as pi L sin^2(alpha) cos(beta). False
+// form: a quad (each triangle of a small mesh light) by Lambert's polygon formula
+// (clipped to the hemispheres of n and ng), a sphere wholly above both horizons as pi L sin^2(alpha) cos(beta). False
 // where there is none (a delta light, a sphere cut by a horizon): sample instead.
 bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, const Vec3& ng, Color& E);
 
@@ -59,7 +60,8 @@ bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, const Vec3
 float lightArea(const Light& light);
 // Area lights in a scene get this many samples per shading point, delta lights one.
 inline int lightSampleCount(const Light& light, int areaSamples) {
-  return light.type == LightType::Quad || light.type == LightType::Sphere ? areaSamples : 1;
+  return light.type == LightType::Quad || light.type == LightType::Sphere || light.type == LightType::Mesh
+             ? areaSamples : 1;
 }
 
 // Total emitted flux, per channel: 4 pi I for a point light, E pi R^2 for a
@@ -71,7 +73,7 @@ bool isDeltaLight(const Light& light);
 // Where and which way one emitted photon starts, from two (point) or four
 // (directional, area) uniform numbers; every photon of a light carries power /
 // count. An area light's photons start uniformly over its surface, cosine-weighted
-// about its normal (a quad's emitting side; a sphere's outward normal).
+// about its normal (a quad's or a mesh triangle's emitting side; a sphere's outward normal).
 struct PhotonRay {
   Vec3 origin{0.0f};
   Vec3 dir{0.0f, 0.0f, -1.0f};

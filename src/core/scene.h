@@ -19,9 +19,10 @@ struct Camera {
   int spp = 1;  // samples per pixel; 1 = pixel centre, >1 = stratified jitter
 };
 
-// Point and directional lights are deltas; quad and sphere lights are area
-// emitters, sampled light_samples times per shading point and visible to rays.
-enum class LightType { Point, Directional, Quad, Sphere };
+// Point and directional lights are deltas; quad, sphere and mesh lights are area
+// emitters, sampled light_samples times per shading point and visible to rays. A mesh
+// light is the triangles of every mesh whose material has an emission.
+enum class LightType { Point, Directional, Quad, Sphere, Mesh };
 
 struct Light {
   LightType type = LightType::Point;
@@ -33,6 +34,13 @@ struct Light {
   // Point: radiant intensity (W/sr); directional: irradiance (W/m^2); quad and
   // sphere: emitted radiance (W/(sr m^2)), uniform over the surface.
   float intensity = 1.0f;
+  // Mesh: the emitting triangles in world space, 3 corners each, emitting on the side
+  // of (b - a) x (c - a); their cumulative areas (sampling by area, back() = total);
+  // a bound on the rounding of a sampled point; the emitting material's index.
+  std::vector<Vec3> triangles;
+  std::vector<float> areaCdf;
+  float pointError = 0.0f;
+  int material = -1;
   Color radiance() const { return color * intensity; }
 };
 

@@ -81,16 +81,39 @@ std::string powerFormula(const Light& light) {
   }
 }
 
+// Lights past the JSON "lights" array come from a model file (glTF punctual lights)
+// or from emitting materials (mesh lights): name the material, or the light's index.
+[[noreturn]] void failOther(const JsonNode& root, const Scene& scene, size_t i, const std::string& problem) {
+  const Light& light = scene.lights[i];
+  if (light.type == LightType::Mesh && light.material >= 0) {
+    const std::string& name = scene.materials[light.material].name;
+    if (root.has("materials") && root.child("materials").has(name.c_str())) {
+      const JsonNode m = root.child("materials").child(name);
+      (m.has("emission") ? m.child("emission") : m).fail(problem);
+    }
+    root.fail("emissive material \"" + name + "\": " + problem);
+  }
+  root.fail("light " + std::to_string(i) + " of the model: " + problem);
+}
+
 void checkLights(const JsonNode& root, const Scene& scene) {
   if (scene.lights.empty()) return;
-  const JsonNode lights = root.child("lights");
+  const size_t listed = root.has("lights") ? root.child("lights").arraySize() : 0;
   const SceneSphere bounds = geometryBounds(scene);
   const std::string headroom =
       " (1e+30 keeps photon budgets and pixel sums finite in single precision)";
   Color total(0.0f);
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& light = scene.lights[i];
-    const JsonNode node = brightnessNode(lights.element(i));
+    struct Where {
+      const JsonNode& root;
+      const Scene& scene;
+      size_t i, listed;
+      [[noreturn]] void fail(const std::string& problem) const {
+        if (i < listed) brightnessNode(root.child("lights").element(i)).fail(problem);
+        failOther(root, scene, i, problem);
+      }
+    } node{root, scene, i, listed};
     const Color radiance = light.radiance();
     if (!withinPower(radiance, kMaxRadiance)) {
       const char* what = isDeltaLight(light) ? "color x intensity" : "color x radiance";

@@ -1,6 +1,7 @@
 // The "lights" section: point and directional lights, and the quad and sphere
 // area lights, whose surfaces also join the scene as emitting objects.
 #include "core/light_sample.h"
+#include "core/mesh_light.h"
 #include "io/float_checks.h"
 #include "io/scene_sections.h"
 #include "io/shapes.h"
@@ -49,10 +50,11 @@ void readSphereLight(const JsonNode& item, Light& light) {
 
 }  // namespace
 
+// Shadow photons name their light in 16 bits (core/photon.h).
+constexpr size_t kMaxLights = 65535;
+
 void readLights(const JsonNode& node, std::vector<Light>& out) {
   size_t count = node.arraySize();
-  // Shadow photons name their light in 16 bits (core/photon.h).
-  constexpr size_t kMaxLights = 65535;
   if (count > kMaxLights) {
     node.fail("at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(count));
   }
@@ -109,6 +111,36 @@ void addEmitters(Scene& scene) {
     } else {
       scene.spheres.push_back({light.position, light.radius, material});
     }
+  }
+}
+
+void addMeshEmitters(Scene& scene) {
+  for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
+    Material& m = scene.materials[mi];
+    if (m.light >= 0 || !(maxComponent(m.emission) > 0.0f)) continue;
+    std::vector<Vec3> triangles;
+    for (const TriangleMesh& mesh : scene.meshes) {
+      if (mesh.material != static_cast<int>(mi)) continue;
+      for (const auto& t : mesh.triangles) {
+        triangles.insert(triangles.end(), {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]});
+      }
+    }
+    if (triangles.empty()) continue;  // an unused emitting material lights nothing
+    if (scene.lights.size() >= kMaxLights) {
+      throwInputError(scene.file + ": at most " + std::to_string(kMaxLights) +
+                      " lights, counting one per emitting material");
+    }
+    Light light = makeMeshLight(triangles, m.emission, static_cast<int>(mi));
+    if (light.areaCdf.empty()) continue;
+    // As a quad light's surface: black, it only glows (on the front of each triangle).
+    m.light = static_cast<int>(scene.lights.size());
+    m.ambient = m.diffuse = m.specular = Color(0.0f);
+    m.kr = 0.0f;
+    m.transparent = false;
+    m.pR = m.pT = 0.0f;
+    m.texture = -1;
+    m.twoSidedEmission = false;
+    scene.lights.push_back(std::move(light));
   }
 }
 

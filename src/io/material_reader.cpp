@@ -55,13 +55,15 @@ int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureI
 Material readMaterial(const JsonNode& node, const std::string& name, Scene& scene,
                       TextureIndex& textures) {
   node.allowKeys({"ambient", "diffuse", "specular", "shininess", "reflective", "transparent",
-                  "p_r", "p_t", "texture"});
+                  "p_r", "p_t", "texture", "emission"});
   Material m;
   m.name = name;
   m.ambient = node.colorOr("ambient", m.ambient);
   m.diffuse = node.colorOr("diffuse", m.diffuse);
   m.specular = node.colorOr("specular", m.specular);
   m.shininess = node.floatOr("shininess", m.shininess, Range::atLeast(0.0));
+  // An emitting material makes its meshes one area light (addMeshEmitters).
+  m.emission = node.colorOr("emission", m.emission);
   const Range unit = Range::between(0.0, 1.0);
   if (node.has("reflective")) {
     JsonNode reflective = node.child("reflective");

@@ -1,4 +1,5 @@
-// OBJ loading: tinyobjloader parse, vertex unification, normals and uvs.
+// OBJ loading: tinyobjloader parse, vertex unification, normals and uvs; MTL
+// materials mapped onto penumbra's, and the mesh split by material.
 #include "io/obj_loader.h"
 
 #include "io/mesh_normals.h"
@@ -71,9 +72,9 @@ void checkVertexNumbers(const std::string& path) {
   }
 }
 
-}  // namespace
-
-TriangleMesh loadObj(const std::string& path) {
+// Parses `path` into one mesh; faceMaterial (if given) gets each triangle's MTL
+// material id (-1 = none), in triangle order.
+TriangleMesh readObj(const std::string& path, tinyobj::ObjReader& reader, std::vector<int>* faceMaterial) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw ObjError("cannot open OBJ file " + path);
@@ -82,7 +83,6 @@ TriangleMesh loadObj(const std::string& path) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
-  tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config)) {
     throw ObjError("cannot parse OBJ file " + path + ": " + firstLine(reader.Error()));
   }
@@ -97,8 +97,12 @@ TriangleMesh loadObj(const std::string& path) {
   bool allNormals = numNormals > 0, allUvs = numUvs > 0;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     size_t offset = 0;
-    for (unsigned char fv : shape.mesh.num_face_vertices) {
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      const unsigned char fv = shape.mesh.num_face_vertices[f];
       if (fv == 3 && offset + 3 <= shape.mesh.indices.size()) {
+        if (faceMaterial) {
+          faceMaterial->push_back(f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1);
+        }
         for (size_t k = 0; k < 3; ++k) {
           const tinyobj::index_t& idx = shape.mesh.indices[offset + k];
           checkIndex(idx.vertex_index, numPositions, "vertex", path);
@@ -112,9 +116,12 @@ TriangleMesh loadObj(const std::string& path) {
   }
   if (corners.empty()) throw ObjError("OBJ file " + path + " contains no triangles");
 
+  // Split by material, each group keeps its uvs if all of its corners have them (a
+  // corner without one is marked NaN here and the group drops them); whole, the file.
+  const bool keepUvs = faceMaterial ? numUvs > 0 : allUvs;
   for (const tinyobj::index_t& idx : corners) {
     if (allNormals) checkIndex(idx.normal_index, numNormals, "normal", path);
-    if (allUvs) checkIndex(idx.texcoord_index, numUvs, "texture coordinate", path);
+    if (keepUvs && idx.texcoord_index >= 0) checkIndex(idx.texcoord_index, numUvs, "texture coordinate", path);
   }
   auto position = [&](int i) {
     return Vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
@@ -138,7 +145,7 @@ TriangleMesh loadObj(const std::string& path) {
     for (size_t k = 0; k < 3; ++k) {
       const tinyobj::index_t& idx = corners[c + k];
       CornerKey key{idx.vertex_index, allNormals ? idx.normal_index : -1,
-                    allUvs ? idx.texcoord_index : -1};
+                    keepUvs ? idx.texcoord_index : -1};
       auto [it, inserted] = unified.try_emplace(key, static_cast<uint32_t>(mesh.positions.size()));
       if (inserted) {
         Vec3 p = position(key.v);
@@ -153,7 +160,10 @@ TriangleMesh loadObj(const std::string& path) {
                  attrib.normals[3 * key.n + 2]);
           mesh.normals.push_back(glm::normalize(n));
         }
-        if (allUvs) mesh.uvs.emplace_back(attrib.texcoords[2 * key.t], attrib.texcoords[2 * key.t + 1]);
+        if (keepUvs) {
+          mesh.uvs.push_back(key.t >= 0 ? Vec2(attrib.texcoords[2 * key.t], attrib.texcoords[2 * key.t + 1])
+                                        : Vec2(std::nanf("")));
+        }
       }
       tri[k] = it->second;
       byPosition[k] = static_cast<uint32_t>(key.v);
@@ -172,6 +182,95 @@ TriangleMesh loadObj(const std::string& path) {
     for (int p : positionOf) mesh.normals.push_back(smooth[p]);
   }
   return mesh;
+}
+
+Color rgb(const tinyobj::real_t* c) { return Color(c[0], c[1], c[2]); }
+
+// One MTL material as penumbra's (docs/scene-format.md, "OBJ materials").
+ModelMaterial mapMtl(const tinyobj::material_t& t, const std::filesystem::path& dir) {
+  ModelMaterial out;
+  Material& m = out.material;
+  m.name = t.name;
+  const Color ka = rgb(t.ambient), ke = rgb(t.emission), tf = rgb(t.transmittance);
+  // An ambient "reflectance" above 1 is no reflectance: old exports (the Cornell box
+  // OBJ among them) mark their light that way, so it is read as emission.
+  const bool kaGlows = maxComponent(ke) <= 0.0f && maxComponent(ka) > 1.0f;
+  m.ambient = kaGlows ? Color(0.0f) : ka;
+  m.emission = kaGlows ? ka : ke;
+  m.diffuse = rgb(t.diffuse);
+  m.specular = rgb(t.specular);
+  m.shininess = maxComponent(m.specular) > 0.0f ? std::max(0.0f, float(t.shininess)) : 0.0f;
+  if ((t.illum == 3 || t.illum == 5) && maxComponent(m.specular) > 0.0f) {
+    m.kr = std::min(1.0f, maxComponent(m.specular));  // a mirror: penumbra's is uncoloured
+    m.specular = Color(0.0f);
+  }
+  if (t.dissolve < 1.0f) {  // d < 1 or Tr > 0: glass (penumbra has no partial opacity)
+    m.transparent = true;
+    m.ior = t.ior > 0.0f && t.ior != 1.0f ? float(t.ior) : 1.5f;  // Ni 1 is MTL's default
+    m.tint = maxComponent(tf) > 0.0f ? tf : Color(1.0f);
+  }
+  if (!t.diffuse_texname.empty()) {
+    std::filesystem::path tex(t.diffuse_texname);
+    out.texture = (tex.is_relative() ? dir / tex : tex).lexically_normal().string();
+  }
+  return out;
+}
+
+}  // namespace
+
+TriangleMesh loadObj(const std::string& path) {
+  tinyobj::ObjReader reader;
+  return readObj(path, reader, nullptr);
+}
+
+LoadedModel loadObjModel(const std::string& path) {
+  tinyobj::ObjReader reader;
+  std::vector<int> faceMaterial;
+  TriangleMesh all = readObj(path, reader, &faceMaterial);
+  LoadedModel model;
+  model.file = path;
+  model.warning = firstLine(reader.Warning());
+  if (reader.Warning().empty()) model.warning.clear();
+  const std::filesystem::path dir = std::filesystem::absolute(path).parent_path();
+  for (const tinyobj::material_t& t : reader.GetMaterials()) model.materials.push_back(mapMtl(t, dir));
+  // One mesh per material, in order of first use, each with only its own vertices.
+  std::vector<int> meshOf(model.materials.size() + 1, -1);  // material id + 1 -> mesh
+  std::unordered_map<uint64_t, uint32_t> remap;  // (mesh << 32 | vertex) -> its index there
+  for (size_t f = 0; f < all.triangles.size(); ++f) {
+    int id = faceMaterial[f];
+    if (id < -1 || id >= static_cast<int>(model.materials.size())) id = -1;
+    int& k = meshOf[id + 1];
+    if (k < 0) {
+      k = static_cast<int>(model.meshes.size());
+      TriangleMesh part;
+      part.name = all.name + (id >= 0 ? ":" + model.materials[id].material.name : "");
+      part.material = id;
+      model.meshes.push_back(std::move(part));
+    }
+    TriangleMesh& part = model.meshes[k];
+    std::array<uint32_t, 3> tri;
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t v = all.triangles[f][c];
+      auto [it, inserted] = remap.try_emplace((static_cast<uint64_t>(k) << 32) | v,
+                                              static_cast<uint32_t>(part.positions.size()));
+      if (inserted) {
+        part.positions.push_back(all.positions[v]);
+        if (!all.normals.empty()) part.normals.push_back(all.normals[v]);
+        if (!all.uvs.empty()) part.uvs.push_back(all.uvs[v]);
+      }
+      tri[c] = it->second;
+    }
+    part.triangles.push_back(tri);
+  }
+  for (TriangleMesh& part : model.meshes) {
+    for (const Vec2& uv : part.uvs) {
+      if (std::isnan(uv.x)) {
+        part.uvs.clear();
+        break;
+      }
+    }
+  }
+  return model;
 }
 
 }  // namespace penumbra

@@ -1,10 +1,10 @@
-// The "objects" section: spheres stay analytic; meshes, quads, boxes and
-// teapots become transformed TriangleMeshes bound to a material index.
+// The "objects" section: spheres stay analytic; meshes (OBJ or glTF, with their
+// own materials), quads, boxes and teapots become transformed TriangleMeshes.
 #include "io/scene_sections.h"
 
 #include "io/float_checks.h"
-#include "io/obj_loader.h"
 #include "io/mesh_cleanup.h"
+#include "io/model_import.h"
 #include "io/shapes.h"
 #include "io/suggest.h"
 #include "io/transform.h"
@@ -34,11 +34,11 @@ class MaterialLookup {
     }
   }
 
-  int resolve(const JsonNode& object) const {
+  int resolve(const JsonNode& object, const std::string& why = "") const {
     if (!object.has("material")) {
       // Without a "materials" section every object uses the implicit default.
       if (!declared_) return 0;
-      object.fail("missing required key \"material\"");
+      object.fail("missing required key \"material\"" + why);
     }
     JsonNode node = object.child("material");
     std::string name = node.asString();
@@ -91,15 +91,30 @@ TriangleMesh readBox(const JsonNode& node) {
   return makeBox(lo, hi);
 }
 
-TriangleMesh readObjMesh(const JsonNode& node) {
-  JsonNode fileNode = node.required("file", " for a mesh (an OBJ path)");
+// A mesh object: its file's materials (MTL, glTF) unless the object names one; faces
+// without a material take the scene's (or the implicit default).
+void readModelObject(const JsonNode& node, const MaterialLookup& materials, Scene& scene) {
+  JsonNode fileNode = node.required("file", " for a mesh (an OBJ or glTF path)");
   std::string file = fileNode.asString();
   if (file.empty()) fileNode.fail("must not be empty");
+  const int named = node.has("material") ? materials.resolve(node) : -1;
+  const Transform transform = readTransform(node);
+  LoadedModel model;
   try {
-    return loadObj(resolvePath(fileNode, file));
-  } catch (const ObjError& e) {
+    model = loadModel(resolvePath(fileNode, file));
+  } catch (const ModelError& e) {
     fileNode.fail(e.what());
   }
+  int fallback = -1;
+  for (const TriangleMesh& mesh : model.meshes) {
+    if (named >= 0 || mesh.material >= 0) continue;
+    const std::string why = model.materials.empty()
+        ? " (" + file + " has no materials" + (model.warning.empty() ? "" : ": " + model.warning) + ")"
+        : " (some faces of " + file + " have no material)";
+    fallback = materials.resolve(node, why);
+    break;
+  }
+  addModelMeshes(fileNode, model, named, fallback, transform, scene);
 }
 
 TriangleMesh readTeapot(const JsonNode& node) {
@@ -119,16 +134,21 @@ void readObject(const JsonNode& node, const MaterialLookup& materials, Scene& sc
   auto type = static_cast<ObjectType>(
       node.required("type", " (\"sphere\", \"mesh\", \"quad\", \"box\" or \"teapot\")")
           .asEnum({"sphere", "mesh", "quad", "box", "teapot"}));
+  if (type == ObjectType::Mesh) {
+    node.allowKeys({"type", "file", "material", "translate", "rotate", "scale"});
+    readModelObject(node, materials, scene);
+    return;
+  }
   if (type == ObjectType::Sphere) {
     Sphere sphere = readSphere(node);
     sphere.material = materials.resolve(node);
+    if (maxComponent(scene.materials[sphere.material].emission) > 0.0f) {
+      node.child("material").fail("an emitting material on a sphere object is not supported (use a sphere light)");
+    }
     scene.spheres.push_back(sphere);
     return;
   }
   switch (type) {
-    case ObjectType::Mesh:
-      node.allowKeys({"type", "file", "material", "translate", "rotate", "scale"});
-      break;
     case ObjectType::Quad:
       node.allowKeys({"type", "corner", "edge1", "edge2", "material", "translate", "rotate", "scale"});
       break;
@@ -142,8 +162,7 @@ void readObject(const JsonNode& node, const MaterialLookup& materials, Scene& sc
   // Check cheap fields before an expensive OBJ load or tessellation.
   int material = materials.resolve(node);
   Transform transform = readTransform(node);
-  TriangleMesh mesh = type == ObjectType::Mesh   ? readObjMesh(node)
-                      : type == ObjectType::Quad ? readQuad(node)
+  TriangleMesh mesh = type == ObjectType::Quad ? readQuad(node)
                       : type == ObjectType::Box  ? readBox(node)
                                                  : readTeapot(node);
   applyTransform(transform, mesh);

@@ -1,14 +1,19 @@
 // Entry points of the scene loader: reads the file, parses it strictly
-// (io/json_parse.h), applies --set overrides, then validates.
+// (io/json_parse.h), applies --set overrides, then validates. A glTF file is a
+// scene too: its meshes, camera and lights, with an optional JSON of the same stem.
 #include "io/scene_loader.h"
 
 #include "core/error.h"
 #include "io/float_checks.h"
 #include "io/json_parse.h"
 #include "io/json_reader.h"
+#include "io/model_import.h"
 #include "io/overrides.h"
 #include "io/scene_sections.h"
+#include "io/transform.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,13 +33,42 @@ fs::path folderOf(const std::string& file) {
   return ec ? dir : abs.lexically_normal();
 }
 
-Scene buildScene(const json& document, const LoadContext& context) {
+// The glTF scene's meshes (own materials; faces without one take "default"), and its
+// punctual lights after the JSON's.
+void addSceneModel(const JsonNode& root, LoadedModel& model, Scene& scene) {
+  int fallback = -1;
+  for (size_t i = 0; i < scene.materials.size() && fallback < 0; ++i) {
+    if (scene.materials[i].name == "default") fallback = static_cast<int>(i);
+  }
+  if (fallback < 0) {
+    Material m;
+    m.name = "default";
+    fallback = static_cast<int>(scene.materials.size());
+    scene.materials.push_back(m);
+  }
+  addModelMeshes(root, model, -1, fallback, Transform{}, scene);
+  for (const Light& light : model.lights) {
+    checkPositions(root, {light.position}, "the model's light positions");
+    scene.lights.push_back(light);
+  }
+}
+
+Scene buildScene(const json& document, const LoadContext& context, const std::string& modelPath) {
   JsonNode root(document, "", context);
   if (!document.is_object()) {
     root.fail("a scene must be a JSON object, got " + describeJson(document));
   }
   root.allowKeys({"name", "camera", "lights", "materials", "objects", "render", "photons"});
+  LoadedModel model;
+  if (!modelPath.empty()) {
+    try {
+      model = loadModel(modelPath);
+    } catch (const ModelError& e) {
+      throwInputError(e.what());
+    }
+  }
   Scene scene;
+  if (model.camera) scene.camera = *model.camera;
   scene.file = context.file;
   if (root.has("name")) {
     scene.name = root.child("name").asString();
@@ -42,29 +76,53 @@ Scene buildScene(const json& document, const LoadContext& context) {
   } else {
     scene.name = context.file.empty() ? "scene" : fs::path(context.file).stem().string();
   }
-  if (root.has("camera")) readCamera(root.child("camera"), scene.camera);
+  static const json kNoCamera = json::object();
+  if (root.has("camera")) {
+    readCamera(root.child("camera"), scene.camera);  // overrides the model's camera key by key
+    const JsonNode camera = root.child("camera");
+    if (model.aspect > 0.0 && camera.has("width") && !camera.has("height")) {
+      // A new width keeps the file's aspect ratio.
+      scene.camera.height = std::clamp(static_cast<int>(std::lround(scene.camera.width / model.aspect)), 1, 16384);
+    }
+  } else if (!modelPath.empty()) {
+    readCamera(JsonNode(kNoCamera, "camera", context), scene.camera);  // checks the model's camera
+  }
   if (root.has("lights")) readLights(root.child("lights"), scene.lights);
   // render first: the model decides how materials are checked.
   if (root.has("render")) readRender(root.child("render"), scene.render);
   readMaterials(root, scene);
   readObjects(root, scene);
+  if (!modelPath.empty()) addSceneModel(root, model, scene);
+  if (scene.lights.size() > 65535) root.fail("at most 65535 lights, the model's included");
   addEmitters(scene);
+  addMeshEmitters(scene);
   checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
   return scene;
 }
 
-}  // namespace
+std::string readText(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throwInputError(path + ": cannot open scene file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throwInputError(path + ": cannot open scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throwInputError(path + ": cannot read scene file");
+  return text.str();
+}
 
-Scene parseScene(const std::string& jsonText, const std::string& fileName,
-                 const std::vector<std::string>& overrides) {
+// `modelPath` non-empty: a glTF scene, `jsonText` its settings ("" = none).
+Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
+                     const std::vector<std::string>& overrides, const std::string& modelPath) {
   LoadContext context;
   context.file = fileName.empty() ? "<scene>" : fileName;
   context.baseDir = folderOf(fileName);
-  json document = parseJsonDocument(jsonText, context.file);
+  json document = jsonText.empty() && !modelPath.empty() ? json::object()
+                                                          : parseJsonDocument(jsonText, context.file);
   context.overridden = applyOverrides(document, overrides);
   try {
-    Scene scene = buildScene(document, context);
+    Scene scene = buildScene(document, context, modelPath);
     scene.file = fileName;
     return scene;
   } catch (const json::exception& e) {
@@ -73,15 +131,24 @@ Scene parseScene(const std::string& jsonText, const std::string& fileName,
   }
 }
 
+}  // namespace
+
+Scene parseScene(const std::string& jsonText, const std::string& fileName,
+                 const std::vector<std::string>& overrides) {
+  return parseSceneWith(jsonText, fileName, overrides, "");
+}
+
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  if (!isGltfPath(path)) return parseScene(readText(path), path, overrides);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throwInputError(path + ": cannot open scene file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throwInputError(path + ": cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throwInputError(path + ": cannot read scene file");
-  return parseScene(text.str(), path, overrides);
+  // model.glb renders with model.json's settings when there is one.
+  const std::string sidecar = fs::path(path).replace_extension(".json").string();
+  const bool hasSidecar = fs::is_regular_file(sidecar, ec);
+  Scene scene = parseSceneWith(hasSidecar ? readText(sidecar) : "", hasSidecar ? sidecar : path,
+                               overrides, path);
+  scene.file = path;
+  return scene;
 }
 
 }  // namespace penumbra

@@ -23,6 +23,12 @@ void readObjects(const JsonNode& root, Scene& scene);
 // black material); after readObjects, so object indices stay as written.
 void addEmitters(Scene& scene);
 
+// Every material with an emission (JSON "emission", MTL Ke, glTF emissive) that no
+// light owns yet becomes one mesh light over the triangles of all meshes using it
+// (core/mesh_light.h); its surface then only glows, like a quad light's. After
+// addEmitters. Throws InputError past 65535 lights in all.
+void addMeshEmitters(Scene& scene);
+
 // A path from the scene file made absolute against the scene's folder.
 std::string resolvePath(const JsonNode& where, const std::string& file);
 

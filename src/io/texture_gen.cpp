@@ -234,6 +234,8 @@ std::filesystem::path cacheDirectory() {
 
 }  // namespace
 
+std::filesystem::path textureCacheDirectory() { return cacheDirectory(); }
+
 const std::vector<std::string>& builtinTextureNames() {
   static const std::vector<std::string> names{"checker", "grid", "planet", "earthlike"};
   return names;

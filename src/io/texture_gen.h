@@ -3,6 +3,7 @@
 #pragma once
 #include "core/image.h"
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -39,5 +40,8 @@ inline constexpr float kCheckerDark[3] = {0.60f, 0.05f, 0.03f};
 // processes may both generate; writeImage's rename makes the last one win whole.
 // Throws InputError for a malformed spec or an unwritable cache.
 std::string builtinTexturePath(const std::string& spec);
+
+// That cache directory (not created): glTF's embedded images are written there too.
+std::filesystem::path textureCacheDirectory();
 
 }  // namespace penumbra

@@ -1,0 +1,135 @@
+// glTF materials: base colour (and its texture), metallic as a mirror weight,
+// roughness as a Phong exponent, transmission + ior as glass, emissive as emission.
+#include "io/gltf_materials.h"
+
+#include "io/texture_gen.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <unistd.h>
+
+namespace penumbra {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+double extensionNumber(const tinygltf::ExtensionMap& ext, const char* name, const char* key, double fallback) {
+  auto it = ext.find(name);
+  if (it == ext.end() || !it->second.Has(key)) return fallback;
+  const tinygltf::Value& v = it->second.Get(key);
+  return v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : fallback;
+}
+
+Color colour(const std::vector<double>& c, const Color& fallback) {
+  return c.size() >= 3 ? Color(float(c[0]), float(c[1]), float(c[2])) : fallback;
+}
+
+// "%20" and friends: glTF URIs are percent-encoded; tinygltf leaves them so.
+std::string decodeUri(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uri[i + 1]) && std::isxdigit(uri[i + 2])) {
+      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// An embedded image (data URI or buffer view) as a file OpenImageIO's texture system
+// can open: written once to the texture cache under a name from its content.
+std::string writeEmbedded(const tinygltf::Image& image, const std::string& path) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a over the encoded bytes
+  for (unsigned char b : image.image) h = (h ^ b) * 1099511628211ull;
+  const bool png = image.image.size() > 4 && image.image[0] == 0x89 && image.image[1] == 'P';
+  char name[64];
+  std::snprintf(name, sizeof name, "gltf-%016llx.%s", static_cast<unsigned long long>(h), png ? "png" : "jpg");
+  const fs::path dir = textureCacheDirectory();
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const fs::path file = dir / name;
+  if (fs::is_regular_file(file, ec) && fs::file_size(file, ec) == image.image.size()) return file.string();
+  const fs::path temp = dir / (std::string(name) + ".tmp" + std::to_string(::getpid()));
+  {
+    std::ofstream out(temp, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(image.image.data()), static_cast<std::streamsize>(image.image.size()));
+    if (!out) throw ModelError("glTF file " + path + ": cannot write its embedded image to " + dir.string());
+  }
+  fs::rename(temp, file, ec);
+  if (ec) throw ModelError("glTF file " + path + ": cannot write its embedded image to " + dir.string());
+  return file.string();
+}
+
+// The file behind texture `index` ("" without one).
+std::string textureFile(const tinygltf::Model& model, int index, const std::string& path) {
+  if (index < 0) return "";
+  if (static_cast<size_t>(index) >= model.textures.size()) {
+    throw ModelError("glTF file " + path + ": texture " + std::to_string(index) + " does not exist");
+  }
+  const int source = model.textures[index].source;
+  if (source < 0 || static_cast<size_t>(source) >= model.images.size()) {
+    throw ModelError("glTF file " + path + ": texture " + std::to_string(index) + " has no image");
+  }
+  const tinygltf::Image& image = model.images[source];
+  if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
+    fs::path p(decodeUri(image.uri));
+    if (p.is_relative()) p = fs::absolute(path).parent_path() / p;
+    return p.lexically_normal().string();
+  }
+  if (image.image.empty()) throw ModelError("glTF file " + path + ": image " + std::to_string(source) + " is empty");
+  return writeEmbedded(image, path);
+}
+
+}  // namespace
+
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  image->image.assign(bytes, bytes + size);
+  return true;
+}
+
+std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std::string& path) {
+  std::vector<ModelMaterial> out;
+  for (const tinygltf::Material& g : model.materials) {
+    ModelMaterial mm;
+    Material& m = mm.material;
+    m.name = g.name.empty() ? "material " + std::to_string(out.size()) : g.name;
+    const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
+    const Color base = colour(pbr.baseColorFactor, Color(1.0f));
+    const float metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
+    const float roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
+    const float transmission =
+        float(extensionNumber(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0));
+    const float strength =
+        float(extensionNumber(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0));
+    m.emission = colour(g.emissiveFactor, Color(0.0f)) * strength;
+    m.ambient = Color(0.1f) * base;
+    if (transmission >= 0.5f) {
+      // Glass: smooth, the base colour as its transmission filter.
+      m.transparent = true;
+      m.ior = float(extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5));
+      m.tint = base;
+      m.diffuse = m.specular = Color(0.0f);
+      m.shininess = 0.0f;
+    } else {
+      // Lambert under the base colour, a mirror weighted by metallic (uncoloured), and
+      // the dielectric highlight (F0 = 0.04) as a Phong lobe: n = 2 / alpha^2 - 2 with
+      // alpha = roughness^2 (the Beckmann-Phong correspondence), none when rough.
+      m.diffuse = base;
+      m.kr = metallic;
+      const float alpha = roughness * roughness;
+      const float n = alpha > 0.0f ? 2.0f / (alpha * alpha) - 2.0f : 10000.0f;
+      m.shininess = roughness < 0.99f ? std::min(n, 10000.0f) : 0.0f;
+      m.specular = Color(m.shininess > 0.0f ? 0.04f : 0.0f);
+      mm.texture = textureFile(model, pbr.baseColorTexture.index, path);
+    }
+    out.push_back(std::move(mm));
+  }
+  return out;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,105 @@
+// Model files into the scene: their materials made valid for the shading model,
+// their textures checked, their meshes transformed and bound to materials.
+#include "io/model_import.h"
+
+#include "core/color.h"
+#include "io/float_checks.h"
+#include "io/gltf_loader.h"
+#include "io/json_reader.h"
+#include "io/mesh_cleanup.h"
+#include "io/obj_loader.h"
+#include "io/texture_check.h"
+#include "io/transform.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace penumbra {
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+// The same limits the JSON materials meet (material_reader.cpp): the physical
+// model's surfaces reflect at most what arrives and glass filters never amplify, so
+// specular gives way to diffuse and tints are clamped to 1; classic photon roulette
+// follows the shading as its defaults do.
+// A value the file gave as NaN (an MTL "Kd nan") counts as 0, never reaches a ray.
+float bounded(float v, float lo, float hi) { return std::isnan(v) ? lo : std::clamp(v, lo, hi); }
+
+Material fitToModel(Material m, ShadingModel model) {
+  for (Color* c : {&m.ambient, &m.diffuse, &m.specular, &m.emission, &m.tint}) {
+    for (int k = 0; k < 3; ++k) (*c)[k] = bounded((*c)[k], 0.0f, 1e30f);
+  }
+  m.shininess = bounded(m.shininess, 0.0f, 1e30f);
+  m.kr = bounded(m.kr, 0.0f, 1.0f);
+  m.ior = std::isnan(m.ior) ? 1.5f : std::clamp(m.ior, 0.01f, 100.0f);
+  if (model == ShadingModel::Physical) {
+    m.diffuse = glm::min(m.diffuse, Color(1.0f));
+    if (m.shininess > 0.0f) m.specular = glm::min(m.specular, Color(1.0f) - m.diffuse);
+    m.tint = glm::min(m.tint, Color(1.0f));
+  }
+  m.pR = m.kr;
+  m.pT = m.transparent ? std::clamp((1.0f - m.pR) * meanOf(m.tint), 0.0f, 1.0f - m.pR) : 0.0f;
+  return m;
+}
+
+}  // namespace
+
+bool isGltfPath(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".gltf" || ext == ".glb";
+}
+
+LoadedModel loadModel(const std::string& path) {
+  return isGltfPath(path) ? loadGltfModel(path) : loadObjModel(path);
+}
+
+int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene) {
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    if (scene.textures[i].path == path) return static_cast<int>(i);
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) where.fail("texture file not found: " + path);
+  const std::string problem = textureFileProblem(path);
+  if (!problem.empty()) where.fail(problem);
+  scene.textures.push_back(Texture{path});
+  return static_cast<int>(scene.textures.size()) - 1;
+}
+
+void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fallback,
+                    const Transform& transform, Scene& scene) {
+  // Only the materials some mesh uses join the scene, in the file's order.
+  std::vector<int> index(model.materials.size(), -1);
+  const std::string stem = std::filesystem::path(model.file).filename().string();
+  for (const TriangleMesh& mesh : model.meshes) {
+    if (named >= 0 || mesh.material < 0 || index[mesh.material] >= 0) continue;
+    const ModelMaterial& mm = model.materials[mesh.material];
+    Material m = fitToModel(mm.material, scene.render.model);
+    m.name = stem + ":" + mm.material.name;
+    if (!mm.texture.empty()) m.texture = addTextureFile(where, mm.texture, scene);
+    index[mesh.material] = static_cast<int>(scene.materials.size());
+    scene.materials.push_back(std::move(m));
+  }
+  size_t added = 0;
+  for (TriangleMesh& mesh : model.meshes) {
+    mesh.material = named >= 0 ? named : mesh.material >= 0 ? index[mesh.material] : fallback;
+    applyTransform(transform, mesh);
+    checkPositions(where, mesh.positions, "transformed positions");
+    // Triangles whose normal cannot be computed in float would hit with NaN normals.
+    dropDegenerateTriangles(mesh);
+    if (mesh.triangles.empty()) continue;
+    scene.meshes.push_back(std::move(mesh));
+    ++added;
+  }
+  if (added == 0) {
+    where.fail("every triangle of " + model.file + " has zero area after the transform (is the scale too small?)");
+  }
+}
+
+}  // namespace penumbra

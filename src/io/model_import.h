@@ -1,0 +1,58 @@
+// What a model file (OBJ + MTL, glTF) brings into a scene: meshes with their own
+// materials, and for glTF a camera and lights. Shared by the "mesh" object and
+// by a glTF file loaded as the whole scene.
+#pragma once
+#include "core/scene.h"
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+class JsonNode;
+struct Transform;
+
+// Why a model file could not be used; the scene loader adds the scene file and
+// JSON path in front of the message.
+class ModelError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A material from the file, mapped onto penumbra's (docs/scene-format.md says what
+// is approximated); `texture` is the absolute path of its diffuse map, "" = none.
+struct ModelMaterial {
+  Material material;
+  std::string texture;
+};
+
+struct LoadedModel {
+  std::string file;                        // for material names and messages
+  std::vector<TriangleMesh> meshes;        // material = index into `materials`, -1 = none
+  std::vector<ModelMaterial> materials;
+  std::optional<Camera> camera;            // glTF: the first camera met in the node tree
+  double aspect = 0.0;                     // its aspect ratio (width / height), 0 = none
+  std::vector<Light> lights;               // glTF: KHR_lights_punctual
+  std::string warning;                     // the loader's first warning (a missing MTL file)
+};
+
+// Loads an OBJ (+ MTL) or glTF file by its extension (.obj, .gltf, .glb). Throws
+// ModelError.
+LoadedModel loadModel(const std::string& path);
+bool isGltfPath(const std::string& path);
+
+// Adds the model's meshes to `scene`: each gets `named` when >= 0 (the scene names
+// the material), else its own material (appended to Scene::materials as
+// "file:name", checked for the shading model: the physical model's energy limits,
+// textures decoded at load) or `fallback` for faces without one. `transform` applies
+// on top of the file's own (glTF node) transforms; positions are checked and
+// degenerate triangles dropped. Fails at `where` when nothing is left.
+void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fallback,
+                    const Transform& transform, Scene& scene);
+
+// Scene::textures' index for an image file (shared when already there), decoded
+// once now; fails at `where` naming the problem.
+int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene);
+
+}  // namespace penumbra

@@ -1,0 +1,323 @@
+// OBJ + MTL and glTF 2.0 files into scenes: each test writes its own small files
+// (OBJ/MTL as text, glTF built with tinygltf's own writer) into a scratch folder and
+// checks geometry, materials, camera and lights against the values it wrote.
+#include "core/error.h"
+#include "core/light_sample.h"
+#include "io/image_io.h"
+#include "io/scene_loader.h"
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  fs::path dir = fs::path(testing::TempDir()) / ("penumbra_model_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+const Material& byName(const Scene& s, const std::string& name) {
+  for (const Material& m : s.materials) if (m.name == name) return m;
+  ADD_FAILURE() << "no material " << name;
+  return s.materials[0];
+}
+
+// A floor quad (red, textured), a glass triangle, a downward light quad (Ke) and a
+// Cornell-style light marked by Ka 20 without Ke.
+void writeObj(const fs::path& dir) {
+  Image texture(2, 2);
+  texture.pixels = {Color(1, 0, 0), Color(0, 1, 0), Color(0, 0, 1), Color(1, 1, 1)};
+  writeImage((dir / "tex.png").string(), texture);
+  write(dir / "room.mtl",
+        "newmtl red\nKd 0.8 0.1 0.1\nKs 0.5 0.5 0.5\nNs 40\nmap_Kd tex.png\n"
+        "newmtl glass\nKd 0 0 0\nNi 1.45\nd 0.1\nTf 0.9 1 0.9\n"
+        "newmtl lamp\nKd 0.7 0.7 0.7\nKe 4 3 2\n"
+        "newmtl oldlamp\nKa 20 20 20\nKd 1 1 1\n");
+  write(dir / "room.obj",
+        "mtllib room.mtl\n"
+        "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"            // 1-4 floor
+        "v 0 0.5 0\nv 0.5 0.5 0\nv 0 1 0\n"                   // 5-7 glass
+        "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\n"  // 8-11 lamp (faces down)
+        "v 0 3 0\nv 0 3 0.5\nv 0.5 3 0\n"                     // 12-14 old lamp
+        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+        "usemtl red\nf 1/1 4/4 3/3 2/2\n"
+        "usemtl glass\nf 5 6 7\n"
+        "usemtl lamp\nf 8 9 10 11\n"
+        "usemtl oldlamp\nf 12 14 13\n");
+}
+
+TEST(ObjMaterials, UsemtlGroupsKeepTheirMtlMaterialsAndKeLightsTheScene) {
+  const fs::path dir = scratch("obj");
+  writeObj(dir);
+  write(dir / "scene.json", R"({"render": {"model": "physical"}, "materials": {"grey": {"diffuse": 0.5}},
+    "objects": [{"type": "mesh", "file": "room.obj", "translate": [0, 1, 0]}]})");
+  const Scene s = loadScene((dir / "scene.json").string());
+  ASSERT_EQ(s.meshes.size(), 4u);  // one per usemtl group
+  const Material& red = byName(s, "room.obj:red");
+  EXPECT_FLOAT_EQ(red.diffuse.r, 0.8f);
+  EXPECT_FLOAT_EQ(red.shininess, 40.0f);
+  EXPECT_NEAR(red.specular.r, 0.2f, 1e-6);  // physical: Ks gives way to 1 - Kd
+  EXPECT_NEAR(red.specular.g, 0.5f, 1e-6);
+  ASSERT_GE(red.texture, 0);
+  EXPECT_EQ(fs::path(s.textures[red.texture].path).filename(), "tex.png");
+  const Material& glass = byName(s, "room.obj:glass");
+  EXPECT_TRUE(glass.transparent);
+  EXPECT_FLOAT_EQ(glass.ior, 1.45f);
+  EXPECT_FLOAT_EQ(glass.tint.r, 0.9f);
+  // The floor kept its uvs and moved with the object's transform.
+  EXPECT_EQ(s.meshes[0].uvs.size(), s.meshes[0].positions.size());
+  EXPECT_FLOAT_EQ(s.meshes[0].positions[0].y, 1.0f);
+  // Ke and Ka 20 made two mesh lights: pi A L each, at the transformed height.
+  ASSERT_EQ(s.lights.size(), 2u);
+  const Light& lamp = s.lights[0];
+  EXPECT_EQ(lamp.type, LightType::Mesh);
+  EXPECT_NEAR(lightArea(lamp), 1.0f, 1e-6);
+  EXPECT_FLOAT_EQ(lamp.radiance().r, 4.0f);
+  EXPECT_FLOAT_EQ(lamp.radiance().b, 2.0f);
+  EXPECT_FLOAT_EQ(lamp.triangles[0].y, 3.0f);
+  EXPECT_NEAR(lightPower(lamp, SceneSphere{}).g, 3.14159265f * 1.0f * 3.0f, 1e-4);
+  EXPECT_EQ(byName(s, "room.obj:lamp").light, 0);
+  EXPECT_NEAR(lightArea(s.lights[1]), 0.125f, 1e-6);
+  EXPECT_FLOAT_EQ(s.lights[1].radiance().g, 20.0f);
+}
+
+TEST(ObjMaterials, TheScenesMaterialOverridesTheMtl) {
+  const fs::path dir = scratch("obj_named");
+  writeObj(dir);
+  write(dir / "scene.json", R"({"materials": {"grey": {"diffuse": 0.5}},
+    "objects": [{"type": "mesh", "file": "room.obj", "material": "grey"}]})");
+  const Scene s = loadScene((dir / "scene.json").string());
+  EXPECT_EQ(s.materials.size(), 1u);
+  EXPECT_TRUE(s.lights.empty());
+  for (const TriangleMesh& m : s.meshes) EXPECT_EQ(m.material, 0);
+}
+
+TEST(ObjMaterials, AnObjWithoutMaterialsStillNeedsOne) {
+  const fs::path dir = scratch("obj_plain");
+  write(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write(dir / "scene.json", R"({"materials": {"grey": {}}, "objects": [{"type": "mesh", "file": "t.obj"}]})");
+  try {
+    loadScene((dir / "scene.json").string());
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("objects[0]: missing required key \"material\" (t.obj has no materials"),
+              std::string::npos) << e.what();
+  }
+}
+
+// ---- glTF, built with tinygltf's writer.
+
+void addAccessor(tinygltf::Model& m, const void* data, size_t bytes, int componentType, int type, size_t count) {
+  tinygltf::Buffer& buffer = m.buffers[0];
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buffer.data.size();
+  view.byteLength = bytes;
+  const auto* p = static_cast<const unsigned char*>(data);
+  buffer.data.insert(buffer.data.end(), p, p + bytes);
+  while (buffer.data.size() % 4) buffer.data.push_back(0);
+  m.bufferViews.push_back(view);
+  tinygltf::Accessor a;
+  a.bufferView = static_cast<int>(m.bufferViews.size()) - 1;
+  a.componentType = componentType;
+  a.type = type;
+  a.count = count;
+  m.accessors.push_back(a);
+}
+
+// One quad primitive (two triangles in z = 0, facing +z) per material, under nodes.
+tinygltf::Model makeGltf() {
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.buffers.resize(1);
+  const float pos[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const float nrm[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const uint16_t idx[] = {0, 1, 2, 0, 2, 3};
+  addAccessor(m, pos, sizeof pos, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 4);
+  addAccessor(m, nrm, sizeof nrm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 4);
+  addAccessor(m, idx, sizeof idx, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 6);
+  auto material = [&](const std::string& name, std::vector<double> base, double metallic, double roughness) {
+    tinygltf::Material mat;
+    mat.name = name;
+    mat.pbrMetallicRoughness.baseColorFactor = base;
+    mat.pbrMetallicRoughness.metallicFactor = metallic;
+    mat.pbrMetallicRoughness.roughnessFactor = roughness;
+    m.materials.push_back(mat);
+    tinygltf::Primitive prim;
+    prim.attributes = {{"POSITION", 0}, {"NORMAL", 1}};
+    prim.indices = 2;
+    prim.material = static_cast<int>(m.materials.size()) - 1;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    tinygltf::Mesh mesh;
+    mesh.name = name;
+    mesh.primitives.push_back(prim);
+    m.meshes.push_back(mesh);
+    return static_cast<int>(m.meshes.size()) - 1;
+  };
+  const int paint = material("paint", {0.2, 0.4, 0.6, 1}, 0.0, 1.0);
+  const int chrome = material("chrome", {1, 1, 1, 1}, 1.0, 0.0);
+  const int glass = material("glass", {0.9, 0.95, 1, 1}, 0.0, 0.0);
+  m.materials[glass].extensions["KHR_materials_transmission"] =
+      tinygltf::Value(tinygltf::Value::Object{{"transmissionFactor", tinygltf::Value(1.0)}});
+  m.materials[glass].extensions["KHR_materials_ior"] =
+      tinygltf::Value(tinygltf::Value::Object{{"ior", tinygltf::Value(1.33)}});
+  const int lamp = material("lamp", {1, 1, 1, 1}, 0.0, 1.0);
+  m.materials[lamp].emissiveFactor = {1.0, 0.5, 0.25};
+  m.materials[lamp].extensions["KHR_materials_emissive_strength"] =
+      tinygltf::Value(tinygltf::Value::Object{{"emissiveStrength", tinygltf::Value(4.0)}});
+  m.extensionsUsed = {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength",
+                      "KHR_lights_punctual"};
+
+  auto node = [&](int mesh, std::vector<double> t, std::vector<double> r, std::vector<double> s) {
+    tinygltf::Node n;
+    n.mesh = mesh;
+    n.translation = t;
+    n.rotation = r;
+    n.scale = s;
+    m.nodes.push_back(n);
+    return static_cast<int>(m.nodes.size()) - 1;
+  };
+  const double h = std::sqrt(0.5);
+  // A parent scaled by 2 and moved by x + 10; the paint quad under it rotated 90 degrees
+  // about x (so it lies in y = 0 facing -y... +y after the rotation's sign: checked below).
+  const int parent = node(-1, {10, 0, 0}, {}, {2, 2, 2});
+  const int floor = node(paint, {}, {-h, 0, 0, h}, {});
+  m.nodes[parent].children = {floor};
+  const int mirror = node(chrome, {0, 0, -5}, {}, {});
+  const int pane = node(glass, {0, 0, -3}, {}, {});
+  const int light = node(lamp, {0, 4, 0}, {h, 0, 0, h}, {});  // rotated to face -y
+  // Camera at (0, 1, 8) looking down -z; lights: a point at (1, 5, 1), a sun along -y.
+  tinygltf::Camera cam;
+  cam.type = "perspective";
+  cam.perspective.yfov = 0.5;
+  cam.perspective.aspectRatio = 2.0;
+  cam.perspective.znear = 0.1;
+  m.cameras.push_back(cam);
+  const int camera = node(-1, {0, 1, 8}, {}, {});
+  m.nodes[camera].camera = 0;
+  tinygltf::Light point;
+  point.type = "point";
+  point.color = {1, 0.5, 0.5};
+  point.intensity = 30;
+  tinygltf::Light sun;
+  sun.type = "directional";
+  sun.intensity = 2;
+  m.lights = {point, sun};
+  const int pointNode = node(-1, {1, 5, 1}, {}, {});
+  const int sunNode = node(-1, {}, {-h, 0, 0, h}, {});  // -z turned to -y
+  m.nodes[pointNode].extensions["KHR_lights_punctual"] =
+      tinygltf::Value(tinygltf::Value::Object{{"light", tinygltf::Value(0)}});
+  m.nodes[sunNode].extensions["KHR_lights_punctual"] =
+      tinygltf::Value(tinygltf::Value::Object{{"light", tinygltf::Value(1)}});
+  tinygltf::Scene scene;
+  scene.nodes = {parent, mirror, pane, light, camera, pointNode, sunNode};
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  return m;
+}
+
+void writeGltf(const tinygltf::Model& m, const fs::path& file, bool binary) {
+  tinygltf::TinyGLTF writer;
+  ASSERT_TRUE(writer.WriteGltfSceneToFile(&m, file.string(), true, true, false, binary));
+}
+
+void expectNear(const Vec3& a, const Vec3& b, float tol, const char* what) {
+  EXPECT_NEAR(glm::length(a - b), 0.0f, tol) << what << ": (" << a.x << ", " << a.y << ", " << a.z << ")";
+}
+
+TEST(Gltf, AWholeGlbSceneBringsMeshesMaterialsCameraAndLights) {
+  const fs::path dir = scratch("glb");
+  writeGltf(makeGltf(), dir / "model.glb", true);
+  write(dir / "model.json", R"({"render": {"model": "physical"}, "camera": {"width": 320}})");
+  const Scene s = loadScene((dir / "model.glb").string());
+  EXPECT_EQ(s.name, "model");
+  ASSERT_EQ(s.meshes.size(), 4u);
+  // Paint quad: rotated -90 degrees about x, scaled 2, moved to x = 10: corner (1, 1, 0)
+  // goes to (2, 0, -2) + (10, 0, 0); its +z normal turns to +y.
+  const TriangleMesh& floor = s.meshes[0];
+  expectNear(floor.positions[2], Vec3(12, 0, -2), 1e-5f, "floor corner");
+  expectNear(floor.normals[0], Vec3(0, 1, 0), 1e-5f, "floor normal");
+  const Material& paint = s.materials[floor.material];
+  EXPECT_EQ(paint.name, "model.glb:paint");
+  EXPECT_FLOAT_EQ(paint.diffuse.g, 0.4f);
+  EXPECT_EQ(paint.kr, 0.0f);
+  EXPECT_EQ(paint.shininess, 0.0f);  // roughness 1: no highlight
+  const Material& chrome = s.materials[s.meshes[1].material];
+  EXPECT_FLOAT_EQ(chrome.kr, 1.0f);
+  const Material& glass = s.materials[s.meshes[2].material];
+  EXPECT_TRUE(glass.transparent);
+  EXPECT_FLOAT_EQ(glass.ior, 1.33f);
+  EXPECT_FLOAT_EQ(glass.tint.g, 0.95f);
+  // Camera: the node's position, -z forward, yfov in degrees, the sidecar's width and
+  // the file's aspect ratio for the height.
+  expectNear(s.camera.position, Vec3(0, 1, 8), 1e-6f, "camera");
+  expectNear(glm::normalize(s.camera.lookAt - s.camera.position), Vec3(0, 0, -1), 1e-6f, "view");
+  EXPECT_NEAR(s.camera.fovY, 0.5 * 180.0 / 3.14159265358979, 1e-4);
+  EXPECT_EQ(s.camera.width, 320);
+  EXPECT_EQ(s.camera.height, 160);  // the sidecar set only the width: the file's aspect ratio 2 stays
+  // Lights: point, directional, then the emissive quad as a mesh light (facing -y at y = 4).
+  ASSERT_EQ(s.lights.size(), 3u);
+  EXPECT_EQ(s.lights[0].type, LightType::Point);
+  expectNear(s.lights[0].position, Vec3(1, 5, 1), 1e-6f, "point light");
+  EXPECT_FLOAT_EQ(s.lights[0].radiance().g, 15.0f);
+  EXPECT_EQ(s.lights[1].type, LightType::Directional);
+  expectNear(s.lights[1].direction, Vec3(0, -1, 0), 1e-6f, "sun");
+  const Light& lamp = s.lights[2];
+  EXPECT_EQ(lamp.type, LightType::Mesh);
+  EXPECT_NEAR(lightArea(lamp), 1.0f, 1e-6);
+  EXPECT_FLOAT_EQ(lamp.radiance().g, 2.0f);  // 0.5 x strength 4
+  const Vec3 n = glm::cross(lamp.triangles[1] - lamp.triangles[0], lamp.triangles[2] - lamp.triangles[0]);
+  expectNear(glm::normalize(n), Vec3(0, -1, 0), 1e-5f, "lamp faces down");
+  EXPECT_EQ(s.render.model, ShadingModel::Physical);
+}
+
+TEST(Gltf, AsAMeshObjectInAJsonScene) {
+  const fs::path dir = scratch("gltf_object");
+  writeGltf(makeGltf(), dir / "parts.gltf", false);
+  write(dir / "scene.json", R"({"lights": [{"type": "point", "position": [0, 9, 0]}],
+    "objects": [{"type": "mesh", "file": "parts.gltf", "translate": [0, 0, 100]}]})");
+  const Scene s = loadScene((dir / "scene.json").string());
+  ASSERT_EQ(s.meshes.size(), 4u);
+  expectNear(s.meshes[0].positions[2], Vec3(12, 0, 98), 1e-5f, "floor corner");
+  // Its own materials (after "default"); only the JSON's light and the mesh light.
+  EXPECT_EQ(s.materials[s.meshes[1].material].name, "parts.gltf:chrome");
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[1].type, LightType::Mesh);
+  EXPECT_EQ(s.camera.position, Camera{}.position);  // a mesh object brings no camera
+}
+
+TEST(Gltf, BrokenFilesFailWithOneLine) {
+  const fs::path dir = scratch("gltf_bad");
+  write(dir / "junk.glb", "glTF but not really");
+  try {
+    loadScene((dir / "junk.glb").string());
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("junk.glb"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  tinygltf::Model m = makeGltf();
+  m.accessors[2].count = 600;  // indices past the end of their buffer view
+  writeGltf(m, dir / "short.gltf", false);
+  write(dir / "scene.json", R"({"objects": [{"type": "mesh", "file": "short.gltf"}]})");
+  try {
+    loadScene((dir / "scene.json").string());
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("objects[0].file: glTF file"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("reaches past the end of its buffer"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
