@@ -4,11 +4,15 @@
 #include "cli/reuse_key.h"
 #include "core/error.h"
 #include "io/json_parse.h"
+#include "io/model_import.h"
 #include "io/overrides.h"
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 namespace penumbra {
+
+namespace fs = std::filesystem;
 
 const std::vector<std::string>& gatherOnlyPhotonKeys() {
   // The budgets go too: a smaller one is cut out of the larger emission.
@@ -20,11 +24,19 @@ const std::vector<std::string>& gatherOnlyPhotonKeys() {
 }
 
 ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>& overrides) {
-  std::ifstream in(scenePath, std::ios::binary);
-  if (!in) throw InputError(scenePath + ": cannot open scene file");
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json doc = parseJsonDocument(text.str(), scenePath);
+  // A glTF scene's document is its settings file beside it (model.json), if any;
+  // the model itself is geometry, named by its path in both keys.
+  std::string documentPath = scenePath;
+  if (isGltfPath(scenePath)) documentPath = fs::path(scenePath).replace_extension(".json").string();
+  std::string text = "{}";
+  if (documentPath == scenePath || fs::is_regular_file(documentPath)) {
+    std::ifstream in(documentPath, std::ios::binary);
+    if (!in) throw InputError(documentPath + ": cannot open scene file");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    text = buffer.str();
+  }
+  nlohmann::json doc = parseJsonDocument(text, documentPath);
   applyOverrides(doc, overrides);
   if (!doc.is_object()) throw InputError(scenePath + ": a scene must be a JSON object");
 
