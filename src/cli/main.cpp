@@ -3,6 +3,7 @@
 #include "cli/memory_limit.h"
 #include "cli/pipeline.h"
 #include "cli/progress_bar.h"
+#include "cli/batch_command.h"
 #include "cli/plan_command.h"
 #include "cli/sweep_command.h"
 #include "core/error.h"
@@ -158,6 +159,7 @@ int main(int argc, char** argv) {
 
   SweepCommand sweep(app);
   PlanCommand plan(app);
+  BatchCommand batch(app);
 
   // From here on an interrupt removes our temp files, never an old output.
   installTempFileCleanup();
@@ -182,6 +184,7 @@ int main(int argc, char** argv) {
     }
     if (sweep.selected()) return sweep.run();
     if (plan.selected()) return plan.run();
+    if (batch.selected()) return batch.run();
     if (*texture) {
       writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),
                  {{"penumbra:texture", textureName}});

@@ -7,6 +7,7 @@
 #include "core/scene.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
+#include "gather/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "geometry/trace_scene.h"
 #include "cli/render_plan.h"
@@ -63,8 +64,14 @@ struct PhotonStage {
   double emitSeconds = 0.0, buildSeconds = 0.0;
   bool fromPrefix = false;  // cut out of a larger emission
   std::vector<std::string> notes;
+  // Precomputed lookups built from these maps (camera-independent), and the
+  // parameters they were built with: a later frame with equal ones reuses them.
+  LookupCache lookup;
+  std::string lookupKey;
+  double lookupSeconds = 0.0;  // what building `lookup` took
   size_t bytes() const {
-    return shadow.memoryBytes() + indirect.memoryBytes() + caustic.memoryBytes() + global.memoryBytes();
+    return shadow.memoryBytes() + indirect.memoryBytes() + caustic.memoryBytes() + global.memoryBytes() +
+           lookup.memoryBytes();
   }
 };
 

@@ -7,6 +7,7 @@
 #include "integrator/light_visibility.h"
 #include "integrator/shading.h"
 #include "io/texture_gen.h"
+#include <fmt/format.h>
 
 namespace penumbra {
 namespace {
@@ -14,8 +15,8 @@ namespace {
 // photons.lookup = precomputed: the gate verdicts and the indirect (classic) or global
 // (physical) estimate, once per cell, from the maps just built. `radius` > 0 is the
 // physical pass's fixed gather radius.
-void buildLookup(const Scene& scene, LookupCache& cache, ShadingContext& ctx, float radius,
-                 RenderStats& stats) {
+void buildLookup(const Scene& scene, LookupCache& cache, std::string* cachedKey, double* builtSeconds,
+                 ShadingContext& ctx, float radius, RenderStats& stats) {
   const PhotonSettings& ps = scene.photons;
   if (ps.lookup != PhotonLookup::Precomputed) return;
   Stopwatch phase;
@@ -35,7 +36,15 @@ void buildLookup(const Scene& scene, LookupCache& cache, ShadingContext& ctx, fl
   params.radius = physical ? radius : 0.0f;
   params.cellSize = radius > 0.0f ? cacheCellSize(radius, params.k, ps.lookupCell)
                                   : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
-  cache.build(params.gate ? ctx.shadowMap : nullptr, map, params);
+  const GateParams& g = params.gateParams;
+  const std::string key = fmt::format("{} {} {} {} {} {} {} {} {} {} {}", params.cellSize, int(params.indirect), params.k,
+                                      params.maxRadius, params.radius, params.gate, g.k, g.maxRadius, g.minNormalCos,
+                                      g.minVoters, g.glassBlocks);
+  if (!cachedKey || *cachedKey != key) {
+    cache.build(params.gate ? ctx.shadowMap : nullptr, map, params);
+    if (cachedKey) *cachedKey = key;
+    if (builtSeconds) *builtSeconds = phase.seconds();
+  }
   ctx.lookup = cache.empty() ? nullptr : &cache;
   stats.time.precompute += phase.seconds();
   stats.cacheRecords = cache.records();
@@ -137,7 +146,11 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
       stats.globalRadius = ctx.globalRadius;
       radius = ctx.globalRadius;
     }
-    if (needsLight) buildLookup(scene, cache, ctx, radius, stats);
+    // Pass 0 keeps its lookups with its maps, for later frames on the same maps.
+    if (needsLight) {
+      if (pass == 0) buildLookup(scene, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats);
+      else buildLookup(scene, cache, nullptr, nullptr, ctx, radius, stats);
+    }
     Stopwatch phase;
     if (options.tracePixel) {
       result.rayTree = tracePixel(ctx, options.tracePixel->first, options.tracePixel->second);

@@ -276,7 +276,8 @@ class Sweep {
     row.bvh = bvh;
     row.emit = stage.emitSeconds;
     row.maps = stage.buildSeconds;
-    row.precompute = st.time.precompute;
+    // A lookup cache reused from an earlier run on these maps still counts in full.
+    row.precompute = st.cacheRecords > 0 ? std::max(st.time.precompute, stage.lookupSeconds) : st.time.precompute;
     row.render = st.time.render;
     row.total = row.load + row.bvh + row.emit + row.maps + row.precompute + row.render;
     fillCounts(row, st);

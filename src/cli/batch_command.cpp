@@ -1,0 +1,98 @@
+// Options of `penumbra batch`, the shard selection, the progress line and the summary.
+#include "cli/batch_command.h"
+#include "cli/batch_run.h"
+#include "cli/memory_limit.h"
+#include "cli/sweep_spec.h"
+#include "core/error.h"
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace penumbra {
+
+struct BatchCommand::Options {
+  CLI::App* command = nullptr;
+  std::vector<std::string> inputs, overrides;
+  std::string out, views = "beauty", format = "png", shard, listShard, mapCache = "4G";
+  int threads = 0;
+  bool force = false, keepGoing = false, quiet = false;
+};
+
+BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
+  Options& o = *o_;
+  o.command = app.add_subcommand("batch", "Render many jobs in one process, sharing scenes and photon maps");
+  CLI::App* c = o.command;
+  c->add_option("inputs", o.inputs, "A jobs file (JSON with a \"jobs\" list, docs/batch.md) or scene files")->required();
+  c->add_option("-o,--output", o.out, "Folder for the images of scene files given directly");
+  c->add_option("--views", o.views, "Views of scene files given directly, e.g. beauty,depth");
+  c->add_option("--format", o.format, "Image format of scene files given directly: png or exr (several views: one layered exr)")
+      ->check(CLI::IsMember({"png", "exr"}));
+  c->add_option("--set", o.overrides, "Override a scene value in every job")->take_all()->allow_extra_args(false);
+  c->add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  c->add_option("--shard", o.shard, "Render only shard I of N (1-based), e.g. 2/4");
+  c->add_option("--list-shard", o.listShard, "Print the jobs shard I/N would take, and exit");
+  c->add_option("--map-cache", o.mapCache, "Photon maps kept for later jobs, at most this much (LRU), e.g. 4G");
+  c->add_flag("--force", o.force, "Render every job, even those whose outputs are up to date");
+  c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
+  c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
+}
+
+BatchCommand::~BatchCommand() = default;
+bool BatchCommand::selected() const { return o_->command->parsed(); }
+
+namespace {
+bool isJobsFile(const std::string& path) {
+  std::ifstream in(path);
+  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  return doc.is_object() && doc.contains("jobs");
+}
+}  // namespace
+
+int BatchCommand::run() {
+  Options& o = *o_;
+  BatchRequest req;
+  const bool jobsFile = o.inputs.size() == 1 && isJobsFile(o.inputs[0]);
+  if (jobsFile) {
+    req.jobs = readJobsFile(o.inputs[0]);
+    for (BatchJob& j : req.jobs) j.overrides.insert(j.overrides.begin(), o.overrides.begin(), o.overrides.end());
+    req.extraInputs.push_back(o.inputs[0]);
+  } else {
+    if (o.out.empty()) throw InputError("batch: -o DIR is required when scene files are given directly");
+    std::filesystem::create_directories(o.out);
+    req.jobs = jobsForScenes(o.inputs, o.out, o.overrides, splitValues(o.views, "--views"), "." + o.format);
+  }
+  const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;
+  if (!shardArg.empty()) {
+    const auto [index, count] = parseShard(shardArg);
+    std::vector<double> costs;
+    for (const BatchJob& j : req.jobs) costs.push_back(jobCost(j));
+    std::vector<BatchJob> mine;
+    for (size_t j : shardJobs(costs, index, count)) mine.push_back(req.jobs[j]);
+    if (!o.listShard.empty()) {
+      for (const BatchJob& j : mine) std::cout << j.name << "\t" << j.outputs.front().path << "\n";
+      return 0;
+    }
+    req.jobs = std::move(mine);
+  }
+  req.threads = o.threads;
+  req.force = o.force;
+  req.keepGoing = o.keepGoing;
+  req.mapCacheBytes = parseMemorySize(o.mapCache);
+  const bool tty = isatty(STDERR_FILENO);
+  if (!o.quiet && tty) req.progress = [](const std::string& line) { std::cerr << "\r\033[K" << line << std::flush; };
+  if (!o.quiet && !tty) {
+    req.progress = [](const std::string& line) {
+      if (line.find("| done |") != std::string::npos) std::cerr << line << "\n";
+    };
+  }
+  const BatchOutcome out = runBatch(req);
+  if (!o.quiet) {
+    if (tty) std::cerr << "\n";
+    std::cerr << batchSummary(out);
+  }
+  return out.failed > 0 ? 1 : 0;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,200 @@
+// Jobs file parsing and expansion (orbits, scene globs), output names, shards.
+#include "cli/batch_jobs.h"
+#include "core/error.h"
+#include "io/json_parse.h"
+#include <fmt/format.h>
+#include <fnmatch.h>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& file, const std::string& where, const std::string& problem) {
+  throw InputError(file + ": " + where + ": " + problem);
+}
+
+std::vector<std::string> stringList(const json& node, const std::string& file, const std::string& where) {
+  if (!node.is_array()) fail(file, where, "must be a list of strings");
+  std::vector<std::string> out;
+  for (size_t i = 0; i < node.size(); ++i) {
+    if (!node[i].is_string()) fail(file, fmt::format("{}[{}]", where, i), "must be a string");
+    out.push_back(node[i].get<std::string>());
+  }
+  return out;
+}
+
+std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
+  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
+  return s;
+}
+
+// Every view's file: {name} and {view} substituted; views without {view} in a .exr share it.
+std::vector<BatchOutput> outputsFor(const std::string& pattern, const std::string& name,
+                                    const std::vector<std::string>& views, const std::string& file,
+                                    const std::string& where) {
+  const bool perView = pattern.find("{view}") != std::string::npos;
+  const bool exr = fs::path(pattern).extension() == ".exr";
+  if (views.size() > 1 && !perView && !exr) {
+    fail(file, where + ".output", "several views need {view} in the name, or one layered .exr");
+  }
+  std::vector<BatchOutput> out;
+  for (const std::string& v : views) out.push_back({v, replaceAll(replaceAll(pattern, "{name}", name), "{view}", v)});
+  return out;
+}
+
+std::vector<std::string> globScenes(const fs::path& pattern, const std::string& file, const std::string& where) {
+  const fs::path dir = pattern.parent_path().empty() ? fs::path(".") : pattern.parent_path();
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (fnmatch(pattern.filename().c_str(), e.path().filename().c_str(), 0) == 0) out.push_back(e.path().string());
+  }
+  if (ec) fail(file, where, "cannot list " + dir.string() + " (" + ec.message() + ")");
+  std::sort(out.begin(), out.end());
+  if (out.empty()) fail(file, where, "'" + pattern.string() + "' matches no file");
+  return out;
+}
+
+std::string vec3(double x, double y, double z) { return fmt::format("[{:.9g},{:.9g},{:.9g}]", x, y, z); }
+
+}  // namespace
+
+std::vector<BatchJob> readJobsFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open jobs file");
+  std::stringstream text;
+  text << in.rdbuf();
+  const json doc = parseJsonDocument(text.str(), path);
+  if (!doc.is_object() || !doc.contains("jobs") || !doc["jobs"].is_array()) {
+    fail(path, "jobs", "a jobs file is an object with a \"jobs\" list");
+  }
+  for (const auto& [key, v] : doc.items()) {
+    if (key != "jobs" && key != "set") fail(path, key, "unknown key (known: jobs, set)");
+  }
+  const fs::path base = fs::path(path).parent_path();
+  auto resolve = [&](const std::string& p) { return fs::path(p).is_absolute() || base.empty() ? p : (base / p).string(); };
+  const std::vector<std::string> common = doc.contains("set") ? stringList(doc["set"], path, "set") : std::vector<std::string>{};
+  std::vector<BatchJob> jobs;
+  for (size_t j = 0; j < doc["jobs"].size(); ++j) {
+    const std::string where = fmt::format("jobs[{}]", j);
+    const json& node = doc["jobs"][j];
+    if (!node.is_object()) fail(path, where, "must be an object");
+    for (const auto& [key, v] : node.items()) {
+      static const std::set<std::string> known = {"name", "scene", "scenes", "set", "views", "output", "orbit"};
+      if (!known.count(key)) fail(path, where + "." + key, "unknown key (known: name, scene, scenes, set, views, output, orbit)");
+    }
+    if (node.contains("scene") == node.contains("scenes")) fail(path, where, "needs exactly one of \"scene\" and \"scenes\"");
+    if (!node.contains("output") || !node["output"].is_string()) fail(path, where + ".output", "must be a file name pattern");
+    std::vector<std::string> overrides = common;
+    if (node.contains("set")) for (const std::string& s : stringList(node["set"], path, where + ".set")) overrides.push_back(s);
+    const std::vector<std::string> views = node.contains("views") ? stringList(node["views"], path, where + ".views")
+                                                                  : std::vector<std::string>{"beauty"};
+    if (views.empty()) fail(path, where + ".views", "must name at least one view");
+    const std::string output = resolve(node["output"].get<std::string>());
+    std::vector<std::string> scenes;
+    if (node.contains("scene")) {
+      if (!node["scene"].is_string()) fail(path, where + ".scene", "must be a path");
+      scenes.push_back(resolve(node["scene"].get<std::string>()));
+    } else {
+      if (!node["scenes"].is_string()) fail(path, where + ".scenes", "must be a glob pattern");
+      scenes = globScenes(resolve(node["scenes"].get<std::string>()), path, where + ".scenes");
+    }
+    const std::string given = node.contains("name") && node["name"].is_string() ? node["name"].get<std::string>() : "";
+    for (const std::string& scene : scenes) {
+      const std::string stem = given.empty() || scenes.size() > 1 ? fs::path(scene).stem().string() : given;
+      if (!node.contains("orbit")) {
+        jobs.push_back({stem, scene, overrides, outputsFor(output, stem, views, path, where), where});
+        continue;
+      }
+      const json& o = node["orbit"];
+      if (!o.is_object() || !o.contains("count") || !o["count"].is_number_integer() || o["count"].get<int>() < 1 ||
+          o["count"].get<int>() > 100000) {
+        fail(path, where + ".orbit.count", "must be an integer 1..100000");
+      }
+      auto num = [&](const char* k, double d) {
+        if (!o.contains(k)) return d;
+        if (!o[k].is_number()) fail(path, where + ".orbit." + k, "must be a number");
+        return o[k].get<double>();
+      };
+      std::vector<double> c = {0, 0, 0};
+      if (o.contains("center")) {
+        if (!o["center"].is_array() || o["center"].size() != 3) fail(path, where + ".orbit.center", "must be [x, y, z]");
+        for (int i = 0; i < 3; ++i) c[i] = o["center"][i].get<double>();
+      }
+      const int count = o["count"].get<int>();
+      const double radius = num("radius", 5.0), height = num("height", 0.0);
+      // Degrees about the vertical through the centre, 0 = on the +z side; the arc
+      // [from, to) is cut into `count` equal steps (a full circle by default).
+      const double from = num("from", 0.0), to = num("to", 360.0);
+      for (int i = 0; i < count; ++i) {
+        const double a = (from + (to - from) * i / count) * M_PI / 180.0;
+        BatchJob job;
+        job.name = fmt::format("{}_{}", stem, i);
+        job.scene = scene;
+        job.overrides = overrides;
+        job.overrides.push_back("camera.position=" + vec3(c[0] + radius * std::sin(a), c[1] + height, c[2] + radius * std::cos(a)));
+        job.overrides.push_back("camera.look_at=" + vec3(c[0], c[1], c[2]));
+        job.outputs = outputsFor(replaceAll(output, "{i}", std::to_string(i)), job.name, views, path, where);
+        job.where = fmt::format("{} (orbit {})", where, i);
+        jobs.push_back(std::move(job));
+      }
+    }
+  }
+  std::set<std::string> names;
+  for (BatchJob& job : jobs) {
+    std::string name = job.name;
+    for (int k = 2; !names.insert(name).second; ++k) name = fmt::format("{}-{}", job.name, k);
+    job.name = name;
+  }
+  return jobs;
+}
+
+std::vector<BatchJob> jobsForScenes(const std::vector<std::string>& scenes, const std::string& dir,
+                                    const std::vector<std::string>& overrides,
+                                    const std::vector<std::string>& views, const std::string& ext) {
+  std::vector<BatchJob> jobs;
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    BatchJob job;
+    job.name = fs::path(scenes[i]).stem().string();
+    job.scene = scenes[i];
+    job.overrides = overrides;
+    job.where = fmt::format("scene {} ({})", i + 1, scenes[i]);
+    for (const std::string& v : views) {
+      const std::string file = views.size() > 1 && ext != ".exr" ? job.name + "_" + v + ext : job.name + ext;
+      job.outputs.push_back({v, (fs::path(dir) / file).string()});
+    }
+    jobs.push_back(std::move(job));
+  }
+  return jobs;
+}
+
+std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count) {
+  std::vector<double> load(count, 0.0);
+  std::vector<size_t> mine;
+  for (size_t j = 0; j < costs.size(); ++j) {
+    const size_t s = static_cast<size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    load[s] += costs[j];
+    if (s == index) mine.push_back(j);
+  }
+  return mine;
+}
+
+std::pair<size_t, size_t> parseShard(const std::string& text) {
+  size_t i = 0, n = 0;
+  char slash = 0, extra = 0;
+  std::istringstream in(text);
+  if (!(in >> i >> slash >> n) || slash != '/' || (in >> extra) || n == 0 || i == 0 || i > n || n > 100000) {
+    throw InputError("--shard: expected I/N with 1 <= I <= N, got '" + text + "'");
+  }
+  return {i - 1, n};
+}
+
+}  // namespace penumbra

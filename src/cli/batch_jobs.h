@@ -1,0 +1,44 @@
+// penumbra batch's jobs: a jobs file (or a list of scenes) expanded into plain
+// jobs, each a scene, its --set overrides, its views and where each view goes,
+// and the deterministic split of a batch into shards.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct BatchOutput {
+  std::string view;  // "beauty", "depth", ...
+  std::string path;  // an image file; several views may share one layered .exr
+};
+
+struct BatchJob {
+  std::string name;                    // "orbit_3", "fig03_shadows": unique in the batch
+  std::string scene;                   // resolved path
+  std::vector<std::string> overrides;  // the batch's "set", then the job's, then the orbit's
+  std::vector<BatchOutput> outputs;    // one per view
+  std::string where;                   // "jobs[2] (orbit 3)": names the job in messages
+};
+
+// A jobs file:
+//   {"set": [...], "jobs": [{"scene": "a.json", "set": [...], "views": ["beauty", "depth"],
+//     "output": "out/{name}_{view}.png", "orbit": {"count": 16, "center": [0, 1, 0],
+//     "radius": 5, "height": 1, "from": -60, "to": 60}}, {"scenes": "scenes/fig0*.json", "output": "out/{name}.png"}]}
+// Paths are relative to the jobs file. Throws InputError naming the file and JSON path.
+std::vector<BatchJob> readJobsFile(const std::string& path);
+
+// One job per scene, every view into DIR/<scene stem>[_<view>].<ext>.
+std::vector<BatchJob> jobsForScenes(const std::vector<std::string>& scenes, const std::string& dir,
+                                    const std::vector<std::string>& overrides,
+                                    const std::vector<std::string>& views, const std::string& ext);
+
+// The jobs of shard `index` (0-based) of `count`: jobs in order, each to the shard
+// with the least estimated cost so far (ties to the lowest index), so appending
+// jobs never moves an earlier one.
+std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count);
+
+// "2/4" -> {1, 4} (1-based on the command line); throws InputError.
+std::pair<size_t, size_t> parseShard(const std::string& text);
+
+}  // namespace penumbra
