@@ -15,7 +15,7 @@ namespace penumbra {
 struct BatchCommand::Options {
   CLI::App* command = nullptr;
   std::vector<std::string> inputs, overrides;
-  std::string out, views = "beauty", format = "png", shard, listShard, mapCache = "4G";
+  std::string out, views, format = "png", shard, listShard, mapCache = "4G";
   int threads = 0;
   bool force = false, keepGoing = false, quiet = false;
 };
@@ -26,7 +26,7 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   CLI::App* c = o.command;
   c->add_option("inputs", o.inputs, "A jobs file (JSON with a \"jobs\" list, docs/batch.md) or scene files")->required();
   c->add_option("-o,--output", o.out, "Folder for the images of scene files given directly");
-  c->add_option("--views", o.views, "Views of scene files given directly, e.g. beauty,depth");
+  c->add_option("--views", o.views, "Views of scene files given directly, e.g. beauty,depth (default: each scene's render.aov)");
   c->add_option("--format", o.format, "Image format of scene files given directly: png or exr (several views: one layered exr)")
       ->check(CLI::IsMember({"png", "exr"}));
   c->add_option("--set", o.overrides, "Override a scene value in every job")->take_all()->allow_extra_args(false);
@@ -61,7 +61,7 @@ int BatchCommand::run() {
   } else {
     if (o.out.empty()) throw InputError("batch: -o DIR is required when scene files are given directly");
     std::filesystem::create_directories(o.out);
-    req.jobs = jobsForScenes(o.inputs, o.out, o.overrides, splitValues(o.views, "--views"), "." + o.format);
+    req.jobs = jobsForScenes(o.inputs, o.out, o.overrides, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
   }
   const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;
   if (!shardArg.empty()) {

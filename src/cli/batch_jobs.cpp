@@ -46,7 +46,9 @@ std::vector<BatchOutput> outputsFor(const std::string& pattern, const std::strin
     fail(file, where + ".output", "several views need {view} in the name, or one layered .exr");
   }
   std::vector<BatchOutput> out;
-  for (const std::string& v : views) out.push_back({v, replaceAll(replaceAll(pattern, "{name}", name), "{view}", v)});
+  for (const std::string& v : views) {
+    out.push_back({v, replaceAll(replaceAll(pattern, "{name}", name), "{view}", v.empty() ? "default" : v)});
+  }
   return out;
 }
 
@@ -96,7 +98,7 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
     std::vector<std::string> overrides = common;
     if (node.contains("set")) for (const std::string& s : stringList(node["set"], path, where + ".set")) overrides.push_back(s);
     const std::vector<std::string> views = node.contains("views") ? stringList(node["views"], path, where + ".views")
-                                                                  : std::vector<std::string>{"beauty"};
+                                                                  : std::vector<std::string>{""};
     if (views.empty()) fail(path, where + ".views", "must name at least one view");
     const std::string output = resolve(node["output"].get<std::string>());
     std::vector<std::string> scenes;

@@ -9,7 +9,7 @@
 namespace penumbra {
 
 struct BatchOutput {
-  std::string view;  // "beauty", "depth", ...
+  std::string view;  // "beauty", "depth", ...; "" = the scene's render.aov
   std::string path;  // an image file; several views may share one layered .exr
 };
 

@@ -88,7 +88,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
       p.inputs = sceneInputs(scene, p.job->scene);
       std::vector<OutputPath> outputs;
       for (const BatchOutput& o : p.job->outputs) {
-        parseAov(o.view);
+        parseAov(o.view.empty() ? scene.render.aov : o.view);
         bool seen = false;
         for (const OutputPath& q : outputs) seen = seen || q.path == o.path;
         if (!seen) outputs.push_back({o.path, "output", true});
@@ -153,7 +153,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
         bool shadows = false;
         for (const BatchOutput& o : p.job->outputs) {
           useSettings();
-          plans.push_back(makePlan(scene, parseAov(o.view)));
+          plans.push_back(makePlan(scene, parseAov(o.view.empty() ? p.render.aov : o.view)));
           needs |= photonNeeds(plans.back());
           applyPlan(plans.back(), scene);
           const PhotonSettings& v = scene.photons;
@@ -203,7 +203,8 @@ BatchOutcome runBatch(const BatchRequest& req) {
           frame.aov = plans[v].aov;
           frame.needs = photonNeeds(plans[v]);
           renderFrame(scene, a, stage, frame, result);
-          files[p.job->outputs[v].path].push_back({p.job->outputs[v].view, std::move(result.image)});
+          const std::string& view = p.job->outputs[v].view;
+          files[p.job->outputs[v].path].push_back({view.empty() ? p.render.aov : view, std::move(result.image)});
         }
         const ImageMetadata meta = {{"penumbra:job", p.stamp}, {"penumbra:scene_file", fs::path(p.job->scene).filename().string()}};
         for (auto& [path, layers] : files) {

@@ -1,0 +1,139 @@
+// penumbra batch against independent renders: every job's image equals a plain
+// runRender of the same scene and overrides, camera variants share one photon
+// build, layered EXRs hold every view, reruns skip up-to-date jobs, a failing job
+// does not stop the batch, and shards split jobs stably.
+#include "cli/batch_jobs.h"
+#include "cli/batch_run.h"
+#include "cli/pipeline.h"
+#include "core/error.h"
+#include "io/image_compare.h"
+#include "io/image_io.h"
+#include "support/cli_run.h"
+#include <gtest/gtest.h>
+#include <OpenImageIO/imageio.h>
+#include <filesystem>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kScenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/";
+
+fs::path writeJobs(const testing::ScratchDir& dir, const std::string& jobs) {
+  return dir.write("jobs.json", "{\"set\": [\"camera.width=40\", \"camera.height=30\", \"photons.indirect=20000\"], "
+                                "\"jobs\": [" + jobs + "]}");
+}
+
+TEST(Batch, CameraVariantsShareOnePhotonBuildAndMatchStandaloneRenders) {
+  testing::ScratchDir dir;
+  const fs::path jobsFile = writeJobs(dir, "{\"scene\": \"" + kScenes + "fig13_cornell_indirect.json\", "
+                                           "\"output\": \"out_{i}.exr\", \"orbit\": {\"count\": 3, \"center\": [0, 1, 0], "
+                                           "\"radius\": 2.5, \"height\": 0.2, \"from\": -20, \"to\": 20}}");
+  BatchRequest req;
+  req.jobs = readJobsFile(jobsFile.string());
+  req.threads = 2;
+  ASSERT_EQ(req.jobs.size(), 3u);
+  const BatchOutcome out = runBatch(req);
+  EXPECT_EQ(out.rendered, 3u);
+  EXPECT_EQ(out.photonBuilds, 1u);
+  EXPECT_EQ(out.photonReuses, 2u);
+  EXPECT_EQ(out.sceneBuilds, 1u);
+  EXPECT_EQ(out.jobs[1].reused, "scene+photons");
+  for (const BatchJob& job : req.jobs) {
+    RenderRequest alone;
+    alone.scenePath = job.scene;
+    alone.overrides = job.overrides;
+    alone.threads = 2;
+    alone.outputPath = (dir / ("alone_" + job.name + ".exr")).string();
+    runRender(alone);
+    const ImageError e = compareImages(readImage(job.outputs[0].path), readImage(alone.outputPath));
+    EXPECT_EQ(e.maxError, 0.0) << job.name;
+  }
+  // Unchanged jobs are skipped; --force renders them again.
+  const BatchOutcome again = runBatch(req);
+  EXPECT_EQ(again.upToDate, 3u);
+  EXPECT_EQ(again.rendered, 0u);
+  req.force = true;
+  EXPECT_EQ(runBatch(req).rendered, 3u);
+}
+
+TEST(Batch, SeveralViewsGoIntoOneLayeredExr) {
+  testing::ScratchDir dir;
+  const fs::path jobsFile = writeJobs(dir, "{\"scene\": \"" + kScenes + "fig03_shadows.json\", \"views\": "
+                                           "[\"beauty\", \"depth\", \"normal\"], \"output\": \"all.exr\"}");
+  BatchRequest req;
+  req.jobs = readJobsFile(jobsFile.string());
+  ASSERT_EQ(runBatch(req).rendered, 1u);
+  auto in = OIIO::ImageInput::open((dir / "all.exr").string());
+  ASSERT_TRUE(in);
+  const std::vector<std::string> expected = {"beauty.R", "beauty.G", "beauty.B", "depth.R", "depth.G", "depth.B",
+                                             "normal.R", "normal.G", "normal.B"};
+  EXPECT_EQ(in->spec().channelnames, expected);
+  // The beauty layer is the beauty render (first three channels).
+  RenderRequest alone;
+  alone.scenePath = kScenes + "fig03_shadows.json";
+  alone.overrides = req.jobs[0].overrides;
+  alone.outputPath = (dir / "beauty.exr").string();
+  runRender(alone);
+  EXPECT_EQ(compareImages(readImage((dir / "all.exr").string()), readImage(alone.outputPath)).maxError, 0.0);
+}
+
+TEST(Batch, ABadJobIsNamedOrSkippedWithKeepGoing) {
+  testing::ScratchDir dir;
+  const fs::path jobsFile =
+      writeJobs(dir, "{\"scene\": \"" + kScenes + "fig03_shadows.json\", \"output\": \"ok.png\"}, "
+                     "{\"name\": \"broken\", \"scene\": \"" + kScenes + "fig03_shadows.json\", \"set\": "
+                     "[\"render.max_depth=-1\"], \"output\": \"bad.png\"}");
+  BatchRequest req;
+  req.jobs = readJobsFile(jobsFile.string());
+  try {
+    runBatch(req);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("batch job 'broken' (jobs[1])"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir / "ok.png")) << "nothing renders before every job is checked";
+  req.keepGoing = true;
+  const BatchOutcome out = runBatch(req);
+  EXPECT_EQ(out.rendered, 1u);
+  EXPECT_EQ(out.failed, 1u);
+  EXPECT_EQ(out.jobs[1].status.rfind("failed", 0), 0u);
+}
+
+TEST(Batch, JobsFileErrorsNameTheJsonPath) {
+  testing::ScratchDir dir;
+  auto error = [&](const std::string& jobs) {
+    try {
+      readJobsFile(writeJobs(dir, jobs).string());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("{\"scene\": \"a.json\"}").find("jobs[0].output"), std::string::npos);
+  EXPECT_NE(error("{\"scene\": \"a.json\", \"output\": \"x.png\", \"views\": [\"beauty\", \"depth\"]}")
+                .find("several views need {view}"), std::string::npos);
+  EXPECT_NE(error("{\"scene\": \"a.json\", \"output\": \"x.png\", \"colour\": 1}").find("jobs[0].colour"),
+            std::string::npos);
+  EXPECT_NE(error("{\"scenes\": \"nothing*.json\", \"output\": \"x.png\"}").find("matches no file"), std::string::npos);
+}
+
+TEST(Batch, ShardsSplitByCostAndAppendingMovesNoJob) {
+  const std::vector<double> costs = {5, 1, 1, 1, 1, 1};
+  EXPECT_EQ(shardJobs(costs, 0, 2), (std::vector<size_t>{0}));
+  EXPECT_EQ(shardJobs(costs, 1, 2), (std::vector<size_t>{1, 2, 3, 4, 5}));
+  std::vector<double> more = costs;
+  more.push_back(2);
+  more.push_back(3);
+  for (size_t s = 0; s < 2; ++s) {
+    const auto before = shardJobs(costs, s, 2), after = shardJobs(more, s, 2);
+    EXPECT_TRUE(std::equal(before.begin(), before.end(), after.begin())) << "shard " << s;
+  }
+  EXPECT_EQ(parseShard("2/4"), (std::pair<size_t, size_t>{1, 4}));
+  EXPECT_THROW(parseShard("0/4"), InputError);
+  EXPECT_THROW(parseShard("5/4"), InputError);
+  EXPECT_THROW(parseShard("1/4x"), InputError);
+}
+
+}  // namespace
+}  // namespace penumbra
