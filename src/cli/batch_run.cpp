@@ -2,6 +2,7 @@
 // cached photon stages (LRU by bytes), its views rendered from the same maps.
 #include "cli/batch_run.h"
 #include "cli/output_safety.h"
+#include "cli/progress_line.h"
 #include "cli/render_frame.h"
 #include "cli/render_plan.h"
 #include "cli/reuse_key.h"
@@ -117,10 +118,8 @@ BatchOutcome runBatch(const BatchRequest& req) {
     Stopwatch jobClock;
     auto report = [&](const std::string& phase) {
       if (!req.progress) return;
-      const double elapsed = clock.seconds();
-      const std::string eta = done > 0 ? fmt::format("ETA {:.0f} s", elapsed / done * (prepared.size() - done)) : "ETA --";
-      req.progress(fmt::format("batch {}/{} | {} | {} | {:.0f} s elapsed, {}", done, prepared.size(), p.job->name,
-                               phase, elapsed, eta));
+      req.progress(progressLine("batch", done, prepared.size(), p.job->name, phase, clock.seconds(), done,
+                                prepared.size() - done));
     };
     if (!p.error.empty()) {
       r.status = "failed: " + p.error;

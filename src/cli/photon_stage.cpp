@@ -82,8 +82,7 @@ bool buildStage(Emission& e, const PhotonBudgets& wanted, bool consume, PhotonSt
   stage.emittedCaustic = b.caustic;
   // A prefix's own emission was not timed: charge it its share of the photons
   // (emission time is linear in the photons traced; docs/sweep.md).
-  const double full = double(e.budgets.shadow + e.budgets.indirect + e.budgets.global + e.budgets.caustic);
-  const double part = double(b.shadow + b.indirect + b.global + b.caustic);
+  const double full = double(e.budgets.total()), part = double(b.total());
   stage.emitSeconds = full > 0.0 ? e.seconds * part / full : e.seconds;
   stage.notes = e.notes;
   // Converts stored flux back into photon colour: emitted / (4 pi x summed intensity).

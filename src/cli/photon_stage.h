@@ -12,6 +12,7 @@
 #include "geometry/trace_scene.h"
 #include "cli/render_plan.h"
 #include "integrator/render.h"
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,14 @@ struct PhotonBudgets {
   uint64_t shadow = 0, indirect = 0, global = 0, caustic = 0;
   bool operator==(const PhotonBudgets& o) const {
     return shadow == o.shadow && indirect == o.indirect && global == o.global && caustic == o.caustic;
+  }
+  uint64_t total() const { return shadow + indirect + global + caustic; }
+  void maxWith(const PhotonBudgets& o) {
+    shadow = std::max(shadow, o.shadow); indirect = std::max(indirect, o.indirect);
+    global = std::max(global, o.global); caustic = std::max(caustic, o.caustic);
+  }
+  void writeTo(PhotonSettings& ps) const {
+    ps.shadowPhotons = shadow; ps.indirectPhotons = indirect; ps.globalPhotons = global; ps.causticPhotons = caustic;
   }
 };
 PhotonBudgets budgetsOf(const Scene& scene);

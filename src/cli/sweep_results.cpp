@@ -115,6 +115,14 @@ std::string csvLine(const SweepRow& r) {
   return joinCsv(c);
 }
 
+std::string resultsCsv(const std::vector<SweepKnob>& knobs, const std::vector<SweepRow>& rows) {
+  std::string text = joinCsv(csvHeader(knobs)) + "\n";
+  for (const SweepRow& r : rows) {
+    if (!r.id.empty()) text += csvLine(r) + "\n";
+  }
+  return text;
+}
+
 std::map<std::string, SweepRow> readFinishedRows(const std::string& path, const std::vector<SweepKnob>& knobs) {
   std::map<std::string, SweepRow> rows;
   std::ifstream in(path);

@@ -34,6 +34,8 @@ void fillCounts(SweepRow& row, const RenderStats& stats);
 // The CSV header for these knobs.
 std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs);
 std::string csvLine(const SweepRow& row);
+// The whole results.csv: the header and every finished row (rows with an id).
+std::string resultsCsv(const std::vector<SweepKnob>& knobs, const std::vector<SweepRow>& rows);
 
 // Rows of an earlier results.csv with the same header, by run id; an absent file
 // gives none. Throws InputError when the file exists but has another header.

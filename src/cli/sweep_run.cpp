@@ -3,6 +3,7 @@
 // from largest to smallest, and every run of a budget on the same maps.
 #include "cli/sweep_run.h"
 #include "cli/plot_script.h"
+#include "cli/progress_line.h"
 #include "cli/render_frame.h"
 #include "cli/reuse_key.h"
 #include "core/error.h"
@@ -45,11 +46,6 @@ struct GeometryGroup {
   bool built = false;
 };
 
-std::string duration(double s) {
-  const int t = static_cast<int>(s + 0.5);
-  return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60) : fmt::format("{}:{:02}", t / 60, t % 60);
-}
-
 class Sweep {
  public:
   explicit Sweep(const SweepRequest& request) : req_(request), spec_(request.spec) {}
@@ -63,7 +59,7 @@ class Sweep {
     std::map<std::string, SweepRow> finished;
     if (!req_.force) finished = readFinishedRows(csvPath_, spec_.knobs);
     plan(finished);
-    loadReference(finished);
+    loadReference();
     rows_.resize(spec_.runs.size());
     for (const PlannedRun& p : runs_) {
       if (p.done) { rows_[p.index] = finished[spec_.runs[p.index].id]; ++totals_.resumed; }
@@ -116,7 +112,7 @@ class Sweep {
     }
   }
 
-  void loadReference(const std::map<std::string, SweepRow>& finished) {
+  void loadReference() {
     if (!req_.referencePath.empty()) {
       reference_ = readImage(req_.referencePath);
       totals_.referenceNote = "`" + req_.referencePath + "` (given with --reference)";
@@ -130,7 +126,6 @@ class Sweep {
       reference_ = readImage(saved.string());
     } else {
       runs_[referenceRun_].done = false;
-      (void)finished;
     }
   }
 
@@ -178,27 +173,20 @@ class Sweep {
     for (size_t i : group) {
       needs |= runs_[i].needs;
       const PlannedRun& p = runs_[i];
-      top.shadow = std::max(top.shadow, p.budgets.shadow);
-      top.indirect = std::max(top.indirect, p.budgets.indirect);
-      top.global = std::max(top.global, p.budgets.global);
-      top.caustic = std::max(top.caustic, p.budgets.caustic);
+      top.maxWith(p.budgets);
       scene.photons.gate = scene.photons.gate || p.photons.gate;
       scene.render.shadows = scene.render.shadows || p.render.shadows;
       for (uint64_t b : {p.budgets.shadow, p.budgets.indirect, p.budgets.global, p.budgets.caustic}) smaller.push_back(b);
       if (std::find(budgets.begin(), budgets.end(), p.budgets) == budgets.end()) budgets.push_back(p.budgets);
     }
-    scene.photons.shadowPhotons = top.shadow;
-    scene.photons.indirectPhotons = top.indirect;
-    scene.photons.globalPhotons = top.global;
-    scene.photons.causticPhotons = top.caustic;
+    top.writeTo(scene.photons);
     status_ = "photons";
     showProgress();
     Emission emission = emitPhotonsFor(scene, *geo.assets.tracer, needs, 0, smaller);
     ++totals_.emissions;
     // The reference's budget first, then the largest to the smallest.
-    std::sort(budgets.begin(), budgets.end(), [](const PhotonBudgets& a, const PhotonBudgets& b) {
-      return a.shadow + a.indirect + a.global + a.caustic > b.shadow + b.indirect + b.global + b.caustic;
-    });
+    std::sort(budgets.begin(), budgets.end(),
+              [](const PhotonBudgets& a, const PhotonBudgets& b) { return a.total() > b.total(); });
     bool emissionCharged = false;
     for (const PhotonBudgets& b : budgets) {
       PhotonStage stage;
@@ -209,10 +197,7 @@ class Sweep {
       if (!buildStage(emission, b, false, stage)) {
         // Not a prefix of this emission (a light split that does not nest): emit it alone.
         Scene alone = scene;
-        alone.photons.shadowPhotons = b.shadow;
-        alone.photons.indirectPhotons = b.indirect;
-        alone.photons.globalPhotons = b.global;
-        alone.photons.causticPhotons = b.caustic;
+        b.writeTo(alone.photons);
         Emission own = emitPhotonsFor(alone, *geo.assets.tracer, needs, 0);
         ++totals_.emissions;
         buildStage(own, own.budgets, true, stage);
@@ -230,8 +215,7 @@ class Sweep {
         Reuse reuse;
         reuse.bvh = !usedGeometry_.insert(runs_[i].keys.geometry).second;
         reuse.maps = firstSpent == 0.0;
-        const PhotonBudgets& e = emission.budgets;
-        reuse.prefixOf = stage.fromPrefix ? e.shadow + e.indirect + e.global + e.caustic : 0;
+        reuse.prefixOf = stage.fromPrefix ? emission.budgets.total() : 0;
         renderRun(runs_[i], geo, *maps, bvh, firstSpent, reuse);
         firstSpent = 0.0;
       }
@@ -325,32 +309,15 @@ class Sweep {
     if (!note.empty()) notes_.push_back(note);
   }
 
-  void writeCsv() {
-    std::string text;
-    const std::vector<std::string> header = csvHeader(spec_.knobs);
-    for (size_t i = 0; i < header.size(); ++i) text += (i ? "," : "") + header[i];
-    text += "\n";
-    for (const SweepRow& r : rows_) {
-      if (!r.id.empty()) text += csvLine(r) + "\n";
-    }
-    writeTextFileAtomic(csvPath_, text);
-  }
+  void writeCsv() { writeTextFileAtomic(csvPath_, resultsCsv(spec_.knobs, rows_)); }
 
   void showProgress() {
     if (!req_.progress) return;
     size_t todo = 0, done = 0;
     for (const PlannedRun& p : runs_) (p.done ? done : todo) += 1;
-    done += finishedNow_;
-    const double elapsed = clock_.seconds();
-    std::string eta = "ETA --";
-    if (finishedNow_ > 0 && todo > finishedNow_) {
-      eta = "ETA " + duration(elapsed / finishedNow_ * (todo - finishedNow_));
-    } else if (todo == finishedNow_) {
-      eta = "done";
-    }
     const std::string id = current_ < spec_.runs.size() ? spec_.runs[current_].id : "";
-    req_.progress(fmt::format("sweep {}/{} | {} | {} | {} elapsed, {}", done, spec_.runs.size(), id, status_,
-                              duration(elapsed), eta));
+    req_.progress(progressLine("sweep", done + finishedNow_, spec_.runs.size(), id, status_, clock_.seconds(),
+                               finishedNow_, todo - finishedNow_));
   }
 
   const SweepRequest& req_;
