@@ -3,6 +3,7 @@
 // sphere straight above, the emitter seen by the camera on its emitting side only,
 // photons that leave from the surface into its hemisphere, and byte-identical
 // renders at 1 and 2 threads in both models.
+#include "support/form_factor.h"
 #include "cli/pipeline.h"
 #include "core/error.h"
 #include "core/light_sample.h"
@@ -15,21 +16,7 @@
 namespace penumbra {
 namespace {
 
-// Form factor from a point to a rectangle [0,a] x [0,b] in a parallel plane at
-// distance c, the point below the corner (Howell's catalogue, configuration B-3).
-double cornerFactor(double a, double b, double c) {
-  const double A = a / c, B = b / c, sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
-  return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2.0 * kPiD);
-}
-double signedCorner(double x, double z, double c) {
-  const double s = (x < 0 ? -1.0 : 1.0) * (z < 0 ? -1.0 : 1.0);
-  return s * cornerFactor(std::abs(x), std::abs(z), c);
-}
-// The rectangle [x0,x1] x [z0,z1] (relative to the point) by inclusion-exclusion.
-double rectFactor(double x0, double x1, double z0, double z1, double c) {
-  return signedCorner(x1, z1, c) - signedCorner(x0, z1, c) - signedCorner(x1, z0, c) +
-         signedCorner(x0, z0, c);
-}
+using testing::rectFactor;
 
 Light quadLight(Vec3 corner, Vec3 e1, Vec3 e2, Color colour, float radiance) {
   Light l;

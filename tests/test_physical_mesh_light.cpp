@@ -2,6 +2,7 @@
 // triangles against the equivalent quad light and the analytic form factor, its
 // power pi A L, photons from uniform points in cosine directions, and its surface
 // seen by camera rays on the emitting side only.
+#include "support/form_factor.h"
 #include "core/light_sample.h"
 #include "core/mesh_light.h"
 #include "io/scene_sections.h"
@@ -10,20 +11,7 @@
 namespace penumbra {
 namespace {
 
-// Form factor from a point to a rectangle [0,a] x [0,b] in a parallel plane at
-// distance c, the point below the corner (Howell's catalogue, configuration B-3).
-double cornerFactor(double a, double b, double c) {
-  const double A = a / c, B = b / c, sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
-  return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2.0 * kPiD);
-}
-double signedCorner(double x, double z, double c) {
-  const double s = (x < 0 ? -1.0 : 1.0) * (z < 0 ? -1.0 : 1.0);
-  return s * cornerFactor(std::abs(x), std::abs(z), c);
-}
-double rectFactor(double x0, double x1, double z0, double z1, double c) {
-  return signedCorner(x1, z1, c) - signedCorner(x0, z1, c) - signedCorner(x1, z0, c) +
-         signedCorner(x0, z0, c);
-}
+using testing::rectFactor;
 
 constexpr float kA = 1.0f, kB = 0.8f, kH = 1.2f, kL = 3.0f;
 const Color kColour(1.0f, 0.9f, 0.7f);
