@@ -2,6 +2,7 @@
 // path, not a stream), then the mesh invariants loadObj documents.
 // Input: OBJ text, optionally followed by "\n#mtl\n" and the text of fuzz.mtl.
 #include "io/obj_loader.h"
+#include "fuzz_scratch.h"
 
 #include <unistd.h>
 
@@ -21,45 +22,7 @@ namespace fs = std::filesystem;
 // material parser is on loadObj's path too.
 constexpr const char kMtlMarker[] = "\n#mtl\n";
 
-// RAM-backed when possible: on ext4, rewriting a truncated file flushes it on
-// close (auto_da_alloc), which cut the run to ~200 inputs/s.
-fs::path scratchRoot() {
-  std::error_code ec;
-  if (std::getenv("TMPDIR") == nullptr && fs::is_directory("/dev/shm", ec)) return "/dev/shm";
-  return fs::temp_directory_path();
-}
-
-// One private folder per process (libFuzzer -jobs/-fork run several at once),
-// removed at exit. Files are unlinked and recreated, never truncated in place.
-class Scratch {
- public:
-  Scratch() {
-    std::string pattern = (scratchRoot() / "penumbra_fuzz_obj.XXXXXX").string();
-    if (!mkdtemp(pattern.data())) {
-      std::perror("fuzz_obj_loader: mkdtemp");
-      std::abort();
-    }
-    dir_ = pattern;
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const char* name, const std::string& text) const {
-    std::string path = (dir_ / name).string();
-    ::unlink(path.c_str());
-    std::ofstream out(path, std::ios::binary);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!out) {
-      std::fprintf(stderr, "fuzz_obj_loader: cannot write %s\n", path.c_str());
-      std::abort();
-    }
-    return path;
-  }
-
- private:
-  fs::path dir_;
-};
+using penumbra_fuzz::Scratch;
 
 [[noreturn]] void broken(const char* what) {
   std::fprintf(stderr, "fuzz_obj_loader: invariant broken: %s\n", what);
