@@ -9,11 +9,13 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/report_json.h"
+#include "io/suggest.h"
 #include "io/temp_file.h"
 #include "io/texture_gen.h"
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <charconv>
+#include <filesystem>
 #include <iostream>
 
 using namespace penumbra;
@@ -114,6 +116,8 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
 int main(int argc, char** argv) {
   CLI::App app{"penumbra: a CPU photon-mapping renderer (Whitted core + shadow and indirect photon maps)"};
   app.require_subcommand(1);
+  app.footer("Exit codes: 0 done; 1 internal error (a bug: please report it); 2 bad input or a job refused "
+             "before any work (one line says which file, JSON path and problem).");
   app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION);
 
   RenderRequest req;
@@ -122,18 +126,19 @@ int main(int argc, char** argv) {
   std::string seedArg, maxMemoryArg;
   std::optional<int> spp;
   CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
-  render->add_option("scene", req.scenePath, "Scene file (JSON, see docs/scene-format.md)")->required();
-  render->add_option("-o,--output", req.outputPath,
+  render->add_option("scene", req.scenePath, "Scene file (JSON, .gltf or .glb; - reads JSON from stdin)")->required();
+  render->add_option("-o,--output,--outfile", req.outputPath,
                      "Output image: .png (8-bit sRGB) or .exr (linear half); with --trace-pixel, "
                      "the JSON file (default stdout)");
-  render->add_option("--threads", req.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  render->add_option("-t,--threads,--nthreads", req.threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024));
   render->add_option("--seed", seedArg, "Random seed, 0..2^64-1 (overrides render.seed)");
   render->add_option("--max-memory", maxMemoryArg,
                      "Refuse (exit 2) a render estimated to need more, e.g. 8G, 512M (default: "
                      "the memory available when it starts)");
   render->add_option("--spp", spp, "Samples per pixel (overrides camera.spp)")->check(CLI::Range(1, 4096));
-  render->add_option("--set", req.overrides,
-                     "Override a scene value, e.g. --set render.max_depth=8 --set objects[0].radius=2")
+  render->add_option("-D,--set", req.overrides,
+                     "Override a scene value, e.g. --set render.max_depth=8 -D objects[0].radius=2")
       ->take_all()
       ->allow_extra_args(false);
   render->add_option("--stats", statsPath, "Write render statistics as JSON to this file");
@@ -159,12 +164,28 @@ int main(int argc, char** argv) {
 
   SweepCommand sweep(app);
   PlanCommand plan(app);
+  CheckCommand check(app);
   BatchCommand batch(app);
 
   // From here on an interrupt removes our temp files, never an old output.
   installTempFileCleanup();
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ExtrasError& e) {
+    // An unknown option: name the closest one the subcommand has.
+    for (CLI::App* sub : app.get_subcommands()) {
+      for (const std::string& extra : sub->remaining()) {
+        if (extra.rfind("-", 0) != 0) continue;
+        std::vector<std::string> names;
+        for (const CLI::Option* o : sub->get_options()) {
+          for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+        }
+        std::cerr << "penumbra " << sub->get_name() << ": unknown option '" << extra << "'"
+                  << didYouMean(extra.substr(0, extra.find('=')), names) << "\n";
+        return 2;
+      }
+    }
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : 2;
@@ -173,6 +194,10 @@ int main(int argc, char** argv) {
   try {
     if (*render) {
       if (req.outputPath.empty() && tracePixelArg.empty()) throw InputError("render: -o OUT is required");
+      const std::string ext = std::filesystem::path(req.outputPath).extension().string();
+      if (!tracePixelArg.empty() && (ext == ".png" || ext == ".exr")) {
+        throw InputError("--trace-pixel writes JSON, not an image: give -o a .json path (got '" + req.outputPath + "')");
+      }
       checkOverrides(req.overrides);
       req.plan = passOverrides(enablePasses, disablePasses);
       if (!maxMemoryArg.empty()) req.maxMemoryBytes = parseMemorySize(maxMemoryArg);
@@ -184,6 +209,7 @@ int main(int argc, char** argv) {
     }
     if (sweep.selected()) return sweep.run();
     if (plan.selected()) return plan.run();
+    if (check.selected()) return check.run();
     if (batch.selected()) return batch.run();
     if (*texture) {
       writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),

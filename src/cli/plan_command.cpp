@@ -44,4 +44,22 @@ int PlanCommand::run() {
   return 0;
 }
 
+CheckCommand::CheckCommand(CLI::App& app) {
+  command_ = app.add_subcommand("check", "Validate scene files (every value, mesh and texture) without rendering");
+  command_->add_option("scenes", scenes_, "Scene files")->required();
+  command_->add_option("-D,--set", overrides_, "Override a scene value")->take_all()->allow_extra_args(false);
+}
+
+int CheckCommand::run() {
+  for (const std::string& path : scenes_) {
+    const Scene s = loadScene(path, overrides_);
+    size_t triangles = 0;
+    for (const TriangleMesh& m : s.meshes) triangles += m.triangles.size();
+    std::cout << path << ": ok (" << (s.render.model == ShadingModel::Physical ? "physical" : "classic") << ", "
+              << s.meshes.size() << " meshes with " << triangles << " triangles, " << s.spheres.size()
+              << " spheres, " << s.lights.size() << " lights, " << s.materials.size() << " materials)\n";
+  }
+  return 0;
+}
+
 }  // namespace penumbra

@@ -1,4 +1,5 @@
-// `penumbra plan SCENE`: prints the render plan without rendering, and the
+// `penumbra plan SCENE` and `penumbra check SCENE`: the plan, or a validation,
+// without rendering; and the
 // --enable / --disable PASS options that render and plan share.
 #pragma once
 #include "cli/render_plan.h"
@@ -24,6 +25,19 @@ class PlanCommand {
   std::string scene_, aov_;
   std::vector<std::string> overrides_, enable_, disable_;
   bool json_ = false;
+};
+
+// `penumbra check SCENE`: loads and validates (textures included) without
+// rendering; one line per scene, exit 2 on the first bad one.
+class CheckCommand {
+ public:
+  explicit CheckCommand(CLI::App& app);
+  bool selected() const { return command_->parsed(); }
+  int run();
+
+ private:
+  CLI::App* command_ = nullptr;
+  std::vector<std::string> scenes_, overrides_;
 };
 
 }  // namespace penumbra

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 namespace penumbra {
@@ -139,6 +140,12 @@ Scene parseScene(const std::string& jsonText, const std::string& fileName,
 }
 
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  // "-": the JSON comes from stdin; relative paths in it resolve against the working folder.
+  if (path == "-") {
+    std::stringstream text;
+    text << std::cin.rdbuf();
+    return parseScene(text.str(), "<stdin>", overrides);
+  }
   if (!isGltfPath(path)) return parseScene(readText(path), path, overrides);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throwInputError(path + ": cannot open scene file");
