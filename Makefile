@@ -10,7 +10,7 @@ PKGS := cmake ninja-build g++ pkg-config libtbb-dev libembree-dev libglm-dev \
         fonts-dejavu-core python3 python3-matplotlib
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build renderer render test bench scaling bench-profile gallery \
+.PHONY: all deps configure build renderer render test bench scaling bench-profile gallery gallery-docs \
         convergence clean san-deps fuzz test-asan test-tsan
 all: build
 
@@ -81,8 +81,12 @@ scaling: build
 bench-profile: build
 	scripts/profile_render.py $(BUILD) $(RESULTS)/profile
 
+# Writes only into out/gallery; gallery-docs also refreshes the images and table in docs/.
 gallery: renderer
 	scripts/gallery.sh $(BUILD)/penumbra $(OUT)/gallery
+
+gallery-docs: renderer
+	scripts/gallery.sh $(BUILD)/penumbra $(OUT)/gallery --docs
 
 # Error against time of the physical model on the convergence scene (docs/PERFORMANCE.md).
 convergence: renderer

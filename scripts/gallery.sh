@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Renders every scene in scenes/ into OUT, composes a labelled contact sheet
-# with OpenImageIO's oiiotool, and regenerates docs/gallery.md from the stats.
-# Usage: scripts/gallery.sh PENUMBRA_BINARY OUT_DIR
+# with OpenImageIO's oiiotool, and writes gallery.md from the stats, all in OUT;
+# with --docs it also refreshes docs/showcase.png, docs/contact_sheet.png and
+# docs/gallery.md (make gallery-docs), without machine paths in their metadata.
+# Usage: scripts/gallery.sh PENUMBRA_BINARY OUT_DIR [--docs]
 set -euo pipefail
 bin=${1:?usage: gallery.sh PENUMBRA OUT}
 out=${2:?usage: gallery.sh PENUMBRA OUT}
+docs=${3:-}
 root=$(cd "$(dirname "$0")/.." && pwd)
 font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
 mkdir -p "$out"
@@ -30,8 +33,13 @@ oiiotool "${tiles[@]}" --mosaic:pad=4 ${cols}x${rows} -o "$out/contact_sheet.png
 rm -f "${tiles[@]}"
 echo "contact sheet: $out/contact_sheet.png" >&2
 
-# Small copies for the docs (the README shows the showcase).
-oiiotool "$out/showcase.png" --resize 480x300 -o "$root/docs/showcase.png"
-oiiotool "$out/contact_sheet.png" --resize 50% -o "$root/docs/contact_sheet.png"
-python3 "$root/scripts/gallery_md.py" "$out" > "$root/docs/gallery.md"
-echo "docs/gallery.md updated" >&2
+python3 "$root/scripts/gallery_md.py" "$out" > "$out/gallery.md"
+echo "gallery: $out/gallery.md" >&2
+[ "$docs" = "--docs" ] || exit 0
+
+# Small copies for the docs (the README shows the showcase); the scene file's
+# path is this machine's, so it stays out of committed images.
+oiiotool --nosoftwareattrib "$out/showcase.png" --eraseattrib "penumbra:scene_file" --resize 480x300 -o "$root/docs/showcase.png"
+oiiotool --nosoftwareattrib "$out/contact_sheet.png" --eraseattrib "penumbra:scene_file" --resize 50% -o "$root/docs/contact_sheet.png"
+cp "$out/gallery.md" "$root/docs/gallery.md"
+echo "docs/showcase.png, docs/contact_sheet.png, docs/gallery.md updated" >&2
