@@ -190,4 +190,17 @@ TEST(TextureFormats, SixteenBitAndGreyAlphaAreLinearisedGrey) {
   fs::remove_all(dir);
 }
 
+// uv_scale repeats the texture: scaled by (2, 3), the cell at uv is the unscaled
+// cell at (2u mod 1, 3v mod 1), and v wraps instead of clamping at the pole.
+TEST_F(TextureLookupTest, UvScaleRepeatsTheTexture) {
+  SurfaceRecord s;
+  s.uvPerWorld = sphericalUvPerWorld(1.0f);
+  for (Vec2 uv : {Vec2(1.0f / 32, 1.0f / 24), Vec2(0.3f, 0.45f), Vec2(0.61f, 0.9f), Vec2(0.97f, 0.7f)}) {
+    s.uv = uv;
+    const Color scaled = lookup_->lookup(0, s, 1e-5f, Vec2(2.0f, 3.0f));
+    const Vec2 wrapped(std::fmod(2.0f * uv.x, 1.0f), std::fmod(3.0f * uv.y, 1.0f));
+    expectColor(scaled, sample(0, wrapped), 1e-3f, "repeated cell");
+  }
+}
+
 }  // namespace penumbra

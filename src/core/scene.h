@@ -59,6 +59,7 @@ struct Material {
   float pR = 0.0f;   // photon Russian roulette: reflect with pR,
   float pT = 0.0f;   // transmit with pT, absorb otherwise
   int texture = -1;  // index into Scene::textures, -1 = none
+  Vec2 uvScale{1.0f};  // texture repeats in (u, v); v wraps too when it is not 1
   TextureBlend textureBlend = TextureBlend::Multiply;
   // An area light's own surface: the radiance camera and specular rays see on its
   // emitting side (the light's sampling accounts for it everywhere else).

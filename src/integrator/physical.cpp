@@ -82,7 +82,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   Bsdf bsdf = makeBsdf(m, ShadingModel::Physical, ctx.scene.photons.sampling);
   if (m.texture >= 0 && ctx.textures) {
     // A texture is the diffuse albedo's map: multiplied in, or added and kept <= 1.
-    Color texel = ctx.textures->lookup(m.texture, s, hit.t * ctx.pixelSpread);
+    Color texel = ctx.textures->lookup(m.texture, s, hit.t * ctx.pixelSpread, m.uvScale);
     bsdf.diffuse = m.textureBlend == TextureBlend::Multiply
                        ? bsdf.diffuse * texel
                        : glm::min(bsdf.diffuse + texel, Color(1.0f) - bsdf.specular);

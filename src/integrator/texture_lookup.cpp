@@ -49,16 +49,18 @@ TextureLookup::TextureLookup(const std::vector<std::string>& paths) : impl_(std:
 
 TextureLookup::~TextureLookup() { OIIO::TextureSystem::destroy(impl_->system); }
 
-Color TextureLookup::lookup(int index, const SurfaceRecord& s, float footprint) const {
+Color TextureLookup::lookup(int index, const SurfaceRecord& s, float footprint, Vec2 uvScale) const {
   const Impl::Entry& e = impl_->entries[index];
   OIIO::TextureOpt opt;
   opt.swrap = OIIO::TextureOpt::WrapPeriodic;  // longitude wraps across the seam
-  opt.twrap = OIIO::TextureOpt::WrapClamp;     // latitude stops at the poles
-  float du = footprint * s.uvPerWorld.x;
-  float dv = footprint * s.uvPerWorld.y;
+  // Latitude stops at the poles, unless the texture repeats in v.
+  opt.twrap = uvScale.y == 1.0f ? OIIO::TextureOpt::WrapClamp : OIIO::TextureOpt::WrapPeriodic;
+  float du = footprint * s.uvPerWorld.x * uvScale.x;
+  float dv = footprint * s.uvPerWorld.y * uvScale.y;
   float v[3] = {1.0f, 0.0f, 1.0f};
   auto* perthread = impl_->system->get_perthread_info();
-  impl_->system->texture(e.handle, perthread, opt, s.uv.x, s.uv.y, du, 0.0f, 0.0f, dv, e.channels, v);
+  impl_->system->texture(e.handle, perthread, opt, s.uv.x * uvScale.x, s.uv.y * uvScale.y, du, 0.0f, 0.0f, dv,
+                         e.channels, v);
   Color c = e.channels == 3 ? Color(v[0], v[1], v[2]) : Color(v[0]);
   // Filtering happens on the stored (encoded) values; decoding afterwards is the
   // usual approximation and exact wherever the footprint covers one texel.

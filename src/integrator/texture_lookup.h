@@ -15,7 +15,9 @@ class TextureLookup {
   ~TextureLookup();
   // Linear RGB of texture `index` at the surface's uv; `footprint` is the world
   // width the pixel covers there, turned into a filter width in uv.
-  Color lookup(int index, const SurfaceRecord& s, float footprint) const;
+  // `uvScale` repeats the texture (material uv_scale); v wraps instead of clamping
+  // when it is not 1.
+  Color lookup(int index, const SurfaceRecord& s, float footprint, Vec2 uvScale = Vec2(1.0f)) const;
 
  private:
   struct Impl;

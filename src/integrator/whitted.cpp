@@ -82,7 +82,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   float footprint = cone + hit.t * ctx.pixelSpread;
 
   Color texel(1.0f);
-  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint);
+  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvScale);
 
   // Local shading records its gate notes into this ray's record; fetch the
   // pointer after children may have grown the vector, never hold it across.

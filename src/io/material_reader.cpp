@@ -24,7 +24,20 @@ constexpr const char* kBuiltinPrefix = "builtin:";
 using TextureIndex = std::unordered_map<std::string, int>;
 
 int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureIndex& index) {
-  node.allowKeys({"file", "blend"});
+  node.allowKeys({"file", "blend", "uv_scale"});
+  // Repeats across (u, v): a number for both, or [u, v].
+  if (node.has("uv_scale")) {
+    const JsonNode scale = node.child("uv_scale");
+    const Range positive = Range::above(0.0);
+    if (scale.value().is_number()) {
+      material.uvScale = Vec2(scale.asFloat(positive));
+    } else if (scale.arraySize() == 2) {
+      material.uvScale = Vec2(scale.element(0).asFloat(positive), scale.element(1).asFloat(positive));
+    } else {
+      scale.fail("must be a number or [u, v]");
+    }
+    if (material.uvScale.x > 1e6f || material.uvScale.y > 1e6f) scale.fail("must be <= 1e6");
+  }
   JsonNode fileNode = node.required("file", " (an image path or \"builtin:NAME\")");
   std::string file = fileNode.asString();
   if (file.empty()) fileNode.fail("must not be empty");

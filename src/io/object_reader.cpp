@@ -56,12 +56,27 @@ class MaterialLookup {
   std::vector<std::string> names_;
 };
 
+// A number, or [s, s, s]: a sphere scales uniformly (it has no other shape to keep).
+float uniformScale(const JsonNode& node) {
+  if (node.value().is_number()) return node.asFloat(Range::above(0.0));
+  const Vec3 v = node.asVec3();
+  if (!(v.x > 0.0f) || v.x != v.y || v.x != v.z) node.fail("a sphere scales uniformly: one number > 0");
+  return v.x;
+}
+
 Sphere readSphere(const JsonNode& node) {
-  node.allowKeys({"type", "center", "radius", "material"});
+  node.allowKeys({"type", "center", "radius", "material", "translate", "scale"});
   Sphere s;
   s.center = readPosition(node.required("center", " for a sphere"));
   JsonNode radius = node.required("radius", " for a sphere");
   s.radius = radius.asFloat(Range::above(0.0));
+  // Like a mesh's transform: scale about the origin, then translate.
+  if (node.has("scale")) {
+    const float k = uniformScale(node.child("scale"));
+    s.center *= k;
+    s.radius *= k;
+  }
+  if (node.has("translate")) s.center += node.child("translate").asVec3();
   checkPositions(radius, {s.center - Vec3(s.radius), s.center + Vec3(s.radius)},
                  "center +- radius");
   return s;
