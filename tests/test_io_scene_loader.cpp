@@ -329,7 +329,7 @@ TEST(SceneLoader, MalformedScenesFailWithPreciseMessages) {
       {"fov_range.json", ": camera.fov: must be > 0 and < 180, got 180"},
       {"spp_range.json", ": camera.spp: must be between 1 and 4096, got 0"},
       {"vector_arity.json", ": camera.position: must be an array of 3 numbers [x, y, z]"},
-      {"sphere_with_transform.json", ": objects[0].translate: unknown key"},
+      {"sphere_with_rotate.json", ": objects[0].rotate: unknown key"},
       {"teapot_subdivisions.json", ": objects[0].subdivisions: must be between 1 and 128, got 0"},
       {"null_value.json", ": camera.position: must be an array of 3 numbers [x, y, z], got null"},
       {"photon_count.json", ": photons.shadow: must be between 0 and 1000000000, got 1e+12"},
