@@ -152,6 +152,11 @@ int main(int argc, char** argv) {
   render->add_flag("-q,--quiet", quiet, "No progress bar and no summary on stderr");
   std::vector<std::string> enablePasses, disablePasses;
   addPassOptions(*render, enablePasses, disablePasses);
+  std::string toneArg;
+  render->add_option("--exposure", req.display.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
+      ->check(CLI::Range(-64.0, 64.0));
+  render->add_option("--tonemap", toneArg, "PNG tone curve: clamp (default), reinhard or filmic; EXR stays linear")
+      ->check(CLI::IsMember({"clamp", "reinhard", "filmic"}));
 
   std::string textureName, textureOut;
   int textureWidth = 2048;
@@ -200,6 +205,7 @@ int main(int argc, char** argv) {
       }
       checkOverrides(req.overrides);
       req.plan = passOverrides(enablePasses, disablePasses);
+      if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
       if (!maxMemoryArg.empty()) req.maxMemoryBytes = parseMemorySize(maxMemoryArg);
       if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));

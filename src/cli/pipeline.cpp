@@ -112,7 +112,7 @@ RenderResult runRender(const RenderRequest& request) {
 
   if (!request.outputPath.empty() && !request.tracePixel) {
     phase = Stopwatch();
-    writeImage(request.outputPath, result.image, describe(scene, stats, aovName));
+    writeImage(request.outputPath, result.image, describe(scene, stats, aovName), request.display);
     stats.time.write = phase.seconds();
   }
   stats.time.total = total.seconds();

@@ -2,6 +2,7 @@
 #pragma once
 #include "cli/render_plan.h"
 #include "cli/resource_estimate.h"
+#include "io/tone_map.h"
 #include "core/image.h"
 #include "core/ray_record.h"
 #include "core/stats.h"
@@ -26,6 +27,7 @@ struct RenderRequest {
   std::vector<std::string> statsPaths;
   uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available when it starts
   PlanOverrides plan;  // --enable / --disable PASS
+  DisplayOptions display;  // --exposure, --tonemap (PNG only)
   // Told before the photons start, e.g. that the job is estimated to take hours.
   std::function<void(const std::string& note)> notice;
 };

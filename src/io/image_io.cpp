@@ -127,7 +127,8 @@ void checkImageOutputPath(const std::string& path) {
   if (fs::is_directory(target, ec)) writeFailed(path, "it is a directory");
 }
 
-void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata) {
+void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata,
+                const DisplayOptions& display) {
   checkImageOutputPath(path);
   fs::path target(path);
   Encoding encoding = OIIO::Strutil::lower(target.extension().string()) == ".png" ? Encoding::Srgb8
@@ -147,9 +148,14 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
   if (encoding == Encoding::Srgb8) {
     spec = OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
+    // Only when asked for: a default PNG keeps today's bytes, metadata included.
+    if (display.tone != ToneMap::Clamp || display.exposure != 0.0f) {
+      spec.attribute("penumbra:tonemap", toneMapName(display.tone));
+      spec.attribute("penumbra:exposure", display.exposure);
+    }
     bytes.resize(count);
     for (size_t i = 0; i < image.pixels.size(); ++i)
-      for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = toSrgb8(image.pixels[i][c]);
+      for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = toSrgb8(displayValue(image.pixels[i][c], display));
     pixels = bytes.data();
     pixelType = OIIO::TypeDesc::UINT8;
   } else {

@@ -2,6 +2,7 @@
 // chosen by extension, via a temporary file renamed into place.
 #pragma once
 #include "core/image.h"
+#include "io/tone_map.h"
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,8 +15,10 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 // an existing, writable directory: lets a render fail before it starts.
 void checkImageOutputPath(const std::string& path);
 
-// Throws InputError for an unsupported extension or an unwritable path.
-void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {});
+// Throws InputError for an unsupported extension or an unwritable path. `display`
+// (exposure, tone curve) applies to PNG only: EXR keeps the linear values.
+void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {},
+                const DisplayOptions& display = {});
 
 // Several views of one render in one EXR: layer NAME's channels are NAME.R, NAME.G,
 // NAME.B (linear half). Same checks and temp-file write as writeImage.
