@@ -18,17 +18,6 @@ namespace {
 
 using testing::rectFactor;
 
-Light quadLight(Vec3 corner, Vec3 e1, Vec3 e2, Color colour, float radiance) {
-  Light l;
-  l.type = LightType::Quad;
-  l.position = corner;
-  l.edge1 = e1;
-  l.edge2 = e2;
-  l.color = colour;
-  l.intensity = radiance;
-  return l;
-}
-
 TEST(AreaLight, QuadIrradianceOnAParallelPlaneMatchesTheFormFactor) {
   // A 1.0 x 0.8 quad light of radiance L at height 1.2, emitting downwards, over a
   // Lambert plane (rho 0.5): L_out = rho L F. Tolerance 1% (the issue's), with 1024

@@ -29,14 +29,7 @@ Scene planeUnder(bool meshEmitter) {
     scene.materials.push_back(glow);
     scene.meshes.push_back(makeQuad(kCorner, kE1, kE2, 1));
   } else {
-    Light l;
-    l.type = LightType::Quad;
-    l.position = kCorner;
-    l.edge1 = kE1;
-    l.edge2 = kE2;
-    l.color = kColour;
-    l.intensity = kL;
-    scene.lights.push_back(l);
+    scene.lights.push_back(quadLight(kCorner, kE1, kE2, kColour, kL));
   }
   addEmitters(scene);
   addMeshEmitters(scene);

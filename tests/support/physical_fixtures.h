@@ -46,4 +46,16 @@ inline Color trace(const Rig& rig, const Ray& ray, uint8_t terms) {
 
 inline double rel(double got, double want) { return std::abs(got - want) / std::abs(want); }
 
+// A one-sided quad light (emitting towards e1 x e2) of uniform radiance colour x radiance.
+inline Light quadLight(Vec3 corner, Vec3 e1, Vec3 e2, Color colour, float radiance) {
+  Light l;
+  l.type = LightType::Quad;
+  l.position = corner;
+  l.edge1 = e1;
+  l.edge2 = e2;
+  l.color = colour;
+  l.intensity = radiance;
+  return l;
+}
+
 }  // namespace penumbra
