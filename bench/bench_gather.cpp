@@ -36,9 +36,9 @@ void boxSurfacePoint(Rng& rng, Vec3& p, Vec3& n) {
 
 // Shadow photons: a square "occluder shadow" in the middle of the floor and the back
 // wall, everything else lit, so queries see lit, shadowed and edge regions.
-std::vector<ShadowPhoton> shadowPhotons(size_t count) {
+PhotonArray<ShadowPhoton> shadowPhotons(size_t count) {
   Rng rng(12345);
-  std::vector<ShadowPhoton> out(count);
+  PhotonArray<ShadowPhoton> out(count);
   for (ShadowPhoton& ph : out) {
     Vec3 n;
     boxSurfacePoint(rng, ph.position, n);
@@ -50,9 +50,9 @@ std::vector<ShadowPhoton> shadowPhotons(size_t count) {
   return out;
 }
 
-std::vector<IndirectPhoton> indirectPhotons(size_t count) {
+PhotonArray<IndirectPhoton> indirectPhotons(size_t count) {
   Rng rng(777);
-  std::vector<IndirectPhoton> out(count);
+  PhotonArray<IndirectPhoton> out(count);
   for (IndirectPhoton& ph : out) {
     Vec3 n;
     boxSurfacePoint(rng, ph.position, n);
@@ -166,13 +166,13 @@ MapKey keyOf(const benchmark::State& st) {
 }
 
 void BM_BuildShadow(benchmark::State& state) {
-  const std::vector<ShadowPhoton> src = shadowPhotons(static_cast<size_t>(state.range(0)));
+  const PhotonArray<ShadowPhoton> src = shadowPhotons(static_cast<size_t>(state.range(0)));
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                             static_cast<size_t>(state.range(3)));
   size_t bytes = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    std::vector<ShadowPhoton> copy = src;
+    PhotonArray<ShadowPhoton> copy = src;
     ShadowPhotonMap map;
     state.ResumeTiming();
     map.build(std::move(copy), 1, {state.range(1) != 0, static_cast<size_t>(state.range(2))});

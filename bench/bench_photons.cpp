@@ -42,8 +42,8 @@ void BM_BuildMapsCornell(benchmark::State& state) {
   PhotonMaps maps = emitPhotons(scene, tracer);
   for (auto _ : state) {
     state.PauseTiming();
-    std::vector<ShadowPhoton> shadow = maps.shadow;
-    std::vector<IndirectPhoton> indirect = maps.indirect;
+    PhotonArray<ShadowPhoton> shadow = maps.shadow;
+    PhotonArray<IndirectPhoton> indirect = maps.indirect;
     ShadowPhotonMap shadowMap;
     IndirectPhotonMap indirectMap;
     state.ResumeTiming();
@@ -77,8 +77,8 @@ void BM_MergeCornell(benchmark::State& state) {
     auto shadow = filledBatches<ShadowPhoton>(4'760'000, 4'760'000 / 1221);
     auto indirect = filledBatches<IndirectPhoton>(6'990'000, 6'990'000 / 1221);
     state.ResumeTiming();
-    std::vector<ShadowPhoton> s = shadow.merge();
-    std::vector<IndirectPhoton> i = indirect.merge();
+    PhotonArray<ShadowPhoton> s = shadow.merge();
+    PhotonArray<IndirectPhoton> i = indirect.merge();
     benchmark::DoNotOptimize(s.data());
     benchmark::DoNotOptimize(i.data());
     state.PauseTiming();  // freeing the 263 MB is not the merge's

@@ -51,13 +51,13 @@ double nsPerQuery(const std::vector<Vec3>& points, int threads, Query query, int
 // same photons, KNNResultSet queries of the same k at every 4th of the same points (in
 // order), one pass: no parts, no hints. 2-3x slower than the facade, so kept short.
 struct Cloud {
-  const std::vector<IndirectPhoton>* photons;
+  const PhotonArray<IndirectPhoton>* photons;
   size_t kdtree_get_point_count() const { return photons->size(); }
   float kdtree_get_pt(size_t i, size_t dim) const { return (&(*photons)[i].position.x)[dim]; }
   template <class BBox>
   bool kdtree_get_bbox(BBox&) const { return false; }
 };
-double nanoflannNs(const std::vector<IndirectPhoton>& photons, size_t k, const std::vector<Vec3>& points,
+double nanoflannNs(const PhotonArray<IndirectPhoton>& photons, size_t k, const std::vector<Vec3>& points,
                    int threads) {
   using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Cloud>, Cloud, 3, uint32_t>;
   const Cloud cloud{&photons};

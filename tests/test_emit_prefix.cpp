@@ -36,7 +36,7 @@ Scene prefixScene() {
   return scene;
 }
 
-void expectSameShadow(const std::vector<ShadowPhoton>& a, const std::vector<ShadowPhoton>& b) {
+void expectSameShadow(const PhotonArray<ShadowPhoton>& a, const PhotonArray<ShadowPhoton>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(a[i].position, b[i].position) << i;
@@ -45,7 +45,7 @@ void expectSameShadow(const std::vector<ShadowPhoton>& a, const std::vector<Shad
   }
 }
 
-void expectSameIndirect(const std::vector<IndirectPhoton>& a, const std::vector<IndirectPhoton>& b) {
+void expectSameIndirect(const PhotonArray<IndirectPhoton>& a, const PhotonArray<IndirectPhoton>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (size_t i = 0; i < a.size(); ++i) {
     ASSERT_EQ(a[i].position, b[i].position) << i;

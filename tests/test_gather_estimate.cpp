@@ -36,7 +36,7 @@ TEST(Estimate, EmptyMapGivesZero) {
 }
 
 TEST(Estimate, AllPhotonsAtOnePointStayFinite) {
-  std::vector<IndirectPhoton> same(80, photonAt(Vec3(1.0f, 2.0f, 3.0f), Color(0.5f, 1.0f, 2.0f)));
+  PhotonArray<IndirectPhoton> same(80, photonAt(Vec3(1.0f, 2.0f, 3.0f), Color(0.5f, 1.0f, 2.0f)));
   IndirectPhotonMap map;
   map.build(same);
   GatherScratch s;
@@ -66,7 +66,7 @@ TEST(Estimate, AllPhotonsAtOnePointStayFinite) {
 TEST(Estimate, ClassicIsColourTimesMeanConeWeight) {
   Rng rng(21);
   const Color c(0.2f, 0.4f, 0.8f);
-  std::vector<IndirectPhoton> ph;
+  PhotonArray<IndirectPhoton> ph;
   for (int i = 0; i < 5000; ++i)
     ph.push_back(photonAt(Vec3(rng.uniform(), rng.uniform(), 0.0f), c));
   IndirectPhotonMap map;
@@ -97,7 +97,7 @@ TEST(Estimate, ClassicIsColourTimesMeanConeWeight) {
 }
 
 TEST(Estimate, NormalFilterDropsTheFarSide) {
-  std::vector<IndirectPhoton> ph;
+  PhotonArray<IndirectPhoton> ph;
   Rng rng(5);
   for (int i = 0; i < 2000; ++i) {
     Vec3 p(rng.uniform(), rng.uniform(), 0.0f);
@@ -121,7 +121,7 @@ struct UniformPlane {
   float irradiance;
   UniformPlane(size_t n, uint64_t seed, float side = 10.0f, float flux = 1000.0f) {
     Rng rng(seed);
-    std::vector<IndirectPhoton> ph;
+    PhotonArray<IndirectPhoton> ph;
     ph.reserve(n);
     Color power(flux / n);
     for (size_t i = 0; i < n; ++i)
@@ -188,7 +188,7 @@ TEST(Estimate, DensityBiasAtAPeakShrinksWithN) {
     double sum = 0.0;
     for (uint64_t seed = 0; seed < kSets; ++seed) {
       Rng rng(1000 + seed);
-      std::vector<IndirectPhoton> ph;
+      PhotonArray<IndirectPhoton> ph;
       for (size_t i = 0; i < n; ++i) {
         float u = std::max(rng.uniform(), 1e-7f), v = rng.uniform();
         float r = sigma * std::sqrt(-2.0f * std::log(u));

@@ -11,7 +11,7 @@ const Vec3 kUp(0.0f, 0.0f, 1.0f);
 
 // n photons on a jittered grid over [0,1]^2 at height z; shadowFn(i, x) decides the kind.
 template <class ShadowFn>
-void addPlane(std::vector<ShadowPhoton>& out, int side, float z, const Vec3& normal,
+void addPlane(PhotonArray<ShadowPhoton>& out, int side, float z, const Vec3& normal,
               uint16_t light, ShadowFn shadowFn, uint64_t seed) {
   Rng rng(seed);
   for (int j = 0; j < side; ++j)
@@ -27,7 +27,7 @@ void addPlane(std::vector<ShadowPhoton>& out, int side, float z, const Vec3& nor
 auto allDirect = [](int, float) { return false; };
 auto allShadow = [](int, float) { return true; };
 
-GateVerdict classifyAt(const std::vector<ShadowPhoton>& photons, size_t lights, const Vec3& p,
+GateVerdict classifyAt(const PhotonArray<ShadowPhoton>& photons, size_t lights, const Vec3& p,
                        const Vec3& n, uint32_t light, GateParams params = {}) {
   ShadowPhotonMap map;
   map.build(photons, lights);
@@ -36,14 +36,14 @@ GateVerdict classifyAt(const std::vector<ShadowPhoton>& photons, size_t lights, 
 }
 
 TEST(Gate, PlaneOfDirectPhotonsIsLit) {
-  std::vector<ShadowPhoton> ph;
+  PhotonArray<ShadowPhoton> ph;
   addPlane(ph, 100, 0.0f, kUp, 0, allDirect, 1);
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Lit);
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.0f, 1.0f, 0.0f), kUp, 0), GateVerdict::Lit);  // corner
 }
 
 TEST(Gate, PlaneOfShadowPhotonsIsShadowed) {
-  std::vector<ShadowPhoton> ph;
+  PhotonArray<ShadowPhoton> ph;
   addPlane(ph, 100, 0.0f, kUp, 0, allShadow, 2);
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Shadowed);
 }
@@ -51,7 +51,7 @@ TEST(Gate, PlaneOfShadowPhotonsIsShadowed) {
 // Behind glass alone the light is tinted, not blocked: the gate must hand such
 // points to a shadow ray, even when every voter is a shadow photon.
 TEST(Gate, ShadowBehindGlassOnlyAsksForARay) {
-  std::vector<ShadowPhoton> ph;
+  PhotonArray<ShadowPhoton> ph;
   addPlane(ph, 100, 0.0f, kUp, 0, allShadow, 2);
   for (ShadowPhoton& p : ph) p.shadow = kShadowGlass;
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Mixed);
@@ -63,16 +63,16 @@ TEST(Gate, ShadowBehindGlassOnlyAsksForARay) {
   GatherScratch scratch;
   ASSERT_EQ(map.knn(Vec3(0.5f, 0.5f, 0.0f), 0, 1, 0.0f, scratch), 1u);
   const auto range = map.photons(0);
-  std::vector<ShadowPhoton> sorted(range.begin(), range.end());
+  PhotonArray<ShadowPhoton> sorted(range.begin(), range.end());
   sorted[scratch.indices[0]].shadow = kShadowGlass;
   EXPECT_EQ(classifyAt(sorted, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Mixed);
 }
 
 TEST(Gate, HalfAndHalfIsMixedOnlyNearTheBoundary) {
-  std::vector<ShadowPhoton> ph;
+  PhotonArray<ShadowPhoton> ph;
   addPlane(ph, 100, 0.0f, kUp, 0, [](int, float x) { return x > 0.5f; }, 3);
   // Interleaved kinds: every neighbourhood holds both.
-  std::vector<ShadowPhoton> alternating;
+  PhotonArray<ShadowPhoton> alternating;
   addPlane(alternating, 100, 0.0f, kUp, 0, [](int i, float) { return i % 2 == 1; }, 4);
   EXPECT_EQ(classifyAt(alternating, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Mixed);
   // A shadow edge at x = 0.5: on it Mixed, well away from it a clean verdict (50
@@ -83,7 +83,7 @@ TEST(Gate, HalfAndHalfIsMixedOnlyNearTheBoundary) {
 }
 
 TEST(Gate, TooFewVotersIsMixed) {
-  std::vector<ShadowPhoton> ph;
+  PhotonArray<ShadowPhoton> ph;
   addPlane(ph, 2, 0.0f, kUp, 0, allDirect, 5);  // 4 photons, minVoters 8
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Mixed);
   GateParams lenient;
@@ -91,7 +91,7 @@ TEST(Gate, TooFewVotersIsMixed) {
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0, lenient), GateVerdict::Lit);
 
   // Plenty of photons, but maxRadius keeps all but a few out of the vote.
-  std::vector<ShadowPhoton> dense;
+  PhotonArray<ShadowPhoton> dense;
   addPlane(dense, 100, 0.0f, kUp, 0, allDirect, 6);
   GateParams tight;
   tight.maxRadius = 0.01f;  // ~3 photons inside at 10^4/unit^2
@@ -101,7 +101,7 @@ TEST(Gate, TooFewVotersIsMixed) {
 }
 
 TEST(Gate, NoPhotonsForTheLightIsMixed) {
-  std::vector<ShadowPhoton> ph;
+  PhotonArray<ShadowPhoton> ph;
   addPlane(ph, 50, 0.0f, kUp, 0, allDirect, 7);
   EXPECT_EQ(classifyAt(ph, 2, Vec3(0.5f, 0.5f, 0.0f), kUp, 1), GateVerdict::Mixed);
   EXPECT_EQ(classifyAt(ph, 2, Vec3(0.5f, 0.5f, 0.0f), kUp, 5), GateVerdict::Mixed);
@@ -109,7 +109,7 @@ TEST(Gate, NoPhotonsForTheLightIsMixed) {
 }
 
 TEST(Gate, LightsAreJudgedSeparately) {
-  std::vector<ShadowPhoton> ph;
+  PhotonArray<ShadowPhoton> ph;
   addPlane(ph, 80, 0.0f, kUp, 0, allDirect, 8);
   addPlane(ph, 80, 0.0f, kUp, 1, allShadow, 9);
   EXPECT_EQ(classifyAt(ph, 2, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Lit);
@@ -121,7 +121,7 @@ TEST(Gate, LightsAreJudgedSeparately) {
 // (viewer above, n = +z), the bottom's photons are just as close and make up half the
 // 50 nearest; the normal filter must keep them out, else the top would read Mixed.
 TEST(Gate, ThinWallFarSideDoesNotVote) {
-  std::vector<ShadowPhoton> ph;
+  PhotonArray<ShadowPhoton> ph;
   addPlane(ph, 100, 0.0005f, kUp, 0, allShadow, 10);               // top: in shadow
   addPlane(ph, 100, -0.0005f, Vec3(0, 0, -1), 0, allDirect, 11);  // bottom: lit from below
   const Vec3 top(0.5f, 0.5f, 0.0005f), bottom(0.5f, 0.5f, -0.0005f);
@@ -135,13 +135,13 @@ TEST(Gate, ThinWallFarSideDoesNotVote) {
   EXPECT_EQ(classifyAt(ph, 1, top, kUp, 0, everyone), GateVerdict::Mixed);
 
   // Only far-side photons within reach: none votes, so too few voters -> Mixed, not Lit.
-  std::vector<ShadowPhoton> farOnly;
+  PhotonArray<ShadowPhoton> farOnly;
   addPlane(farOnly, 100, -0.0005f, Vec3(0, 0, -1), 0, allDirect, 12);
   EXPECT_EQ(classifyAt(farOnly, 1, top, kUp, 0), GateVerdict::Mixed);
 }
 
 TEST(Gate, VoteRuleDirectly) {
-  std::vector<ShadowPhoton> ph(10);
+  PhotonArray<ShadowPhoton> ph(10);
   std::vector<uint32_t> idx(10);
   for (uint32_t i = 0; i < 10; ++i) {
     ph[i].normal = encodeOctahedral(kUp);

@@ -47,7 +47,7 @@ TEST(Knn, RadiusBoundedReturnsFewerThanK) {
 }
 
 TEST(Knn, AllIdenticalPoints) {
-  std::vector<IndirectPhoton> same(500, indirectAt(Vec3(0.25f, -1.0f, 3.0f)));
+  PhotonArray<IndirectPhoton> same(500, indirectAt(Vec3(0.25f, -1.0f, 3.0f)));
   IndirectPhotonMap map;
   map.build(same);
   GatherScratch s;
@@ -61,7 +61,7 @@ TEST(Knn, AllIdenticalPoints) {
 }
 
 TEST(Knn, CollinearPoints) {
-  std::vector<IndirectPhoton> line;
+  PhotonArray<IndirectPhoton> line;
   for (int i = 0; i < 2000; ++i) line.push_back(indirectAt(Vec3(0.5f, 0.001f * i, -2.0f)));
   IndirectPhotonMap map;
   map.build(line);
@@ -98,7 +98,7 @@ TEST(Knn, OnePointAndEmpty) {
 
 TEST(Knn, ShadowMapPartitionsByLightAndSearchesOneLight) {
   Rng rng(5);
-  std::vector<ShadowPhoton> in;
+  PhotonArray<ShadowPhoton> in;
   for (uint32_t i = 0; i < 9000; ++i) {
     ShadowPhoton ph{};
     ph.position = Vec3(rng.uniform(), rng.uniform(), 0.0f);
@@ -116,7 +116,7 @@ TEST(Knn, ShadowMapPartitionsByLightAndSearchesOneLight) {
   for (uint32_t light = 0; light < 3; ++light) {
     ASSERT_EQ(map.photons(light).size(), 3000u);
     for (const ShadowPhoton& ph : map.photons(light)) ASSERT_EQ(ph.light, light);
-    std::vector<IndirectPhoton> asIndirect;  // reuse the brute-force helper
+    PhotonArray<IndirectPhoton> asIndirect;  // reuse the brute-force helper
     for (const ShadowPhoton& ph : map.photons(light)) asIndirect.push_back(indirectAt(ph.position));
     Vec3 q(0.3f, 0.6f, 0.01f);
     GatherScratch s;

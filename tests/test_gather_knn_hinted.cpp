@@ -16,7 +16,7 @@ namespace {
 // The answer is defined as the k smallest (dist2, index) pairs, ascending: compare
 // both arrays exactly, ties included.
 template <class Map>
-void expectExactKnn(const Map& map, const std::vector<IndirectPhoton>& photons, const Vec3& q,
+void expectExactKnn(const Map& map, const PhotonArray<IndirectPhoton>& photons, const Vec3& q,
                     size_t k, float maxRadius, GatherScratch& s, const char* what) {
   size_t n = map.knn(q, k, maxRadius, s);
   Brute b = bruteKnn(photons, q, k, maxRadius);
@@ -44,18 +44,18 @@ std::vector<Vec3> querySequence(size_t n, bool coherent, uint64_t seed, float sp
 
 struct HintCase {
   const char* name;
-  std::vector<IndirectPhoton> cloud;
+  PhotonArray<IndirectPhoton> cloud;
 };
 std::vector<HintCase> hintCases() {
   std::vector<HintCase> cases;
   cases.push_back({"random", randomCloud(6000, 21)});
-  std::vector<IndirectPhoton> same(400, indirectAt(Vec3(0.1f, 0.2f, 0.3f)));
+  PhotonArray<IndirectPhoton> same(400, indirectAt(Vec3(0.1f, 0.2f, 0.3f)));
   for (int i = 0; i < 300; ++i) same.push_back(indirectAt(Vec3(-0.5f, 0.5f, 0.0f)));
   cases.push_back({"identical", same});
-  std::vector<IndirectPhoton> line;  // equal spacing: many exactly tied distances
+  PhotonArray<IndirectPhoton> line;  // equal spacing: many exactly tied distances
   for (int i = 0; i < 3000; ++i) line.push_back(indirectAt(Vec3(-1.0f + 0.001f * i, 0.25f, 0.0f)));
   cases.push_back({"collinear", line});
-  std::vector<IndirectPhoton> grid;  // a lattice: ties at every shell
+  PhotonArray<IndirectPhoton> grid;  // a lattice: ties at every shell
   for (int j = 0; j < 60; ++j)
     for (int i = 0; i < 60; ++i) grid.push_back(indirectAt(Vec3(i / 30.0f - 1.0f, j / 30.0f - 1.0f, 0.0f)));
   cases.push_back({"grid", grid});
@@ -107,7 +107,7 @@ TEST(KnnHinted, ForcedHintsOfAnySizeMatchBruteForce) {
 
 TEST(KnnHinted, ShadowMapWarmEqualsCold) {
   Rng rng(17);
-  std::vector<ShadowPhoton> in;
+  PhotonArray<ShadowPhoton> in;
   for (uint32_t i = 0; i < 20000; ++i) {
     ShadowPhoton ph{};
     ph.position = Vec3(rng.uniform(), rng.uniform(), 0.1f * rng.uniform());
@@ -140,8 +140,8 @@ TEST(KnnHinted, ShadowMapWarmEqualsCold) {
 // the estimators applied to the brute-force (dist2, index) neighbour list.
 TEST(KnnHinted, GateAndEstimatesIdenticalWithWarmHints) {
   Rng rng(31);
-  std::vector<ShadowPhoton> shadow;
-  std::vector<IndirectPhoton> indirect;
+  PhotonArray<ShadowPhoton> shadow;
+  PhotonArray<IndirectPhoton> indirect;
   auto randomNormal = [&]() {
     Vec3 n(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() * 0.6f);
     return glm::normalize(n + Vec3(0.0f, 0.0f, 0.2f));

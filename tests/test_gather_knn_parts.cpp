@@ -12,8 +12,8 @@ namespace {
 
 // 700k photons: three parts of ~256k. Half in a unit cube, half on two distant planes,
 // so parts have very different boxes and queries between them must visit several.
-std::vector<IndirectPhoton> partedCloud() {
-  std::vector<IndirectPhoton> cloud = randomCloud(350000, 21);
+PhotonArray<IndirectPhoton> partedCloud() {
+  PhotonArray<IndirectPhoton> cloud = randomCloud(350000, 21);
   Rng rng(22);
   for (int i = 0; i < 350000; ++i) {
     const float side = i % 2 ? 3.0f : -3.0f;

@@ -11,8 +11,8 @@ namespace penumbra {
 namespace {
 
 // n x n photons jittered over the unit square in the plane z = 0, facing `normal`.
-std::vector<IndirectPhoton> planePhotons(int n, const Vec3& normal, const Color& power, uint64_t seed) {
-  std::vector<IndirectPhoton> out;
+PhotonArray<IndirectPhoton> planePhotons(int n, const Vec3& normal, const Color& power, uint64_t seed) {
+  PhotonArray<IndirectPhoton> out;
   Rng rng(seed);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -27,8 +27,8 @@ std::vector<IndirectPhoton> planePhotons(int n, const Vec3& normal, const Color&
 }
 
 // Shadow photons of light 0 over the unit square: direct where x < edge, else `beyond`.
-std::vector<ShadowPhoton> halfShadow(int n, float edge, uint8_t beyond, const Vec3& normal) {
-  std::vector<ShadowPhoton> out;
+PhotonArray<ShadowPhoton> halfShadow(int n, float edge, uint8_t beyond, const Vec3& normal) {
+  PhotonArray<ShadowPhoton> out;
   Rng rng(11);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -146,11 +146,11 @@ TEST(LookupCache, GlassShadowIsMixedUnlessGlassBlocks) {
 
 TEST(LookupCache, ThinWallSidesKeepTheirOwnAnswers) {
   // Both sides of the plane z = 0: the +z side bright and lit, the -z side dim and dark.
-  std::vector<IndirectPhoton> photons = planePhotons(200, Vec3(0, 0, 1), Color(1e-4f), 1);
+  PhotonArray<IndirectPhoton> photons = planePhotons(200, Vec3(0, 0, 1), Color(1e-4f), 1);
   for (const IndirectPhoton& p : planePhotons(200, Vec3(0, 0, -1), Color(1e-5f), 2)) photons.push_back(p);
   IndirectPhotonMap indirect;
   indirect.build(std::move(photons));
-  std::vector<ShadowPhoton> shadow = halfShadow(200, 2.0f, kShadowOpaque, Vec3(0, 0, 1));  // all direct
+  PhotonArray<ShadowPhoton> shadow = halfShadow(200, 2.0f, kShadowOpaque, Vec3(0, 0, 1));  // all direct
   for (ShadowPhoton p : halfShadow(200, -1.0f, kShadowOpaque, Vec3(0, 0, -1))) shadow.push_back(p);  // all shadow
   ShadowPhotonMap gate;
   gate.build(std::move(shadow), 1);

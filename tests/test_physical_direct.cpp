@@ -157,7 +157,7 @@ TEST(PhotonEstimate, UniformPhotonsOnAPlaneGiveFTimesTheIrradiance) {
   const float h = 0.01f, phi = 0.003f;
   const Vec3 n(0.0f, 0.0f, 1.0f);
   const Vec3 wi = glm::normalize(Vec3(0.3f, -0.2f, 0.9f));  // towards where light came from
-  std::vector<IndirectPhoton> photons;
+  PhotonArray<IndirectPhoton> photons;
   for (int i = -100; i <= 100; ++i) {
     for (int j = -100; j <= 100; ++j) {
       photons.push_back({Vec3(i * h, j * h, 0.0f), Color(phi, 2 * phi, 3 * phi), encodeOctahedral(-wi),
@@ -188,7 +188,7 @@ TEST(PhotonEstimate, UniformPhotonsOnAPlaneGiveFTimesTheIrradiance) {
     }
   }
   // Photons whose stored normal faces away (the back of a thin wall) do not count.
-  std::vector<IndirectPhoton> back = photons;
+  PhotonArray<IndirectPhoton> back = photons;
   for (IndirectPhoton& p : back) p.normal = encodeOctahedral(-n);
   IndirectPhotonMap backMap;
   backMap.build(back);

@@ -7,7 +7,7 @@ namespace penumbra {
 namespace {
 
 template <class Photon>
-std::vector<Photon> photonsFor(std::vector<Photon>& all, const PrefixCuts& cuts, uint64_t full,
+PhotonArray<Photon> photonsFor(PhotonArray<Photon>& all, const PrefixCuts& cuts, uint64_t full,
                                uint64_t wanted, bool consume, bool& ok) {
   if (wanted == full) return consume ? std::move(all) : all;
   const PrefixCut* cut = cuts.find(wanted);

@@ -17,7 +17,7 @@ namespace {
 // Follows one line from the light through every surface: the first hit is
 // direct, all later ones are in shadow, opaque once anything opaque was crossed.
 void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& dir, uint16_t light,
-                     int maxHits, std::vector<ShadowPhoton>& out) {
+                     int maxHits, PhotonArray<ShadowPhoton>& out) {
   const std::vector<Material>& materials = tracer.scene().materials;
   Ray ray{origin, dir};
   ShadowKind kind = kDirect;
@@ -34,7 +34,7 @@ void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& d
 // One indirect photon path: stored at every hit (classic) or every hit after
 // the first (density, whose direct part comes from the Phong term instead).
 void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Color power, Rng& rng,
-                       bool storeFirstHit, std::vector<IndirectPhoton>& out) {
+                       bool storeFirstHit, PhotonArray<IndirectPhoton>& out) {
   const PhotonSettings& ps = scene.photons;
   for (int bounce = 0; bounce <= ps.maxBounces; ++bounce) {
     Hit hit;

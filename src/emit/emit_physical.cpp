@@ -107,7 +107,7 @@ float sampleAimed(const Light& light, const SceneSphere& bounds, const Aim& aim,
 // Russian roulette by the sampled weight: survive with q = min(1, max weight), then
 // power *= weight / q, so E[power after] = power x albedo, per channel.
 void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ray ray, Color power,
-                 Rng& rng, std::vector<IndirectPhoton>& out, PhotonTally& tally) {
+                 Rng& rng, PhotonArray<IndirectPhoton>& out, PhotonTally& tally) {
   const PhotonSettings& ps = scene.photons;
   int diffuseBounces = 0, specularBounces = 0;
   for (int bounce = 0;; ++bounce) {
@@ -148,7 +148,7 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ra
   }
 }
 
-std::vector<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, PassKind kind,
+PhotonArray<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, PassKind kind,
                                     uint64_t pass, uint64_t total, const EmitOptions& options,
                                     uint64_t& emitted, PhotonTally& tally, PrefixCuts& cuts) {
   const SceneSphere bounds = tracer.boundingSphere();

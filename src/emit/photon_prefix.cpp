@@ -78,8 +78,8 @@ namespace {
 
 // Each light's range of the cut, in light order, through `adjust(photon, light)`.
 template <class Photon, class Adjust>
-std::vector<Photon> copyRanges(const std::vector<Photon>& all, const PrefixCut& cut, Adjust&& adjust) {
-  std::vector<Photon> out;
+PhotonArray<Photon> copyRanges(const PhotonArray<Photon>& all, const PrefixCut& cut, Adjust&& adjust) {
+  PhotonArray<Photon> out;
   size_t n = 0;
   for (size_t l = 0; l < cut.begin.size(); ++l) n += cut.end[l] - cut.begin[l];
   out.reserve(n);
@@ -91,11 +91,11 @@ std::vector<Photon> copyRanges(const std::vector<Photon>& all, const PrefixCut& 
 
 }  // namespace
 
-std::vector<ShadowPhoton> takePrefix(const std::vector<ShadowPhoton>& all, const PrefixCut& cut) {
+PhotonArray<ShadowPhoton> takePrefix(const PhotonArray<ShadowPhoton>& all, const PrefixCut& cut) {
   return copyRanges(all, cut, [](const ShadowPhoton& p, size_t) { return p; });
 }
 
-std::vector<IndirectPhoton> takePrefix(const std::vector<IndirectPhoton>& all, const PrefixCut& cut) {
+PhotonArray<IndirectPhoton> takePrefix(const PhotonArray<IndirectPhoton>& all, const PrefixCut& cut) {
   return copyRanges(all, cut, [&](IndirectPhoton p, size_t light) {
     p.power = PackedPower(p.power.color() * cut.powerScale[light]);
     return p;

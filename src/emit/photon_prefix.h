@@ -53,10 +53,10 @@ class PrefixCuts {
 };
 
 // Copies a cut's photons out of the full array. Shadow photons carry no power.
-std::vector<ShadowPhoton> takePrefix(const std::vector<ShadowPhoton>& all, const PrefixCut& cut);
+PhotonArray<ShadowPhoton> takePrefix(const PhotonArray<ShadowPhoton>& all, const PrefixCut& cut);
 // Indirect photons carry power / count: each light's are rescaled to the smaller
 // count (then packed again, so within the packing's 2^-8 of a fresh emission's).
-std::vector<IndirectPhoton> takePrefix(const std::vector<IndirectPhoton>& all, const PrefixCut& cut);
+PhotonArray<IndirectPhoton> takePrefix(const PhotonArray<IndirectPhoton>& all, const PrefixCut& cut);
 
 // Traces batch b's photons one at a time through `tracePhoton(i)`, recording the
 // cuts' marks as it goes. Keeps the loop of each emitter free of the bookkeeping.

@@ -98,7 +98,7 @@ class PhotonKdTree {
   // spatially compact: either the input is already in spatial (Morton) order, or
   // `split` first arranges it in place by median splits (slower: the build then reads
   // photons in a random order).
-  void build(std::vector<Photon>& photons, size_t leafSize, bool split = false) {
+  void build(PhotonArray<Photon>& photons, size_t leafSize, bool split = false) {
     build(photons.data(), photons.size(), leafSize, split);
   }
   // The same over photons[0..count) of an array the caller keeps in place.

@@ -33,8 +33,9 @@ struct PositionView {
     return *reinterpret_cast<const Vec3*>(base + i * stride);
   }
 };
-template <class Photon>
-PositionView positionsOf(const std::vector<Photon>& photons) {
+template <class Array>
+PositionView positionsOf(const Array& photons) {
+  using Photon = typename Array::value_type;
   return {reinterpret_cast<const unsigned char*>(photons.data()) +
               offsetof(Photon, position),
           sizeof(Photon), photons.size()};

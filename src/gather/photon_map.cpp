@@ -14,8 +14,8 @@ namespace {
 // permuting in place (which walks the permutation's cycles in random order, one
 // thread) at the price of a second array while it runs.
 template <class Photon>
-std::vector<Photon> permuted(const std::vector<Photon>& photons, const std::vector<uint32_t>& order) {
-  std::vector<Photon> out(order.size());
+PhotonArray<Photon> permuted(const PhotonArray<Photon>& photons, const std::vector<uint32_t>& order) {
+  PhotonArray<Photon> out(order.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, order.size(), 1 << 14), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) out[i] = photons[order[i]];
   });
@@ -32,7 +32,7 @@ void checkIndexable(size_t count, const char* which) {
 
 // ---- ShadowPhotonMap ------------------------------------------------------------
 
-void ShadowPhotonMap::build(std::vector<ShadowPhoton> photons, size_t numLights,
+void ShadowPhotonMap::build(PhotonArray<ShadowPhoton> photons, size_t numLights,
                             const MapBuildOptions& options) {
   lights_.clear();
   lights_.resize(numLights);
@@ -104,7 +104,7 @@ PhotonRange<ShadowPhoton> ShadowPhotonMap::photons(uint32_t light) const {
 
 // ---- IndirectPhotonMap ----------------------------------------------------------
 
-void IndirectPhotonMap::build(std::vector<IndirectPhoton> photons,
+void IndirectPhotonMap::build(PhotonArray<IndirectPhoton> photons,
                               const MapBuildOptions& options) {
   checkIndexable(photons.size(), "indirect");
   photons_ = std::move(photons);

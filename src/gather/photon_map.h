@@ -30,7 +30,7 @@ class ShadowPhotonMap {
   // cells, one parallel gather into a new array, if options.mortonSort), then builds
   // one KD-tree per light over its range, which leaves each range in its tree's leaf
   // order (in place). Photons whose light is >= numLights are dropped.
-  void build(std::vector<ShadowPhoton> photons, size_t numLights,
+  void build(PhotonArray<ShadowPhoton> photons, size_t numLights,
              const MapBuildOptions& options = {});
   bool hasPhotons(uint32_t light) const;
   GateVerdict classify(const Vec3& p, const Vec3& n, uint32_t light, const GateParams& params,
@@ -50,7 +50,7 @@ class ShadowPhotonMap {
     size_t begin = 0, count = 0;  // the light's range of photons_
     PhotonKdTree<ShadowPhoton> tree;
   };
-  std::vector<ShadowPhoton> photons_;  // every light's, by light
+  PhotonArray<ShadowPhoton> photons_;  // every light's, by light
   std::vector<PerLight> lights_;
   size_t size_ = 0;
 };
@@ -60,7 +60,7 @@ class IndirectPhotonMap {
   using Estimate = IndirectEstimate;
 
   // Takes ownership; coarse Morton order (one parallel gather), then leaf order in place.
-  void build(std::vector<IndirectPhoton> photons, const MapBuildOptions& options = {});
+  void build(PhotonArray<IndirectPhoton> photons, const MapBuildOptions& options = {});
   bool empty() const { return photons_.empty(); }
   // Gather the k nearest photons (within maxRadius if > 0) and estimate; see
   // indirect_estimate.h for the formulas and the normal filter.
@@ -78,10 +78,10 @@ class IndirectPhotonMap {
   }
   size_t size() const { return photons_.size(); }
   size_t memoryBytes() const;
-  const std::vector<IndirectPhoton>& photons() const { return photons_; }
+  const PhotonArray<IndirectPhoton>& photons() const { return photons_; }
 
  private:
-  std::vector<IndirectPhoton> photons_;
+  PhotonArray<IndirectPhoton> photons_;
   PhotonKdTree<IndirectPhoton> tree_;
 };
 

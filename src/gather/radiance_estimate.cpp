@@ -25,7 +25,7 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf,
   e.radius = std::sqrt(r2);
   // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
   const bool lambertOnly = bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy);
-  const std::vector<IndirectPhoton>& photons = map.photons();
+  const PhotonArray<IndirectPhoton>& photons = map.photons();
   const float invR2 = 1.0f / r2;
   Color sum(0.0f);
   int found = 0;

@@ -15,9 +15,9 @@ inline IndirectPhoton indirectAt(const Vec3& p) {
   return {p, Color(1.0f), encodeOctahedral(Vec3(0, 0, 1)), encodeOctahedral(Vec3(0, 0, 1))};
 }
 
-inline std::vector<IndirectPhoton> randomCloud(size_t n, uint64_t seed) {
+inline PhotonArray<IndirectPhoton> randomCloud(size_t n, uint64_t seed) {
   Rng rng(seed);
-  std::vector<IndirectPhoton> out;
+  PhotonArray<IndirectPhoton> out;
   for (size_t i = 0; i < n; ++i)
     out.push_back(indirectAt(Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f));
   return out;
@@ -36,7 +36,7 @@ struct Brute {
   std::vector<uint32_t> indices;  // same order
 };
 template <class Photon>
-Brute bruteKnn(const std::vector<Photon>& photons, const Vec3& q, size_t k, float maxRadius) {
+Brute bruteKnn(const PhotonArray<Photon>& photons, const Vec3& q, size_t k, float maxRadius) {
   std::vector<std::pair<float, uint32_t>> all;
   for (size_t i = 0; i < photons.size(); ++i) {
     float d = dist2(photons[i].position, q);
@@ -56,7 +56,7 @@ Brute bruteKnn(const std::vector<Photon>& photons, const Vec3& q, size_t k, floa
 // Same distance list; same index set where the k-th distance is not tied with the
 // (k+1)-th (otherwise which of the tied photons is returned is arbitrary).
 template <class Map>
-void expectMatchesBrute(const Map& map, const std::vector<IndirectPhoton>& photons,
+void expectMatchesBrute(const Map& map, const PhotonArray<IndirectPhoton>& photons,
                         const Vec3& q, size_t k, float maxRadius) {
   GatherScratch s;
   size_t n = map.knn(q, k, maxRadius, s);
