@@ -153,6 +153,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
         for (const BatchOutput& o : p.job->outputs) {
           useSettings();
           plans.push_back(makePlan(scene, parseAov(o.view.empty() ? p.render.aov : o.view)));
+          splitByReach(plans.back(), scene, *a.tracer);
           needs |= photonNeeds(plans.back());
           applyPlan(plans.back(), scene);
           const PhotonSettings& v = scene.photons;

@@ -31,6 +31,9 @@ PhotonNeeds photonNeeds(const RenderPlan& plan) {
   needs.indirect = plan[Pass::IndirectPhotons].on;
   needs.global = plan[Pass::GlobalPhotons].on;
   needs.caustic = plan[Pass::CausticPhotons].on;
+  needs.indirectReach = plan[Pass::IndirectPhotons].reach;
+  needs.globalReach = plan[Pass::GlobalPhotons].reach;
+  needs.causticReach = plan[Pass::CausticPhotons].reach;
   return needs;
 }
 
@@ -43,6 +46,9 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
   Stopwatch clock;
   EmitOptions options;
   options.prefixBudgets = smaller;
+  options.indirectReach = needs.indirectReach;
+  options.globalReach = needs.globalReach;
+  options.causticReach = needs.causticReach;
   // The physical gate's shadow photons do not change between passes: pass 0 only.
   options.shadowMap = needs.shadow && (!e.physical || pass == 0);
   options.indirectMap = needs.indirect;

@@ -51,9 +51,15 @@ struct Emission {
 // Which maps to emit and build: the render plan's photon passes (cli/render_plan.h).
 struct PhotonNeeds {
   bool shadow = false, indirect = false, global = false, caustic = false;
+  // Per light, the share of photons of use to each map (the plan's splitByReach);
+  // empty: budgets split by power. A function of the scene, so equal for every view.
+  std::vector<float> indirectReach, globalReach, causticReach;
   bool any() const { return shadow || indirect || global || caustic; }
   PhotonNeeds& operator|=(const PhotonNeeds& o) {
     shadow |= o.shadow; indirect |= o.indirect; global |= o.global; caustic |= o.caustic;
+    if (indirectReach.empty()) indirectReach = o.indirectReach;
+    if (globalReach.empty()) globalReach = o.globalReach;
+    if (causticReach.empty()) causticReach = o.causticReach;
     return *this;
   }
 };

@@ -71,9 +71,8 @@ RenderResult runRender(const RenderRequest& request) {
   // Before any work: what runs and why (photons.gate = auto is decided here too).
   const GateMode gateMode = scene.photons.gateMode;
   stats.gateMode = gateMode == GateMode::Auto ? "auto" : gateMode == GateMode::On ? "on" : "off";
-  const RenderPlan plan = makePlan(scene, aov, request.plan);
+  RenderPlan plan = makePlan(scene, aov, request.plan);
   applyPlan(plan, scene);
-  stats.plan = planJson(plan);
   stats.gate = scene.photons.gate;
   stats.gateReason = plan[Pass::Gate].reason;
   for (const PassDecision& d : plan.passes) {
@@ -85,6 +84,9 @@ RenderResult runRender(const RenderRequest& request) {
 
   SceneAssets assets = prepareAssets(scene, plan[Pass::Textures].on);
   stats.time.buildBvh = assets.bvhSeconds;
+  splitByReach(plan, scene, *assets.tracer);  // needs rays: the BVH is the first work
+  applyPlan(plan, scene);
+  stats.plan = planJson(plan);
   confirmRender(admission, scene, *assets.tracer, request);
   result.estimate = admission.estimate;
 

@@ -1,6 +1,8 @@
-// The plan subcommand: load, decide, print; nothing is built or emitted.
+// The plan subcommand: load, decide, print; nothing is emitted or rendered (the BVH is
+// built only for the light split of photon passes).
 #include "cli/plan_command.h"
 #include "core/error.h"
+#include "cli/render_frame.h"
 #include "io/scene_loader.h"
 #include <iostream>
 
@@ -39,7 +41,15 @@ PlanCommand::PlanCommand(CLI::App& app) {
 int PlanCommand::run() {
   Scene scene = loadScene(scene_, overrides_);
   const Aov aov = parseAov(aov_.empty() ? scene.render.aov : aov_);
-  const RenderPlan plan = makePlan(scene, aov, passOverrides(enable_, disable_));
+  RenderPlan plan = makePlan(scene, aov, passOverrides(enable_, disable_));
+  // The light split needs a few rays per light: build the BVH only when a photon
+  // pass could be split (no textures, no photons, no render).
+  const bool split = plan[Pass::IndirectPhotons].on || plan[Pass::GlobalPhotons].on || plan[Pass::CausticPhotons].on;
+  if (split) {
+    applyPlan(plan, scene);
+    const SceneAssets assets = prepareAssets(scene, false);
+    splitByReach(plan, scene, *assets.tracer);
+  }
   std::cout << (json_ ? planJson(plan) + "\n" : planText(plan));
   return 0;
 }

@@ -7,7 +7,9 @@
 #include "core/light_sample.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
+#include "emit/light_reach.h"
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 namespace penumbra {
@@ -17,8 +19,8 @@ constexpr const char* kNames[kPassCount] = {
     "gate", "indirect-photons", "global-photons", "caustic-photons", "shadow-rays", "reflection",
     "refraction", "textures", "light-samples", "packets", "precompute"};
 
-PassDecision on(std::string reason, uint64_t budget = 0) { return {true, std::move(reason), budget, {}}; }
-PassDecision off(std::string reason) { return {false, std::move(reason), 0, {}}; }
+PassDecision on(std::string reason, uint64_t budget = 0) { return {true, std::move(reason), budget, {}, {}}; }
+PassDecision off(std::string reason) { return {false, std::move(reason), 0, {}, {}}; }
 
 struct SceneFacts {
   bool photonLight = false, areaLight = false, anyLight = false;
@@ -138,7 +140,10 @@ RenderPlan makePlan(const Scene& scene, Aov aov, const PlanOverrides& overrides)
   const PhotonSettings& ps = scene.photons;
   for (Pass p : overrides.enable) {
     PassDecision& d = plan[p];
-    if (d.on) continue;
+    if (d.on) {  // pinned on: nothing later (the light split) may turn it off
+      d.overridden = true;
+      continue;
+    }
     d.on = true;
     d.overridden = true;
     // Forcing a pass on that the scene cannot use costs time but adds nothing, except
@@ -178,6 +183,47 @@ void applyPlan(const RenderPlan& plan, Scene& scene) {
   rs.packets = plan[Pass::Packets].on;
   if (!plan[Pass::Precompute].on) ps.lookup = PhotonLookup::Exact;
   else ps.lookup = PhotonLookup::Precomputed;
+}
+
+void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer) {
+  const bool density = scene.photons.estimator == IndirectEstimator::Density;
+  struct Target {
+    Pass pass;
+    ReachRule rule;
+    const char* where;
+  };
+  const Target targets[] = {
+      {Pass::IndirectPhotons, density ? ReachRule::Bouncing : ReachRule::AnySurface,
+       density ? "a surface that bounces photons (p_r or p_t > 0)" : "any surface"},
+      {Pass::GlobalPhotons, ReachRule::Scattering, "a surface that scatters photons"},
+      {Pass::CausticPhotons, ReachRule::Specular, "a specular surface (area lights; point and directional lights aim)"}};
+  for (const Target& t : targets) {
+    PassDecision& d = plan[t.pass];
+    if (!d.on || d.overridden || d.budget == 0) continue;
+    d.reach = measureReach(scene, tracer, t.rule);
+    if (t.pass == Pass::IndirectPhotons) d.perLight = splitBudget(scene, d.budget, d.reach);
+    else d.perLight = splitPhysicalBudget(scene, tracer, t.pass == Pass::CausticPhotons, d.budget, d.reach);
+    int none = 0, emitting = 0;
+    std::vector<std::string> shares;
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+      const bool aimed = t.pass == Pass::CausticPhotons && isDeltaLight(scene.lights[l]);
+      if (aimed || !(maxComponent(scene.lights[l].radiance()) > 0.0f)) continue;
+      ++emitting;
+      none += d.reach[l] == 0.0f;
+      shares.push_back(fmt::format("light {} {:.0f}%", l, 100.0 * d.reach[l]));
+    }
+    if (shares.size() > 4) shares.clear();  // many lights: the counts say it (per_light in --stats)
+    uint64_t given = 0;
+    for (uint64_t c : d.perLight) given += c;
+    const std::string pilot = fmt::format("{} pilot photons per light", kReachPilots);
+    if (given == 0) {
+      d = off(fmt::format("no light's photons reach {} ({})", t.where, pilot));
+    } else if (emitting > 1 || none > 0) {
+      d.reason += fmt::format("; split by the power reaching {} ({}{}{})", t.where, pilot,
+                              shares.empty() ? "" : ": " + fmt::format("{}", fmt::join(shares, ", ")),
+                              none ? fmt::format("; {} of {} lights reach none and emit none", none, emitting) : "");
+    }
+  }
 }
 
 std::string planText(const RenderPlan& plan) {

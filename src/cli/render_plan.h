@@ -3,6 +3,7 @@
 // applies it to the scene's settings; `penumbra plan` prints it; --stats holds it.
 #pragma once
 #include "core/scene.h"
+#include "geometry/trace_scene.h"
 #include "integrator/render.h"
 #include <array>
 #include <cstdint>
@@ -37,6 +38,7 @@ struct PassDecision {
   std::string reason;               // why, e.g. "off (no transparent material)"
   uint64_t budget = 0;              // photons (photon passes), samples (light samples)
   std::vector<uint64_t> perLight;   // photon passes: the budget's split over lights
+  std::vector<float> reach;         // photon passes: per light, the share of photons of use (splitByReach)
   bool overridden = false;          // set by --enable / --disable
   bool changesImage = false;        // ... and the override can change the image
 };
@@ -60,6 +62,14 @@ RenderPlan makePlan(const Scene& scene, Aov aov, const PlanOverrides& overrides 
 // shadows, recursion flags, light samples, packets, lookup. Textures are the
 // pipeline's (loaded only when the plan says so).
 void applyPlan(const RenderPlan& plan, Scene& scene);
+
+// Once the BVH exists, before any photon: the indirect, global and caustic passes'
+// budgets split over the lights by power times the share of each light's photons
+// whose first hit can lead to a store (a pilot of emit/light_reach.h's kReachPilots
+// photons per light); a light that reaches nothing gets none, a pass whose lights
+// all reach nothing goes off; the reason says which. Overridden passes keep the
+// power split (forced on means everything).
+void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer);
 
 // One line per pass: "refraction      off  (no transparent material)".
 std::string planText(const RenderPlan& plan);

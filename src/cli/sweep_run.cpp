@@ -180,6 +180,14 @@ class Sweep {
       if (std::find(budgets.begin(), budgets.end(), p.budgets) == budgets.end()) budgets.push_back(p.budgets);
     }
     top.writeTo(scene.photons);
+    // The runs' light split by reach, as each would measure it alone (it depends on
+    // the scene, not on the budget, so the prefixes stay those of lone renders).
+    RenderPlan reachPlan = makePlan(scene, aov_);
+    splitByReach(reachPlan, scene, *geo.assets.tracer);
+    const PhotonNeeds reach = photonNeeds(reachPlan);
+    needs.indirectReach = reach.indirectReach;
+    needs.globalReach = reach.globalReach;
+    needs.causticReach = reach.causticReach;
     status_ = "photons";
     showProgress();
     Emission emission = emitPhotonsFor(scene, *geo.assets.tracer, needs, 0, smaller);

@@ -10,6 +10,7 @@
 #include "core/sampling.h"
 #include "emit/batch_buffers.h"
 #include "emit/budget.h"
+#include "emit/light_reach.h"
 
 namespace penumbra {
 namespace {
@@ -95,8 +96,8 @@ std::vector<double> classicWeights(const Scene& scene) {
 }
 }  // namespace
 
-std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total) {
-  return splitByWeight(classicWeights(scene), total);
+std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total, const std::vector<float>& reach) {
+  return splitByWeight(reachWeighted(classicWeights(scene), reach), total);
 }
 
 PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options,
@@ -132,13 +133,14 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   if (shadowCuts) shadowCuts->finish(shadowBuffers.sizes());
   maps.shadow = shadowBuffers.merge();
 
-  std::vector<uint64_t> indirectCounts = splitBudget(scene, options.indirectMap ? ps.indirectPhotons : 0);
+  const std::vector<double> indirectWeights = reachWeighted(weights, options.indirectReach);
+  std::vector<uint64_t> indirectCounts = splitByWeight(indirectWeights, options.indirectMap ? ps.indirectPhotons : 0);
   std::vector<PhotonBatch> indirectBatches = makeBatches(indirectCounts, options.batchSize);
   bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
   BatchBuffers<IndirectPhoton> indirectBuffers(indirectBatches.size());
   PrefixCuts* indirectCuts = nullptr;
   if (cuts && !options.prefixBudgets.empty()) {
-    cuts->indirect = PrefixCuts(weights, indirectCounts, options.prefixBudgets, indirectBatches);
+    cuts->indirect = PrefixCuts(indirectWeights, indirectCounts, options.prefixBudgets, indirectBatches);
     indirectCuts = &cuts->indirect;
   }
   tbb::parallel_for(size_t(0), indirectBatches.size(), [&](size_t b) {

@@ -20,6 +20,10 @@ struct EmitOptions {
   // Smaller budgets to record inside this emission (emit/photon_prefix.h), for every
   // map emitted: a budget below a map's own is cut out of it afterwards.
   std::vector<uint64_t> prefixBudgets;
+  // Per light, the fraction of its photons that reach where each map stores
+  // (emit/light_reach.h; the render plan measures it): budgets are split by power
+  // times this. Empty: by power alone. The gate's shadow photons keep the power split.
+  std::vector<float> indirectReach, globalReach, causticReach;
 };
 
 // Splits each budget across point lights by luminous intensity (largest
@@ -33,7 +37,8 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
                        ClassicCuts* cuts = nullptr);
 
 // Photons per light for a budget, proportional to each point light's power.
-std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total);
+// With `reach` (emit/light_reach.h), by power times reach: the indirect map's split.
+std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total, const std::vector<float>& reach = {});
 
 // Where a point light's photon starts: a rounding error along its way (measured against
 // the light's coordinates and the scene's size). A light lying in a surface would

@@ -148,6 +148,26 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ra
   }
 }
 
+// Each light's share of a pass's budget: its power; aimed (caustic, delta lights)
+// only the power that heads for the targets; unaimed times the reach, the share
+// whose first hit can lead to a store.
+std::vector<double> photonWeights(const Scene& scene, const SceneSphere& bounds, const std::vector<Aim>& aims,
+                                  bool caustic, const std::vector<float>& reach) {
+  std::vector<double> weights;
+  for (size_t l = 0; l < scene.lights.size(); ++l) {
+    const Light& light = scene.lights[l];
+    double w = luminance(lightPower(light, bounds));
+    if (caustic && isDeltaLight(light)) {  // area lights emit unaimed
+      float full = light.type == LightType::Point ? 4.0f * kPi : kPi * bounds.radius * bounds.radius;
+      w *= std::min(1.0, double(aims[l].total) / full);
+    } else if (reach.size() == scene.lights.size()) {
+      w *= reach[l];
+    }
+    weights.push_back(w);
+  }
+  return weights;
+}
+
 PhotonArray<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, PassKind kind,
                                     uint64_t pass, uint64_t total, const EmitOptions& options,
                                     uint64_t& emitted, PhotonTally& tally, PrefixCuts& cuts) {
@@ -156,17 +176,10 @@ PhotonArray<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
                                                                : std::vector<SceneSphere>{};
   if (kind == PassKind::Caustic && targets.empty()) total = 0;
   std::vector<Aim> aims;
-  std::vector<double> weights;
-  for (const Light& l : scene.lights) {
-    aims.push_back(kind == PassKind::Caustic ? aimAt(l, targets) : Aim{});
-    // Aimed photons are split by the power that heads for the targets.
-    double w = luminance(lightPower(l, bounds));
-    if (kind == PassKind::Caustic && isDeltaLight(l)) {  // area lights emit unaimed
-      float full = l.type == LightType::Point ? 4.0f * kPi : kPi * bounds.radius * bounds.radius;
-      w *= std::min(1.0, double(aims.back().total) / full);
-    }
-    weights.push_back(w);
-  }
+  for (const Light& l : scene.lights) aims.push_back(kind == PassKind::Caustic ? aimAt(l, targets) : Aim{});
+  const std::vector<double> weights =
+      photonWeights(scene, bounds, aims, kind == PassKind::Caustic,
+                    kind == PassKind::Caustic ? options.causticReach : options.globalReach);
   std::vector<uint64_t> counts = splitByWeight(weights, total);
   std::vector<PhotonBatch> batches = makeBatches(counts, options.batchSize);
   BatchBuffers<IndirectPhoton> buffers(batches.size());
@@ -226,6 +239,16 @@ std::vector<SceneSphere> specularTargets(const Scene& scene) {
     out.push_back({0.5f * (lo + hi), 0.5f * glm::length(hi - lo) * 1.001f + 1e-6f});
   }
   return out;
+}
+
+std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& tracer, bool caustic,
+                                          uint64_t total, const std::vector<float>& reach) {
+  const SceneSphere bounds = tracer.boundingSphere();
+  const std::vector<SceneSphere> targets = caustic ? specularTargets(scene) : std::vector<SceneSphere>{};
+  if (caustic && targets.empty()) return std::vector<uint64_t>(scene.lights.size(), 0);
+  std::vector<Aim> aims;
+  for (const Light& l : scene.lights) aims.push_back(caustic ? aimAt(l, targets) : Aim{});
+  return splitByWeight(photonWeights(scene, bounds, aims, caustic, reach), total);
 }
 
 PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass,

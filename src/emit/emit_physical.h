@@ -34,4 +34,9 @@ PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer
 // the caustic pass aims its photons at these.
 std::vector<SceneSphere> specularTargets(const Scene& scene);
 
+// The global (caustic = false) or caustic pass's photons per light for `total`, as
+// emitPhysicalPhotons splits them given options.globalReach / causticReach = `reach`.
+std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& tracer, bool caustic,
+                                          uint64_t total, const std::vector<float>& reach = {});
+
 }  // namespace penumbra

@@ -1,0 +1,59 @@
+// The reach pilot: first hits of a few photons per light, classified by the material
+// rule of the map they would feed. Uses the emitters' own photon distribution.
+#include "emit/light_reach.h"
+#include "core/bsdf.h"
+#include "core/color.h"
+#include "core/light_sample.h"
+#include "core/rng.h"
+#include "emit/emit.h"
+#include <tbb/parallel_for.h>
+
+namespace penumbra {
+
+bool reaches(const Scene& scene, int material, ReachRule rule) {
+  const Material& m = scene.materials[material];
+  switch (rule) {
+    case ReachRule::AnySurface: return true;
+    case ReachRule::Bouncing: return m.pR > 0.0f || m.pT > 0.0f;
+    case ReachRule::Scattering:
+      return maxComponent(albedoBsdf(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling))) > 0.0f;
+    case ReachRule::Specular:
+      return hasDeltaLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
+  }
+  return false;
+}
+
+std::vector<float> measureReach(const Scene& scene, const TraceScene& tracer, ReachRule rule,
+                                uint32_t pilots) {
+  enum : uint64_t { kReachStream = 7 };  // the emitters use 1-4: a stream of its own
+  std::vector<float> fraction(scene.lights.size(), 0.0f);
+  if (pilots == 0) return fraction;
+  // Classify each material once: the pilot's loop is rays only.
+  std::vector<uint8_t> useful(scene.materials.size());
+  for (size_t i = 0; i < useful.size(); ++i) useful[i] = reaches(scene, static_cast<int>(i), rule);
+  const SceneSphere bounds = tracer.boundingSphere();
+  tbb::parallel_for(size_t(0), scene.lights.size(), [&](size_t l) {
+    const Light& light = scene.lights[l];
+    if (!(maxComponent(light.radiance()) > 0.0f)) return;
+    Rng rng(hashKey(scene.render.seed, kReachStream, l));
+    uint32_t hits = 0;
+    for (uint32_t i = 0; i < pilots; ++i) {
+      const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
+      const PhotonRay r = emitterPhoton(light, bounds, u1, u2, u3, u4);
+      Hit hit;
+      if (!tracer.intersect(Ray{r.origin, r.dir}, hit)) continue;
+      const SurfaceRecord s = tracer.surface(Ray{r.origin, r.dir}, hit, kSurfaceGeometric);
+      hits += useful[s.material];
+    }
+    fraction[l] = static_cast<float>(hits) / static_cast<float>(pilots);
+  });
+  return fraction;
+}
+
+std::vector<double> reachWeighted(std::vector<double> weights, const std::vector<float>& reach) {
+  if (reach.size() != weights.size()) return weights;
+  for (size_t l = 0; l < weights.size(); ++l) weights[l] *= reach[l];
+  return weights;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,37 @@
+// Where each light's photons can be of use to a map: a short pilot emission that
+// measures, per light, the fraction of photons whose first hit can start a stored path.
+// The photon budgets are split by power times this fraction (issue: budgets go where they matter).
+#pragma once
+#include "core/scene.h"
+#include "geometry/trace_scene.h"
+#include <cstdint>
+#include <vector>
+
+namespace penumbra {
+
+// What a map's photons must first hit for the map to store anything of them.
+enum class ReachRule : uint8_t {
+  AnySurface,  // classic estimator: every hit is stored, the first included
+  Bouncing,    // density estimator: stored from the second hit on, so p_r or p_t > 0
+  Scattering,  // physical global map: stored after a bounce, so a BSDF that returns power
+  Specular,    // physical caustic map: stored after a specular bounce (delta lobe)
+};
+
+// Pilot photons per light: 1,024 rays each. A light none of whose pilots reaches
+// gets no photons; then the fraction it could have reached is below 3/1024 (0.3%)
+// with 95% confidence (the rule of three), and its share of the map's power below that.
+constexpr uint32_t kReachPilots = 1024;
+
+// Per light, the fraction of `pilots` photons (their own random stream, seeded by the
+// scene's seed and the light's index) whose first hit satisfies `rule`. Lights that
+// emit no photons get 0. Identical for any thread count.
+std::vector<float> measureReach(const Scene& scene, const TraceScene& tracer, ReachRule rule,
+                                uint32_t pilots = kReachPilots);
+
+// Whether a first hit on `material` satisfies `rule`.
+bool reaches(const Scene& scene, int material, ReachRule rule);
+
+// `weights` times `reach` (empty reach: unchanged), for the budget split.
+std::vector<double> reachWeighted(std::vector<double> weights, const std::vector<float>& reach);
+
+}  // namespace penumbra
