@@ -4,6 +4,7 @@
 #pragma once
 #include "core/light_sample.h"
 #include "core/photon.h"
+#include "core/progress.h"
 #include "core/scene.h"
 #include "emit/photon_prefix.h"
 #include "geometry/trace_scene.h"
@@ -20,6 +21,8 @@ struct EmitOptions {
   // Smaller budgets to record inside this emission (emit/photon_prefix.h), for every
   // map emitted: a budget below a map's own is cut out of it afterwards.
   std::vector<uint64_t> prefixBudgets;
+  // Each finished batch adds its photon count (one atomic add per batch); null: none.
+  ProgressCounter* progress = nullptr;
 };
 
 // Splits each budget across point lights by luminous intensity (largest
