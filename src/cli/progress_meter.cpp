@@ -53,9 +53,11 @@ void ProgressMeter::poll() {
 }
 
 void ProgressMeter::draw(double fraction, double elapsed) {
-  const std::string line = phaseLine(phase_, fraction, elapsed);
+  std::string line = phaseLine(phase_, fraction, elapsed);
   if (display_.terminal) {
+    if (lineOpen_ && line == shown_) return;  // nothing moved since the last redraw
     std::fprintf(display_.out, "\r\033[K%s", line.c_str());
+    shown_ = std::move(line);
     lineOpen_ = true;
   } else {
     std::fprintf(display_.out, "%s\n", line.c_str());

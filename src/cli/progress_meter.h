@@ -63,6 +63,7 @@ class ProgressMeter {
   double start_ = 0.0;
   int quarter_ = -1;       // a log: the last quarter of this phase printed (-1: none)
   bool lineOpen_ = false;  // a terminal: a line is drawn with no newline after it
+  std::string shown_;      // a terminal: the line on screen
   std::vector<EndedPhase> ended_;
   std::thread ticker_;
   std::condition_variable wake_;
