@@ -2,7 +2,7 @@
 // 0 ok, 2 bad input (one-line message), 1 internal error.
 #include "cli/memory_limit.h"
 #include "cli/pipeline.h"
-#include "cli/progress_bar.h"
+#include "cli/progress_meter.h"
 #include "cli/batch_command.h"
 #include "cli/plan_command.h"
 #include "cli/sweep_command.h"
@@ -15,8 +15,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <charconv>
+#include <cstdlib>
+#include <optional>
 #include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
 using namespace penumbra;
 
@@ -79,6 +82,19 @@ void checkOverrides(const std::vector<std::string>& overrides) {
   }
 }
 
+// Where and when progress shows: PENUMBRA_PROGRESS_AFTER overrides the 0.5 s a
+// phase runs before it shows (tests set 0 to see every phase of a small render).
+ProgressDisplay progressDisplay() {
+  ProgressDisplay d;
+  d.terminal = isatty(STDERR_FILENO);
+  if (const char* after = std::getenv("PENUMBRA_PROGRESS_AFTER")) {
+    char* end = nullptr;
+    const double s = std::strtod(after, &end);
+    if (end != after && *end == '\0' && s >= 0.0) d.quietSeconds = s;
+  }
+  return d;
+}
+
 // The pipeline's stats plus the up-front estimate, in one JSON object.
 std::string statsWithEstimate(const RenderResult& result) {
   nlohmann::json stats = nlohmann::json::parse(statsToJson(result.stats));
@@ -94,10 +110,15 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   if (!statsPath.empty()) req.statsPaths.push_back(statsPath);
   // The estimate of a long job, before it starts; --quiet silences it like every note.
   if (!quiet) req.notice = [](const std::string& note) { std::cerr << "note: " << note << "\n"; };
-  ProgressBar bar(!quiet);
-  req.progress = [&bar](const char* phase, double f) { bar.update(phase, f); };
+  // Progress goes to stderr: stdout may carry --trace-pixel's JSON.
+  std::optional<ProgressMeter> meter;
+  if (!quiet) {
+    meter.emplace(progressDisplay());
+    meter->startTicker();
+    req.meter = &*meter;
+  }
   RenderResult result = runRender(req);
-  bar.finish();
+  if (meter) meter->finish();
   if (req.tracePixel) {
     std::string json = rayTreeToJson(result.rayTree, req.tracePixel->first, req.tracePixel->second);
     if (req.outputPath.empty() || req.outputPath == "-") std::cout << json;
@@ -149,7 +170,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"on", "off", "auto"}));
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
-  render->add_flag("-q,--quiet", quiet, "No progress bar and no summary on stderr");
+  render->add_flag("-q,--quiet", quiet, "No progress, notes or summary on stderr");
   std::vector<std::string> enablePasses, disablePasses;
   addPassOptions(*render, enablePasses, disablePasses);
   std::string toneArg;

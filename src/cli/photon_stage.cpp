@@ -18,6 +18,19 @@ PhotonArray<Photon> photonsFor(PhotonArray<Photon>& all, const PrefixCuts& cuts,
   return takePrefix(all, *cut);
 }
 
+// The photons the emitters will trace, so the bar's total is known up front: each
+// map's budget, unless the emitter skips that map (no gate, no specular target).
+uint64_t photonsAskedFor(const Scene& scene, const EmitOptions& o) {
+  const PhotonSettings& ps = scene.photons;
+  if (scene.lights.empty()) return 0;
+  uint64_t n = 0;
+  if (o.shadowMap && ps.gate && scene.render.shadows) n += ps.shadowPhotons;
+  if (o.indirectMap) n += ps.indirectPhotons;
+  if (o.globalMap) n += ps.globalPhotons;
+  if (o.causticMap && ps.causticPhotons > 0 && !specularTargets(scene).empty()) n += ps.causticPhotons;
+  return n;
+}
+
 }  // namespace
 
 PhotonBudgets budgetsOf(const Scene& scene) {
@@ -38,7 +51,7 @@ PhotonNeeds photonNeeds(const RenderPlan& plan) {
 }
 
 Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const PhotonNeeds& needs, uint32_t pass,
-                        const std::vector<uint64_t>& smaller) {
+                        const std::vector<uint64_t>& smaller, ProgressCounter* progress) {
   Emission e;
   e.physical = scene.render.model == ShadingModel::Physical;
   e.numLights = scene.lights.size();
@@ -52,12 +65,14 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
   // The physical gate's shadow photons do not change between passes: pass 0 only.
   options.shadowMap = needs.shadow && (!e.physical || pass == 0);
   options.indirectMap = needs.indirect;
+  options.globalMap = e.physical && needs.global;
+  options.causticMap = e.physical && needs.caustic;
+  options.progress = progress;
+  progressExpect(progress, photonsAskedFor(scene, options));
   if (options.shadowMap || options.indirectMap) {
     e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
   }
   if (e.physical) {
-    options.globalMap = needs.global;
-    options.causticMap = needs.caustic;
     e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
   }
   e.budgets = {e.classic.emittedShadow, e.classic.emittedIndirect, e.photons.emittedGlobal,
@@ -66,7 +81,8 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
   return e;
 }
 
-bool buildStage(Emission& e, const PhotonBudgets& wanted, bool consume, PhotonStage& stage) {
+bool buildStage(Emission& e, const PhotonBudgets& wanted, bool consume, PhotonStage& stage,
+                ProgressCounter* progress) {
   bool ok = true;
   // A map the emission left empty (not needed, or no light) stays empty at any budget.
   auto budget = [](uint64_t emitted, uint64_t want) { return emitted == 0 ? 0 : want; };
@@ -97,11 +113,14 @@ bool buildStage(Emission& e, const PhotonBudgets& wanted, bool consume, PhotonSt
     stage.classicScale = e.classic.classicScale * float(double(b.indirect) / double(e.budgets.indirect));
   }
   Stopwatch clock;
+  MapBuildOptions build;
+  build.progress = progress;
+  progressExpect(progress, 2 * (shadow.size() + indirect.size() + global.size() + caustic.size()));
   // nanoflann builds single-threaded: build the trees side by side.
-  tbb::parallel_invoke([&] { stage.shadow.build(std::move(shadow), e.numLights); },
-                       [&] { stage.indirect.build(std::move(indirect)); },
-                       [&] { stage.global.build(std::move(global)); },
-                       [&] { stage.caustic.build(std::move(caustic)); });
+  tbb::parallel_invoke([&] { stage.shadow.build(std::move(shadow), e.numLights, build); },
+                       [&] { stage.indirect.build(std::move(indirect), build); },
+                       [&] { stage.global.build(std::move(global), build); },
+                       [&] { stage.caustic.build(std::move(caustic), build); });
   stage.buildSeconds = clock.seconds();
   return true;
 }

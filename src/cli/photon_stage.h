@@ -66,8 +66,9 @@ struct PhotonNeeds {
 PhotonNeeds photonNeeds(const RenderPlan& plan);
 
 // Emits `scene`'s photons for progressive pass `pass`, recording `smaller` budgets.
+// `progress` (if any) expects the photons asked for and counts each batch traced.
 Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const PhotonNeeds& needs, uint32_t pass,
-                        const std::vector<uint64_t>& smaller = {});
+                        const std::vector<uint64_t>& smaller = {}, ProgressCounter* progress = nullptr);
 
 // Built photon maps and what they cost.
 struct PhotonStage {
@@ -93,6 +94,8 @@ struct PhotonStage {
 // Maps for `budgets` out of `emission`: the full budgets (then the photons are
 // moved out when `consume`, else copied) or a recorded smaller one. Returns false,
 // leaving `stage` untouched, when some map's budget is neither.
-bool buildStage(Emission& emission, const PhotonBudgets& budgets, bool consume, PhotonStage& stage);
+// `progress` (if any) expects 2 units per photon and counts them (MapBuildOptions).
+bool buildStage(Emission& emission, const PhotonBudgets& budgets, bool consume, PhotonStage& stage,
+                ProgressCounter* progress = nullptr);
 
 }  // namespace penumbra

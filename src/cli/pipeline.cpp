@@ -101,16 +101,19 @@ RenderResult runRender(const RenderRequest& request) {
 
   reportProgress(request, "photons", 0.0);
   const PhotonNeeds needs = photonNeeds(plan);
-  Emission emission = emitPhotonsFor(scene, *assets.tracer, needs, 0);
+  Emission emission = emitPhotonsFor(scene, *assets.tracer, needs, 0, {}, beginPhase(request.meter, "photons"));
   reportProgress(request, "maps", 0.0);
   PhotonStage stage;
-  buildStage(emission, emission.budgets, true, stage);
+  buildStage(emission, emission.budgets, true, stage, beginPhase(request.meter, "maps"));
+  endPhase(request.meter);
   FrameOptions frame;
   frame.aov = aov;
   frame.needs = needs;
   frame.tracePixel = request.tracePixel;
   frame.progress = request.progress;
+  frame.meter = request.meter;
   renderFrame(scene, assets, stage, frame, result);
+  endPhase(request.meter);
 
   if (!request.outputPath.empty() && !request.tracePixel) {
     phase = Stopwatch();

@@ -1,5 +1,6 @@
 // The whole render, wired once: io -> emit -> gather -> trace -> io.
 #pragma once
+#include "cli/progress_meter.h"
 #include "cli/render_plan.h"
 #include "cli/resource_estimate.h"
 #include "io/tone_map.h"
@@ -23,6 +24,8 @@ struct RenderRequest {
   std::optional<std::pair<int, int>> tracePixel;  // record this pixel's ray tree instead
   // Called with the phase ("photons", "maps", "render") and its completed fraction.
   std::function<void(const char* phase, double fraction)> progress;
+  // The progress display of penumbra render (cli/progress_meter.h); null: none.
+  ProgressMeter* meter = nullptr;
   // Files the caller writes after the render (--stats): checked with -o before any work.
   std::vector<std::string> statsPaths;
   uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available when it starts

@@ -16,7 +16,8 @@ namespace {
 // (physical) estimate, once per cell, from the maps just built. `radius` > 0 is the
 // physical pass's fixed gather radius.
 void buildLookup(const Scene& scene, LookupCache& cache, std::string* cachedKey, double* builtSeconds,
-                 ShadingContext& ctx, float radius, RenderStats& stats) {
+                 ShadingContext& ctx, float radius, RenderStats& stats, ProgressMeter* meter,
+                 const std::string& phaseName) {
   const PhotonSettings& ps = scene.photons;
   if (ps.lookup != PhotonLookup::Precomputed) return;
   Stopwatch phase;
@@ -41,7 +42,9 @@ void buildLookup(const Scene& scene, LookupCache& cache, std::string* cachedKey,
                                       params.maxRadius, params.radius, params.gate, g.k, g.maxRadius, g.minNormalCos,
                                       g.minVoters, g.glassBlocks);
   if (!cachedKey || *cachedKey != key) {
+    params.progress = beginPhase(meter, phaseName);
     cache.build(params.gate ? ctx.shadowMap : nullptr, map, params);
+    endPhase(meter);
     if (cachedKey) *cachedKey = key;
     if (builtSeconds) *builtSeconds = phase.seconds();
   }
@@ -75,6 +78,11 @@ void stepRadius(const PhotonSettings& ps, uint32_t pass, float& r, const Indirec
     GatherScratch scratch;
     r = ps.radius > 0.0f ? ps.radius : typicalKnnRadius(map, k, scratch);
   }
+}
+
+// "render", or "render 2/4" in pass 2 of 4 progressive passes.
+std::string phaseName(const char* phase, int pass, int passes) {
+  return passes > 1 ? fmt::format("{} {}/{}", phase, pass + 1, passes) : std::string(phase);
 }
 
 std::unique_ptr<TextureLookup> loadTextures(const Scene& scene) {
@@ -129,8 +137,10 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
       later = PhotonStage();
       PhotonNeeds needs = options.needs;
       needs.shadow = false;  // the gate's photons are pass 0's, for every pass
-      Emission e = emitPhotonsFor(scene, *assets.tracer, needs, static_cast<uint32_t>(pass));
-      buildStage(e, e.budgets, true, later);
+      Emission e = emitPhotonsFor(scene, *assets.tracer, needs, static_cast<uint32_t>(pass), {},
+                                  beginPhase(options.meter, phaseName("photons", pass, passes)));
+      buildStage(e, e.budgets, true, later, beginPhase(options.meter, phaseName("maps", pass, passes)));
+      endPhase(options.meter);
       maps = &later;
     }
     addStage(*maps, stats);
@@ -148,8 +158,13 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     }
     // Pass 0 keeps its lookups with its maps, for later frames on the same maps.
     if (needsLight) {
-      if (pass == 0) buildLookup(scene, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats);
-      else buildLookup(scene, cache, nullptr, nullptr, ctx, radius, stats);
+      const std::string lookups = phaseName("lookups", pass, passes);
+      if (pass == 0) {
+        buildLookup(scene, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats, options.meter,
+                    lookups);
+      } else {
+        buildLookup(scene, cache, nullptr, nullptr, ctx, radius, stats, options.meter, lookups);
+      }
     }
     Stopwatch phase;
     if (options.tracePixel) {
@@ -159,7 +174,9 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     if (options.progress) {
       render.progress = [&](double f) { options.progress("render", (pass + f) / passes); };
     }
+    render.tiles = beginPhase(options.meter, phaseName("render", pass, passes));
     Image image = renderImage(ctx, render, stats.rays);
+    endPhase(options.meter);
     if (pass == 0) result.image = std::move(image);
     else for (size_t i = 0; i < image.pixels.size(); ++i) result.image.pixels[i] += image.pixels[i];
     stats.time.render += phase.seconds();

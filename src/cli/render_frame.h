@@ -25,6 +25,7 @@ struct FrameOptions {
   PhotonNeeds needs;  // the plan's photon passes, for progressive passes >= 1
   std::optional<std::pair<int, int>> tracePixel;
   std::function<void(const char* phase, double fraction)> progress;
+  ProgressMeter* meter = nullptr;  // penumbra render's display; null: none
 };
 
 // Renders every pass of `scene` into result.image (or its ray tree), pass 0 from

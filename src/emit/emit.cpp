@@ -129,6 +129,7 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
       traceShadowLine(tracer, r.origin, r.dir, static_cast<uint16_t>(batch.light),
                       options.maxHitsPerLine, out);
     });
+    progressAdd(options.progress, batch.count);
   });
   if (shadowCuts) shadowCuts->finish(shadowBuffers.sizes());
   maps.shadow = shadowBuffers.merge();
@@ -156,6 +157,7 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
       const PhotonRay r = startPhoton(light, bounds, rng);
       traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power, rng, storeFirstHit, out);
     });
+    progressAdd(options.progress, batch.count);
   });
   if (indirectCuts) indirectCuts->finish(indirectBuffers.sizes());
   maps.indirect = indirectBuffers.merge();

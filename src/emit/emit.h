@@ -4,6 +4,7 @@
 #pragma once
 #include "core/light_sample.h"
 #include "core/photon.h"
+#include "core/progress.h"
 #include "core/scene.h"
 #include "emit/photon_prefix.h"
 #include "geometry/trace_scene.h"
@@ -24,6 +25,8 @@ struct EmitOptions {
   // (emit/light_reach.h; the render plan measures it): budgets are split by power
   // times this. Empty: by power alone. The gate's shadow photons keep the power split.
   std::vector<float> indirectReach, globalReach, causticReach;
+  // Each finished batch adds its photon count (one atomic add per batch); null: none.
+  ProgressCounter* progress = nullptr;
 };
 
 // Splits each budget across point lights by luminous intensity (largest

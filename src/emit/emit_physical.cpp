@@ -212,6 +212,7 @@ PhotonArray<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
       if (maxComponent(power) <= 0.0f) return;
       tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);
     });
+    progressAdd(options.progress, batch.count);
   });
   if (prefix) prefix->finish(buffers.sizes());
   for (const PhotonTally& t : tallies) tally += t;

@@ -143,7 +143,8 @@ template <class Photon>
 PhotonKdTree<Photon>& PhotonKdTree<Photon>::operator=(PhotonKdTree&&) noexcept = default;
 
 template <class Photon>
-void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize, bool split) {
+void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize, bool split,
+                                 ProgressCounter* progress) {
   impl_.reset();
   if (count == 0) return;  // nanoflann throws on an empty bounding box
   auto impl = std::make_unique<Impl>();
@@ -167,6 +168,7 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
       part.lo = glm::min(part.lo, photons[j].position);
       part.hi = glm::max(part.hi, photons[j].position);
     }
+    progressAdd(progress, end - begin);
   });
   for (const auto& part : impl->parts) impl->bytes += part.index->usedMemory(*part.index);
   impl_ = std::move(impl);

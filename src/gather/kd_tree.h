@@ -3,6 +3,7 @@
 #pragma once
 #include "core/math.h"
 #include "core/photon.h"
+#include "core/progress.h"
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -78,6 +79,9 @@ struct GatherScratch {
 struct MapBuildOptions {
   bool mortonSort = true;
   size_t leafSize = 24;
+  // Counts 2 per photon: one when the map's photons are ordered, one as the part
+  // holding it is built (one atomic add per map and per part); null: none.
+  ProgressCounter* progress = nullptr;
 };
 
 // A KD-tree over the positions of a photon array it does not own (but reorders at
@@ -98,11 +102,14 @@ class PhotonKdTree {
   // spatially compact: either the input is already in spatial (Morton) order, or
   // `split` first arranges it in place by median splits (slower: the build then reads
   // photons in a random order).
-  void build(PhotonArray<Photon>& photons, size_t leafSize, bool split = false) {
-    build(photons.data(), photons.size(), leafSize, split);
+  // Each part built adds its photon count to `progress` (if any).
+  void build(PhotonArray<Photon>& photons, size_t leafSize, bool split = false,
+             ProgressCounter* progress = nullptr) {
+    build(photons.data(), photons.size(), leafSize, split, progress);
   }
   // The same over photons[0..count) of an array the caller keeps in place.
-  void build(Photon* photons, size_t count, size_t leafSize, bool split = false);
+  void build(Photon* photons, size_t count, size_t leafSize, bool split = false,
+             ProgressCounter* progress = nullptr);
   // The k nearest photons strictly closer than maxRadius (0 = unlimited) into
   // scratch.indices/dist2; returns how many (min(k, photons in range)). "Nearest" is
   // by (dist2, index): ties at the k-th distance keep the lower indices, so the

@@ -160,6 +160,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   std::vector<uint64_t> keys(records_);
   for (size_t r = 0; r < records_; ++r) keys[r] = entries[starts[r]].key;
   insertKeys(keys);
+  progressExpect(params.progress, records_ * (1 + (numLights_ > 0) + useIndirect));
 
   // Per record: where its photons are (centroid), which way they face (mean normal),
   // and per light how many arrived direct, behind something opaque, behind glass.
@@ -186,6 +187,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
         else ++c.opaque;
       }
     }
+    progressAdd(params.progress, range.size());
   });
   entries = {};
 
@@ -224,6 +226,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
           verdicts_[r * numLights_ + l] = static_cast<uint8_t>(v);
         }
       }
+      progressAdd(params.progress, range.size());
     });
   }
 
@@ -265,6 +268,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
         case CachedIndirect::None: break;
       }
     }
+    progressAdd(params.progress, range.size());
   });
   for (Slot& slot : slots_)
     if (slot.key != kEmpty) slot.indirect = values[slot.record];

@@ -3,6 +3,7 @@
 // computed once per cell of a spatial hash, then read with one query per shading point.
 #pragma once
 #include "core/math.h"
+#include "core/progress.h"
 #include "gather/photon_map.h"
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +28,9 @@ struct LookupCacheParams {
   float radius = 0.0f;     // irradiance: fixed gather radius (> 0) instead of k nearest
   bool gate = false;       // precompute shadow-gate verdicts
   GateParams gateParams;
+  // Once the cells are known, expects one unit per cell and step (summary, vote,
+  // estimate) and adds each chunk's cells when done; null: none.
+  ProgressCounter* progress = nullptr;
 };
 
 // The cell size: `scale` times the median distance to the k-th nearest photon of

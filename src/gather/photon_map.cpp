@@ -38,6 +38,7 @@ void ShadowPhotonMap::build(PhotonArray<ShadowPhoton> photons, size_t numLights,
   lights_.resize(numLights);
   size_ = 0;
   checkIndexable(photons.size(), "shadow");
+  const size_t given = photons.size();
   photons_ = std::move(photons);
   if (!photons_.empty() && numLights > 0) {
     // One sort does both jobs: the light index is the primary key, so each light's
@@ -61,10 +62,12 @@ void ShadowPhotonMap::build(PhotonArray<ShadowPhoton> photons, size_t numLights,
   } else {
     photons_.clear();
   }
+  // Ordered, and the dropped photons' share of the parts: the trees count the rest.
+  progressAdd(options.progress, given + (given - size_));
   // Lights are independent trees; each also builds its parts side by side.
   tbb::parallel_for(size_t(0), numLights, [&](size_t light) {
     PerLight& l = lights_[light];
-    l.tree.build(photons_.data() + l.begin, l.count, options.leafSize, !options.mortonSort);
+    l.tree.build(photons_.data() + l.begin, l.count, options.leafSize, !options.mortonSort, options.progress);
   });
 }
 
@@ -113,7 +116,8 @@ void IndirectPhotonMap::build(PhotonArray<IndirectPhoton> photons,
     std::vector<uint32_t> order = storageOrder(pos, nullptr, 0, true, computeBounds(pos));
     photons_ = permuted(photons_, order);
   }
-  tree_.build(photons_, options.leafSize, !options.mortonSort);
+  progressAdd(options.progress, photons_.size());
+  tree_.build(photons_, options.leafSize, !options.mortonSort, options.progress);
 }
 
 size_t IndirectPhotonMap::knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch,

@@ -169,6 +169,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   const bool physical = ctx.scene.render.model == ShadingModel::Physical;
   const bool direct = options.aov == Aov::Beauty || (physical && options.aov == Aov::Direct);
   const uint32_t shadowLights = packets ? packetShadowLights(ctx, direct) : 0;
+  progressExpect(options.tiles, static_cast<uint64_t>(numTiles));
 
   tbb::parallel_for(tbb::blocked_range<int>(0, numTiles, 1), [&](const tbb::blocked_range<int>& r) {
     ThreadState& ts = states.local();
@@ -197,6 +198,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
         }
       }
       int done = ++tilesDone;
+      progressAdd(options.tiles, 1);
       if (options.progress) options.progress(static_cast<double>(done) / numTiles);
     }
   });

@@ -2,6 +2,7 @@
 // the depth/normal/indirect views. Deterministic for any thread count.
 #pragma once
 #include "core/image.h"
+#include "core/progress.h"
 #include "core/ray_record.h"
 #include "integrator/shading.h"
 #include <functional>
@@ -22,6 +23,8 @@ struct RenderOptions {
   int tileSize = 16;
   // Called with the fraction of tiles done, from whichever thread finished one.
   std::function<void(double)> progress;
+  // Expects every tile, then adds one per tile done (a relaxed atomic add); null: none.
+  ProgressCounter* tiles = nullptr;
 };
 
 // Renders the whole image; `counts` receives the sum of every thread's counters.

@@ -1,0 +1,41 @@
+// How much of a long phase is done, counted by the layer doing the work (emission
+// batches, map parts, lookup chunks, image tiles) and read by whoever displays it.
+#pragma once
+#include <atomic>
+#include <cstdint>
+
+namespace penumbra {
+
+// Plain data shared by the workers and one reader: workers add once per batch,
+// part, chunk or tile (never per photon or pixel), with relaxed atomics, so
+// counting costs nothing measurable and takes no lock. Units are the phase's own
+// (photons of a batch, photons of a part, cells, tiles): only done / total matters.
+struct ProgressCounter {
+  std::atomic<uint64_t> done{0};
+  std::atomic<uint64_t> total{0};  // 0: not known yet
+
+  void add(uint64_t n) { done.fetch_add(n, std::memory_order_relaxed); }
+  void expect(uint64_t n) { total.fetch_add(n, std::memory_order_relaxed); }
+  // Called between phases, while no worker counts.
+  void reset(uint64_t expected) {
+    done.store(0, std::memory_order_relaxed);
+    total.store(expected, std::memory_order_relaxed);
+  }
+  // In [0, 1], or -1 while the total is unknown.
+  double fraction() const {
+    const uint64_t t = total.load(std::memory_order_relaxed);
+    if (t == 0) return -1.0;
+    const uint64_t d = done.load(std::memory_order_relaxed);
+    return d >= t ? 1.0 : static_cast<double>(d) / static_cast<double>(t);
+  }
+};
+
+// The lower layers take an optional counter: null (tests, benchmarks) counts nothing.
+inline void progressAdd(ProgressCounter* c, uint64_t n) {
+  if (c) c->add(n);
+}
+inline void progressExpect(ProgressCounter* c, uint64_t n) {
+  if (c) c->expect(n);
+}
+
+}  // namespace penumbra
