@@ -5,7 +5,10 @@
 #include "gather/photon_map.h"
 #include "core/rng.h"
 #include <gtest/gtest.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 #include <cmath>
+#include <memory>
 
 namespace penumbra {
 namespace {
@@ -190,6 +193,61 @@ TEST(LookupCache, CellSizeKeepsSixteenPhotonsPerCell) {
   EXPECT_NEAR(cacheCellSize(1.0f, 50, 0.5f), std::sqrt(16.0f * kPi / 50.0f), 1e-5f);
   EXPECT_FLOAT_EQ(cacheCellSize(1.0f, 400, 0.5f), 0.5f);
   EXPECT_EQ(cacheCellSize(0.0f, 50, 1.0f), 0.0f);
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// A point whose layer holds no cell (here: 2.5 cells above a lit plane) is answered by
+// its own cell's estimate at the cell's centre, computed once and kept, the same value
+// whichever thread asks first.
+TEST(LookupCache, APointWithNoCellNearGetsItsOwnCellsEstimateOnceForEveryThread) {
+  IndirectPhotonMap map;
+  map.build(planePhotons(200, Vec3(0, 0, 1), Color(1e-4f), 9));
+  LookupCacheParams params;
+  params.indirect = CachedIndirect::Density;
+  params.k = 50;
+  params.cellSize = cacheCellSize(&map, params.k, nullptr, 0, 1.0f);
+  auto makeCache = [&] {
+    auto cache = std::make_unique<LookupCache>();
+    cache->build(nullptr, &map, params);
+    return cache;
+  };
+  const auto cache = makeCache();
+  const float h = 2.5f * cache->cellSize();
+  const Vec3 up(0, 0, 1);
+  GatherScratch s;
+  const Vec3 p(0.51f, 0.49f, h);
+  ASSERT_FALSE(cache->find(p, up).hasIndirect);
+  const Color lazy = cache->lazyIndirect(map, p, up, s);
+  const Color exact = map.density(cache->cellCentreOf(p), up, params.k, params.maxRadius, s).value;
+  EXPECT_EQ(lazy, exact);  // the estimator itself, at the cell's centre
+  EXPECT_GT(lazy.r, 0.0f);
+  EXPECT_EQ(cache->lazyCells(), 1u);
+  // Anywhere in the same cell: the kept value, not a new gather.
+  const Vec3 q = cache->cellCentreOf(p) + Vec3(0.3f * cache->cellSize(), -0.2f * cache->cellSize(), 0.0f);
+  EXPECT_EQ(cache->lazyIndirect(map, q, up, s), lazy);
+  EXPECT_EQ(cache->lazyCells(), 1u);
+
+  // 20,000 points over ~2,500 cells asked from every thread at once, against one thread
+  // asking a fresh cache in order: the same values, bit for bit.
+  std::vector<Vec3> points;
+  Rng rng(4);
+  for (int i = 0; i < 20000; ++i) points.push_back(Vec3(rng.uniform(), rng.uniform(), h));
+  std::vector<Color> parallel(points.size()), serial(points.size());
+  const auto fresh = makeCache();
+  tbb::enumerable_thread_specific<GatherScratch> scratch;
+  tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
+    parallel[i] = fresh->lazyIndirect(map, points[i], up, scratch.local());
+  });
+  const auto inOrder = makeCache();
+  for (size_t i = 0; i < points.size(); ++i) serial[i] = inOrder->lazyIndirect(map, points[i], up, s);
+  EXPECT_EQ(parallel, serial);
+  EXPECT_EQ(fresh->lazyCells(), inOrder->lazyCells());
+  EXPECT_LT(inOrder->lazyCells(), points.size() / 4);  // kept: far fewer gathers than points
 }
 
 }  // namespace

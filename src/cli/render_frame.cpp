@@ -177,6 +177,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     render.tiles = beginPhase(options.meter, phaseName("render", pass, passes));
     Image image = renderImage(ctx, render, stats.rays);
     endPhase(options.meter);
+    if (ctx.lookup) stats.cacheLazyCells = ctx.lookup->lazyCells();
     if (pass == 0) result.image = std::move(image);
     else for (size_t i = 0; i < image.pixels.size(); ++i) result.image.pixels[i] += image.pixels[i];
     stats.time.render += phase.seconds();

@@ -89,7 +89,7 @@ uint64_t LookupCache::keyAt(const Vec3& p, unsigned bucket) const {
 const LookupCache::Slot* LookupCache::slotOf(uint64_t key) const {
   if (key == kEmpty || slots_.empty()) return nullptr;
   const size_t mask = slots_.size() - 1;
-  for (size_t i = (key * 0x9E3779B97F4A7C15ull) >> 32 & mask;; i = (i + 1) & mask) {
+  for (size_t i = slotHash(key) & mask;; i = (i + 1) & mask) {
     const Slot& s = slots_[i];
     if (s.key == key) return &s;
     if (s.key == kEmpty) return nullptr;
@@ -102,7 +102,7 @@ void LookupCache::insertKeys(const std::vector<uint64_t>& keys) {
   slots_.assign(size, Slot{});
   const size_t mask = size - 1;
   for (uint32_t r = 0; r < keys.size(); ++r) {
-    size_t i = (keys[r] * 0x9E3779B97F4A7C15ull) >> 32 & mask;
+    size_t i = slotHash(keys[r]) & mask;
     while (slots_[i].key != kEmpty) i = (i + 1) & mask;
     slots_[i].key = keys[r];
     slots_[i].record = r;
@@ -244,34 +244,37 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
                 r};
   }
   tbb::parallel_sort(order.begin(), order.end());
+  k_ = params.k;
+  maxRadius_ = params.maxRadius;
+  radius_ = params.radius;
   tbb::enumerable_thread_specific<GatherScratch> scratch;
-  Bsdf white;  // rho = 1, no glossy or mirror part: photonRadiance = irradiance / pi
-  white.type = BsdfType::Opaque;
-  white.diffuse = Color(1.0f);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 64), [&](const auto& range) {
     GatherScratch& s = scratch.local();
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const uint32_t r = order[i].second;
-      const Vec3& p = sites[r];
-      const Vec3& n = normals[r];
-      switch (params.indirect) {
-        case CachedIndirect::Classic:
-          values[r] = indirect->classic(p, n, params.k, params.maxRadius, s).value;
-          break;
-        case CachedIndirect::Density:
-          values[r] = indirect->density(p, n, params.k, params.maxRadius, s).value;
-          break;
-        case CachedIndirect::Irradiance:
-          values[r] = photonRadiance(*indirect, white, BsdfFrame{n, n, true}, p, n, params.k,
-                                        params.radius, s).value;
-          break;
-        case CachedIndirect::None: break;
-      }
+      values[r] = estimateAt(*indirect, sites[r], normals[r], s);
     }
     progressAdd(params.progress, range.size());
   });
   for (Slot& slot : slots_)
     if (slot.key != kEmpty) slot.indirect = values[slot.record];
+  makeLazyTable();
+}
+
+Color LookupCache::estimateAt(const IndirectPhotonMap& map, const Vec3& p, const Vec3& n,
+                              GatherScratch& s) const {
+  switch (kind_) {
+    case CachedIndirect::Classic: return map.classic(p, n, k_, maxRadius_, s).value;
+    case CachedIndirect::Density: return map.density(p, n, k_, maxRadius_, s).value;
+    case CachedIndirect::Irradiance: {
+      Bsdf white;  // rho = 1, no glossy or mirror part: photonRadiance = irradiance / pi
+      white.type = BsdfType::Opaque;
+      white.diffuse = Color(1.0f);
+      return photonRadiance(map, white, BsdfFrame{n, n, true}, p, n, k_, radius_, s).value;
+    }
+    case CachedIndirect::None: break;
+  }
+  return Color(0.0f);
 }
 
 LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
@@ -315,7 +318,8 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
 }
 
 size_t LookupCache::memoryBytes() const {
-  return slots_.capacity() * sizeof(Slot) + verdicts_.capacity();
+  return slots_.capacity() * sizeof(Slot) + verdicts_.capacity() +
+         (lazy_ ? (lazy_->mask + 1) * sizeof(LazySlot) : 0);
 }
 
 }  // namespace penumbra

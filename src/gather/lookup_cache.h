@@ -4,9 +4,12 @@
 #pragma once
 #include "core/math.h"
 #include "core/progress.h"
+#include "core/rng.h"
 #include "gather/photon_map.h"
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace penumbra {
@@ -65,6 +68,16 @@ class LookupCache {
   };
   Answer find(const Vec3& p, const Vec3& n) const;
 
+  // Where find() has no cell near p (a surface no photon reached in that orientation:
+  // the inside of a glass ball, a wall's far side), the estimate of p's own (cell,
+  // bucket): the cache's estimator at the cell's centre, with the bucket's axis as the
+  // normal, computed on first use and kept. A pure function of the key, so every
+  // thread reads the same value whoever computed it (images stay identical for any
+  // thread count); `map` must be the map the cache was built from.
+  Color lazyIndirect(const IndirectPhotonMap& map, const Vec3& p, const Vec3& n, GatherScratch& s) const;
+  Vec3 cellCentreOf(const Vec3& p) const { return origin_ + (glm::floor((p - origin_) * invCell_) + Vec3(0.5f)) * cell_; }
+  size_t lazyCells() const { return lazy_ ? lazy_->count.load(std::memory_order_relaxed) : 0; }
+
   bool hasGate() const { return numLights_ > 0; }
   CachedIndirect indirectKind() const { return kind_; }
   size_t records() const { return records_; }
@@ -80,11 +93,32 @@ class LookupCache {
     uint32_t record = 0;
   };
   static constexpr uint64_t kEmpty = ~uint64_t(0);
+  // A full 64-bit mix: keys of one layer differ only in x and y, whose bits a
+  // multiplicative hash's middle bits do not see (rows of cells collided into long runs).
+  static size_t slotHash(uint64_t key) { return static_cast<size_t>(mix64(key)); }
   uint64_t keyOf(int64_t x, int64_t y, int64_t z, unsigned bucket) const;
   uint64_t keyAt(const Vec3& p, unsigned bucket) const;
   const Slot* slotOf(uint64_t key) const;  // nullptr: none
   int32_t recordOf(uint64_t key) const { const Slot* s = slotOf(key); return s ? int32_t(s->record) : -1; }
   void insertKeys(const std::vector<uint64_t>& sortedKeys);
+
+  // lazyIndirect's cells: open addressing, claimed by CAS on the key; `ready` publishes
+  // the value. A full table (or a long probe) computes without keeping.
+  struct LazySlot {
+    std::atomic<uint64_t> key{kEmpty};
+    std::atomic<uint32_t> ready{0};
+    Color value{0.0f};
+  };
+  struct LazyTable {
+    std::unique_ptr<LazySlot[]> slots;
+    size_t mask = 0;
+    std::atomic<size_t> count{0};
+  };
+  void makeLazyTable();
+  Color estimateAt(const IndirectPhotonMap& map, const Vec3& p, const Vec3& n, GatherScratch& s) const;
+  std::unique_ptr<LazyTable> lazy_;  // behind a pointer: the cache stays movable
+  int k_ = 50;
+  float maxRadius_ = 0.0f, radius_ = 0.0f;
 
   Vec3 origin_{0.0f};
   float cell_ = 1.0f, invCell_ = 1.0f;

@@ -38,7 +38,8 @@ Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k,
   if (cached && ctx.lookup->indirectKind() == CachedIndirect::Irradiance &&
       bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy)) {
     if (cached->hasIndirect) return (1.0f - bsdf.kr) * bsdf.diffuse * cached->indirect;
-    ++ts.counts.cacheFallbacks;
+    ++ts.counts.cacheFallbacks;  // no cell near: its own cell's estimate, kept
+    return (1.0f - bsdf.kr) * bsdf.diffuse * ctx.lookup->lazyIndirect(*map, s.position, s.ng, *ts.scratch);
   }
   ++ts.counts.gatherQueries;
   RadianceEstimate e = photonRadiance(*map, bsdf, frame, s.position, wo, k, radius, *ts.scratch);

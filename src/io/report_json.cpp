@@ -43,7 +43,8 @@ std::string statsToJson(const RenderStats& s) {
   j["gather"] = {{"queries", r.gatherQueries},
                  {"mean_neighbours", r.gatherQueries ? double(r.gatherNeighbours) / r.gatherQueries : 0.0}};
   j["lookup"] = {{"mode", s.lookup}, {"cells", s.cacheRecords}, {"cell_size", s.cacheCell},
-                 {"queries", r.cacheLookups}, {"exact_fallbacks", r.cacheFallbacks}};
+                 {"queries", r.cacheLookups}, {"fallbacks", r.cacheFallbacks},
+                 {"lazy_cells", s.cacheLazyCells}};
   j["memory"] = {{"photon_maps_bytes", s.photonMapBytes}, {"lookup_cache_bytes", s.cacheBytes}};
   j["numeric"] = {{"nonfinite_samples", r.nonfiniteSamples}};
   j["peak_rss_bytes"] = s.peakRssBytes;
@@ -84,8 +85,10 @@ std::string statsSummary(const RenderStats& s) {
                        r.nonfiniteSamples == 1 ? "was" : "were");
   }
   if (s.cacheRecords) {
-    out += fmt::format("  lookup: precomputed, {} cells of {:.4g}, {:.1f} MB; {} queries, {} exact fallbacks\n",
-                       s.cacheRecords, s.cacheCell, s.cacheBytes / 1e6, r.cacheLookups, r.cacheFallbacks);
+    out += fmt::format("  lookup: precomputed, {} cells of {:.4g}, {:.1f} MB; {} queries, {} with no cell near "
+                       "(answered by {} cells computed on first use)\n",
+                       s.cacheRecords, s.cacheCell, s.cacheBytes / 1e6, r.cacheLookups, r.cacheFallbacks,
+                       s.cacheLazyCells);
   }
   if (s.gateMode == "auto") out += fmt::format("  gate: {}\n", s.gateReason);
   if (r.gateQueries) {
