@@ -53,15 +53,22 @@ std::vector<float> readChannels(const std::string& path, OIIO::ImageSpec& spec) 
   return v;
 }
 
-TEST(ExrAov, DepthIsTheDistanceAlongTheRayAndAMissIsZeroWithNoCoverage) {
+// The rig's view `aov` rendered to an EXR, read back: RGBA float, as every
+// geometric view's file is.
+std::vector<float> renderView(const std::string& aov, OIIO::ImageSpec& spec) {
   ScratchDir dir;
-  const std::string exr = (dir / "depth.exr").string();
-  renderTo(dir.write("rig.json", kScene).string(), exr, "depth");
-  OIIO::ImageSpec spec;
-  const std::vector<float> v = readChannels(exr, spec);
-  ASSERT_EQ(spec.nchannels, 4);
-  EXPECT_EQ(spec.channelnames[3], "A");
+  const std::string exr = (dir / (aov + ".exr")).string();
+  renderTo(dir.write("rig.json", kScene).string(), exr, aov);
+  std::vector<float> v = readChannels(exr, spec);
+  EXPECT_EQ(spec.nchannels, 4);
+  EXPECT_EQ(spec.channelnames.back(), "A");
   EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
+  return spec.nchannels == 4 ? v : std::vector<float>(spec.image_pixels() * 4, -1.0f);
+}
+
+TEST(ExrAov, DepthIsTheDistanceAlongTheRayAndAMissIsZeroWithNoCoverage) {
+  OIIO::ImageSpec spec;
+  const std::vector<float> v = renderView("depth", spec);
   auto at = [&](int x, int y, int c) { return v[(static_cast<size_t>(y) * spec.width + x) * 4 + c]; };
   EXPECT_NEAR(at(16, 12, 0), 6.0f, 6.0f * 1e-4f);  // centre: the quad, 6 units away
   EXPECT_EQ(at(16, 12, 3), 1.0f);
@@ -75,12 +82,8 @@ TEST(ExrAov, DepthIsTheDistanceAlongTheRayAndAMissIsZeroWithNoCoverage) {
 }
 
 TEST(ExrAov, NormalsAreWorldSpaceInMinusOneToOne) {
-  ScratchDir dir;
-  const std::string exr = (dir / "normal.exr").string();
-  renderTo(dir.write("rig.json", kScene).string(), exr, "normal");
   OIIO::ImageSpec spec;
-  const std::vector<float> v = readChannels(exr, spec);
-  ASSERT_EQ(spec.nchannels, 4);
+  const std::vector<float> v = renderView("normal", spec);
   const size_t centre = (12u * spec.width + 16u) * 4;
   EXPECT_NEAR(v[centre + 0], 0.0f, 1e-4f);
   EXPECT_NEAR(v[centre + 1], 0.0f, 1e-4f);
