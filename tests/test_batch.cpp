@@ -66,9 +66,12 @@ TEST(Batch, SeveralViewsGoIntoOneLayeredExr) {
   ASSERT_EQ(runBatch(req).rendered, 1u);
   auto in = OIIO::ImageInput::open((dir / "all.exr").string());
   ASSERT_TRUE(in);
+  // Depth and normal layers keep their values in float, with their coverage as A.
   const std::vector<std::string> expected = {"beauty.R", "beauty.G", "beauty.B", "depth.R", "depth.G", "depth.B",
-                                             "normal.R", "normal.G", "normal.B"};
+                                             "depth.A", "normal.R", "normal.G", "normal.B", "normal.A"};
   EXPECT_EQ(in->spec().channelnames, expected);
+  EXPECT_EQ(in->spec().channelformat(0), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(in->spec().channelformat(3), OIIO::TypeDesc::FLOAT);
   // The beauty layer is the beauty render (first three channels).
   RenderRequest alone;
   alone.scenePath = kScenes + "fig03_shadows.json";

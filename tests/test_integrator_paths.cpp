@@ -1,7 +1,8 @@
-// The tracer's other paths: the depth view, rays born inside glass, ray-tree
+// The tracer's other paths: the depth and normal views, rays born inside glass, ray-tree
 // bookkeeping, pixel stratification for any spp, and NaN-free output on
 // degenerate inputs.
 #include "core/optics.h"
+#include "io/aov_display.h"
 #include "io/shapes.h"
 #include "support/render_fixtures.h"
 #include <cmath>
@@ -9,7 +10,9 @@
 namespace penumbra {
 namespace {
 
-TEST(Render, DepthViewOrdersByDistance) {
+// The depth view holds distances along the camera ray in scene units, misses 0 with
+// coverage 0; its picture (io/aov_display.h) is near black, far white, misses white.
+TEST(Render, DepthViewHoldsDistancesAndItsPictureOrdersThem) {
   Scene scene;
   scene.materials.push_back(makeMaterial("m", Color(0.1f), Color(0.8f)));
   scene.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
@@ -18,27 +21,35 @@ TEST(Render, DepthViewOrdersByDistance) {
   scene.camera = axisCamera(Vec3(0, 0, 5), Vec3(0.0f), 40.0f);
   Rig rig(scene);
   Image img = rig.render(Aov::Depth);
+  ASSERT_EQ(img.content, ImageContent::Depth);
+  ASSERT_EQ(img.coverage.size(), img.pixels.size());
   CameraRays cam(scene.camera);
-  // Nearest point: the sphere's front at t = 4 -> 0. Farthest: the wall at the
-  // left corners -> 1. Misses (right corners) are white.
   Ray corner = cam.generate(0.5f, 0.5f);
   float tFar = 8.0f / -corner.dir.z;
-  EXPECT_FLOAT_EQ(img.at(32, 24).r, 0.0f);
-  EXPECT_NEAR(img.at(0, 0).r, 1.0f, 1e-6f);
-  EXPECT_EQ(img.at(64, 0), Color(1.0f));
-  EXPECT_EQ(img.at(64, 48), Color(1.0f));
-  // A sphere pixel off-centre: t from the analytic hit, normalised by (4, tFar).
+  EXPECT_NEAR(img.at(32, 24).r, 4.0f, 4e-6f);  // the sphere's front
+  EXPECT_NEAR(img.at(0, 0).r, tFar, 1e-5f);
+  EXPECT_EQ(img.at(64, 0), Color(0.0f));  // misses
+  EXPECT_EQ(img.coverage[64], 0.0f);
+  EXPECT_EQ(img.coverage[0], 1.0f);
+  // A sphere pixel off-centre: t from the analytic hit.
   Ray r = cam.generate(36.5f, 24.5f);
   glm::dvec3 o(r.origin), d(glm::normalize(glm::dvec3(r.dir)));
   double b = -glm::dot(o, d), perp2 = glm::dot(o + b * d, o + b * d);
   ASSERT_LT(perp2, 1.0);
   double t = b - std::sqrt(1.0 - perp2);
-  EXPECT_NEAR(img.at(36, 24).r, (t - 4.0) / (tFar - 4.0), 1e-4);
-  // Wall pixels are farther (lighter) than sphere pixels; greyscale throughout.
-  EXPECT_GT(img.at(2, 24).r, img.at(32, 24).r);
-  EXPECT_GT(img.at(2, 24).r, img.at(36, 24).r);
-  EXPECT_NEAR(img.at(2, 24).r, (8.0f / -cam.generate(2.5f, 24.5f).dir.z - 4.0f) / (tFar - 4.0f), 1e-4f);
-  for (const Color& c : img.pixels) {
+  EXPECT_NEAR(img.at(36, 24).r, t, 1e-4 * t);
+  EXPECT_NEAR(img.at(2, 24).r, 8.0f / -cam.generate(2.5f, 24.5f).dir.z, 1e-4f);
+
+  // The picture: normalised by (4, tFar), as the depth view always looked.
+  Image pic = aovDisplay(img);
+  EXPECT_EQ(pic.content, ImageContent::Radiance);
+  EXPECT_FLOAT_EQ(pic.at(32, 24).r, 0.0f);
+  EXPECT_NEAR(pic.at(0, 0).r, 1.0f, 1e-6f);
+  EXPECT_EQ(pic.at(64, 0), Color(1.0f));
+  EXPECT_EQ(pic.at(64, 48), Color(1.0f));
+  EXPECT_NEAR(pic.at(36, 24).r, (t - 4.0) / (tFar - 4.0), 1e-4);
+  EXPECT_GT(pic.at(2, 24).r, pic.at(36, 24).r);
+  for (const Color& c : pic.pixels) {
     EXPECT_EQ(c.r, c.g);
     EXPECT_EQ(c.r, c.b);
     EXPECT_GE(c.r, 0.0f);
@@ -46,8 +57,8 @@ TEST(Render, DepthViewOrdersByDistance) {
   }
 }
 
-// With several samples, a silhouette pixel averages only the samples that hit:
-// a miss must not pull its depth towards zero (the nearest value in the image).
+// With several samples, a silhouette pixel averages only the samples that hit: a miss
+// must not pull its depth towards zero; it lowers the coverage instead.
 TEST(Render, DepthViewIgnoresMissedSamples) {
   Scene scene;
   scene.materials.push_back(makeMaterial("m", Color(0.1f), Color(0.8f)));
@@ -56,11 +67,44 @@ TEST(Render, DepthViewIgnoresMissedSamples) {
   scene.camera.spp = 4;
   Rig rig(scene);
   Image img = rig.render(Aov::Depth);
-  // The nearest point is the sphere's front, seen by the centre pixel.
+  // The nearest point is the sphere's front, seen by the centre pixel; every hit is
+  // farther, and no sphere point is farther than the tangent distance sqrt(24).
   const float centre = img.at(32, 24).r;
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) EXPECT_GE(img.at(x, y).r, centre) << x << "," << y;
-  EXPECT_LT(centre, 0.05f);
+  int partial = 0;
+  for (size_t i = 0; i < img.pixels.size(); ++i) {
+    if (img.coverage[i] == 0.0f) continue;
+    EXPECT_GE(img.pixels[i].r, centre) << i;
+    EXPECT_LE(img.pixels[i].r, std::sqrt(24.0f) + 1e-4f) << i;
+    partial += img.coverage[i] < 1.0f;
+  }
+  EXPECT_GT(partial, 0);  // the silhouette
+  EXPECT_NEAR(centre, 4.0f, 0.02f);
+}
+
+// The normal view: the world-space shading normal facing the ray, in [-1, 1]; its
+// picture is n * 0.5 + 0.5 weighted by coverage, misses black.
+TEST(Render, NormalViewHoldsUnitNormalsAndItsPictureMapsThem) {
+  Scene scene;
+  scene.materials.push_back(makeMaterial("m", Color(0.1f), Color(0.8f)));
+  scene.spheres.push_back(Sphere{Vec3(0.0f), 1.0f, 0});
+  scene.camera = axisCamera(Vec3(0, 0, 5), Vec3(0.0f), 40.0f);
+  Rig rig(scene);
+  Image img = rig.render(Aov::Normal);
+  ASSERT_EQ(img.content, ImageContent::Normal);
+  expectColorNear(img.at(32, 24), Color(0, 0, 1), 1e-4f);
+  bool negative = false;
+  for (size_t i = 0; i < img.pixels.size(); ++i) {
+    const Color& n = img.pixels[i];
+    if (img.coverage[i] == 0.0f) { EXPECT_EQ(n, Color(0.0f)); continue; }
+    EXPECT_NEAR(glm::length(n), 1.0f, 1e-4f) << i;
+    negative = negative || n.x < -0.5f || n.y < -0.5f;
+  }
+  EXPECT_TRUE(negative);
+  Image pic = aovDisplay(img);
+  EXPECT_EQ(pic.at(0, 0), Color(0.0f));
+  for (size_t i = 0; i < img.pixels.size(); ++i) {
+    if (img.coverage[i] == 1.0f) { EXPECT_EQ(pic.pixels[i], img.pixels[i] * 0.5f + 0.5f) << i; }
+  }
 }
 
 Scene glassBallScene(int maxDepth) {

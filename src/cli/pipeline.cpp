@@ -2,6 +2,7 @@
 // build the maps (cli/photon_stage.h), render the frame (cli/render_frame.h), write.
 #include "cli/pipeline.h"
 #include "cli/gate_decision.h"
+#include "cli/image_metadata.h"
 #include "cli/job_admission.h"
 #include "cli/render_frame.h"
 #include "cli/render_plan.h"
@@ -15,35 +16,6 @@
 
 namespace penumbra {
 namespace {
-
-ImageMetadata describe(const Scene& scene, const RenderStats& stats, const std::string& aov) {
-  const auto& ps = scene.photons;
-  bool physical = scene.render.model == ShadingModel::Physical;
-  std::string photons =
-      physical ? fmt::format("global_photons={} caustic_photons={} k_global={} k_caustic={} "
-                             "passes={} alpha={} radius={} max_bounces={} shadow_photons={} "
-                             "k_shadow={} gate={}",
-                             ps.globalPhotons, ps.causticPhotons, ps.kGlobal, ps.kCaustic, ps.passes,
-                             ps.alpha, ps.radius, ps.maxBounces, stats.emittedShadow, ps.kShadow,
-                             ps.gate ? "on" : "off")
-               : fmt::format("shadow_photons={} indirect_photons={} k_shadow={} k_indirect={} "
-                             "max_radius={} max_bounces={} sampling={} gate={} estimator={}",
-                             stats.emittedShadow, stats.emittedIndirect, ps.kShadow, ps.kIndirect,
-                             ps.maxRadius, ps.maxBounces,
-                             ps.sampling == HemisphereSampling::Cosine ? "cosine" : "uniform",
-                             ps.gate ? "on" : "off",
-                             ps.estimator == IndirectEstimator::Classic ? "classic" : "density");
-  photons += ps.lookup == PhotonLookup::Precomputed
-                 ? fmt::format(" lookup=precomputed lookup_cell={}", ps.lookupCell)
-                 : std::string(" lookup=exact");
-  return {{"penumbra:scene", scene.name},
-          {"penumbra:scene_file", scene.file},
-          {"penumbra:aov", aov},
-          {"penumbra:model", physical ? "physical" : "classic"},
-          {"penumbra:settings", fmt::format("{}x{} spp={} max_depth={} seed={} {}", scene.camera.width,
-                                            scene.camera.height, scene.camera.spp,
-                                            scene.render.maxDepth, scene.render.seed, photons)}};
-}
 
 void reportProgress(const RenderRequest& request, const char* phase, double fraction) {
   if (request.progress) request.progress(phase, fraction);
@@ -117,7 +89,8 @@ RenderResult runRender(const RenderRequest& request) {
 
   if (!request.outputPath.empty() && !request.tracePixel) {
     phase = Stopwatch();
-    writeImage(request.outputPath, result.image, describe(scene, stats, aovName), request.display);
+    writeImage(request.outputPath, result.image, renderMetadata(scene, stats, aovName, request.outputPath),
+               request.display);
     stats.time.write = phase.seconds();
   }
   stats.time.total = total.seconds();

@@ -28,8 +28,6 @@ Aov parseAov(const std::string& name) {
 
 namespace {
 
-// One sample of the chosen view. Depth stores the raw distance (normalised for
-// display afterwards), -1 on a miss.
 uint8_t physicalTerms(Aov aov) {
   switch (aov) {
     case Aov::Direct: return kTermDirect;
@@ -39,18 +37,27 @@ uint8_t physicalTerms(Aov aov) {
   }
 }
 
-// `hit`: the ray's first hit, already traced (alone or in a packet); null on a miss.
+bool geometric(Aov aov) { return aov == Aov::Depth || aov == Aov::Normal; }
+
+// A geometric view's sample that hit nothing: no depth is -2 and no normal has r = -2,
+// so the pixel's mean can leave it out and count it against the coverage instead.
+constexpr float kNoHit = -2.0f;
+
+// One sample of the chosen view: the physical values for depth (distance along the
+// camera ray) and normal (world-space shading normal, facing the ray); writers map
+// them for display (io/aov_display.h). `hit`: the ray's first hit, already traced
+// (alone or in a packet); null on a miss.
 Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov aov, ThreadState& ts) {
   ts.raysLeft = kMaxRaysPerSample;
-  if (ctx.scene.render.model == ShadingModel::Physical && aov != Aov::Depth && aov != Aov::Normal) {
+  if (ctx.scene.render.model == ShadingModel::Physical && !geometric(aov)) {
     return tracePhysicalHit(ctx, ray, hit, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts);
   }
   if (aov == Aov::Beauty) return traceRayHit(ctx, ray, hit, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
   ++ts.counts.camera;
-  if (!hit) return aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
+  if (!hit) return geometric(aov) ? Color(kNoHit) : Color(0.0f);
   if (aov == Aov::Depth) return Color(hit->t);
   SurfaceRecord s = ctx.tracer.surface(ray, *hit, kSurfaceShadingNormal);
-  if (aov == Aov::Normal) return s.ns * 0.5f + 0.5f;
+  if (aov == Aov::Normal) return s.ns;
   const Material& m = ctx.scene.materials[s.material];
   CachedAnswer storage;  // Aov::Indirect
   return ambientTerm(ctx, s, m, lookupAt(ctx, s, storage, ts), ts);
@@ -64,22 +71,25 @@ Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadStat
 
 // One sample into its pixel's running sum. A NaN or Inf sample would poison the pixel
 // (or be written as 0 and hide): drop it, count it, and let the pixel's other samples
-// stand. Depth averages only the samples that hit: a miss is "no depth", not -1 m.
+// stand. Geometric views average only the samples that hit: a miss is "no depth",
+// not 0 m, and its share of the pixel is the coverage.
 void addSample(const Color& c, Aov aov, glm::dvec3& sum, int& counted, ThreadState& ts) {
   if (!isFinite(c)) {
     ++ts.counts.nonfiniteSamples;
     return;
   }
-  if (aov == Aov::Depth && c.r < 0.0f) return;
+  if (geometric(aov) && c.r == kNoHit) return;
   sum += glm::dvec3(c);
   ++counted;
 }
 
-// A mean above float range is clamped to it (the writer clamps further).
-Color pixelMean(const glm::dvec3& sum, int counted, Aov aov) {
+// A mean above float range is clamped to it (the writer clamps further). A pixel with
+// no sample counted is 0: black, or for a geometric view "no hit" (coverage 0).
+void storePixel(const glm::dvec3& sum, int counted, Aov aov, int spp, size_t index, Image& image) {
   const double top = std::numeric_limits<float>::max();
-  return counted > 0 ? Color(glm::min(sum / double(counted), glm::dvec3(top)))
-         : aov == Aov::Depth ? Color(-1.0f) : Color(0.0f);
+  image.pixels[index] = counted > 0 ? Color(glm::min(sum / double(counted), glm::dvec3(top)))
+                                    : Color(0.0f);
+  if (geometric(aov)) image.coverage[index] = static_cast<float>(counted) / static_cast<float>(spp);
 }
 
 // The packet path's per-thread buffers, sized for one tile on first use.
@@ -137,18 +147,9 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
     }
   }
   ts.knownShadows = ts.blockedShadows = 0;
-  for (int i = 0; i < n; ++i) image.at(b.pixels[i].x, b.pixels[i].y) = pixelMean(b.sums[i], b.counted[i], aov);
-}
-
-// Depth view as in the report: near black, far white, misses white.
-void normaliseDepth(Image& image) {
-  float lo = kInf, hi = -kInf;
-  for (const Color& c : image.pixels) {
-    if (c.r >= 0.0f) { lo = std::min(lo, c.r); hi = std::max(hi, c.r); }
-  }
-  float range = hi > lo ? hi - lo : 1.0f;
-  for (Color& c : image.pixels) {
-    c = c.r < 0.0f ? Color(1.0f) : Color(std::isfinite(lo) ? (c.r - lo) / range : 1.0f);
+  for (int i = 0; i < n; ++i) {
+    const size_t index = static_cast<size_t>(b.pixels[i].y) * cam.width + b.pixels[i].x;
+    storePixel(b.sums[i], b.counted[i], aov, cam.spp, index, image);
   }
 }
 
@@ -158,6 +159,10 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   const Camera& cam = ctx.scene.camera;
   CameraRays camera(cam);
   Image image(cam.width, cam.height);
+  if (geometric(options.aov)) {
+    image.content = options.aov == Aov::Depth ? ImageContent::Depth : ImageContent::Normal;
+    image.coverage.assign(image.pixels.size(), 0.0f);
+  }
   const int tile = options.tileSize;
   const int tilesX = (cam.width + tile - 1) / tile, tilesY = (cam.height + tile - 1) / tile;
   const int numTiles = tilesX * tilesY;
@@ -193,7 +198,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
               Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
               addSample(c, options.aov, sum, counted, ts);
             }
-            image.at(x, y) = pixelMean(sum, counted, options.aov);
+            storePixel(sum, counted, options.aov, cam.spp, static_cast<size_t>(pixel), image);
           }
         }
       }
@@ -204,7 +209,6 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   });
 
   for (const ThreadState& ts : states) counts += ts.counts;
-  if (options.aov == Aov::Depth) normaliseDepth(image);
   return image;
 }
 

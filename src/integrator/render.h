@@ -1,5 +1,6 @@
 // The tile-parallel image loop: camera rays, stratified samples per pixel, and
-// the depth/normal/indirect views. Deterministic for any thread count.
+// the depth/normal/indirect views (depth and normal as physical values, with
+// their coverage). Deterministic for any thread count.
 #pragma once
 #include "core/image.h"
 #include "core/progress.h"

@@ -4,6 +4,7 @@
 #include "core/color.h"
 
 #include "core/error.h"
+#include "io/aov_display.h"
 #include "io/temp_file.h"
 
 #include <OpenImageIO/imagebuf.h>
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 #include <system_error>
 
@@ -25,7 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum class Encoding { Srgb8, LinearHalf };
+enum class Encoding { Srgb8, Exr };
 
 // NaN never gets here (writeImage refuses it); +Inf is the brightest value there
 // is, so it saturates to white like any other value above 1, and -Inf to black.
@@ -41,6 +43,58 @@ constexpr float kHalfMax = 65504.0f;
 float toHalfSafe(float linear) {
   if (!(linear > 0.0f)) return 0.0f;
   return std::min(linear, kHalfMax);
+}
+
+// Depth and normals are measurements, not light: kept in 32-bit float (half's 11
+// bits would round a 10 m depth to 8 mm) with their sign, finite (no +-Inf either).
+float toFloatFinite(float value) {
+  constexpr float top = std::numeric_limits<float>::max();
+  return std::clamp(value, -top, top);
+}
+
+bool geometric(const Image& image) { return image.content != ImageContent::Radiance; }
+
+// One EXR layer: its channel-name prefix ("" for a plain RGB file) and its image.
+struct ExrLayer {
+  std::string name;
+  const Image* image;
+};
+
+// The EXR header and interleaved pixels of `layers`: R, G, B per layer (half for
+// radiance, float for geometric views) and, for a geometric view, A = its coverage.
+OIIO::ImageSpec exrSpec(const std::vector<ExrLayer>& layers, std::vector<float>& floats) {
+  std::vector<std::string> names;
+  std::vector<OIIO::TypeDesc> formats;
+  bool anyFloat = false;
+  for (const ExrLayer& l : layers) {
+    const std::string prefix = l.name.empty() ? "" : l.name + ".";
+    const bool exact = geometric(*l.image);
+    anyFloat = anyFloat || exact;
+    for (const char* c : {"R", "G", "B", "A"}) {
+      if (*c == 'A' && l.image->coverage.empty()) continue;
+      names.push_back(prefix + c);
+      formats.push_back(exact ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
+    }
+  }
+  const Image& first = *layers.front().image;
+  const size_t n = names.size();
+  OIIO::ImageSpec spec(first.width, first.height, static_cast<int>(n), anyFloat ? OIIO::TypeDesc::FLOAT
+                                                                                : OIIO::TypeDesc::HALF);
+  // Only what differs from the default, so a radiance EXR keeps its old header.
+  if (!layers.front().name.empty()) spec.channelnames = names;
+  if (anyFloat && std::any_of(formats.begin(), formats.end(), [](auto f) { return f != OIIO::TypeDesc::FLOAT; }))
+    spec.channelformats = formats;
+  if (layers.size() == 1 && n == 4) spec.alpha_channel = 3;
+  floats.resize(first.pixels.size() * n);
+  for (size_t i = 0; i < first.pixels.size(); ++i) {
+    float* out = &floats[i * n];
+    for (const ExrLayer& l : layers) {
+      const Image& im = *l.image;
+      for (int c = 0; c < 3; ++c) *out++ = geometric(im) ? toFloatFinite(im.pixels[i][c]) : toHalfSafe(im.pixels[i][c]);
+      if (!im.coverage.empty()) *out++ = im.coverage[i];
+    }
+  }
+  return spec;
 }
 
 // The render drops non-finite samples, so a NaN here is a bug upstream: say where,
@@ -132,20 +186,22 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
   checkImageOutputPath(path);
   fs::path target(path);
   Encoding encoding = OIIO::Strutil::lower(target.extension().string()) == ".png" ? Encoding::Srgb8
-                                                                                  : Encoding::LinearHalf;
+                                                                                  : Encoding::Exr;
   if (image.width <= 0 || image.height <= 0 ||
-      image.pixels.size() != static_cast<size_t>(image.width) * image.height) {
+      image.pixels.size() != static_cast<size_t>(image.width) * image.height ||
+      (!image.coverage.empty() && image.coverage.size() != image.pixels.size())) {
     writeFailed(path, "image is empty or its pixel count does not match its size");
   }
   refuseNan(path, image);
 
-  const size_t count = image.pixels.size() * 3;
   std::vector<uint8_t> bytes;
   std::vector<float> floats;
   OIIO::ImageSpec spec;
   const void* pixels = nullptr;
   OIIO::TypeDesc pixelType;
   if (encoding == Encoding::Srgb8) {
+    const Image shown = aovDisplay(image);  // depth and normals as pictures; radiance as is
+    const size_t count = shown.pixels.size() * 3;
     spec = OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
     // Only when asked for: a default PNG keeps today's bytes, metadata included.
@@ -154,16 +210,13 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
       spec.attribute("penumbra:exposure", display.exposure);
     }
     bytes.resize(count);
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-      for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = toSrgb8(displayValue(image.pixels[i][c], display));
+    for (size_t i = 0; i < shown.pixels.size(); ++i)
+      for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = toSrgb8(displayValue(shown.pixels[i][c], display));
     pixels = bytes.data();
     pixelType = OIIO::TypeDesc::UINT8;
   } else {
-    spec = OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::HALF);
+    spec = exrSpec({{"", &image}}, floats);
     spec.attribute("oiio:ColorSpace", "Linear");
-    floats.resize(count);
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-      for (int c = 0; c < 3; ++c) floats[i * 3 + c] = toHalfSafe(image.pixels[i][c]);
     pixels = floats.data();
     pixelType = OIIO::TypeDesc::FLOAT;  // OIIO converts to the file's half
   }
@@ -178,26 +231,20 @@ void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::s
   checkImageOutputPath(path);
   if (layers.empty()) writeFailed(path, "no layers");
   const Image& first = layers.front().second;
-  std::vector<std::string> names;
+  std::vector<ExrLayer> parts;
   for (const auto& [name, image] : layers) {
-    if (image.width != first.width || image.height != first.height || image.pixels.empty()) {
+    if (image.width != first.width || image.height != first.height || image.pixels.empty() ||
+        (!image.coverage.empty() && image.coverage.size() != image.pixels.size())) {
       writeFailed(path, "layer '" + name + "' is empty or not the size of the others");
     }
     refuseNan(path, image);
-    for (const char* c : {".R", ".G", ".B"}) names.push_back(name + c);
+    parts.push_back({name, &image});
   }
-  const size_t n = layers.size() * 3;
-  OIIO::ImageSpec spec(first.width, first.height, static_cast<int>(n), OIIO::TypeDesc::HALF);
-  spec.channelnames = names;
+  std::vector<float> floats;
+  OIIO::ImageSpec spec = exrSpec(parts, floats);
   spec.attribute("oiio:ColorSpace", "Linear");
   spec.attribute("Software", "penumbra");
   for (const auto& [key, value] : metadata) spec.attribute(key, value);
-  std::vector<float> floats(first.pixels.size() * n);
-  for (size_t i = 0; i < first.pixels.size(); ++i) {
-    for (size_t l = 0; l < layers.size(); ++l) {
-      for (int c = 0; c < 3; ++c) floats[i * n + l * 3 + c] = toHalfSafe(layers[l].second.pixels[i][c]);
-    }
-  }
   writeAtomically(fs::path(path), path, spec, OIIO::TypeDesc::FLOAT, floats.data());
 }
 

@@ -1,5 +1,5 @@
-// Writes framebuffers through OpenImageIO: PNG (8-bit sRGB) or EXR (linear half),
-// chosen by extension, via a temporary file renamed into place.
+// Writes framebuffers through OpenImageIO: PNG (8-bit sRGB) or EXR (linear half;
+// depth and normals 32-bit float), chosen by extension, via a temp file renamed into place.
 #pragma once
 #include "core/image.h"
 #include "io/tone_map.h"
@@ -15,13 +15,16 @@ using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 // an existing, writable directory: lets a render fail before it starts.
 void checkImageOutputPath(const std::string& path);
 
-// Throws InputError for an unsupported extension or an unwritable path. `display`
-// (exposure, tone curve) applies to PNG only: EXR keeps the linear values.
+// Throws InputError for an unsupported extension or an unwritable path. PNG shows a
+// depth or normal image as a picture (io/aov_display.h) and applies `display`
+// (exposure, tone curve); EXR keeps the linear or physical values, plus A = coverage
+// for depth and normals.
 void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata = {},
                 const DisplayOptions& display = {});
 
 // Several views of one render in one EXR: layer NAME's channels are NAME.R, NAME.G,
-// NAME.B (linear half). Same checks and temp-file write as writeImage.
+// NAME.B (linear half; float for depth and normals, with NAME.A = coverage). Same
+// checks and temp-file write as writeImage.
 void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::string, Image>>& layers,
                      const ImageMetadata& metadata = {});
 

@@ -1,0 +1,19 @@
+// What a rendered image's header says about how it was made: a short summary in
+// every file, and in EXR files every setting that changes the image.
+#pragma once
+#include "core/scene.h"
+#include "core/stats.h"
+#include "io/image_io.h"
+#include <string>
+
+namespace penumbra {
+
+// The attributes for the image of `scene` (after its render plan) rendered as view
+// `aov`, written to `outputPath`. Every file: penumbra:scene, scene_file, aov, model
+// and settings (one summary line). An EXR adds one penumbra:KEY per setting (listed
+// in docs/scene-format.md, "Image metadata"); a PNG does not, so its bytes stay those
+// of earlier versions. No value names a path beyond the scene file as given.
+ImageMetadata renderMetadata(const Scene& scene, const RenderStats& stats, const std::string& aov,
+                             const std::string& outputPath);
+
+}  // namespace penumbra
