@@ -122,9 +122,10 @@ SAN_ENV := ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1:check_in
            UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
            TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/fuzz/sanitizers/tsan.supp
 # The tests of tests/test_pipeline_determinism.cpp, read from the file so a new
-# one is picked up: "^(Determinism.RunRender...|Cli.HelpExitsWithZero|...)$$".
+# one is picked up: "^(Determinism.RunRender...|Cli.HelpExitsWithZero|...)$$", and the
+# lookup cache's lock-free lazy cells asked from every thread at once.
 TSAN_TESTS := ^($(shell sed -n 's/^TEST(\([A-Za-z0-9_]*\), *\([A-Za-z0-9_]*\)).*/\1.\2/p' \
-                tests/test_pipeline_determinism.cpp | paste -sd'|'))$$
+                tests/test_pipeline_determinism.cpp | paste -sd'|')|LookupCache.APointWithNoCellNearGetsItsOwnCellsEstimateOnceForEveryThread)$$
 SAN_CMAKE := -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=$(CLANG_CXX)
 
 san-deps: deps
@@ -157,7 +158,8 @@ test-asan: san-deps
 	$(SAN_ENV) cmake --build $(ASAN_BUILD) -j $(JOBS) --target penumbra_tests
 	cd $(ASAN_BUILD) && $(SAN_ENV) ctest --output-on-failure -j $(JOBS)
 
-# ThreadSanitizer on the determinism tests (renders with 1 and 2 threads),
+# ThreadSanitizer on the determinism tests (renders with 1 and 2 threads) and the
+# lookup cache's lazy cells,
 # linked against Debian's oneTBB rebuilt with -fsanitize=thread so the races
 # inside TBB tasks are checked too; the check below refuses to run against the
 # uninstrumented system libtbb.
@@ -165,8 +167,9 @@ test-tsan: san-deps
 	JOBS=$(JOBS) fuzz/sanitizers/build_tsan_tbb.sh $(TSAN_TBB)
 	cmake -S . -B $(TSAN_BUILD) $(SAN_CMAKE) -DPENUMBRA_SANITIZE=thread \
 	      -DTBB_DIR=$(CURDIR)/$(TSAN_TBB)/lib/cmake/TBB
-	$(SAN_ENV) cmake --build $(TSAN_BUILD) -j $(JOBS) --target test_pipeline_determinism
-	@ldd $(TSAN_BUILD)/tests/test_pipeline_determinism | grep -q '$(CURDIR)/$(TSAN_TBB)/lib/libtbb.so.12' || \
-	  { echo "test-tsan: not linked against the TSan libtbb in $(TSAN_TBB)"; exit 1; }
+	$(SAN_ENV) cmake --build $(TSAN_BUILD) -j $(JOBS) --target test_pipeline_determinism test_gather_lookup_cache
+	@for t in test_pipeline_determinism test_gather_lookup_cache; do \
+	  ldd $(TSAN_BUILD)/tests/$$t | grep -q '$(CURDIR)/$(TSAN_TBB)/lib/libtbb.so.12' || \
+	  { echo "test-tsan: $$t is not linked against the TSan libtbb in $(TSAN_TBB)"; exit 1; }; done
 	cd $(TSAN_BUILD) && LD_LIBRARY_PATH=$(CURDIR)/$(TSAN_TBB)/lib $(SAN_ENV) \
 	  ctest --output-on-failure -j $(JOBS) -R '$(TSAN_TESTS)'
