@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
   render->add_option("scene", req.scenePath, "Scene file (JSON, .gltf or .glb; - reads JSON from stdin)")->required();
   render->add_option("-o,--output,--outfile", req.outputPath,
-                     "Output image: .png (8-bit sRGB) or .exr (linear half); with --trace-pixel, "
+                     "Output image: .png (8-bit sRGB) or .exr (linear: half colour, float depth in scene units and normals in [-1,1]); with --trace-pixel, "
                      "the JSON file (default stdout)");
   render->add_option("-t,--threads,--nthreads", req.threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
