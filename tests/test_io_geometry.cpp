@@ -175,9 +175,10 @@ TEST(Geometry, ObjVerticesAreUnifiedPerIndexTriple) {
   EXPECT_EQ(t0[2], t1[1]);  // (3,3) is shared
   EXPECT_NE(t0[0], t1[0]);  // position 1 is split by its two uvs
   EXPECT_EQ(m.positions[t0[0]], m.positions[t1[0]]);
-  EXPECT_EQ(m.uvs[t0[0]], Vec2(0, 0));
-  EXPECT_EQ(m.uvs[t1[0]], Vec2(0.25f, 0));  // as in the file, not flipped
-  EXPECT_EQ(m.uvs[t1[2]], Vec2(0, 1));
+  // v flipped: OBJ's v = 0 is the image's bottom, the lookup's t = 0 its top.
+  EXPECT_EQ(m.uvs[t0[0]], Vec2(0, 1));
+  EXPECT_EQ(m.uvs[t1[0]], Vec2(0.25f, 1));
+  EXPECT_EQ(m.uvs[t1[2]], Vec2(0, 0));
   // The seam does not split the smooth normal: both copies share it.
   for (const Vec3& n : m.normals) expectNear(n, Vec3(0, 0, 1));
 }

@@ -161,7 +161,9 @@ TriangleMesh readObj(const std::string& path, tinyobj::ObjReader& reader, std::v
           mesh.normals.push_back(glm::normalize(n));
         }
         if (keepUvs) {
-          mesh.uvs.push_back(key.t >= 0 ? Vec2(attrib.texcoords[2 * key.t], attrib.texcoords[2 * key.t + 1])
+          // OBJ puts v = 0 at the image's bottom row; textures are looked up with
+          // t = 0 at the top (OpenImageIO, and glTF's uvs): flip v here, once.
+          mesh.uvs.push_back(key.t >= 0 ? Vec2(attrib.texcoords[2 * key.t], 1.0f - attrib.texcoords[2 * key.t + 1])
                                         : Vec2(std::nanf("")));
         }
       }
