@@ -110,6 +110,37 @@ TEST(Sweep, RunsEqualStandaloneRendersAndRerunsResume) {
   EXPECT_TRUE(fs::exists(dir / "report.md"));
 }
 
+// Two lights of equal power, one shut in a black box: the plan splits the global
+// photons by reach (all to the free light) in every progressive pass, in the sweep
+// as in a lone render.
+TEST(Sweep, RunsSplitTheirLightsByReachInEveryPassAsALoneRenderDoes) {
+  testing::ScratchDir dir;
+  const std::string scene = (dir / "boxed.json").string();
+  std::ofstream(scene) << R"({
+    "camera": {"position": [0, 2, 4], "look_at": [0, 0, 0], "fov": 50, "width": 32, "height": 24},
+    "materials": {"grey": {"diffuse": 0.6}, "black": {"diffuse": 0}},
+    "lights": [{"type": "point", "position": [0, 1.5, 0], "intensity": 5},
+               {"type": "point", "position": [3, 1, -3], "intensity": 5}],
+    "objects": [{"type": "quad", "corner": [-4, 0, 4], "edge1": [8, 0, 0], "edge2": [0, 0, -8], "material": "grey"},
+                {"type": "quad", "corner": [-4, 0, -2], "edge1": [8, 0, 0], "edge2": [0, 3, 0], "material": "grey"},
+                {"type": "box", "min": [2.5, 0.5, -3.5], "max": [3.5, 1.5, -2.5], "material": "black"}],
+    "render": {"model": "physical", "seed": 3},
+    "photons": {"global": 4000, "caustic": 0, "k_global": 20, "passes": 2}
+  })";
+  SweepRequest req;
+  req.scenePath = scene;
+  req.outDir = (dir / "out").string();
+  req.spec = expandGrid({namedKnob("spp", "1,2", ShadingModel::Physical)}, {});
+  req.threads = 2;
+  const SweepOutcome out = runSweep(req);
+  ASSERT_EQ(out.rows.size(), 2u);
+  for (size_t i = 0; i < out.rows.size(); ++i) {
+    const Image swept = readImage((dir / "out" / out.rows[i].image).string());
+    const Image alone = standalone(scene, req.spec.runs[i].overrides, dir / "alone.exr");
+    EXPECT_EQ(compareImages(swept, alone).maxError, 0.0) << out.rows[i].id;
+  }
+}
+
 TEST(Sweep, GatedRunsReportTheRaysAvoidedAndTheErrorTheGateAdds) {
   testing::ScratchDir dir;
   SweepRequest req;

@@ -59,6 +59,9 @@ void addSettings(const Scene& scene, const RenderStats& stats, ImageMetadata& m)
   add("refraction", onOff(rs.refraction));
   add("light_samples", rs.lightSamples);
   add("packets", onOff(rs.packets));
+  auto rgb = [](const Color& c) { return fmt::format("{} {} {}", c.r, c.g, c.b); };
+  add("background", rgb(rs.background));
+  if (!physical) add("ambient", rgb(rs.ambient));
   add("photons.shadow", ps.shadowPhotons);
   add("photons.k_shadow", ps.kShadow);
   if (physical) {

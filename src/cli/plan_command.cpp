@@ -33,7 +33,7 @@ PlanCommand::PlanCommand(CLI::App& app) {
   command_ = app.add_subcommand("plan", "Print what a render would run, and why, without rendering");
   command_->add_option("scene", scene_, "Scene file (JSON)")->required();
   command_->add_option("--aov", aov_, "View (default: the scene's render.aov)");
-  command_->add_option("--set", overrides_, "Override a scene value")->take_all()->allow_extra_args(false);
+  command_->add_option("-D,--set", overrides_, "Override a scene value")->take_all()->allow_extra_args(false);
   command_->add_flag("--json", json_, "Print the plan as JSON (as in --stats)");
   addPassOptions(*command_, enable_, disable_);
 }

@@ -192,12 +192,15 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
     ReachRule rule;
     const char* where;
   };
+  // Not the classic estimator: it averages photon colours (not a density), so each
+  // photon must carry its light's colour at the weight the power split gives it.
   const Target targets[] = {
-      {Pass::IndirectPhotons, density ? ReachRule::Bouncing : ReachRule::AnySurface,
-       density ? "a surface that bounces photons (p_r or p_t > 0)" : "any surface"},
+      {density ? Pass::IndirectPhotons : Pass::Count, ReachRule::Bouncing,
+       "a surface that bounces photons (p_r or p_t > 0)"},
       {Pass::GlobalPhotons, ReachRule::Scattering, "a surface that scatters photons"},
       {Pass::CausticPhotons, ReachRule::Specular, "a specular surface (area lights; point and directional lights aim)"}};
   for (const Target& t : targets) {
+    if (t.pass == Pass::Count) continue;
     PassDecision& d = plan[t.pass];
     if (!d.on || d.overridden || d.budget == 0) continue;
     d.reach = measureReach(scene, tracer, t.rule);

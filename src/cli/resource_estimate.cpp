@@ -19,7 +19,7 @@ namespace {
 // with no photons and a 0.9 MB frame).
 constexpr double kIndexBytes = 8.25;
 constexpr double kBvhBytesPerPrimitive = 70.0;  // Embree's default BVH, triangles or spheres
-constexpr double kCacheBytesPerRecord = 64.0;   // a LookupCache slot plus its verdicts, padded
+constexpr double kCacheBytesPerRecord = 70.0;   // a LookupCache slot plus its verdicts, padded, and 6 B of lazy-cell table
 constexpr double kBaseBytes = 140.0 * 1024 * 1024;
 // Textures: OIIO's cache holds a MIP pyramid (4/3 of the texels) in the file's own
 // format, up to the cache size texture_lookup.cpp sets (1024 MB).

@@ -29,7 +29,7 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--depth", o.depth, "render.max_depth values, e.g. 1,2,4,8");
   c->add_option("--spp", o.spp, "camera.spp values, e.g. 1,4");
   c->add_option("--vary", o.vary, "Any scene key and its values: --vary photons.shadow=1e5,1e6 (repeatable)");
-  c->add_option("--set", o.overrides, "Override a scene value in every run")->take_all()->allow_extra_args(false);
+  c->add_option("-D,--set", o.overrides, "Override a scene value in every run")->take_all()->allow_extra_args(false);
   c->add_option("--reference", o.reference, "Reference image (EXR) for the error (default: the run at every knob's highest value)");
   c->add_option("--aov", o.aov, "View to render (default: the scene's render.aov)");
   c->add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));

@@ -33,7 +33,8 @@ struct PlannedRun {
   PhotonSettings photons;
   ReuseKeys keys;
   PhotonBudgets budgets;
-  PhotonNeeds needs;      // the run's plan: which maps it reads
+  RenderPlan plan;        // the run's plan (split by reach once its BVH exists)
+  PhotonNeeds needs;      // ... which maps it reads
   bool textures = false;  // ... and whether it reads textures
   double loadSeconds = 0.0;
   bool done = false;  // finished by an earlier sweep into the same folder
@@ -60,6 +61,7 @@ class Sweep {
     if (!req_.force) finished = readFinishedRows(csvPath_, spec_.knobs);
     plan(finished);
     loadReference();
+    splitByReach();
     rows_.resize(spec_.runs.size());
     for (const PlannedRun& p : runs_) {
       if (p.done) { rows_[p.index] = finished[spec_.runs[p.index].id]; ++totals_.resumed; }
@@ -93,7 +95,8 @@ class Sweep {
       }
       p.loadSeconds = clock.seconds();
       if (i == 0) aov_ = parseAov(req_.aov.empty() ? scene.render.aov : req_.aov);
-      const RenderPlan plan = makePlan(scene, aov_);
+      p.plan = makePlan(scene, aov_);
+      const RenderPlan& plan = p.plan;
       applyPlan(plan, scene);
       p.needs = photonNeeds(plan);
       p.textures = plan[Pass::Textures].on;
@@ -147,6 +150,26 @@ class Sweep {
     return groups;
   }
 
+  // Each run still to render gets the plan's light split by reach, as a lone render
+  // of it would (needs its geometry's BVH, so after every run has loaded): the same
+  // budgets per light, and a pass no light feeds off, in every pass of the run.
+  void splitByReach() {
+    for (PlannedRun& p : runs_) {
+      if (p.done) continue;
+      GeometryGroup& geo = assetsFor(p);
+      Scene& scene = geo.scene;
+      scene.camera = p.camera;
+      scene.render = p.render;
+      scene.photons = p.photons;
+      penumbra::splitByReach(p.plan, scene, *geo.assets.tracer);
+      applyPlan(p.plan, scene);
+      p.render = scene.render;
+      p.photons = scene.photons;
+      p.budgets = budgetsOf(scene);
+      p.needs = photonNeeds(p.plan);
+    }
+  }
+
   GeometryGroup& assetsFor(const PlannedRun& p) {
     GeometryGroup& g = *geometry_[p.keys.geometry];
     if (!g.built) {
@@ -180,14 +203,6 @@ class Sweep {
       if (std::find(budgets.begin(), budgets.end(), p.budgets) == budgets.end()) budgets.push_back(p.budgets);
     }
     top.writeTo(scene.photons);
-    // The runs' light split by reach, as each would measure it alone (it depends on
-    // the scene, not on the budget, so the prefixes stay those of lone renders).
-    RenderPlan reachPlan = makePlan(scene, aov_);
-    splitByReach(reachPlan, scene, *geo.assets.tracer);
-    const PhotonNeeds reach = photonNeeds(reachPlan);
-    needs.indirectReach = reach.indirectReach;
-    needs.globalReach = reach.globalReach;
-    needs.causticReach = reach.causticReach;
     status_ = "photons";
     showProgress();
     Emission emission = emitPhotonsFor(scene, *geo.assets.tracer, needs, 0, smaller);

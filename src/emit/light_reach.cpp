@@ -13,7 +13,6 @@ namespace penumbra {
 bool reaches(const Scene& scene, int material, ReachRule rule) {
   const Material& m = scene.materials[material];
   switch (rule) {
-    case ReachRule::AnySurface: return true;
     case ReachRule::Bouncing: return m.pR > 0.0f || m.pT > 0.0f;
     case ReachRule::Scattering:
       return maxComponent(albedoBsdf(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling))) > 0.0f;

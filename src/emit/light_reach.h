@@ -9,17 +9,19 @@
 
 namespace penumbra {
 
-// What a map's photons must first hit for the map to store anything of them.
+// What a map's photons must first hit for the map to store anything of them. (The
+// classic estimator has no rule: it averages photon colours, so it keeps the power split.)
 enum class ReachRule : uint8_t {
-  AnySurface,  // classic estimator: every hit is stored, the first included
   Bouncing,    // density estimator: stored from the second hit on, so p_r or p_t > 0
   Scattering,  // physical global map: stored after a bounce, so a BSDF that returns power
   Specular,    // physical caustic map: stored after a specular bounce (delta lobe)
 };
 
 // Pilot photons per light: 1,024 rays each. A light none of whose pilots reaches
-// gets no photons; then the fraction it could have reached is below 3/1024 (0.3%)
-// with 95% confidence (the rule of three), and its share of the map's power below that.
+// gets no photons; then the share of its photons that could have been stored is
+// below 3/1024 (0.3%) with 95% confidence (the rule of three): the flux dropped is
+// below 0.3% of that light's emitted power (of the map's flux it can be more, when
+// that light is the map's only source).
 constexpr uint32_t kReachPilots = 1024;
 
 // Per light, the fraction of `pilots` photons (their own random stream, seeded by the
