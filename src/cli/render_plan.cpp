@@ -192,15 +192,13 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
     ReachRule rule;
     const char* where;
   };
-  // Not the classic estimator: it averages photon colours (not a density), so each
-  // photon must carry its light's colour at the weight the power split gives it.
-  const Target targets[] = {
-      {density ? Pass::IndirectPhotons : Pass::Count, ReachRule::Bouncing,
-       "a surface that bounces photons (p_r or p_t > 0)"},
+  std::vector<Target> targets = {
       {Pass::GlobalPhotons, ReachRule::Scattering, "a surface that scatters photons"},
       {Pass::CausticPhotons, ReachRule::Specular, "a specular surface (area lights; point and directional lights aim)"}};
+  // Not the classic estimator: it averages photon colours (not a density), so each
+  // photon must carry its light's colour at the weight the power split gives it.
+  if (density) targets.push_back({Pass::IndirectPhotons, ReachRule::Bouncing, "a surface that bounces photons (p_r or p_t > 0)"});
   for (const Target& t : targets) {
-    if (t.pass == Pass::Count) continue;
     PassDecision& d = plan[t.pass];
     if (!d.on || d.overridden || d.budget == 0) continue;
     d.reach = measureReach(scene, tracer, t.rule);

@@ -15,12 +15,6 @@ namespace penumbra {
 namespace {
 constexpr int64_t kAxisCells = int64_t(1) << 20;  // 20 bits per axis in a key
 
-// The dominant axis of n and its sign: 0..5.
-inline unsigned bucketOf(const Vec3& n) {
-  const Vec3 a = glm::abs(n);
-  const unsigned axis = a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
-  return 2u * axis + (n[axis] < 0.0f ? 1u : 0u);
-}
 
 // One photon's key and where it came from: source 0 is the indirect map, 1 + l light l.
 struct Entry {

@@ -93,6 +93,12 @@ class LookupCache {
     uint32_t record = 0;
   };
   static constexpr uint64_t kEmpty = ~uint64_t(0);
+  // The dominant axis of n and its sign: 0..5 (axis = bucket / 2, negative if odd).
+  static unsigned bucketOf(const Vec3& n) {
+    const Vec3 a = glm::abs(n);
+    const unsigned axis = a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
+    return 2u * axis + (n[axis] < 0.0f ? 1u : 0u);
+  }
   // A full 64-bit mix: keys of one layer differ only in x and y, whose bits a
   // multiplicative hash's middle bits do not see (rows of cells collided into long runs).
   static size_t slotHash(uint64_t key) { return static_cast<size_t>(mix64(key)); }

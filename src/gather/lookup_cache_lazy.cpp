@@ -26,11 +26,9 @@ void LookupCache::makeLazyTable() {
 Color LookupCache::lazyIndirect(const IndirectPhotonMap& map, const Vec3& p, const Vec3& n,
                                 GatherScratch& s) const {
   // The bucket's axis, signed: the normal every point of the (cell, bucket) shares.
-  const Vec3 a = glm::abs(n);
-  const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+  const unsigned bucket = bucketOf(n);
   Vec3 axisNormal(0.0f);
-  axisNormal[axis] = n[axis] < 0.0f ? -1.0f : 1.0f;
-  const unsigned bucket = 2u * unsigned(axis) + (n[axis] < 0.0f ? 1u : 0u);
+  axisNormal[bucket / 2] = bucket & 1u ? -1.0f : 1.0f;
   const uint64_t key = keyAt(p, bucket);
   const Vec3 centre = cellCentreOf(p);
   if (key == kEmpty || !lazy_) return estimateAt(map, centre, axisNormal, s);
