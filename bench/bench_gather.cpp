@@ -241,7 +241,7 @@ void registerAll(bool with5M) {
     // Query cost: Morton off/on and leaf sizes (one thread, both orders), then the
     // default map at 1 and 2 threads. Grouped by map so each is built once.
     std::vector<std::pair<int64_t, int64_t>> maps = {{0, leaf}};
-    for (int64_t lf : {10, 16, 24, 32})
+    for (int64_t lf : {10, 16, 24, 32, 48, 64})
       if (lf != leaf) maps.push_back({1, lf});
     maps.push_back({1, leaf});  // the default last: 2-thread and estimator runs reuse it
     for (const auto& [morton, lf] : maps) {

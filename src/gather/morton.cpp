@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #include <algorithm>
+#include <array>
 
 namespace penumbra {
 
@@ -41,8 +42,66 @@ Bounds computeBounds(const PositionView& pos) {
       });
 }
 
-std::vector<uint32_t> storageOrder(const PositionView& pos, const uint16_t* groups,
-                                   size_t groupStride, bool spatial, const Bounds& bounds) {
+namespace {
+// Records per chunk of the radix passes: a chunk counts and scatters its records on
+// one thread; the chunk count depends only on the record count.
+constexpr size_t kChunk = size_t(1) << 16;
+constexpr int kMaxDigitBits = 11;  // 2048 buckets per pass: their write heads stay in cache
+
+// Bit i of a 6-bit value moved to bit 3i: a table, since a loop over the bits
+// cost more than the rest of the key.
+constexpr std::array<uint32_t, 64> kSpread6 = [] {
+  std::array<uint32_t, 64> t{};
+  for (uint32_t v = 0; v < 64; ++v)
+    for (int bit = 0; bit < 6; ++bit) t[v] |= (v >> bit & 1u) << (3 * bit);
+  return t;
+}();
+
+// The top `b` (<= 6) bits of each axis's 21-bit quantised coordinate, interleaved:
+// exactly mortonCode63(p, bounds) >> (63 - 3b), without spreading the bits it drops.
+uint32_t coarseCell(const Vec3& p, const Bounds& bounds, int b) {
+  uint32_t q[3];
+  for (int a = 0; a < 3; ++a) {
+    const float extent = bounds.hi[a] - bounds.lo[a];
+    const float t = extent > 0.0f ? (p[a] - bounds.lo[a]) / extent : 0.0f;
+    q[a] = static_cast<uint32_t>(std::clamp(t, 0.0f, 1.0f) * 2097151.0f) >> (21 - b);
+  }
+  return kSpread6[q[0]] | kSpread6[q[1]] << 1 | kSpread6[q[2]] << 2;
+}
+
+// One stable counting-sort pass on the digit (key >> shift) & mask, src -> dst.
+template <class Photon>
+void scatterPass(const Photon* src, const uint32_t* srcKeys, Photon* dst, uint32_t* dstKeys, size_t n,
+                 int shift, int digitBits) {
+  const size_t buckets = size_t(1) << digitBits, mask = buckets - 1;
+  const size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<uint32_t> head(chunks * buckets, 0);
+  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+    uint32_t* h = &head[c * buckets];
+    for (size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) ++h[srcKeys[i] >> shift & mask];
+  });
+  // Bucket-major, chunk-minor: chunk c's records of a digit follow those of chunks < c.
+  uint32_t running = 0;
+  for (size_t d = 0; d < buckets; ++d) {
+    for (size_t c = 0; c < chunks; ++c) {
+      const uint32_t x = head[c * buckets + d];
+      head[c * buckets + d] = running;
+      running += x;
+    }
+  }
+  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+    uint32_t* h = &head[c * buckets];
+    for (size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) {
+      const uint32_t at = h[srcKeys[i] >> shift & mask]++;
+      dst[at] = src[i];
+      if (dstKeys) dstKeys[at] = srcKeys[i];
+    }
+  });
+}
+}  // namespace
+
+StorageKeys storageKeys(const PositionView& pos, const uint16_t* groups, size_t groupStride,
+                        bool spatial, const Bounds& bounds) {
   const size_t n = pos.count;
   auto groupOf = [&](size_t i) -> uint32_t {
     return groups ? *reinterpret_cast<const uint16_t*>(
@@ -51,26 +110,46 @@ std::vector<uint32_t> storageOrder(const PositionView& pos, const uint16_t* grou
   };
   uint32_t numGroups = 1;
   for (size_t i = 0; i < n && groups; ++i) numGroups = std::max(numGroups, groupOf(i) + 1);
-  // Buckets: (group, the top bits of the Morton code). The KD-tree build later puts
-  // every photon in leaf order, so the spatial sort need only be coarse: cells of
-  // 1/64 of the box per axis (fewer with many groups) give compact, balanced parts
-  // and a cache-friendly build. A stable counting sort: O(n), unique result.
+  // Cells of 1/64 of the box per axis (fewer with many groups) give compact,
+  // balanced parts and a cache-friendly build; the tree orders the rest.
   int bitsPerAxis = spatial ? 6 : 0;
   while (bitsPerAxis > 0 && (uint64_t(numGroups) << (3 * bitsPerAxis)) > (uint64_t(1) << 22)) --bitsPerAxis;
   const int cellBits = 3 * bitsPerAxis;
-  std::vector<uint32_t> bucket(n);
+  int groupBits = 0;
+  while ((uint32_t(1) << groupBits) < numGroups) ++groupBits;
+  StorageKeys out;
+  out.bits = cellBits + groupBits;
+  out.keys.resize(n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
-      const uint64_t cell = cellBits ? mortonCode63(pos[i], bounds) >> (63 - cellBits) : 0;
-      bucket[i] = static_cast<uint32_t>((uint64_t(groupOf(i)) << cellBits) | cell);
+      const uint32_t cell = cellBits ? coarseCell(pos[i], bounds, bitsPerAxis) : 0u;
+      out.keys[i] = groupOf(i) << cellBits | cell;
     }
   });
-  std::vector<uint32_t> start((size_t(numGroups) << cellBits) + 1, 0);
-  for (size_t i = 0; i < n; ++i) ++start[bucket[i] + 1];
-  for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-  std::vector<uint32_t> order(n);
-  for (size_t i = 0; i < n; ++i) order[start[bucket[i]]++] = static_cast<uint32_t>(i);
-  return order;
+  return out;
 }
+
+template <class Photon>
+void sortByKey(PhotonArray<Photon>& photons, StorageKeys& keys) {
+  const size_t n = photons.size();
+  if (n < 2 || keys.bits == 0) return;
+  const int passes = (keys.bits + kMaxDigitBits - 1) / kMaxDigitBits;
+  const int digitBits = (keys.bits + passes - 1) / passes;
+  PhotonArray<Photon> other(n);
+  std::vector<uint32_t> moved(n);  // the keys travel along
+  if (passes == 1) {
+    scatterPass(photons.data(), keys.keys.data(), other.data(), moved.data(), n, 0, digitBits);
+    photons.swap(other);
+    keys.keys.swap(moved);
+    return;
+  }
+  // Two passes: low digit into the second array, high digit back into the first
+  // (its pages are already in memory).
+  scatterPass(photons.data(), keys.keys.data(), other.data(), moved.data(), n, 0, digitBits);
+  scatterPass(other.data(), moved.data(), photons.data(), keys.keys.data(), n, digitBits, keys.bits - digitBits);
+}
+
+template void sortByKey(PhotonArray<ShadowPhoton>&, StorageKeys&);
+template void sortByKey(PhotonArray<IndirectPhoton>&, StorageKeys&);
 
 }  // namespace penumbra

@@ -10,17 +10,6 @@
 namespace penumbra {
 
 namespace {
-// photons[order[i]] into a new array: a parallel streaming gather, 3x faster than
-// permuting in place (which walks the permutation's cycles in random order, one
-// thread) at the price of a second array while it runs.
-template <class Photon>
-PhotonArray<Photon> permuted(const PhotonArray<Photon>& photons, const std::vector<uint32_t>& order) {
-  PhotonArray<Photon> out(order.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, order.size(), 1 << 14), [&](const auto& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = photons[order[i]];
-  });
-  return out;
-}
 // Indices into a map are 32-bit (KD-tree, lookup cache): refuse what they cannot name.
 void checkIndexable(size_t count, const char* which) {
   if (count > std::numeric_limits<uint32_t>::max()) {
@@ -45,9 +34,8 @@ void ShadowPhotonMap::build(PhotonArray<ShadowPhoton> photons, size_t numLights,
     // photons come out contiguous and, within it, spatially ordered.
     PositionView pos = positionsOf(photons_);
     Bounds bounds = options.mortonSort ? computeBounds(pos) : Bounds{};
-    std::vector<uint32_t> order = storageOrder(pos, &photons_[0].light, sizeof(ShadowPhoton),
-                                               options.mortonSort, bounds);
-    photons_ = permuted(photons_, order);
+    StorageKeys keys = storageKeys(pos, &photons_[0].light, sizeof(ShadowPhoton), options.mortonSort, bounds);
+    sortByKey(photons_, keys);
     size_t begin = 0;
     for (size_t light = 0; light < numLights; ++light) {
       size_t end = begin;
@@ -113,8 +101,8 @@ void IndirectPhotonMap::build(PhotonArray<IndirectPhoton> photons,
   photons_ = std::move(photons);
   if (options.mortonSort && !photons_.empty()) {
     PositionView pos = positionsOf(photons_);
-    std::vector<uint32_t> order = storageOrder(pos, nullptr, 0, true, computeBounds(pos));
-    photons_ = permuted(photons_, order);
+    StorageKeys keys = storageKeys(pos, nullptr, 0, true, computeBounds(pos));
+    sortByKey(photons_, keys);
   }
   progressAdd(options.progress, photons_.size());
   tree_.build(photons_, options.leafSize, !options.mortonSort, options.progress);
