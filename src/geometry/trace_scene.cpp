@@ -3,6 +3,8 @@
 #include "geometry/trace_scene.h"
 #include "core/error.h"
 #include "geometry/sphere_geometry.h"
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <stdexcept>
 #include <string>
 
@@ -49,6 +51,27 @@ Vec2 sphericalUv(const Vec3& d) {
   return {u, v};
 }
 
+// The interpolation's rounding is a few ulps of the vertices' magnitudes on each
+// axis; along the normal that is dot(|n|, per-axis bound). Bounding by the largest
+// vertex per axis (not the barycentric mix) also covers Embree's plane test, whose
+// error in dot(n, v - o) is the same sum. A face normal to z at z ~ 0 gets an offset
+// of ulps of z, not of its 3-unit width, so a wide 1e-6 slab keeps two faces.
+// A plane at exactly z = 0 is exact in z and would get a 1-ulp (denormal) offset,
+// which Embree's products flush to 0, hitting the plane again at t = 0: a floor of
+// 2^-40 of the triangle's reach keeps those products normal at any scale.
+void TraceScene::computeFrames(const TriangleMesh& mesh, TriangleFrame* frames) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 4096), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const auto& tri = mesh.triangles[i];
+      const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+      const Vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+      const Vec3 extent = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
+      frames[i] = {ng, std::max(gammaBound(7) * glm::dot(glm::abs(ng), extent), 0x1p-40f * maxComponent(extent)),
+                   gammaBound(7) * maxComponent(extent)};
+    }
+  });
+}
+
 TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create Embree device");
@@ -61,8 +84,13 @@ TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene) {
                                                                                                     : 1;
   packetWidth_ = nativePacketWidth_;
 
+  size_t triangles = 0;
+  for (const TriangleMesh& mesh : scene.meshes) triangles += mesh.triangles.size();
+  frames_.resize(triangles);
+  size_t frameOffset = 0;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const TriangleMesh& mesh = scene.meshes[m];
+    computeFrames(mesh, frames_.data() + frameOffset);
     Vec3 lo(kInf), hi(-kInf);
     for (const Vec3& p : mesh.positions) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
     meshCentres_.push_back(mesh.positions.empty() ? Vec3(0.0f) : 0.5f * (lo + hi));
@@ -72,7 +100,8 @@ TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene) {
     unsigned id = rtcAttachGeometry(rtcScene_, geom);
     rtcReleaseGeometry(geom);
     if (geometries_.size() <= id) geometries_.resize(id + 1);
-    geometries_[id] = {false, static_cast<uint32_t>(m)};
+    geometries_[id] = {false, static_cast<uint32_t>(m), frameOffset};
+    frameOffset += mesh.triangles.size();
   }
   if (!scene.spheres.empty()) {
     RTCGeometry geom = createSphereGeometry(device_, scene.spheres);
@@ -184,22 +213,14 @@ SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit, uint8_t fi
   const auto& tri = mesh.triangles[hit.primId];
   float w = 1.0f - hit.u - hit.v;
   const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+  const TriangleFrame& frame = frames_[geometries_[hit.geomId].frames + hit.primId];
   SurfaceRecord rec;
   // Barycentric interpolation is exact to float precision on the triangle's
   // plane, unlike o + t d, which drifts with the ray length.
   rec.position = w * p0 + hit.u * p1 + hit.v * p2;
-  Vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
-  // The interpolation's rounding is a few ulps of the vertices' magnitudes on each
-  // axis; along the normal that is dot(|n|, per-axis bound). Bounding by the largest
-  // vertex per axis (not the barycentric mix) also covers Embree's plane test, whose
-  // error in dot(n, v - o) is the same sum. A face normal to z at z ~ 0 gets an offset
-  // of ulps of z, not of its 3-unit width, so a wide 1e-6 slab keeps two faces.
-  // A plane at exactly z = 0 is exact in z and would get a 1-ulp (denormal) offset,
-  // which Embree's products flush to 0, hitting the plane again at t = 0: a floor of
-  // 2^-40 of the triangle's reach keeps those products normal at any scale.
-  const Vec3 extent = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
-  rec.error = std::max(gammaBound(7) * glm::dot(glm::abs(ng), extent), 0x1p-40f * maxComponent(extent));
-  rec.spread = gammaBound(7) * maxComponent(extent);
+  Vec3 ng = frame.ng;
+  rec.error = frame.error;
+  rec.spread = frame.spread;
   Vec3 ns = ng;
   if ((fields & kSurfaceShadingNormal) && !mesh.normals.empty()) {
     Vec3 n = w * mesh.normals[tri[0]] + hit.u * mesh.normals[tri[1]] + hit.v * mesh.normals[tri[2]];

@@ -80,7 +80,18 @@ class TraceScene {
   struct GeometryRef {
     bool sphere;
     uint32_t index;  // mesh index; spheres share one geometry and use primID
+    size_t frames = 0;  // a mesh's first entry in frames_
   };
+  // What a mesh hit needs of its triangle besides the vertices: the unit face normal
+  // and the rounding bounds of a point interpolated on it. Computed once per
+  // triangle (20 B each) rather than per hit: a cross product, a normalise and the
+  // vertex extents were a third of meshSurface, which photon paths call per hit.
+  struct TriangleFrame {
+    Vec3 ng;
+    float error;   // along ng
+    float spread;  // in any direction
+  };
+  static void computeFrames(const TriangleMesh& mesh, TriangleFrame* frames);
   SurfaceRecord sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
   SurfaceRecord meshSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
 
@@ -88,6 +99,7 @@ class TraceScene {
   RTCDevice device_ = nullptr;
   RTCScene rtcScene_ = nullptr;
   std::vector<GeometryRef> geometries_;  // by Embree geomID
+  std::vector<TriangleFrame> frames_;    // every mesh's triangles, mesh after mesh
   std::vector<Vec3> meshCentres_;        // for spherical UVs on meshes without uvs
   std::vector<float> meshRadii_;         // half-diagonal: spherical-uv scale on meshes without uvs
   std::string embreeError_;              // first error Embree reported, if any
