@@ -18,14 +18,21 @@ uint64_t spreadBits21(uint32_t v) {
   return x;
 }
 
-uint64_t mortonCode63(const Vec3& p, const Bounds& b) {
+namespace {
+// p's cell on each axis among 2^21 over b; degenerate axes quantise to 0 instead of NaN.
+void quantise21(const Vec3& p, const Bounds& b, uint32_t q[3]) {
   constexpr float kCells = 2097151.0f;  // 2^21 - 1
-  uint32_t q[3];
   for (int a = 0; a < 3; ++a) {
     float extent = b.hi[a] - b.lo[a];
     float t = extent > 0.0f ? (p[a] - b.lo[a]) / extent : 0.0f;
     q[a] = static_cast<uint32_t>(std::clamp(t, 0.0f, 1.0f) * kCells);
   }
+}
+}  // namespace
+
+uint64_t mortonCode63(const Vec3& p, const Bounds& b) {
+  uint32_t q[3];
+  quantise21(p, b, q);
   return spreadBits21(q[0]) | (spreadBits21(q[1]) << 1) | (spreadBits21(q[2]) << 2);
 }
 
@@ -61,12 +68,8 @@ constexpr std::array<uint32_t, 64> kSpread6 = [] {
 // exactly mortonCode63(p, bounds) >> (63 - 3b), without spreading the bits it drops.
 uint32_t coarseCell(const Vec3& p, const Bounds& bounds, int b) {
   uint32_t q[3];
-  for (int a = 0; a < 3; ++a) {
-    const float extent = bounds.hi[a] - bounds.lo[a];
-    const float t = extent > 0.0f ? (p[a] - bounds.lo[a]) / extent : 0.0f;
-    q[a] = static_cast<uint32_t>(std::clamp(t, 0.0f, 1.0f) * 2097151.0f) >> (21 - b);
-  }
-  return kSpread6[q[0]] | kSpread6[q[1]] << 1 | kSpread6[q[2]] << 2;
+  quantise21(p, bounds, q);
+  return kSpread6[q[0] >> (21 - b)] | kSpread6[q[1] >> (21 - b)] << 1 | kSpread6[q[2] >> (21 - b)] << 2;
 }
 
 // One stable counting-sort pass on the digit (key >> shift) & mask, src -> dst.
@@ -135,17 +138,16 @@ void sortByKey(PhotonArray<Photon>& photons, StorageKeys& keys) {
   if (n < 2 || keys.bits == 0) return;
   const int passes = (keys.bits + kMaxDigitBits - 1) / kMaxDigitBits;
   const int digitBits = (keys.bits + passes - 1) / passes;
+  // storageKeys keeps keys within 22 bits: at most two passes of <= 11 bits each.
   PhotonArray<Photon> other(n);
   std::vector<uint32_t> moved(n);  // the keys travel along
+  scatterPass(photons.data(), keys.keys.data(), other.data(), moved.data(), n, 0, digitBits);
   if (passes == 1) {
-    scatterPass(photons.data(), keys.keys.data(), other.data(), moved.data(), n, 0, digitBits);
     photons.swap(other);
     keys.keys.swap(moved);
     return;
   }
-  // Two passes: low digit into the second array, high digit back into the first
-  // (its pages are already in memory).
-  scatterPass(photons.data(), keys.keys.data(), other.data(), moved.data(), n, 0, digitBits);
+  // The high digit back into the first array (its pages are already in memory).
   scatterPass(other.data(), moved.data(), photons.data(), keys.keys.data(), n, digitBits, keys.bits - digitBits);
 }
 
