@@ -16,8 +16,8 @@ FIGURES = (
     [(f"Embree {kind} rays, {label}", rf"^Rays/{key}/{kind}/threads:{{T}}/", "rate", "Mrays/s", 1e-6, None)
      for key, label in RAY_SCENES for kind in ("camera", "shadow", "incoherent")]
     + [("Photon emission, fig14 5M+5M", r"^BM_EmitCornell/{T}/", "rate", "Mphotons/s", 1e-6, 1.9),
-       ("  of which: batch merge, fig14 counts", r"^BM_MergeCornell/{T}/", "time", "s", 1.0, None),
        ("Map build, fig14 (both maps)", r"^BM_BuildMapsCornell/{T}/", "time", "s", 1.0, 1.8),
+       ("Photon pass, fig14 (emission + both maps)", r"^BM_PhotonPassCornell/{T}/", "time", "s", 1.0, None),
        ("kNN k=50, 1M photons, scan-line", r"^Knn50/1M/.*morton:1/leaf:24/threads:{T}/shuffled:0", "rate",
         "kqueries/s", 1e-3, None),
        ("Gate classify k=50, 1M photons", r"^Classify/1M/.*morton:1/leaf:24/threads:{T}/shuffled:0", "rate",

@@ -284,8 +284,9 @@ TEST(Emit, ByteIdenticalForOneAndTwoThreads) {
   for (const PhotonMaps* m : {&two, &again}) {
     ASSERT_EQ(m->shadow.size(), one.shadow.size());
     ASSERT_EQ(m->indirect.size(), one.indirect.size());
-    EXPECT_EQ(std::memcmp(m->shadow.data(), one.shadow.data(), one.shadow.size() * sizeof(ShadowPhoton)), 0);
-    EXPECT_EQ(std::memcmp(m->indirect.data(), one.indirect.data(),
+    EXPECT_EQ(std::memcmp(m->shadow.flatten().data(), one.shadow.flatten().data(),
+                          one.shadow.size() * sizeof(ShadowPhoton)), 0);
+    EXPECT_EQ(std::memcmp(m->indirect.flatten().data(), one.indirect.flatten().data(),
                           one.indirect.size() * sizeof(IndirectPhoton)), 0);
     EXPECT_EQ(m->emittedShadow, one.emittedShadow);
     EXPECT_EQ(m->classicScale, one.classicScale);
@@ -302,7 +303,8 @@ TEST(Emit, ByteIdenticalForOneAndTwoThreads) {
   scene.render.seed = 999;
   PhotonMaps other = run(2);
   EXPECT_TRUE(other.shadow.size() != one.shadow.size() ||
-              std::memcmp(other.shadow.data(), one.shadow.data(), one.shadow.size() * sizeof(ShadowPhoton)) != 0);
+              std::memcmp(other.shadow.flatten().data(), one.shadow.flatten().data(),
+                          one.shadow.size() * sizeof(ShadowPhoton)) != 0);
 }
 
 TEST(SplitBudget, ProportionalToLuminanceAndExact) {

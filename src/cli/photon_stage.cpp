@@ -7,8 +7,8 @@ namespace penumbra {
 namespace {
 
 template <class Photon>
-PhotonArray<Photon> photonsFor(PhotonArray<Photon>& all, const PrefixCuts& cuts, uint64_t full,
-                               uint64_t wanted, bool consume, bool& ok) {
+PhotonBatches<Photon> photonsFor(PhotonBatches<Photon>& all, const PrefixCuts& cuts, uint64_t full,
+                                 uint64_t wanted, bool consume, bool& ok) {
   if (wanted == full) return consume ? std::move(all) : all;
   const PrefixCut* cut = cuts.find(wanted);
   if (!cut) {

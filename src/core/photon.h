@@ -3,6 +3,7 @@
 // photon's power is a 32-bit shared-exponent colour.
 #pragma once
 #include "core/math.h"
+#include "core/populated_memory.h"
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -49,7 +50,8 @@ struct PackedPower {
 // element on one thread before the parallel pass that overwrites them all (0.2 s and
 // every page fault of fig14's merged map, serial): this allocator leaves elements
 // uninitialised instead, so the parallel writer touches the pages first. Only for
-// trivially copyable records, each of which is written before it is read.
+// trivially copyable records, each of which is written before it is read. Large
+// arrays are mapped populated (core/populated_memory.h): no page fault per 4 KB.
 template <class T>
 struct UninitialisedAllocator : std::allocator<T> {
   static_assert(std::is_trivially_copyable_v<T>, "photon records are plain bytes");
@@ -62,6 +64,14 @@ struct UninitialisedAllocator : std::allocator<T> {
   UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
   template <class U>
   void construct(U*) noexcept {}  // resize(n), vector(n): the caller writes every element
+  T* allocate(size_t n) {
+    if (n * sizeof(T) >= kPopulatedMinBytes) return static_cast<T*>(allocatePopulated(n * sizeof(T)));
+    return std::allocator<T>::allocate(n);
+  }
+  void deallocate(T* p, size_t n) noexcept {
+    if (n * sizeof(T) >= kPopulatedMinBytes) return freePopulated(p, n * sizeof(T));
+    std::allocator<T>::deallocate(p, n);
+  }
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
@@ -99,15 +109,5 @@ struct IndirectPhoton {
   uint32_t normal;     // octahedral geometric normal, flipped to face where the photon came from
 };
 static_assert(sizeof(IndirectPhoton) == 24, "IndirectPhoton: 12 B position + 3 x 4 B codes");
-
-struct PhotonMaps {
-  PhotonArray<ShadowPhoton> shadow;
-  PhotonArray<IndirectPhoton> indirect;
-  uint64_t emittedShadow = 0;
-  uint64_t emittedIndirect = 0;
-  // Converts stored indirect flux back into photon colour (a white light's photons -> 1):
-  // emitted photons / (4 pi x summed luminous intensity). Used by the classic estimator.
-  float classicScale = 1.0f;
-};
 
 }  // namespace penumbra

@@ -1,48 +1,86 @@
-// Photon storage during emission: one vector per batch, merged in batch order, so
-// the stored arrays do not depend on which thread ran which batch.
+// Photon storage during emission: each thread appends the batches it runs to its own
+// populated blocks, and batch b's photons stay one span, so the stored sequence
+// (batches in batch order) does not depend on which thread ran which batch.
 #pragma once
-#include "core/photon.h"
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "core/photon_batches.h"
+#include <tbb/enumerable_thread_specific.h>
 #include <algorithm>
-#include <cstdint>
+#include <cstddef>
 #include <vector>
 
 namespace penumbra {
 
-// Each batch task fills only its own vector (disjoint writes, nothing shared); the
-// merged array is allocated uninitialised (PhotonArray) so the parallel copy faults it in.
-// Small per-batch vectors grow inside the cache; one large per-thread vector would
-// copy everything it holds at every doubling and fault in fresh pages each time.
+// One thread's append buffer: a batch grows at the tail of the current block; when
+// the block is full, the batch so far moves to a fresh, larger block (the old block
+// keeps the batches already finished in it). No vector doubling, no page faults.
+template <class Photon>
+class BatchAppender {
+ public:
+  void push_back(const Photon& p) {
+    if (end_ == cap_) grow();
+    *end_++ = p;
+  }
+  size_t size() const { return static_cast<size_t>(end_ - begin_); }
+
+  void start() { begin_ = end_; }  // a new batch begins where the last one ended
+  typename PhotonBatches<Photon>::Span span() const { return {begin_, size()}; }
+  std::vector<PopulatedBlock>& blocks() { return blocks_; }
+
+ private:
+  // Blocks double from one huge page (2 MB) up to 32 MB: small emissions map little,
+  // large ones few.
+  static constexpr size_t kFirstBlock = size_t(2) << 20, kLargestBlock = size_t(32) << 20;
+  void grow() {
+    const size_t batch = size();
+    size_t bytes = std::min(kLargestBlock, blocks_.empty() ? kFirstBlock : 2 * blocks_.back().bytes());
+    bytes = std::max(bytes, 4 * (batch + 1) * sizeof(Photon));
+    blocks_.emplace_back(bytes);
+    Photon* base = static_cast<Photon*>(blocks_.back().data());
+    std::copy(begin_, end_, base);
+    begin_ = base;
+    end_ = base + batch;
+    cap_ = base + bytes / sizeof(Photon);
+  }
+
+  Photon *begin_ = nullptr, *end_ = nullptr, *cap_ = nullptr;
+  std::vector<PopulatedBlock> blocks_;
+};
+
 template <class Photon>
 class BatchBuffers {
  public:
-  explicit BatchBuffers(size_t batches) : batches_(batches) {}
-  PhotonArray<Photon>& batch(size_t b) { return batches_[b]; }
-  // Photons each batch stored, in batch order (before merge()).
+  explicit BatchBuffers(size_t batches) : spans_(batches) {}
+
+  // Runs fill(out) for batch b with the calling thread's appender as `out` (push_back,
+  // size). Emission tasks must not nest parallel work inside: the appender is per thread.
+  template <class Fill>
+  void fill(size_t b, Fill&& fill) {
+    BatchAppender<Photon>& out = local_.local();
+    out.start();
+    fill(out);
+    spans_[b] = out.span();
+  }
+
+  // Photons stored per batch, in batch order.
   std::vector<size_t> sizes() const {
-    std::vector<size_t> n(batches_.size());
-    for (size_t i = 0; i < batches_.size(); ++i) n[i] = batches_[i].size();
+    std::vector<size_t> n(spans_.size());
+    for (size_t b = 0; b < spans_.size(); ++b) n[b] = spans_[b].size;
     return n;
   }
 
-  // All batches' photons in batch order; each batch is freed once copied.
-  PhotonArray<Photon> merge() {
-    std::vector<size_t> offset(batches_.size() + 1, 0);
-    for (size_t i = 0; i < batches_.size(); ++i) offset[i + 1] = offset[i] + batches_[i].size();
-    PhotonArray<Photon> out(offset.back());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, batches_.size(), 8), [&](const auto& r) {
-      for (size_t i = r.begin(); i != r.end(); ++i) {
-        std::copy(batches_[i].begin(), batches_[i].end(), out.begin() + offset[i]);
-        PhotonArray<Photon>().swap(batches_[i]);
-      }
-    });
-    batches_.clear();
-    return out;
+  // Every batch as one sequence; the blocks move into it.
+  PhotonBatches<Photon> finish() {
+    std::vector<PopulatedBlock> blocks;
+    for (BatchAppender<Photon>& a : local_) {
+      for (PopulatedBlock& block : a.blocks()) blocks.push_back(std::move(block));
+    }
+    local_.clear();
+    return PhotonBatches<Photon>(std::move(spans_), std::move(blocks));
   }
 
  private:
-  std::vector<PhotonArray<Photon>> batches_;
+  std::vector<typename PhotonBatches<Photon>::Span> spans_;
+  tbb::enumerable_thread_specific<BatchAppender<Photon>> local_;
 };
 
 }  // namespace penumbra

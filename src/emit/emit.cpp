@@ -1,5 +1,5 @@
 // Shadow and indirect photon emission. Each batch draws from its own random
-// stream keyed by (seed, map, light, batch index within the light); per-batch buffers are merged in
+// stream keyed by (seed, map, light, batch index within the light); the maps read the batches in
 // batch order, so the stored arrays do not depend on the thread count.
 #include "emit/emit.h"
 #include "core/bsdf.h"
@@ -11,6 +11,7 @@
 #include "emit/batch_buffers.h"
 #include "emit/budget.h"
 #include "emit/light_reach.h"
+#include <tbb/parallel_for.h>
 
 namespace penumbra {
 namespace {
@@ -18,7 +19,7 @@ namespace {
 // Follows one line from the light through every surface: the first hit is
 // direct, all later ones are in shadow, opaque once anything opaque was crossed.
 void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& dir, uint16_t light,
-                     int maxHits, PhotonArray<ShadowPhoton>& out) {
+                     int maxHits, BatchAppender<ShadowPhoton>& out) {
   const std::vector<Material>& materials = tracer.scene().materials;
   Ray ray{origin, dir};
   ShadowKind kind = kDirect;
@@ -35,7 +36,7 @@ void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& d
 // One indirect photon path: stored at every hit (classic) or every hit after
 // the first (density, whose direct part comes from the Phong term instead).
 void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Color power, Rng& rng,
-                       bool storeFirstHit, PhotonArray<IndirectPhoton>& out) {
+                       bool storeFirstHit, BatchAppender<IndirectPhoton>& out) {
   const PhotonSettings& ps = scene.photons;
   for (int bounce = 0; bounce <= ps.maxBounces; ++bounce) {
     Hit hit;
@@ -123,16 +124,17 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
     const PhotonBatch& batch = shadowBatches[b];
     const Light& light = scene.lights[batch.light];
     Rng rng(hashKey(seed, kShadowStream, batchStreamKey(batch)));
-    auto& out = shadowBuffers.batch(b);
-    traceBatch(shadowCuts, b, batch.count, out, [&](uint64_t) {
-      const PhotonRay r = startPhoton(light, bounds, rng);
-      traceShadowLine(tracer, r.origin, r.dir, static_cast<uint16_t>(batch.light),
-                      options.maxHitsPerLine, out);
+    shadowBuffers.fill(b, [&](BatchAppender<ShadowPhoton>& out) {
+      traceBatch(shadowCuts, b, batch.count, out, [&](uint64_t) {
+        const PhotonRay r = startPhoton(light, bounds, rng);
+        traceShadowLine(tracer, r.origin, r.dir, static_cast<uint16_t>(batch.light),
+                        options.maxHitsPerLine, out);
+      });
     });
     progressAdd(options.progress, batch.count);
   });
   if (shadowCuts) shadowCuts->finish(shadowBuffers.sizes());
-  maps.shadow = shadowBuffers.merge();
+  maps.shadow = shadowBuffers.finish();
 
   const std::vector<double> indirectWeights = reachWeighted(weights, options.indirectReach);
   std::vector<uint64_t> indirectCounts = splitByWeight(indirectWeights, options.indirectMap ? ps.indirectPhotons : 0);
@@ -152,15 +154,16 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
     Color power = light.type == LightType::Point ? light.radiance() * (4.0f * kPi / count)
                                                  : lightPower(light, bounds) * (1.0f / count);
     Rng rng(hashKey(seed, kIndirectStream, batchStreamKey(batch)));
-    auto& out = indirectBuffers.batch(b);
-    traceBatch(indirectCuts, b, batch.count, out, [&](uint64_t) {
-      const PhotonRay r = startPhoton(light, bounds, rng);
-      traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power, rng, storeFirstHit, out);
+    indirectBuffers.fill(b, [&](BatchAppender<IndirectPhoton>& out) {
+      traceBatch(indirectCuts, b, batch.count, out, [&](uint64_t) {
+        const PhotonRay r = startPhoton(light, bounds, rng);
+        traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power, rng, storeFirstHit, out);
+      });
     });
     progressAdd(options.progress, batch.count);
   });
   if (indirectCuts) indirectCuts->finish(indirectBuffers.sizes());
-  maps.indirect = indirectBuffers.merge();
+  maps.indirect = indirectBuffers.finish();
 
   for (uint64_t c : shadowCounts) maps.emittedShadow += c;
   for (uint64_t c : indirectCounts) maps.emittedIndirect += c;

@@ -4,6 +4,7 @@
 #pragma once
 #include "core/light_sample.h"
 #include "core/photon.h"
+#include "core/photon_batches.h"
 #include "core/progress.h"
 #include "core/scene.h"
 #include "emit/photon_prefix.h"
@@ -27,6 +28,18 @@ struct EmitOptions {
   std::vector<float> indirectReach, globalReach, causticReach;
   // Each finished batch adds its photon count (one atomic add per batch); null: none.
   ProgressCounter* progress = nullptr;
+};
+
+// What the classic pass stored: each map's photons in batch order, unmerged (the map
+// build sorts straight out of the batches).
+struct PhotonMaps {
+  PhotonBatches<ShadowPhoton> shadow;
+  PhotonBatches<IndirectPhoton> indirect;
+  uint64_t emittedShadow = 0;
+  uint64_t emittedIndirect = 0;
+  // Converts stored indirect flux back into photon colour (a white light's photons -> 1):
+  // emitted photons / (4 pi x summed luminous intensity). Used by the classic estimator.
+  float classicScale = 1.0f;
 };
 
 // Splits each budget across point lights by luminous intensity (largest

@@ -8,6 +8,7 @@
 #include "core/sampling.h"
 #include "emit/batch_buffers.h"
 #include "emit/budget.h"
+#include <tbb/parallel_for.h>
 #include <tbb/enumerable_thread_specific.h>
 
 namespace penumbra {
@@ -107,7 +108,7 @@ float sampleAimed(const Light& light, const SceneSphere& bounds, const Aim& aim,
 // Russian roulette by the sampled weight: survive with q = min(1, max weight), then
 // power *= weight / q, so E[power after] = power x albedo, per channel.
 void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ray ray, Color power,
-                 Rng& rng, PhotonArray<IndirectPhoton>& out, PhotonTally& tally) {
+                 Rng& rng, BatchAppender<IndirectPhoton>& out, PhotonTally& tally) {
   const PhotonSettings& ps = scene.photons;
   int diffuseBounces = 0, specularBounces = 0;
   for (int bounce = 0;; ++bounce) {
@@ -168,9 +169,9 @@ std::vector<double> photonWeights(const Scene& scene, const SceneSphere& bounds,
   return weights;
 }
 
-PhotonArray<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, PassKind kind,
-                                    uint64_t pass, uint64_t total, const EmitOptions& options,
-                                    uint64_t& emitted, PhotonTally& tally, PrefixCuts& cuts) {
+PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, PassKind kind,
+                                      uint64_t pass, uint64_t total, const EmitOptions& options,
+                                      uint64_t& emitted, PhotonTally& tally, PrefixCuts& cuts) {
   const SceneSphere bounds = tracer.boundingSphere();
   std::vector<SceneSphere> targets = kind == PassKind::Caustic ? specularTargets(scene)
                                                                : std::vector<SceneSphere>{};
@@ -195,22 +196,23 @@ PhotonArray<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
     const Light& light = scene.lights[batch.light];
     const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
     Rng rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch)));
-    auto& out = buffers.batch(b);
     PhotonTally& t = tallies.local();
-    traceBatch(prefix, b, batch.count, out, [&](uint64_t) {
-      PhotonRay r;
-      Color power = share;
-      if (kind == PassKind::Caustic && isDeltaLight(light)) {
-        power *= sampleAimed(light, bounds, aims[batch.light], rng, r);
-      } else {
-        // Area lights are not aimed at the specular objects: their caustic photons
-        // are the share of all photons whose path turns out L S+ D.
-        float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
-        r = emitterPhoton(light, bounds, u1, u2, u3, u4);
-      }
-      t.emitted += glm::dvec3(power);
-      if (maxComponent(power) <= 0.0f) return;
-      tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);
+    buffers.fill(b, [&](BatchAppender<IndirectPhoton>& out) {
+      traceBatch(prefix, b, batch.count, out, [&](uint64_t) {
+        PhotonRay r;
+        Color power = share;
+        if (kind == PassKind::Caustic && isDeltaLight(light)) {
+          power *= sampleAimed(light, bounds, aims[batch.light], rng, r);
+        } else {
+          // Area lights are not aimed at the specular objects: their caustic photons
+          // are the share of all photons whose path turns out L S+ D.
+          float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
+          r = emitterPhoton(light, bounds, u1, u2, u3, u4);
+        }
+        t.emitted += glm::dvec3(power);
+        if (maxComponent(power) <= 0.0f) return;
+        tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);
+      });
     });
     progressAdd(options.progress, batch.count);
   });
@@ -218,7 +220,7 @@ PhotonArray<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer
   for (const PhotonTally& t : tallies) tally += t;
   emitted = 0;
   for (uint64_t c : counts) emitted += c;
-  return buffers.merge();
+  return buffers.finish();
 }
 
 }  // namespace

@@ -19,7 +19,7 @@ struct PhotonTally {
 };
 
 struct PhysicalPhotons {
-  PhotonArray<IndirectPhoton> caustic, global;
+  PhotonBatches<IndirectPhoton> caustic, global;
   uint64_t emittedCaustic = 0, emittedGlobal = 0;
   PhotonTally causticTally, globalTally;
   PrefixCuts causticCuts, globalCuts;  // options.prefixBudgets (tallies cover the full emission)

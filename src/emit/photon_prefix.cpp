@@ -78,24 +78,24 @@ namespace {
 
 // Each light's range of the cut, in light order, through `adjust(photon, light)`.
 template <class Photon, class Adjust>
-PhotonArray<Photon> copyRanges(const PhotonArray<Photon>& all, const PrefixCut& cut, Adjust&& adjust) {
+PhotonArray<Photon> copyRanges(const PhotonBatches<Photon>& all, const PrefixCut& cut, Adjust&& adjust) {
   PhotonArray<Photon> out;
   size_t n = 0;
   for (size_t l = 0; l < cut.begin.size(); ++l) n += cut.end[l] - cut.begin[l];
   out.reserve(n);
   for (size_t l = 0; l < cut.begin.size(); ++l) {
-    for (size_t i = cut.begin[l]; i < cut.end[l]; ++i) out.push_back(adjust(all[i], l));
+    all.forRange(cut.begin[l], cut.end[l], [&](size_t, const Photon& p) { out.push_back(adjust(p, l)); });
   }
   return out;
 }
 
 }  // namespace
 
-PhotonArray<ShadowPhoton> takePrefix(const PhotonArray<ShadowPhoton>& all, const PrefixCut& cut) {
+PhotonArray<ShadowPhoton> takePrefix(const PhotonBatches<ShadowPhoton>& all, const PrefixCut& cut) {
   return copyRanges(all, cut, [](const ShadowPhoton& p, size_t) { return p; });
 }
 
-PhotonArray<IndirectPhoton> takePrefix(const PhotonArray<IndirectPhoton>& all, const PrefixCut& cut) {
+PhotonArray<IndirectPhoton> takePrefix(const PhotonBatches<IndirectPhoton>& all, const PrefixCut& cut) {
   return copyRanges(all, cut, [&](IndirectPhoton p, size_t light) {
     p.power = PackedPower(p.power.color() * cut.powerScale[light]);
     return p;

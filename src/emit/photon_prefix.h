@@ -4,6 +4,7 @@
 // the largest emission, power rescaled, instead of emitting again (penumbra sweep).
 #pragma once
 #include "core/photon.h"
+#include "core/photon_batches.h"
 #include "emit/budget.h"
 #include <cstddef>
 #include <cstdint>
@@ -12,7 +13,7 @@
 namespace penumbra {
 
 // The photons a smaller budget would have stored, as one range per light of the
-// full emission's stored array (which is light-major: batches in light order).
+// full emission's stored sequence (which is light-major: batches in light order).
 struct PrefixCut {
   uint64_t budget = 0;            // the smaller total
   std::vector<uint64_t> emitted;  // per light: its share of `budget`
@@ -52,11 +53,11 @@ class PrefixCuts {
   std::vector<std::vector<size_t>> recorded_;
 };
 
-// Copies a cut's photons out of the full array. Shadow photons carry no power.
-PhotonArray<ShadowPhoton> takePrefix(const PhotonArray<ShadowPhoton>& all, const PrefixCut& cut);
+// Copies a cut's photons out of the full emission. Shadow photons carry no power.
+PhotonArray<ShadowPhoton> takePrefix(const PhotonBatches<ShadowPhoton>& all, const PrefixCut& cut);
 // Indirect photons carry power / count: each light's are rescaled to the smaller
 // count (then packed again, so within the packing's 2^-8 of a fresh emission's).
-PhotonArray<IndirectPhoton> takePrefix(const PhotonArray<IndirectPhoton>& all, const PrefixCut& cut);
+PhotonArray<IndirectPhoton> takePrefix(const PhotonBatches<IndirectPhoton>& all, const PrefixCut& cut);
 
 // Traces batch b's photons one at a time through `tracePhoton(i)`, recording the
 // cuts' marks as it goes. Keeps the loop of each emitter free of the bookkeeping.

@@ -36,19 +36,6 @@ uint64_t mortonCode63(const Vec3& p, const Bounds& b) {
   return spreadBits21(q[0]) | (spreadBits21(q[1]) << 1) | (spreadBits21(q[2]) << 2);
 }
 
-Bounds computeBounds(const PositionView& pos) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, pos.count, 1 << 14), Bounds{},
-      [&](const tbb::blocked_range<size_t>& r, Bounds b) {
-        for (size_t i = r.begin(); i != r.end(); ++i) b.extend(pos[i]);
-        return b;
-      },
-      [](Bounds a, const Bounds& b) {
-        a.extend(b);
-        return a;
-      });
-}
-
 namespace {
 // Records per chunk of the radix passes: a chunk counts and scatters its records on
 // one thread; the chunk count depends only on the record count.
@@ -72,9 +59,20 @@ uint32_t coarseCell(const Vec3& p, const Bounds& bounds, int b) {
   return kSpread6[q[0] >> (21 - b)] | kSpread6[q[1] >> (21 - b)] << 1 | kSpread6[q[2] >> (21 - b)] << 2;
 }
 
-// One stable counting-sort pass on the digit (key >> shift) & mask, src -> dst.
+// Photons read in place from one array, for the second pass.
 template <class Photon>
-void scatterPass(const Photon* src, const uint32_t* srcKeys, Photon* dst, uint32_t* dstKeys, size_t n,
+struct ArraySource {
+  const Photon* data;
+  template <class F>
+  void forRange(size_t begin, size_t end, F&& f) const {
+    for (size_t i = begin; i < end; ++i) f(i, data[i]);
+  }
+};
+
+// One stable counting-sort pass on the digit (key >> shift) & mask, src -> dst. `src`
+// is anything with forRange(begin, end, f(i, photon)) in sequence order.
+template <class Photon, class Source>
+void scatterPass(const Source& src, const uint32_t* srcKeys, Photon* dst, uint32_t* dstKeys, size_t n,
                  int shift, int digitBits) {
   const size_t buckets = size_t(1) << digitBits, mask = buckets - 1;
   const size_t chunks = (n + kChunk - 1) / kChunk;
@@ -94,25 +92,46 @@ void scatterPass(const Photon* src, const uint32_t* srcKeys, Photon* dst, uint32
   }
   tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
     uint32_t* h = &head[c * buckets];
-    for (size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) {
+    src.forRange(c * kChunk, std::min(n, (c + 1) * kChunk), [&](size_t i, const Photon& p) {
       const uint32_t at = h[srcKeys[i] >> shift & mask]++;
-      dst[at] = src[i];
+      dst[at] = p;
       if (dstKeys) dstKeys[at] = srcKeys[i];
-    }
+    });
   });
 }
 }  // namespace
 
-StorageKeys storageKeys(const PositionView& pos, const uint16_t* groups, size_t groupStride,
-                        bool spatial, const Bounds& bounds) {
-  const size_t n = pos.count;
-  auto groupOf = [&](size_t i) -> uint32_t {
-    return groups ? *reinterpret_cast<const uint16_t*>(
-                        reinterpret_cast<const unsigned char*>(groups) + i * groupStride)
-                  : 0u;
-  };
-  uint32_t numGroups = 1;
-  for (size_t i = 0; i < n && groups; ++i) numGroups = std::max(numGroups, groupOf(i) + 1);
+template <class Photon>
+Bounds computeBounds(const PhotonBatches<Photon>& photons) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, photons.batchCount(), 4), Bounds{},
+      [&](const tbb::blocked_range<size_t>& r, Bounds b) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const auto& span = photons.batch(i);
+          for (size_t j = 0; j < span.size; ++j) b.extend(span.data[j].position);
+        }
+        return b;
+      },
+      [](Bounds a, const Bounds& b) {
+        a.extend(b);
+        return a;
+      });
+}
+
+template <class Photon>
+StorageKeys storageKeys(const PhotonBatches<Photon>& photons, bool byGroup, bool spatial, const Bounds& bounds) {
+  const size_t n = photons.size();
+  const size_t batches = photons.batchCount();
+  const uint32_t numGroups = !byGroup ? 1u : tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, batches, 4), 1u,
+      [&](const tbb::blocked_range<size_t>& r, uint32_t most) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const auto& span = photons.batch(i);
+          for (size_t j = 0; j < span.size; ++j) most = std::max(most, storageGroup(span.data[j]) + 1);
+        }
+        return most;
+      },
+      [](uint32_t a, uint32_t b) { return std::max(a, b); });
   // Cells of 1/64 of the box per axis (fewer with many groups) give compact,
   // balanced parts and a cache-friendly build; the tree orders the rest.
   int bitsPerAxis = spatial ? 6 : 0;
@@ -123,35 +142,47 @@ StorageKeys storageKeys(const PositionView& pos, const uint16_t* groups, size_t 
   StorageKeys out;
   out.bits = cellBits + groupBits;
   out.keys.resize(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const auto& r) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 4), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
-      const uint32_t cell = cellBits ? coarseCell(pos[i], bounds, bitsPerAxis) : 0u;
-      out.keys[i] = groupOf(i) << cellBits | cell;
+      const auto& span = photons.batch(i);
+      uint32_t* key = out.keys.data() + photons.offset(i);
+      for (size_t j = 0; j < span.size; ++j) {
+        const Photon& p = span.data[j];
+        const uint32_t cell = cellBits ? coarseCell(p.position, bounds, bitsPerAxis) : 0u;
+        key[j] = (byGroup ? storageGroup(p) : 0u) << cellBits | cell;
+      }
     }
   });
   return out;
 }
 
 template <class Photon>
-void sortByKey(PhotonArray<Photon>& photons, StorageKeys& keys) {
+PhotonArray<Photon> sortByKey(PhotonBatches<Photon>&& photons, StorageKeys&& keys) {
   const size_t n = photons.size();
-  if (n < 2 || keys.bits == 0) return;
+  if (n < 2 || keys.bits == 0) return std::move(photons).takeArray();
   const int passes = (keys.bits + kMaxDigitBits - 1) / kMaxDigitBits;
   const int digitBits = (keys.bits + passes - 1) / passes;
   // storageKeys keeps keys within 22 bits: at most two passes of <= 11 bits each.
-  PhotonArray<Photon> other(n);
-  std::vector<uint32_t> moved(n);  // the keys travel along
-  scatterPass(photons.data(), keys.keys.data(), other.data(), moved.data(), n, 0, digitBits);
+  PhotonArray<Photon> sorted(n);
   if (passes == 1) {
-    photons.swap(other);
-    keys.keys.swap(moved);
-    return;
+    scatterPass(photons, keys.keys.data(), sorted.data(), nullptr, n, 0, digitBits);
+    return sorted;
   }
-  // The high digit back into the first array (its pages are already in memory).
-  scatterPass(other.data(), moved.data(), photons.data(), keys.keys.data(), n, digitBits, keys.bits - digitBits);
+  PhotonArray<uint32_t> moved(n);  // the keys travel along to the second pass
+  scatterPass(photons, keys.keys.data(), sorted.data(), moved.data(), n, 0, digitBits);
+  photons = PhotonBatches<Photon>();  // the emitters' blocks are read: free them now
+  PhotonArray<Photon> out(n);
+  scatterPass(ArraySource<Photon>{sorted.data()}, moved.data(), out.data(), nullptr, n, digitBits,
+              keys.bits - digitBits);
+  return out;
 }
 
-template void sortByKey(PhotonArray<ShadowPhoton>&, StorageKeys&);
-template void sortByKey(PhotonArray<IndirectPhoton>&, StorageKeys&);
+#define PENUMBRA_MORTON_FOR(Photon)                                                                  \
+  template Bounds computeBounds(const PhotonBatches<Photon>&);                                       \
+  template StorageKeys storageKeys(const PhotonBatches<Photon>&, bool, bool, const Bounds&);        \
+  template PhotonArray<Photon> sortByKey(PhotonBatches<Photon>&&, StorageKeys&&);
+PENUMBRA_MORTON_FOR(ShadowPhoton)
+PENUMBRA_MORTON_FOR(IndirectPhoton)
+#undef PENUMBRA_MORTON_FOR
 
 }  // namespace penumbra

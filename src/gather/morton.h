@@ -3,6 +3,7 @@
 #pragma once
 #include "core/math.h"
 #include "core/photon.h"
+#include "core/photon_batches.h"
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -24,44 +25,31 @@ uint64_t spreadBits21(uint32_t v);
 // (zero extent: a plane, a line, identical points) quantise to 0 instead of NaN.
 uint64_t mortonCode63(const Vec3& p, const Bounds& b);
 
-// A strided view of positions inside an array of photon records, so the ordering
-// code serves every photon type without copying positions out.
-struct PositionView {
-  const unsigned char* base = nullptr;
-  size_t stride = 0;
-  size_t count = 0;
-  const Vec3& operator[](size_t i) const {
-    return *reinterpret_cast<const Vec3*>(base + i * stride);
-  }
-};
-template <class Array>
-PositionView positionsOf(const Array& photons) {
-  using Photon = typename Array::value_type;
-  return {reinterpret_cast<const unsigned char*>(photons.data()) +
-              offsetof(Photon, position),
-          sizeof(Photon), photons.size()};
-}
+// The group photons are stored by: a shadow photon's light; one group otherwise.
+inline uint32_t storageGroup(const ShadowPhoton& p) { return p.light; }
+inline uint32_t storageGroup(const IndirectPhoton&) { return 0; }
 
-// Bounding box of all positions (parallel reduction).
-Bounds computeBounds(const PositionView& positions);
+// Bounding box of all positions (parallel over the batches).
+template <class Photon>
+Bounds computeBounds(const PhotonBatches<Photon>& photons);
 
-// The key photons are stored by: group (light index; pass nullptr for one group) in
-// the high bits, then, if spatial, a coarse Morton cell over `bounds` (the KD-tree
-// build orders finely). `bits` is the key's width.
+// The key photons are stored by: the group (storageGroup, if byGroup) in the high
+// bits, then, if spatial, a coarse Morton cell over `bounds` (the KD-tree build orders
+// finely). `bits` is the key's width.
 struct StorageKeys {
-  std::vector<uint32_t> keys;
+  PhotonArray<uint32_t> keys;  // uninitialised until written: one per photon
   int bits = 0;
 };
-StorageKeys storageKeys(const PositionView& positions, const uint16_t* groups, size_t groupStride,
-                        bool spatial, const Bounds& bounds);
-
-// Sorts photons (and their keys) by key, ties in their original order: one or two
-// scatter passes of a least-significant-digit radix sort over fixed chunks, so the
-// order is that of a serial stable sort for any thread count. Streaming writes into
-// at most 2048 buckets per pass instead of a gather at random: fig14's indirect map
-// sorts in a fraction of the gather's time. Uses one second array while it runs.
 template <class Photon>
-void sortByKey(PhotonArray<Photon>& photons, StorageKeys& keys);
+StorageKeys storageKeys(const PhotonBatches<Photon>& photons, bool byGroup, bool spatial, const Bounds& bounds);
+
+// The photons sorted by key, ties in their sequence order: one or two scatter passes
+// of a least-significant-digit radix sort over fixed chunks, so the order is that of
+// a serial stable sort for any thread count. The first pass reads the batches where
+// the emitters left them (no merged copy) and frees them; streaming writes into at
+// most 2048 buckets per pass instead of a gather at random. Consumes the keys.
+template <class Photon>
+PhotonArray<Photon> sortByKey(PhotonBatches<Photon>&& photons, StorageKeys&& keys);
 
 // Reorders a[0..n) so that a[i] becomes the old a[perm[i]], in place, by following
 // the permutation's cycles; leaves perm as the identity.

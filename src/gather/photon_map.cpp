@@ -21,21 +21,20 @@ void checkIndexable(size_t count, const char* which) {
 
 // ---- ShadowPhotonMap ------------------------------------------------------------
 
-void ShadowPhotonMap::build(PhotonArray<ShadowPhoton> photons, size_t numLights,
+void ShadowPhotonMap::build(PhotonBatches<ShadowPhoton> photons, size_t numLights,
                             const MapBuildOptions& options) {
   lights_.clear();
   lights_.resize(numLights);
   size_ = 0;
   checkIndexable(photons.size(), "shadow");
   const size_t given = photons.size();
-  photons_ = std::move(photons);
-  if (!photons_.empty() && numLights > 0) {
+  photons_.clear();
+  if (given > 0 && numLights > 0) {
     // One sort does both jobs: the light index is the primary key, so each light's
     // photons come out contiguous and, within it, spatially ordered.
-    PositionView pos = positionsOf(photons_);
-    Bounds bounds = options.mortonSort ? computeBounds(pos) : Bounds{};
-    StorageKeys keys = storageKeys(pos, &photons_[0].light, sizeof(ShadowPhoton), options.mortonSort, bounds);
-    sortByKey(photons_, keys);
+    Bounds bounds = options.mortonSort ? computeBounds(photons) : Bounds{};
+    StorageKeys keys = storageKeys(photons, /*byGroup=*/true, options.mortonSort, bounds);
+    photons_ = sortByKey(std::move(photons), std::move(keys));
     size_t begin = 0;
     for (size_t light = 0; light < numLights; ++light) {
       size_t end = begin;
@@ -47,8 +46,6 @@ void ShadowPhotonMap::build(PhotonArray<ShadowPhoton> photons, size_t numLights,
     // Sorted by light: whatever is left has light >= numLights and is dropped.
     size_ = begin;
     photons_.resize(size_);
-  } else {
-    photons_.clear();
   }
   // Ordered, and the dropped photons' share of the parts: the trees count the rest.
   progressAdd(options.progress, given + (given - size_));
@@ -95,14 +92,14 @@ PhotonRange<ShadowPhoton> ShadowPhotonMap::photons(uint32_t light) const {
 
 // ---- IndirectPhotonMap ----------------------------------------------------------
 
-void IndirectPhotonMap::build(PhotonArray<IndirectPhoton> photons,
+void IndirectPhotonMap::build(PhotonBatches<IndirectPhoton> photons,
                               const MapBuildOptions& options) {
   checkIndexable(photons.size(), "indirect");
-  photons_ = std::move(photons);
-  if (options.mortonSort && !photons_.empty()) {
-    PositionView pos = positionsOf(photons_);
-    StorageKeys keys = storageKeys(pos, nullptr, 0, true, computeBounds(pos));
-    sortByKey(photons_, keys);
+  if (options.mortonSort && !photons.empty()) {
+    StorageKeys keys = storageKeys(photons, /*byGroup=*/false, true, computeBounds(photons));
+    photons_ = sortByKey(std::move(photons), std::move(keys));
+  } else {
+    photons_ = std::move(photons).takeArray();
   }
   progressAdd(options.progress, photons_.size());
   tree_.build(photons_, options.leafSize, !options.mortonSort, options.progress);

@@ -2,6 +2,7 @@
 // feeding the shadow gate) and the indirect map (feeding the indirect estimators).
 #pragma once
 #include "core/photon.h"
+#include "core/photon_batches.h"
 #include "gather/indirect_estimate.h"
 #include "gather/kd_tree.h"
 #include "gather/shadow_gate.h"
@@ -27,10 +28,10 @@ struct PhotonRange {
 class ShadowPhotonMap {
  public:
   // Takes ownership and orders the photons by light, then spatially (coarse Morton
-  // cells, one parallel gather into a new array, if options.mortonSort), then builds
+  // cells, if options.mortonSort: a radix sort straight out of the batches), then builds
   // one KD-tree per light over its range, which leaves each range in its tree's leaf
   // order (in place). Photons whose light is >= numLights are dropped.
-  void build(PhotonArray<ShadowPhoton> photons, size_t numLights,
+  void build(PhotonBatches<ShadowPhoton> photons, size_t numLights,
              const MapBuildOptions& options = {});
   bool hasPhotons(uint32_t light) const;
   GateVerdict classify(const Vec3& p, const Vec3& n, uint32_t light, const GateParams& params,
@@ -59,8 +60,9 @@ class IndirectPhotonMap {
  public:
   using Estimate = IndirectEstimate;
 
-  // Takes ownership; coarse Morton order (one parallel gather), then leaf order in place.
-  void build(PhotonArray<IndirectPhoton> photons, const MapBuildOptions& options = {});
+  // Takes ownership; coarse Morton order (a radix sort out of the batches), then leaf
+  // order in place.
+  void build(PhotonBatches<IndirectPhoton> photons, const MapBuildOptions& options = {});
   bool empty() const { return photons_.empty(); }
   // Gather the k nearest photons (within maxRadius if > 0) and estimate; see
   // indirect_estimate.h for the formulas and the normal filter.
