@@ -1,6 +1,7 @@
 // Morton codes and the deterministic storage order (a coarse spatial counting sort).
 #include "gather/morton.h"
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #include <algorithm>
@@ -59,21 +60,12 @@ uint32_t coarseCell(const Vec3& p, const Bounds& bounds, int b) {
   return kSpread6[q[0] >> (21 - b)] | kSpread6[q[1] >> (21 - b)] << 1 | kSpread6[q[2] >> (21 - b)] << 2;
 }
 
-// Photons read in place from one array, for the second pass.
-template <class Photon>
-struct ArraySource {
-  const Photon* data;
-  template <class F>
-  void forRange(size_t begin, size_t end, F&& f) const {
-    for (size_t i = begin; i < end; ++i) f(i, data[i]);
-  }
-};
-
 // One stable counting-sort pass on the digit (key >> shift) & mask, src -> dst. `src`
-// is anything with forRange(begin, end, f(i, photon)) in sequence order.
+// is anything with forRange(begin, end, f(i, photon)) in sequence order. Returns where
+// each digit's records start in dst, and n at the end.
 template <class Photon, class Source>
-void scatterPass(const Source& src, const uint32_t* srcKeys, Photon* dst, uint32_t* dstKeys, size_t n,
-                 int shift, int digitBits) {
+std::vector<size_t> scatterPass(const Source& src, const uint32_t* srcKeys, Photon* dst, uint32_t* dstKeys,
+                                size_t n, int shift, int digitBits) {
   const size_t buckets = size_t(1) << digitBits, mask = buckets - 1;
   const size_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<uint32_t> head(chunks * buckets, 0);
@@ -82,8 +74,10 @@ void scatterPass(const Source& src, const uint32_t* srcKeys, Photon* dst, uint32
     for (size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) ++h[srcKeys[i] >> shift & mask];
   });
   // Bucket-major, chunk-minor: chunk c's records of a digit follow those of chunks < c.
+  std::vector<size_t> starts(buckets + 1, n);
   uint32_t running = 0;
   for (size_t d = 0; d < buckets; ++d) {
+    starts[d] = running;
     for (size_t c = 0; c < chunks; ++c) {
       const uint32_t x = head[c * buckets + d];
       head[c * buckets + d] = running;
@@ -97,6 +91,33 @@ void scatterPass(const Source& src, const uint32_t* srcKeys, Photon* dst, uint32
       dst[at] = p;
       if (dstKeys) dstKeys[at] = srcKeys[i];
     });
+  });
+  return starts;
+}
+
+// The second digit, bucket by bucket: each first-digit bucket is sorted stably by
+// (key & mask) through a per-thread buffer the size of the bucket, which stays in
+// cache, instead of a second streaming pass into a second full-size array.
+template <class Photon>
+void sortBuckets(Photon* photons, const uint32_t* keys, const std::vector<size_t>& starts, int digitBits) {
+  const size_t buckets = size_t(1) << digitBits, mask = buckets - 1;
+  struct Scratch {
+    PhotonArray<Photon> buffer;
+    std::vector<uint32_t> head;
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  tbb::parallel_for(size_t(0), starts.size() - 1, [&](size_t b) {
+    const size_t begin = starts[b], end = starts[b + 1];
+    if (end - begin < 2) return;
+    Scratch& local = scratch.local();
+    PhotonArray<Photon>& buffer = local.buffer;
+    if (buffer.size() < end - begin) buffer.resize(end - begin);
+    std::vector<uint32_t>& head = local.head;
+    head.assign(buckets + 1, 0);
+    for (size_t i = begin; i < end; ++i) ++head[(keys[i] & mask) + 1];
+    for (size_t d = 1; d <= buckets; ++d) head[d] += head[d - 1];
+    for (size_t i = begin; i < end; ++i) buffer[head[keys[i] & mask]++] = photons[i];
+    std::copy(buffer.begin(), buffer.begin() + (end - begin), photons + begin);
   });
 }
 }  // namespace
@@ -168,13 +189,16 @@ PhotonArray<Photon> sortByKey(PhotonBatches<Photon>&& photons, StorageKeys&& key
     scatterPass(photons, keys.keys.data(), sorted.data(), nullptr, n, 0, digitBits);
     return sorted;
   }
-  PhotonArray<uint32_t> moved(n);  // the keys travel along to the second pass
-  scatterPass(photons, keys.keys.data(), sorted.data(), moved.data(), n, 0, digitBits);
+  // Two digits: the high one streams out of the batches, the low one is sorted
+  // within each high bucket (same order as two LSD passes: by key, then sequence).
+  const int lowBits = digitBits, highBits = keys.bits - digitBits;
+  PhotonArray<uint32_t> moved(n);  // the keys travel along to the second digit
+  const std::vector<size_t> starts =
+      scatterPass(photons, keys.keys.data(), sorted.data(), moved.data(), n, lowBits, highBits);
   photons = PhotonBatches<Photon>();  // the emitters' blocks are read: free them now
-  PhotonArray<Photon> out(n);
-  scatterPass(ArraySource<Photon>{sorted.data()}, moved.data(), out.data(), nullptr, n, digitBits,
-              keys.bits - digitBits);
-  return out;
+  keys.keys = PhotonArray<uint32_t>();
+  sortBuckets(sorted.data(), moved.data(), starts, lowBits);
+  return sorted;
 }
 
 #define PENUMBRA_MORTON_FOR(Photon)                                                                  \

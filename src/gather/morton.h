@@ -43,11 +43,12 @@ struct StorageKeys {
 template <class Photon>
 StorageKeys storageKeys(const PhotonBatches<Photon>& photons, bool byGroup, bool spatial, const Bounds& bounds);
 
-// The photons sorted by key, ties in their sequence order: one or two scatter passes
-// of a least-significant-digit radix sort over fixed chunks, so the order is that of
-// a serial stable sort for any thread count. The first pass reads the batches where
-// the emitters left them (no merged copy) and frees them; streaming writes into at
-// most 2048 buckets per pass instead of a gather at random. Consumes the keys.
+// The photons sorted by key, ties in their sequence order, so the order is that of a
+// serial stable sort for any thread count. The key's high digit (<= 11 bits) streams
+// straight out of the batches the emitters left (no merged copy; they are freed
+// after) into at most 2048 buckets over fixed chunks; a low digit, if any, is then
+// sorted inside each bucket through a per-thread buffer, not a second full-size
+// array. Consumes the keys.
 template <class Photon>
 PhotonArray<Photon> sortByKey(PhotonBatches<Photon>&& photons, StorageKeys&& keys);
 
