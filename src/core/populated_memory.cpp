@@ -1,5 +1,5 @@
-// Populated anonymous mappings: 2 MB-aligned and backed by transparent huge pages
-// where the kernel allows (madvise), every page present before the first write.
+// Anonymous mappings for photon arrays: below 2 MB populated up front (4 KB pages),
+// from 2 MB on 2 MB-aligned and backed by transparent huge pages where the kernel allows.
 #include "core/populated_memory.h"
 #include <sys/mman.h>
 #include <cstdint>
@@ -8,9 +8,6 @@
 namespace penumbra {
 namespace {
 constexpr size_t kHugePage = size_t(2) << 20;
-#ifndef MADV_POPULATE_WRITE
-#define MADV_POPULATE_WRITE 23  // Linux 5.14; older kernels refuse it (EINVAL): pages then fault in lazily
-#endif
 }  // namespace
 
 void* allocatePopulated(size_t bytes) {
@@ -30,8 +27,10 @@ void* allocatePopulated(size_t bytes) {
   const uintptr_t end = aligned + bytes, mappedEnd = start + mapped;
   if (mappedEnd > end) munmap(reinterpret_cast<void*>(end), mappedEnd - end);
   void* p = reinterpret_cast<void*>(aligned);
-  madvise(p, bytes, MADV_HUGEPAGE);        // advice only: refused where THP is off
-  madvise(p, bytes, MADV_POPULATE_WRITE);  // likewise: without it, first writes fault
+  // Advice only, refused where THP is off (then 4 KB pages fault in as written). Not
+  // populated: a huge page faults in once per 2 MB where it is written, and an
+  // emitter's block is written only as far as its batches reach.
+  madvise(p, bytes, MADV_HUGEPAGE);
   return p;
 }
 
