@@ -102,8 +102,9 @@ def scaling_table(runs):
                 continue  # a stage this scene does not have
             sp = f"{a / b:.2f}" if b > 0 else "-"
             out.append(f"| {label} | {name} | {a:.3f} | {b:.3f} | {sp} | {share(r1)} / {share(r2)} |")
-    for figure, pattern in (("emission (trace + store + merge)", r"^BM_EmitCornell/{T}/"),
-                            ("both maps built", r"^BM_BuildMapsCornell/{T}/")):
+    for figure, pattern in (("emission (trace + store)", r"^BM_EmitCornell/{T}/"),
+                            ("both maps built", r"^BM_BuildMapsCornell/{T}/"),
+                            ("emission + both maps", r"^BM_PhotonPassCornell/{T}/")):
         r1, r2 = find(runs, pattern, 1), find(runs, pattern, 2)
         if r1 and r2:
             a, b = seconds(r1), seconds(r2)
