@@ -2,7 +2,7 @@
 // batch, read back in batch order. Checked against the sequence a serial loop writes,
 // at 1 and 2 threads, with batches larger than a block (the batch moves to a new one).
 #include "emit/batch_buffers.h"
-#include "core/populated_memory.h"
+#include "core/mapped_memory.h"
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -56,16 +56,16 @@ TEST(BatchBuffers, BatchesReadBackInBatchOrderForAnyThreadCount) {
   }
 }
 
-TEST(PopulatedMemory, LargeMappingsAreHugePageAlignedAndWritable) {
+TEST(MappedMemory, LargeMappingsAreHugePageAlignedAndWritable) {
   for (size_t bytes : {size_t(4096), size_t(300) << 10, (size_t(3) << 20) + 1}) {
-    PopulatedBlock block(bytes);
+    MappedBlock block(bytes);
     ASSERT_NE(block.data(), nullptr);
     if (bytes >= (size_t(2) << 20)) {
       EXPECT_EQ(reinterpret_cast<uintptr_t>(block.data()) % (size_t(2) << 20), 0u);
     }
     std::memset(block.data(), 0xAB, bytes);
     EXPECT_EQ(static_cast<unsigned char*>(block.data())[bytes - 1], 0xAB);
-    PopulatedBlock moved = std::move(block);
+    MappedBlock moved = std::move(block);
     EXPECT_EQ(block.data(), nullptr);
     EXPECT_EQ(moved.bytes(), bytes);
   }

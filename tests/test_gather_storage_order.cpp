@@ -25,9 +25,9 @@ PhotonArray<ShadowPhoton> randomShadowPhotons(size_t n, uint16_t lights, uint64_
 }
 
 // The photons as an emission would hand them over: uneven batches (some empty) in
-// one populated block, so sequence positions cross batch and chunk boundaries.
+// one mapped block, so sequence positions cross batch and chunk boundaries.
 PhotonBatches<ShadowPhoton> inBatches(const PhotonArray<ShadowPhoton>& p, uint64_t seed) {
-  PopulatedBlock block(std::max<size_t>(1, p.size()) * sizeof(ShadowPhoton));
+  MappedBlock block(std::max<size_t>(1, p.size()) * sizeof(ShadowPhoton));
   ShadowPhoton* base = static_cast<ShadowPhoton*>(block.data());
   std::copy(p.begin(), p.end(), base);
   std::vector<PhotonBatches<ShadowPhoton>::Span> spans;
@@ -37,7 +37,7 @@ PhotonBatches<ShadowPhoton> inBatches(const PhotonArray<ShadowPhoton>& p, uint64
     spans.push_back({base + at, n});
     at += n;
   }
-  std::vector<PopulatedBlock> blocks;
+  std::vector<MappedBlock> blocks;
   blocks.push_back(std::move(block));
   return PhotonBatches<ShadowPhoton>(std::move(spans), std::move(blocks));
 }

@@ -3,7 +3,7 @@
 // photon's power is a 32-bit shared-exponent colour.
 #pragma once
 #include "core/math.h"
-#include "core/populated_memory.h"
+#include "core/mapped_memory.h"
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -47,11 +47,11 @@ struct PackedPower {
 };
 
 // Photon arrays reach hundreds of MB. std::vector(n) and resize(n) would zero every
-// element on one thread before the parallel pass that overwrites them all (0.2 s and
-// every page fault of fig14's merged map, serial): this allocator leaves elements
-// uninitialised instead, so the parallel writer touches the pages first. Only for
+// element on one thread before the parallel pass that overwrites them all (0.2 s for
+// fig14's sorted maps, serial): this allocator leaves elements uninitialised instead,
+// so the parallel writer touches the pages first. Only for
 // trivially copyable records, each of which is written before it is read. Large
-// arrays are mapped populated (core/populated_memory.h): no page fault per 4 KB.
+// arrays are mapped from the kernel (core/mapped_memory.h): huge pages from 2 MB on.
 template <class T>
 struct UninitialisedAllocator : std::allocator<T> {
   static_assert(std::is_trivially_copyable_v<T>, "photon records are plain bytes");
@@ -65,11 +65,11 @@ struct UninitialisedAllocator : std::allocator<T> {
   template <class U>
   void construct(U*) noexcept {}  // resize(n), vector(n): the caller writes every element
   T* allocate(size_t n) {
-    if (n * sizeof(T) >= kPopulatedMinBytes) return static_cast<T*>(allocatePopulated(n * sizeof(T)));
+    if (n * sizeof(T) >= kMappedMinBytes) return static_cast<T*>(mapPhotonMemory(n * sizeof(T)));
     return std::allocator<T>::allocate(n);
   }
   void deallocate(T* p, size_t n) noexcept {
-    if (n * sizeof(T) >= kPopulatedMinBytes) return freePopulated(p, n * sizeof(T));
+    if (n * sizeof(T) >= kMappedMinBytes) return unmapPhotonMemory(p, n * sizeof(T));
     std::allocator<T>::deallocate(p, n);
   }
   template <class U, class... Args>

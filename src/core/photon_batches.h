@@ -1,9 +1,9 @@
 // Photons as an emission stores them: one span per batch, read in batch order as one
-// sequence, in populated blocks the emitting threads filled. The map build sorts
+// sequence, in the blocks the emitting threads filled. The map build sorts
 // straight out of the spans, so no merged copy of a map's photons is ever made.
 #pragma once
 #include "core/photon.h"
-#include "core/populated_memory.h"
+#include "core/mapped_memory.h"
 #include <algorithm>
 #include <cstddef>
 #include <initializer_list>
@@ -28,7 +28,7 @@ class PhotonBatches {
   }
   PhotonBatches(std::initializer_list<Photon> photons) : PhotonBatches(PhotonArray<Photon>(photons)) {}
   // The emitters' batches: span b is batch b's photons, inside `blocks` (kept alive here).
-  PhotonBatches(std::vector<Span> spans, std::vector<PopulatedBlock> blocks)
+  PhotonBatches(std::vector<Span> spans, std::vector<MappedBlock> blocks)
       : spans_(std::move(spans)), blocks_(std::move(blocks)) {
     seal();
   }
@@ -46,12 +46,6 @@ class PhotonBatches {
   size_t offset(size_t b) const { return offsets_[b]; }  // where batch b starts in the sequence
   size_t size() const { return offsets_.empty() ? 0 : offsets_.back(); }
   bool empty() const { return size() == 0; }
-  // Photons stored per batch, in batch order (what prefix cuts record against).
-  std::vector<size_t> batchSizes() const {
-    std::vector<size_t> n(spans_.size());
-    for (size_t b = 0; b < spans_.size(); ++b) n[b] = spans_[b].size;
-    return n;
-  }
 
   // Photon i of the sequence: a binary search over the batches, for cold paths and tests.
   const Photon& operator[](size_t i) const {
@@ -66,8 +60,8 @@ class PhotonBatches {
     if (begin >= end) return;
     size_t b = std::upper_bound(offsets_.begin(), offsets_.end(), begin) - offsets_.begin() - 1;
     for (size_t i = begin; i < end; ++b) {
-      const Photon* p = spans_[b].data - offsets_[b];
-      for (const size_t e = std::min(end, offsets_[b + 1]); i < e; ++i) f(i, p[i]);
+      const Span& span = spans_[b];  // empty spans (even with a null data) add nothing
+      for (const size_t e = std::min(end, offsets_[b + 1]); i < e; ++i) f(i, span.data[i - offsets_[b]]);
     }
   }
 
@@ -128,7 +122,7 @@ class PhotonBatches {
 
   std::vector<Span> spans_;
   std::vector<size_t> offsets_{0};
-  std::vector<PopulatedBlock> blocks_;
+  std::vector<MappedBlock> blocks_;
   PhotonArray<Photon> owned_;
 };
 

@@ -1,5 +1,5 @@
 // Photon storage during emission: each thread appends the batches it runs to its own
-// populated blocks, and batch b's photons stay one span, so the stored sequence
+// blocks of huge-page memory, and batch b's photons stay one span, so the stored sequence
 // (batches in batch order) does not depend on which thread ran which batch.
 #pragma once
 #include "core/photon_batches.h"
@@ -12,7 +12,7 @@ namespace penumbra {
 
 // One thread's append buffer: a batch grows at the tail of the current block; when
 // the block is full, the batch so far moves to a fresh, larger block (the old block
-// keeps the batches already finished in it). No vector doubling, no page faults.
+// keeps the batches already finished in it). No vector doubling, one fault per 2 MB.
 template <class Photon>
 class BatchAppender {
  public:
@@ -24,7 +24,7 @@ class BatchAppender {
 
   void start() { begin_ = end_; }  // a new batch begins where the last one ended
   typename PhotonBatches<Photon>::Span span() const { return {begin_, size()}; }
-  std::vector<PopulatedBlock>& blocks() { return blocks_; }
+  std::vector<MappedBlock>& blocks() { return blocks_; }
 
  private:
   // Blocks double from one huge page (2 MB) up to 32 MB: small emissions map little,
@@ -43,7 +43,7 @@ class BatchAppender {
   }
 
   Photon *begin_ = nullptr, *end_ = nullptr, *cap_ = nullptr;
-  std::vector<PopulatedBlock> blocks_;
+  std::vector<MappedBlock> blocks_;
 };
 
 template <class Photon>
@@ -70,9 +70,9 @@ class BatchBuffers {
 
   // Every batch as one sequence; the blocks move into it.
   PhotonBatches<Photon> finish() {
-    std::vector<PopulatedBlock> blocks;
+    std::vector<MappedBlock> blocks;
     for (BatchAppender<Photon>& a : local_) {
-      for (PopulatedBlock& block : a.blocks()) blocks.push_back(std::move(block));
+      for (MappedBlock& block : a.blocks()) blocks.push_back(std::move(block));
     }
     local_.clear();
     return PhotonBatches<Photon>(std::move(spans_), std::move(blocks));

@@ -44,7 +44,7 @@ struct PhotonMaps {
 
 // Splits each budget across point lights by luminous intensity (largest
 // remainder, so the counts add up exactly). The result is identical for any
-// thread count: batches are merged in batch order.
+// thread count: the maps read the batches in batch order.
 // `cuts`, if given, receives the shadow and indirect maps' prefix cuts.
 struct ClassicCuts {
   PrefixCuts shadow, indirect;

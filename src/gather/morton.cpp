@@ -105,13 +105,15 @@ void sortBuckets(Photon* photons, const uint32_t* keys, const std::vector<size_t
     PhotonArray<Photon> buffer;
     std::vector<uint32_t> head;
   };
-  tbb::enumerable_thread_specific<Scratch> scratch;
+  size_t largest = 0;
+  for (size_t b = 0; b + 1 < starts.size(); ++b) largest = std::max(largest, starts[b + 1] - starts[b]);
+  // Each thread's buffer is sized once, to the largest bucket, on its first bucket.
+  tbb::enumerable_thread_specific<Scratch> scratch([&] { return Scratch{PhotonArray<Photon>(largest), {}}; });
   tbb::parallel_for(size_t(0), starts.size() - 1, [&](size_t b) {
     const size_t begin = starts[b], end = starts[b + 1];
     if (end - begin < 2) return;
     Scratch& local = scratch.local();
     PhotonArray<Photon>& buffer = local.buffer;
-    if (buffer.size() < end - begin) buffer.resize(end - begin);
     std::vector<uint32_t>& head = local.head;
     head.assign(buckets + 1, 0);
     for (size_t i = begin; i < end; ++i) ++head[(keys[i] & mask) + 1];
@@ -122,15 +124,16 @@ void sortBuckets(Photon* photons, const uint32_t* keys, const std::vector<size_t
 }
 }  // namespace
 
+// Fixed ranges of the sequence, whatever its batches: the work splits the same way
+// for one batch (a prefix cut, a copy) as for thousands.
+constexpr size_t kRange = size_t(1) << 14;
+
 template <class Photon>
 Bounds computeBounds(const PhotonBatches<Photon>& photons) {
   return tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, photons.batchCount(), 4), Bounds{},
+      tbb::blocked_range<size_t>(0, photons.size(), kRange), Bounds{},
       [&](const tbb::blocked_range<size_t>& r, Bounds b) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-          const auto& span = photons.batch(i);
-          for (size_t j = 0; j < span.size; ++j) b.extend(span.data[j].position);
-        }
+        photons.forRange(r.begin(), r.end(), [&](size_t, const Photon& p) { b.extend(p.position); });
         return b;
       },
       [](Bounds a, const Bounds& b) {
@@ -142,14 +145,11 @@ Bounds computeBounds(const PhotonBatches<Photon>& photons) {
 template <class Photon>
 StorageKeys storageKeys(const PhotonBatches<Photon>& photons, bool byGroup, bool spatial, const Bounds& bounds) {
   const size_t n = photons.size();
-  const size_t batches = photons.batchCount();
   const uint32_t numGroups = !byGroup ? 1u : tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, batches, 4), 1u,
+      tbb::blocked_range<size_t>(0, n, kRange), 1u,
       [&](const tbb::blocked_range<size_t>& r, uint32_t most) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-          const auto& span = photons.batch(i);
-          for (size_t j = 0; j < span.size; ++j) most = std::max(most, storageGroup(span.data[j]) + 1);
-        }
+        photons.forRange(r.begin(), r.end(),
+                         [&](size_t, const Photon& p) { most = std::max(most, storageGroup(p) + 1); });
         return most;
       },
       [](uint32_t a, uint32_t b) { return std::max(a, b); });
@@ -163,16 +163,11 @@ StorageKeys storageKeys(const PhotonBatches<Photon>& photons, bool byGroup, bool
   StorageKeys out;
   out.bits = cellBits + groupBits;
   out.keys.resize(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, batches, 4), [&](const auto& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      const auto& span = photons.batch(i);
-      uint32_t* key = out.keys.data() + photons.offset(i);
-      for (size_t j = 0; j < span.size; ++j) {
-        const Photon& p = span.data[j];
-        const uint32_t cell = cellBits ? coarseCell(p.position, bounds, bitsPerAxis) : 0u;
-        key[j] = (byGroup ? storageGroup(p) : 0u) << cellBits | cell;
-      }
-    }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kRange), [&](const auto& r) {
+    photons.forRange(r.begin(), r.end(), [&](size_t i, const Photon& p) {
+      const uint32_t cell = cellBits ? coarseCell(p.position, bounds, bitsPerAxis) : 0u;
+      out.keys[i] = (byGroup ? storageGroup(p) : 0u) << cellBits | cell;
+    });
   });
   return out;
 }
@@ -187,6 +182,7 @@ PhotonArray<Photon> sortByKey(PhotonBatches<Photon>&& photons, StorageKeys&& key
   PhotonArray<Photon> sorted(n);
   if (passes == 1) {
     scatterPass(photons, keys.keys.data(), sorted.data(), nullptr, n, 0, digitBits);
+    photons = PhotonBatches<Photon>();  // the emitters' blocks are read: free them now
     return sorted;
   }
   // Two digits: the high one streams out of the batches, the low one is sorted
