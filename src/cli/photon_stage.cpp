@@ -1,7 +1,6 @@
 // Emission and map builds for one render or a group of renders sharing photons.
 #include "cli/photon_stage.h"
 #include "core/stats.h"
-#include <tbb/parallel_invoke.h>
 
 namespace penumbra {
 namespace {
@@ -116,11 +115,13 @@ bool buildStage(Emission& e, const PhotonBudgets& wanted, bool consume, PhotonSt
   MapBuildOptions build;
   build.progress = progress;
   progressExpect(progress, 2 * (shadow.size() + indirect.size() + global.size() + caustic.size()));
-  // nanoflann builds single-threaded: build the trees side by side.
-  tbb::parallel_invoke([&] { stage.shadow.build(std::move(shadow), e.numLights, build); },
-                       [&] { stage.indirect.build(std::move(indirect), build); },
-                       [&] { stage.global.build(std::move(global), build); },
-                       [&] { stage.caustic.build(std::move(caustic), build); });
+  // One map after another, each parallel inside (its sort by chunks, its tree by
+  // parts): a map's sorted array then reuses the memory the previous map's batches
+  // just freed, where building side by side asked the kernel for fresh pages for all.
+  stage.shadow.build(std::move(shadow), e.numLights, build);
+  stage.indirect.build(std::move(indirect), build);
+  stage.global.build(std::move(global), build);
+  stage.caustic.build(std::move(caustic), build);
   stage.buildSeconds = clock.seconds();
   return true;
 }

@@ -168,8 +168,8 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.storedPhotons = shadow + indirect + global + caustic;
   e.photonBytes = shadow * (sizeof(ShadowPhoton) + kIndexBytes) +
                   (indirect + global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
-  // Merging the batch buffers and ordering the records each hold a second copy
-  // while the maps build side by side.
+  // The emitters' blocks and the sorted arrays each hold a copy while the maps build
+  // (one map after another, so this bounds the peak from above).
   e.photonPeakBytes = e.photonBytes + shadow * sizeof(ShadowPhoton) +
                       (indirect + global + caustic) * sizeof(IndirectPhoton);
   // A progressive pass emits its photons while the previous pass's maps still stand.
