@@ -1,6 +1,6 @@
 // Photons as an emission stores them: one span per batch, read in batch order as one
 // sequence, in the blocks the emitting threads filled. The map build sorts
-// straight out of the spans, so no merged copy of a map's photons is ever made.
+// straight out of the spans (Morton order, the default), so it makes no merged copy.
 #pragma once
 #include "core/photon.h"
 #include "core/mapped_memory.h"
