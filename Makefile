@@ -52,7 +52,7 @@ test: build
 # executable writes Google Benchmark JSON to $(RESULTS)/NAME.json and its console output to
 # NAME.log; the tables are printed from the JSON. A few minutes in all.
 RESULTS ?= bench/results
-GATHER_FILTER := (Knn50|Classify)/1M/.*morton:1/leaf:24/threads:[12]/shuffled:0
+GATHER_FILTER := (Knn50|Classify)/1M/.*morton:1/leaf:48/threads:[12]/shuffled:0
 # Three repetitions with 1- and 2-thread runs interleaved; the tables take the fastest.
 BENCH_REPS ?= 3
 define run_bench

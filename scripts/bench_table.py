@@ -18,9 +18,9 @@ FIGURES = (
     + [("Photon emission, fig14 5M+5M", r"^BM_EmitCornell/{T}/", "rate", "Mphotons/s", 1e-6, 1.9),
        ("Map build, fig14 (both maps)", r"^BM_BuildMapsCornell/{T}/", "time", "s", 1.0, 1.8),
        ("Photon pass, fig14 (emission + both maps)", r"^BM_PhotonPassCornell/{T}/", "time", "s", 1.0, None),
-       ("kNN k=50, 1M photons, scan-line", r"^Knn50/1M/.*morton:1/leaf:24/threads:{T}/shuffled:0", "rate",
+       ("kNN k=50, 1M photons, scan-line", r"^Knn50/1M/.*morton:1/leaf:48/threads:{T}/shuffled:0", "rate",
         "kqueries/s", 1e-3, None),
-       ("Gate classify k=50, 1M photons", r"^Classify/1M/.*morton:1/leaf:24/threads:{T}/shuffled:0", "rate",
+       ("Gate classify k=50, 1M photons", r"^Classify/1M/.*morton:1/leaf:48/threads:{T}/shuffled:0", "rate",
         "kqueries/s", 1e-3, None)]
     + [(f"Render {label}", rf"^BM_Scene{key}/threads:{{T}}/", "time", "s", 1.0, 1.9) for key, label in SCENES])
 STAGES = [("load_s", "load + BVH"), ("emit_s", "photon emission"), ("maps_s", "map build"),
