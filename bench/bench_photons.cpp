@@ -35,7 +35,8 @@ void BM_EmitCornell(benchmark::State& state) {
   state.counters["stored_per_iter"] = benchmark::Counter(double(stored), benchmark::Counter::kAvgIterations);
 }
 
-// Both maps, built one after the other as buildStage (cli/photon_stage.cpp) does.
+// Both maps, built one after the other as buildStage (cli/photon_stage.cpp) does
+// for maps this large.
 struct Maps {
   ShadowPhotonMap shadow;
   IndirectPhotonMap indirect;

@@ -5,6 +5,7 @@
 #include "gather/morton.h"
 #include <nanoflann.hpp>
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <algorithm>
@@ -152,6 +153,12 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
   const size_t parts = partCount(count);
   if (split) splitIntoParts(photons, count, parts, 0, parts);
   impl->parts.resize(parts);
+  // Leaf order by a gather through one part-sized buffer per thread: independent
+  // loads, where following the permutation's cycles in place waited on one cache
+  // miss per photon (85% of this function's time in fig14's profile).
+  const size_t largestPart = (count + parts - 1) / parts;
+  tbb::enumerable_thread_specific<PhotonArray<Photon>> reorder(
+      [&] { return PhotonArray<Photon>(largestPart); });
   tbb::parallel_for(size_t(0), parts, [&](size_t i) {
     typename Impl::Part& part = impl->parts[i];
     const size_t begin = count * i / parts, end = count * (i + 1) / parts;
@@ -159,14 +166,18 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
     part.cloud = {photons + begin, end - begin};
     part.index = std::make_unique<typename Impl::Index>(
         3, part.cloud, nanoflann::KDTreeSingleIndexAdaptorParams(std::max<size_t>(leafSize, 1)));
-    // The nodes address vAcc positions, not photons: storing photon vAcc[i] at i and
-    // making vAcc the identity leaves the tree valid and every leaf contiguous. The
-    // reordering happens in place: no second copy of the photons.
+    // The nodes address vAcc positions, not photons: storing photon vAcc[j] at j and
+    // making vAcc the identity leaves the tree valid and every leaf contiguous.
     auto& vAcc = part.index->vAcc;
-    permuteInPlace(photons + begin, vAcc.data(), vAcc.size());
-    for (size_t j = begin; j < end; ++j) {
-      part.lo = glm::min(part.lo, photons[j].position);
-      part.hi = glm::max(part.hi, photons[j].position);
+    Photon* local = photons + begin;
+    Photon* buffer = reorder.local().data();
+    const size_t n = end - begin;
+    for (size_t j = 0; j < n; ++j) buffer[j] = local[vAcc[j]];
+    for (size_t j = 0; j < n; ++j) {
+      local[j] = buffer[j];
+      part.lo = glm::min(part.lo, buffer[j].position);
+      part.hi = glm::max(part.hi, buffer[j].position);
+      vAcc[j] = static_cast<uint32_t>(j);
     }
     progressAdd(progress, end - begin);
   });

@@ -52,24 +52,4 @@ StorageKeys storageKeys(const PhotonBatches<Photon>& photons, bool byGroup, bool
 template <class Photon>
 PhotonArray<Photon> sortByKey(PhotonBatches<Photon>&& photons, StorageKeys&& keys);
 
-// Reorders a[0..n) so that a[i] becomes the old a[perm[i]], in place, by following
-// the permutation's cycles; leaves perm as the identity.
-template <class T>
-void permuteInPlace(T* a, uint32_t* perm, size_t n) {
-  for (size_t i = 0; i < n; ++i) {
-    if (perm[i] == i) continue;
-    T first = a[i];
-    size_t j = i;
-    for (;;) {
-      const size_t k = perm[j];
-      perm[j] = static_cast<uint32_t>(j);
-      if (k == i) {
-        a[j] = first;
-        break;
-      }
-      a[j] = a[k];
-      j = k;
-    }
-  }
-}
 }  // namespace penumbra
