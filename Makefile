@@ -67,13 +67,13 @@ bench: build
 	$(call run_bench,bench_rays,)
 	$(call run_bench,bench_photons,)
 	$(call run_bench,bench_gather,--benchmark_filter='$(GATHER_FILTER)')
-	$(call run_bench,bench_render,--benchmark_filter=BM_Scene)
+	$(call run_bench,bench_render,--benchmark_filter='BM_(Scene|Control)')
 	@scripts/bench_table.py bench $(RESULTS)
 
 # Per scene and stage (stats.time.* through runRender), 1 and 2 threads, and the speed-up.
 scaling: build
 	$(call run_bench,bench_photons,)
-	$(call run_bench,bench_render,--benchmark_filter=BM_Scene)
+	$(call run_bench,bench_render,--benchmark_filter='BM_(Scene|Control)')
 	@scripts/bench_table.py scaling $(RESULTS)
 
 # Share of each benchmarked render's time inside Embree and nanoflann (perf samples),

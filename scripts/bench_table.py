@@ -22,7 +22,9 @@ FIGURES = (
         "kqueries/s", 1e-3, None),
        ("Gate classify k=50, 1M photons", r"^Classify/1M/.*morton:1/leaf:48/threads:{T}/shuffled:0", "rate",
         "kqueries/s", 1e-3, None)]
-    + [(f"Render {label}", rf"^BM_Scene{key}/threads:{{T}}/", "time", "s", 1.0, 1.9) for key, label in SCENES])
+    + [(f"Render {label}", rf"^BM_Scene{key}/threads:{{T}}/", "time", "s", 1.0, 1.9) for key, label in SCENES]
+    + [("Control: compute only (the machine's ceiling)", r"^BM_ControlCompute/threads:{T}/", "time", "s", 1.0,
+        None)])
 STAGES = [("load_s", "load + BVH"), ("emit_s", "photon emission"), ("maps_s", "map build"),
           ("precompute_s", "lookup precompute"), ("render_s", "render (tiles)"), ("total_s", "total")]
 
@@ -91,6 +93,12 @@ def bench_table(runs):
 
 def scaling_table(runs):
     out = ["| scene | stage | 1T s | 2T s | speed-up | CPU share 1T / 2T |", "|---|---|---:|---:|---:|---|"]
+    # The control first: what this run's two vCPUs gave register-only arithmetic.
+    r1, r2 = (find(runs, rf"^BM_ControlCompute/threads:{t}/", t) for t in (1, 2))
+    if r1 and r2:
+        a, b = seconds(r1), seconds(r2)
+        out.append(f"| control (compute only) | the machine's ceiling | {a:.3f} | {b:.3f} | {a / b:.2f} | "
+                   f"{share(r1)} / {share(r2)} |")
     # Stages of the fastest repetition of each (the fastest total).
     for key, label in SCENES:
         r1, r2 = (find(runs, rf"^BM_Scene{key}/threads:{t}/", t) for t in (1, 2))
