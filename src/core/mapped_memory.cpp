@@ -42,4 +42,10 @@ void unmapPhotonMemory(void* p, size_t bytes) noexcept {
   if (p) munmap(p, pageRounded(bytes));
 }
 
+void prefaultForWrite(void* p, size_t bytes) noexcept {
+  const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + kPage - 1) & ~uintptr_t(kPage - 1);
+  const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + bytes) & ~uintptr_t(kPage - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+}
+
 }  // namespace penumbra

@@ -18,6 +18,11 @@ constexpr size_t kMappedMinBytes = size_t(256) << 10;
 void* mapPhotonMemory(size_t bytes);
 void unmapPhotonMemory(void* p, size_t bytes) noexcept;
 
+// Faults in the whole 4 KB pages of [p, p + bytes) in one call (MADV_POPULATE_WRITE),
+// for memory another allocator hands out (a library's std::vector) that is about to
+// be written in full. Best effort: on a kernel without it, pages fault as written.
+void prefaultForWrite(void* p, size_t bytes) noexcept;
+
 // One such mapping, owned (move-only).
 class MappedBlock {
  public:
