@@ -1,10 +1,14 @@
 // Maps big enough to be split into parts (Morton ranges built side by side): the
 // k nearest and the radius search over all parts against a brute-force scan, and
 // the same storage order and answers at any thread count.
+#include "gather/kd_tree.h"
 #include "gather/photon_map.h"
 #include "support/brute_knn.h"
 #include <gtest/gtest.h>
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 #include <algorithm>
 
 namespace penumbra {
@@ -70,6 +74,24 @@ TEST(KnnParts, SameOrderAndAnswersAtAnyThreadCount) {
     ASSERT_EQ(na, nb);
     for (size_t i = 0; i < na; ++i) EXPECT_EQ(sa.indices[i], sb.indices[i]);
   }
+}
+
+// An exception elsewhere in an enclosing parallel algorithm (another light's tree or
+// another map running out of memory) cancels the parts not yet built: the tree stays
+// empty, and the exception propagates from there, instead of reading parts it never built.
+TEST(KnnParts, CancelledBuildStaysEmpty) {
+  PhotonArray<IndirectPhoton> cloud = partedCloud();
+  PhotonKdTree<IndirectPhoton> tree;
+  tbb::task_group_context group;
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, 1),
+      [&](const tbb::blocked_range<int>&) {
+        group.cancel_group_execution();
+        tree.build(cloud.data(), cloud.size(), 48, false, nullptr);
+      },
+      group);
+  GatherScratch scratch;
+  EXPECT_EQ(tree.knn(Vec3(0.3f), 10, 0.0f, scratch), 0u);
 }
 
 }  // namespace

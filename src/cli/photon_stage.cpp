@@ -2,6 +2,7 @@
 #include "cli/photon_stage.h"
 #include "core/stats.h"
 #include <tbb/parallel_invoke.h>
+#include <exception>
 
 namespace penumbra {
 namespace {
@@ -126,7 +127,22 @@ bool buildStage(Emission& e, const PhotonBudgets& wanted, bool consume, PhotonSt
   if (shadow.size() + indirect.size() + global.size() + caustic.size() <= kSideBySidePhotons) {
     // Small maps: a tree under one part builds on one thread, so only building the
     // maps side by side keeps both cores busy (cornell_physical: 2 x ~190k photons).
-    tbb::parallel_invoke(buildShadow, buildIndirect, buildGlobal, buildCaustic);
+    // Each build keeps its own exception (out of memory): one escaping would cancel
+    // the others' inner loops half-way; the first is rethrown once all have ended.
+    std::exception_ptr failed[4];
+    auto guarded = [&failed](int i, auto& build) {
+      return [&failed, &build, i] {
+        try {
+          build();
+        } catch (...) {
+          failed[i] = std::current_exception();
+        }
+      };
+    };
+    tbb::parallel_invoke(guarded(0, buildShadow), guarded(1, buildIndirect), guarded(2, buildGlobal),
+                         guarded(3, buildCaustic));
+    for (const std::exception_ptr& e : failed)
+      if (e) std::rethrow_exception(e);
   } else {
     // Large maps one after another, each parallel inside (its sort by chunks, its
     // tree by parts): a map's sorted array then reuses the memory the previous map's

@@ -43,9 +43,14 @@ void unmapPhotonMemory(void* p, size_t bytes) noexcept {
 }
 
 void prefaultForWrite(void* p, size_t bytes) noexcept {
+#ifdef MADV_POPULATE_WRITE  // glibc >= 2.35 headers (Debian 12 has 2.36); else a no-op
   const uintptr_t begin = (reinterpret_cast<uintptr_t>(p) + kPage - 1) & ~uintptr_t(kPage - 1);
   const uintptr_t end = (reinterpret_cast<uintptr_t>(p) + bytes) & ~uintptr_t(kPage - 1);
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#else
+  (void)p;
+  (void)bytes;
+#endif
 }
 
 }  // namespace penumbra

@@ -189,6 +189,10 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
     }
     progressAdd(progress, end - begin);
   });
+  // An exception in a task around this build (another light's tree, out of memory)
+  // cancels the parts not yet started, and propagates from there: stay empty.
+  for (const auto& part : impl->parts)
+    if (!part.index) return;
   for (const auto& part : impl->parts) impl->bytes += part.index->usedMemory(*part.index);
   impl_ = std::move(impl);
 }
