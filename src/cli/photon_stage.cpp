@@ -119,21 +119,22 @@ bool buildStage(Emission& e, const PhotonBudgets& wanted, bool consume, PhotonSt
   Stopwatch clock;
   MapBuildOptions build;
   build.progress = progress;
-  progressExpect(progress, 2 * (shadow.size() + indirect.size() + global.size() + caustic.size()));
+  const size_t photons = shadow.size() + indirect.size() + global.size() + caustic.size();
+  progressExpect(progress, 2 * photons);
   auto buildShadow = [&] { stage.shadow.build(std::move(shadow), e.numLights, build); };
   auto buildIndirect = [&] { stage.indirect.build(std::move(indirect), build); };
   auto buildGlobal = [&] { stage.global.build(std::move(global), build); };
   auto buildCaustic = [&] { stage.caustic.build(std::move(caustic), build); };
-  if (shadow.size() + indirect.size() + global.size() + caustic.size() <= kSideBySidePhotons) {
+  if (photons <= kSideBySidePhotons) {
     // Small maps: a tree under one part builds on one thread, so only building the
     // maps side by side keeps both cores busy (cornell_physical: 2 x ~190k photons).
     // Each build keeps its own exception (out of memory): one escaping would cancel
     // the others' inner loops half-way; the first is rethrown once all have ended.
     std::exception_ptr failed[4];
-    auto guarded = [&failed](int i, auto& build) {
-      return [&failed, &build, i] {
+    auto guarded = [&failed](int i, auto& buildMap) {
+      return [&failed, &buildMap, i] {
         try {
-          build();
+          buildMap();
         } catch (...) {
           failed[i] = std::current_exception();
         }

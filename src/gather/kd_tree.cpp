@@ -165,9 +165,9 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
     const size_t begin = count * i / parts, end = count * (i + 1) / parts;
     part.offset = static_cast<uint32_t>(begin);
     part.cloud = {photons + begin, end - begin};
-    part.index = std::make_unique<typename Impl::Index>(
-        3, part.cloud, nanoflann::KDTreeSingleIndexAdaptorParams(
-                           std::max<size_t>(leafSize, 1), nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex));
+    const nanoflann::KDTreeSingleIndexAdaptorParams params(
+        std::max<size_t>(leafSize, 1), nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex);
+    part.index = std::make_unique<typename Impl::Index>(3, part.cloud, params);
     // nanoflann zero-fills its index array (4 B per photon, malloc'd) page by page,
     // ~11 us per 4 KB fault on this project's VMs (fig14: 11.9k faults): populate
     // it in one call first.
