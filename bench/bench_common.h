@@ -5,7 +5,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "geometry/trace_scene.h"
-#include "integrator/camera.h"
+#include "trace/camera.h"
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>

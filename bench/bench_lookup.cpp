@@ -7,8 +7,8 @@
 #include "gather/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "geometry/trace_scene.h"
-#include "integrator/camera.h"
-#include "integrator/light_visibility.h"
+#include "trace/camera.h"
+#include "trace/light_visibility.h"
 #include "io/scene_loader.h"
 #include "bench/bench_common.h"
 #include <benchmark/benchmark.h>

@@ -1,9 +1,9 @@
 // Camera rays as Embree packets versus single rays on the 1M-triangle teapot
 // (scenes/teapot_1m.json): the primary-ray stage alone in Mrays/s, then the whole
 // depth view and direct-light-only render, at 1 and 2 threads (docs/PERFORMANCE.md).
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "geometry/trace_scene.h"
-#include "integrator/camera.h"
+#include "trace/camera.h"
 #include "io/scene_loader.h"
 #include <benchmark/benchmark.h>
 #include <tbb/parallel_for.h>

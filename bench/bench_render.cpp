@@ -3,7 +3,7 @@
 // and ray/gather counts as counters for `make scaling` and docs/PERFORMANCE.md; and
 // a compute-only control that measures the machine's own 2T/1T in the same run.
 #include "bench/bench_common.h"
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>

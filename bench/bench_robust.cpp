@@ -5,7 +5,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "geometry/trace_scene.h"
-#include "integrator/camera.h"
+#include "trace/camera.h"
 #include "io/scene_loader.h"
 #include "bench/bench_common.h"
 #include <benchmark/benchmark.h>

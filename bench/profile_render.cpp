@@ -2,7 +2,7 @@
 // one scene with their CLOCK_MONOTONIC windows and counters for perf, then in the same run
 // the raw Embree and nanoflann rates on that scene's rays and first-hit points.
 #include "bench/bench_common.h"
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
 #include "gather/photon_map.h"

@@ -4,7 +4,7 @@
 // does not stop the batch, and shards split jobs stably.
 #include "cli/batch_jobs.h"
 #include "cli/batch_run.h"
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "core/error.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"

@@ -4,7 +4,7 @@
 // photons that leave from the surface into its hemisphere, and byte-identical
 // renders at 1 and 2 threads in both models.
 #include "support/form_factor.h"
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "core/error.h"
 #include "core/light_sample.h"
 #include "io/scene_loader.h"

@@ -4,7 +4,7 @@
 // the direct, caustic and indirect views add up to the beauty image; and the
 // furnace (a closed Lambert sphere around a point light) comes out of the whole
 // pipeline at its analytic radiance, single-pass and progressive.
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "core/error.h"
 #include <gtest/gtest.h>
 #include <unistd.h>

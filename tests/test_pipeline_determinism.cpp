@@ -2,7 +2,11 @@
 // (through runRender and through the penumbra binary), a different seed changes
 // the jittered image, and the CLI's exit codes and messages follow the contract
 // (0 ok, 2 bad input with one line on stderr).
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
+#include "cli/batch_jobs.h"
+#include "cli/batch_run.h"
+#include "cli/progress_meter.h"
+#include "cli/sweep_run.h"
 #include "core/error.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -11,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace penumbra {
@@ -152,6 +157,66 @@ TEST(Determinism, RunRenderIsIdenticalForOneAndTwoThreads) {
     hi = std::max(hi, luminance(c));
   }
   EXPECT_GT(hi - lo, 0.1f);
+}
+
+// A meter that draws every phase (no quiet time) into a scratch file, with its ticker
+// polling while the workers count: what penumbra sweep and batch run on a terminal.
+struct MeterToFile {
+  explicit MeterToFile(const fs::path& path) : file(std::fopen(path.string().c_str(), "w")) {
+    ProgressDisplay d;
+    d.terminal = true;
+    d.quietSeconds = 0.0;
+    d.out = file;
+    meter.emplace(d);
+    meter->startTicker();
+  }
+  ~MeterToFile() {
+    meter.reset();
+    std::fclose(file);
+  }
+  std::FILE* file;
+  std::optional<ProgressMeter> meter;
+};
+
+// Sweep and batch on two threads with their progress on (make test-tsan runs these):
+// the lines come from the scheduling thread and the meter's ticker, never a worker.
+TEST(Determinism, SweepWithProgressOnTwoThreads) {
+  TempDir dir("sweep_progress");
+  const fs::path scene = dir.write("scene.json", kScene);
+  MeterToFile progress(dir.path() / "progress.txt");
+  SweepRequest req;
+  req.scenePath = scene.string();
+  req.outDir = (dir.path() / "sweep").string();
+  req.spec = expandGrid({keyKnob("photons.k_indirect=10,30")}, {"camera.spp=1"});
+  req.threads = 2;
+  size_t lines = 0;
+  req.progress = [&](const std::string& line) {
+    progress.meter->setContext(line);
+    ++lines;
+  };
+  req.phases = &*progress.meter;
+  const SweepOutcome out = runSweep(req);
+  progress.meter->finish();
+  EXPECT_EQ(out.rows.size(), 2u);
+  EXPECT_GT(lines, 0u);
+  EXPECT_FALSE(progress.meter->ended().empty());
+}
+
+TEST(Determinism, BatchWithProgressOnTwoThreads) {
+  TempDir dir("batch_progress");
+  const fs::path scene = dir.write("scene.json", kScene);
+  MeterToFile progress(dir.path() / "progress.txt");
+  BatchRequest req;
+  req.jobs = jobsForScenes({scene.string()}, dir.path().string(), {}, {"beauty", "depth"}, ".exr");
+  req.threads = 2;
+  req.force = true;
+  req.progress = [&](const std::string& line) { progress.meter->setContext(line); };
+  req.phases = &*progress.meter;
+  const BatchOutcome out = runBatch(req);
+  progress.meter->finish();
+  EXPECT_EQ(out.rendered, 1u);
+  EXPECT_EQ(out.failed, 0u);
+  EXPECT_FALSE(progress.meter->ended().empty());
 }
 
 TEST(Determinism, SeedChangesTheJitteredImage) {

@@ -1,7 +1,7 @@
 // The geometric views in files: an EXR keeps depth in scene units and normals in
 // [-1, 1] (float, A = coverage), a PNG shows the old 0..1 pictures byte for byte,
 // a layered EXR keeps the values too, and an EXR header names every setting.
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "core/color.h"
 #include "io/aov_display.h"
 #include "io/image_io.h"

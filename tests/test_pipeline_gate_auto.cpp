@@ -1,8 +1,8 @@
 // photons.gate = auto: the cost model turns the gate off where a point light saves
 // one cheap ray per shading point, and on for 16-sample area lights; the decision
 // and its reason reach the stats, and an explicit on/off always wins.
-#include "cli/gate_decision.h"
-#include "cli/pipeline.h"
+#include "plan/gate_decision.h"
+#include "plan/pipeline.h"
 #include "io/scene_loader.h"
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // photons.lookup = precomputed against the exact k-nearest path on gallery scenes:
 // the image differs from exact by less than half the exact path's own noise (its
 // RMSE against another seed), and it is identical for 1 and 2 threads.
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 #include <cstdio>

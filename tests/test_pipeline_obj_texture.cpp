@@ -1,7 +1,7 @@
 // Texture orientation end to end: an OBJ quad facing the camera, its corners' vt in
 // the usual convention (v = 0 at the bottom), textured by an MTL map_Kd whose top
 // half is red and bottom half blue, renders red above and blue below.
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "io/image_io.h"
 #include "support/cli_run.h"
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Output safety, end to end through the binary: an output naming an input is
 // refused with the input untouched, bad report paths and bad arguments fail before
 // any rendering, and SIGINT during the image write leaves the old output whole.
-#include "cli/memory_limit.h"
+#include "plan/memory_limit.h"
 #include "support/cli_run.h"
 #include <gtest/gtest.h>
 #include <signal.h>

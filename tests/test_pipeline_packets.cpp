@@ -2,7 +2,7 @@
 // beauty, depth, normal, indirect, direct and caustic views; textures, mirrors, glass,
 // area lights, the gate on and off) render to the same bytes and the same ray counts
 // with render.packets true and false.
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include <gtest/gtest.h>
 #include <cstring>
 #include <string>

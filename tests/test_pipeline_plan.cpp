@@ -2,8 +2,8 @@
 // pass the plan turned off gives a byte-identical image (it had nothing to add),
 // skipped passes cost no photons or rays, and the approximations the plan may pick
 // (the gate, precomputed lookups) stay within the noise of a second seed.
-#include "cli/pipeline.h"
-#include "cli/render_plan.h"
+#include "plan/pipeline.h"
+#include "plan/render_plan.h"
 #include "io/image_compare.h"
 #include "io/scene_loader.h"
 #include <gtest/gtest.h>

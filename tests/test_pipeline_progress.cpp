@@ -1,7 +1,7 @@
 // Progress of penumbra render (issue 14 item 4): the phase line's ETA arithmetic,
 // when the meter draws on a terminal and in a log, that every phase's counter
 // reaches its total, and what the CLI prints with and without --quiet.
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "cli/progress_line.h"
 #include "cli/progress_meter.h"
 #include "support/cli_run.h"

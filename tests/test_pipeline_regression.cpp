@@ -1,7 +1,7 @@
 // Image regression against committed references, and the ambiguity gate's
 // accuracy/savings on the shadow scene. Set PENUMBRA_UPDATE_REFERENCES=1 to
 // rewrite the references after an intended change (and look at them first).
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "io/image_io.h"
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // The resource estimate against what renders actually store: an upper bound on the
 // photon maps within 2x on the Cornell box, a closed many-bounce box and the
 // physical model; gallery scenes always admitted; sizes parsed; long jobs told.
-#include "cli/job_admission.h"
-#include "cli/memory_limit.h"
-#include "cli/pipeline.h"
+#include "plan/job_admission.h"
+#include "plan/memory_limit.h"
+#include "plan/pipeline.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The reach pilot and the budget split it drives: first-hit fractions against solid
 // angles, a light boxed in black getting no photons while the stored power stays that
 // of the power split, and the plan's reasons (issue: budgets go where they matter).
-#include "cli/render_plan.h"
+#include "plan/render_plan.h"
 #include "emit/emit.h"
 #include "emit/light_reach.h"
 #include "io/shapes.h"

@@ -2,8 +2,8 @@
 // runRender of the same settings (byte for byte at the largest photon budget,
 // within the power packing's rounding for prefix-cut budgets), a rerun resumes
 // without rendering, the gate's trade-off is measured, and bad runs fail first.
-#include "cli/pipeline.h"
-#include "cli/reuse_key.h"
+#include "plan/pipeline.h"
+#include "plan/reuse_key.h"
 #include "cli/sweep_run.h"
 #include "core/error.h"
 #include "io/image_compare.h"

@@ -1,21 +1,24 @@
 // Options of `penumbra batch`, the shard selection, the progress line and the summary.
 #include "cli/batch_command.h"
 #include "cli/batch_run.h"
-#include "cli/memory_limit.h"
+#include "cli/plan_command.h"
+#include "cli/progress_meter.h"
+#include "plan/memory_limit.h"
 #include "cli/sweep_spec.h"
 #include "core/error.h"
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <iostream>
 
 namespace penumbra {
 
 struct BatchCommand::Options {
   CLI::App* command = nullptr;
-  std::vector<std::string> inputs, overrides;
-  std::string out, views, format = "png", shard, listShard, mapCache = "4G";
+  std::vector<std::string> inputs, overrides, enable, disable;
+  std::string out, views, format = "png", shard, listShard, mapCache = "4G", maxMemory;
   int threads = 0;
   bool force = false, keepGoing = false, quiet = false;
 };
@@ -36,6 +39,8 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--map-cache", o.mapCache, "Photon maps kept for later jobs, at most this much (LRU), e.g. 4G");
   c->add_flag("--force", o.force, "Render every job, even those whose outputs are up to date");
   c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
+  c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a job estimated to need more, e.g. 8G (default: the memory available)");
+  addPassOptions(*c, o.enable, o.disable);
   c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 }
 
@@ -80,16 +85,23 @@ int BatchCommand::run() {
   req.force = o.force;
   req.keepGoing = o.keepGoing;
   req.mapCacheBytes = parseMemorySize(o.mapCache);
+  if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
+  req.plan = passOverrides(o.enable, o.disable);
   const bool tty = isatty(STDERR_FILENO);
-  if (!o.quiet && tty) req.progress = [](const std::string& line) { std::cerr << "\r\033[K" << line << std::flush; };
-  if (!o.quiet && !tty) {
-    req.progress = [](const std::string& line) {
-      if (line.find("| done |") != std::string::npos) std::cerr << line << "\n";
+  std::optional<ProgressMeter> meter;
+  if (!o.quiet) {
+    meter.emplace(progressDisplay());
+    meter->startTicker();
+    req.phases = &*meter;
+    // On a terminal the job's place heads the meter's line; otherwise a line per finished job.
+    req.progress = [&](const std::string& line) {
+      if (tty) meter->setContext(line);
+      else if (line.find("| done |") != std::string::npos) std::cerr << line << "\n";
     };
   }
   const BatchOutcome out = runBatch(req);
+  if (meter) meter->finish();
   if (!o.quiet) {
-    if (tty) std::cerr << "\n";
     std::cerr << batchSummary(out);
   }
   return out.failed > 0 ? 1 : 0;

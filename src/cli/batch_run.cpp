@@ -1,11 +1,10 @@
-// The batch loop: validate everything, then each job from cached scene assets and
-// cached photon stages (LRU by bytes), its views rendered from the same maps.
+// The batch loop: plan and admit every job, then render each through the render
+// session, which shares scenes and photon stages between jobs; a job's views are
+// rendered from the same maps.
 #include "cli/batch_run.h"
-#include "cli/output_safety.h"
 #include "cli/progress_line.h"
-#include "cli/render_frame.h"
-#include "cli/render_plan.h"
-#include "cli/reuse_key.h"
+#include "plan/cost_model.h"
+#include "plan/render_session.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
@@ -13,9 +12,7 @@
 #include <tbb/info.h>
 #include <fmt/format.h>
 #include <filesystem>
-#include <list>
 #include <map>
-#include <memory>
 
 namespace penumbra {
 namespace {
@@ -24,10 +21,7 @@ namespace fs = std::filesystem;
 
 struct PreparedJob {
   const BatchJob* job = nullptr;
-  Camera camera;  // the job's settings; its geometry lives with its group's scene
-  RenderSettings render;
-  PhotonSettings photons;
-  ReuseKeys keys;
+  std::vector<PlannedJob> views;  // one per output, planned and admitted
   std::vector<std::string> inputs;
   std::string stamp;  // written into every output: a changed job makes them stale
   std::string error;  // validation failure (keepGoing)
@@ -56,10 +50,16 @@ bool upToDate(const PreparedJob& p, const std::vector<std::string>& extra) {
   return true;
 }
 
-struct CachedStage {
-  std::string key;
-  std::unique_ptr<PhotonStage> stage;
-};
+
+// Whether a job rendered before job `j` had its geometry (and so built its scene).
+bool renderedBefore(const std::vector<PreparedJob>& jobs, const std::vector<bool>& current, size_t j) {
+  for (size_t i = 0; i < j; ++i) {
+    if (jobs[i].error.empty() && !current[i] && jobs[i].views.front().keys.geometry == jobs[j].views.front().keys.geometry) {
+      return true;
+    }
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -67,8 +67,9 @@ double jobCost(const BatchJob& job) {
   const Scene s = loadScene(job.scene, job.overrides);
   const double samples = double(s.camera.width) * s.camera.height * s.camera.spp * job.outputs.size();
   const PhotonSettings& ps = s.photons;
-  // ~0.5 us per camera sample and per photon on this machine (docs/PERFORMANCE.md).
-  return samples + double(ps.indirectPhotons + ps.globalPhotons + ps.causticPhotons + (ps.gate ? ps.shadowPhotons : 0));
+  // A camera sample and a photon cost about the same (plan/cost_model.h).
+  const double photons = double(ps.indirectPhotons + ps.globalPhotons + ps.causticPhotons + (ps.gate ? ps.shadowPhotons : 0));
+  return (samples + photons) * cost::kCameraSampleNs;
 }
 
 BatchOutcome runBatch(const BatchRequest& req) {
@@ -76,42 +77,60 @@ BatchOutcome runBatch(const BatchRequest& req) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   Stopwatch clock;
   BatchOutcome out;
+  SessionOptions options;
+  options.maxMemoryBytes = req.maxMemoryBytes;
+  options.stageCacheBytes = req.mapCacheBytes;
+  options.plan = req.plan;
+  options.threads = threads;
+  options.progress = req.phases;
+  RenderSession session(options);
 
-  // 1. Every job loaded and its outputs checked before the first render.
+  // 1. Every job loaded, planned and admitted, its outputs checked, before the first render.
   std::vector<PreparedJob> prepared(req.jobs.size());
-  std::map<std::string, std::unique_ptr<Scene>> owners;  // geometry key -> the scene its BVH reads
   for (size_t j = 0; j < req.jobs.size(); ++j) {
     PreparedJob& p = prepared[j];
     p.job = &req.jobs[j];
     try {
-      Scene scene = loadScene(p.job->scene, p.job->overrides);
-      p.keys = reuseKeys(p.job->scene, p.job->overrides);
-      p.inputs = sceneInputs(scene, p.job->scene);
       std::vector<OutputPath> outputs;
       for (const BatchOutput& o : p.job->outputs) {
-        parseAov(o.view.empty() ? scene.render.aov : o.view);
         bool seen = false;
         for (const OutputPath& q : outputs) seen = seen || q.path == o.path;
         if (!seen) outputs.push_back({o.path, "output", true});
       }
-      checkOutputs(outputs, p.inputs);
+      for (size_t v = 0; v < p.job->outputs.size(); ++v) {
+        JobRequest view{p.job->scene, p.job->overrides, p.job->outputs[v].view, v == 0 ? outputs : std::vector<OutputPath>{}, {}};
+        p.views.push_back(session.plan(view));
+      }
+      p.inputs = p.views.front().inputs;
       p.stamp = stampOf(*p.job);
-      p.camera = scene.camera;
-      p.render = scene.render;
-      p.photons = scene.photons;
-      if (!owners.count(p.keys.geometry)) owners[p.keys.geometry] = std::make_unique<Scene>(std::move(scene));
+    } catch (const InputError& e) {
+      p.error = e.what();
+      p.views.clear();
+      if (!req.keepGoing) throw InputError("batch job '" + p.job->name + "' (" + p.job->where + "): " + e.what());
+    }
+  }
+  // Up to date or not is decided once, before any job writes.
+  std::vector<bool> current(prepared.size(), false);
+  for (size_t j = 0; j < prepared.size(); ++j) {
+    current[j] = prepared[j].error.empty() && !req.force && upToDate(prepared[j], req.extraInputs);
+  }
+  // 2. The jobs to render prepared (BVH, light split, the photon estimate against the
+  // memory limit) before the first photon of any of them.
+  for (size_t j = 0; j < prepared.size(); ++j) {
+    PreparedJob& p = prepared[j];
+    if (!p.error.empty() || current[j]) continue;
+    try {
+      for (PlannedJob& v : p.views) session.prepare(v);
     } catch (const InputError& e) {
       p.error = e.what();
       if (!req.keepGoing) throw InputError("batch job '" + p.job->name + "' (" + p.job->where + "): " + e.what());
     }
   }
 
-  // 2. Render, sharing what the keys allow.
-  std::map<std::string, SceneAssets> assets;
-  std::list<CachedStage> stages;  // most recently used first
-  uint64_t cached = 0;
+  // 3. Render, sharing what the keys allow.
   size_t done = 0;
-  for (PreparedJob& p : prepared) {
+  for (size_t j = 0; j < prepared.size(); ++j) {
+    PreparedJob& p = prepared[j];
     BatchJobResult r;
     r.name = p.job->name;
     for (const BatchOutput& o : p.job->outputs) r.outputs.push_back(o.path);
@@ -123,88 +142,26 @@ BatchOutcome runBatch(const BatchRequest& req) {
     };
     if (!p.error.empty()) {
       r.status = "failed: " + p.error;
-    } else if (!req.force && upToDate(p, req.extraInputs)) {
+    } else if (current[j]) {
       r.status = "up to date";
       ++out.upToDate;
     } else {
       try {
-        Scene& scene = *owners[p.keys.geometry];
+        report("render");
         std::vector<std::string> reused;
-        if (assets.count(p.keys.geometry)) {
-          reused.push_back("scene");
-        } else {
-          report("scene");
-          assets[p.keys.geometry] = prepareAssets(scene, true);
-          ++out.sceneBuilds;
-        }
-        SceneAssets& a = assets[p.keys.geometry];
-        // Each view's plan; the maps are built once, for the union of what they read.
-        auto useSettings = [&] {
-          scene.camera = p.camera;
-          scene.render = p.render;
-          scene.photons = p.photons;
-        };
-        std::vector<RenderPlan> plans;
-        PhotonNeeds needs;
-        PhotonSettings emitted = p.photons;
-        emitted.shadowPhotons = emitted.indirectPhotons = emitted.globalPhotons = emitted.causticPhotons = 0;
-        emitted.gate = false;
-        bool shadows = false;
-        for (const BatchOutput& o : p.job->outputs) {
-          useSettings();
-          plans.push_back(makePlan(scene, parseAov(o.view.empty() ? p.render.aov : o.view)));
-          splitByReach(plans.back(), scene, *a.tracer);
-          needs |= photonNeeds(plans.back());
-          applyPlan(plans.back(), scene);
-          const PhotonSettings& v = scene.photons;
-          emitted.gate = emitted.gate || v.gate;
-          shadows = shadows || scene.render.shadows;
-          emitted.shadowPhotons = std::max(emitted.shadowPhotons, v.shadowPhotons);
-          emitted.indirectPhotons = std::max(emitted.indirectPhotons, v.indirectPhotons);
-          emitted.globalPhotons = std::max(emitted.globalPhotons, v.globalPhotons);
-          emitted.causticPhotons = std::max(emitted.causticPhotons, v.causticPhotons);
-        }
-        useSettings();
-        scene.photons = emitted;
-        scene.render.shadows = shadows;
-        const PhotonBudgets b = budgetsOf(scene);
-        const std::string key = fmt::format("{}\n{}\n{} {} {} {}\n{}{}{}{}", p.keys.geometry, p.keys.photons, b.shadow,
-                                            b.indirect, b.global, b.caustic, needs.shadow, needs.indirect,
-                                            needs.global, needs.caustic);
-        auto hit = std::find_if(stages.begin(), stages.end(), [&](const CachedStage& c) { return c.key == key; });
-        if (hit != stages.end()) {
-          stages.splice(stages.begin(), stages, hit);
+        std::vector<const PlannedJob*> views;
+        for (const PlannedJob& v : p.views) views.push_back(&v);
+        if (renderedBefore(prepared, current, j)) reused.push_back("scene");
+        bool stageReused = false;
+        PhotonStage& stage = session.photons(views, &stageReused);
+        if (stageReused) {
           reused.push_back("photons");
           ++out.photonReuses;
-        } else {
-          report("photons");
-          auto stage = std::make_unique<PhotonStage>();
-          Emission e = emitPhotonsFor(scene, *a.tracer, needs, 0);
-          buildStage(e, e.budgets, true, *stage);
-          ++out.photonBuilds;
-          cached += stage->bytes();
-          stages.push_front({key, std::move(stage)});
-          // Keep the newest always; drop the least recently used beyond the cap.
-          while (stages.size() > 1 && cached > req.mapCacheBytes) {
-            cached -= stages.back().stage->bytes();
-            stages.pop_back();
-            ++out.evictions;
-          }
-          out.peakCacheBytes = std::max(out.peakCacheBytes, cached);
         }
-        PhotonStage& stage = *stages.front().stage;
         std::map<std::string, std::vector<std::pair<std::string, Image>>> files;
-        for (size_t v = 0; v < plans.size(); ++v) {
-          report("render " + p.job->outputs[v].view);
-          useSettings();
-          applyPlan(plans[v], scene);
-          RenderResult result;
-          FrameOptions frame;
-          frame.aov = plans[v].aov;
-          frame.needs = photonNeeds(plans[v]);
-          renderFrame(scene, a, stage, frame, result);
-          const std::string& view = p.job->outputs[v].view;
-          files[p.job->outputs[v].path].push_back({view.empty() ? p.render.aov : view, std::move(result.image)});
+        for (size_t v = 0; v < p.views.size(); ++v) {
+          RenderResult result = session.frame(p.views[v], stage);
+          files[p.job->outputs[v].path].push_back({p.views[v].viewName, std::move(result.image)});
         }
         const ImageMetadata meta = {{"penumbra:job", p.stamp}, {"penumbra:scene_file", fs::path(p.job->scene).filename().string()}};
         for (auto& [path, layers] : files) {
@@ -224,6 +181,10 @@ BatchOutcome runBatch(const BatchRequest& req) {
     ++done;
     report("done");
   }
+  out.sceneBuilds = session.sceneBuilds();
+  out.photonBuilds = session.photonBuilds();
+  out.evictions = session.evictions();
+  out.peakCacheBytes = session.peakStageBytes();
   out.seconds = clock.seconds();
   return out;
 }

@@ -1,9 +1,11 @@
 // penumbra batch: renders many jobs in one process, sharing the loaded scene,
 // BVH and textures between jobs of the same geometry and the photon maps between
-// jobs whose photon inputs are equal (cli/reuse_key.h), in an LRU cache with a
+// jobs whose photon inputs are equal (plan/reuse_key.h), in an LRU cache with a
 // byte cap; skips jobs whose outputs are up to date; reports every job.
 #pragma once
 #include "cli/batch_jobs.h"
+#include "core/progress.h"
+#include "plan/render_plan.h"
 #include <functional>
 #include <string>
 #include <vector>
@@ -17,7 +19,11 @@ struct BatchRequest {
   bool force = false;       // render even jobs whose outputs are up to date
   bool keepGoing = false;   // a job that fails validation is reported, not fatal
   uint64_t mapCacheBytes = 4ull << 30;  // photon maps kept for later jobs (LRU)
+  uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available
+  PlanOverrides plan;           // --enable / --disable, for every job
+  // Called on the batch's own thread with one line per job and phase.
   std::function<void(const std::string& line)> progress;
+  ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
 };
 
 struct BatchJobResult {
@@ -39,7 +45,8 @@ struct BatchOutcome {
 // Validates every job (InputError naming the job unless keepGoing), then renders.
 BatchOutcome runBatch(const BatchRequest& request);
 
-// A job's estimated cost for sharding: camera samples of every view plus photons.
+// A job's estimated cost for sharding, in nanoseconds: camera samples of every view
+// plus photons.
 double jobCost(const BatchJob& job);
 
 // The summary table printed after a batch.

@@ -1,7 +1,7 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
 // 0 ok, 2 bad input (one-line message), 1 internal error.
-#include "cli/memory_limit.h"
-#include "cli/pipeline.h"
+#include "plan/memory_limit.h"
+#include "plan/pipeline.h"
 #include "cli/progress_meter.h"
 #include "cli/batch_command.h"
 #include "cli/plan_command.h"
@@ -82,19 +82,6 @@ void checkOverrides(const std::vector<std::string>& overrides) {
   }
 }
 
-// Where and when progress shows: PENUMBRA_PROGRESS_AFTER overrides the 0.5 s a
-// phase runs before it shows (tests set 0 to see every phase of a small render).
-ProgressDisplay progressDisplay() {
-  ProgressDisplay d;
-  d.terminal = isatty(STDERR_FILENO);
-  if (const char* after = std::getenv("PENUMBRA_PROGRESS_AFTER")) {
-    char* end = nullptr;
-    const double s = std::strtod(after, &end);
-    if (end != after && *end == '\0' && s >= 0.0) d.quietSeconds = s;
-  }
-  return d;
-}
-
 // The pipeline's stats plus the up-front estimate, in one JSON object.
 std::string statsWithEstimate(const RenderResult& result) {
   nlohmann::json stats = nlohmann::json::parse(statsToJson(result.stats));
@@ -115,7 +102,7 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   if (!quiet) {
     meter.emplace(progressDisplay());
     meter->startTicker();
-    req.meter = &*meter;
+    req.progress = &*meter;
   }
   RenderResult result = runRender(req);
   if (meter) meter->finish();

@@ -2,7 +2,7 @@
 // built only for the light split of photon passes).
 #include "cli/plan_command.h"
 #include "core/error.h"
-#include "cli/render_frame.h"
+#include "plan/render_frame.h"
 #include "io/scene_loader.h"
 #include <iostream>
 

@@ -2,7 +2,7 @@
 // without rendering; and the
 // --enable / --disable PASS options that render and plan share.
 #pragma once
-#include "cli/render_plan.h"
+#include "plan/render_plan.h"
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>

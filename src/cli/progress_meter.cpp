@@ -2,10 +2,26 @@
 // terminal's line is redrawn, and which plain lines a log gets.
 #include "cli/progress_meter.h"
 #include "cli/progress_line.h"
+#include <unistd.h>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 
 namespace penumbra {
+
+// Where and when progress shows: PENUMBRA_PROGRESS_AFTER overrides the 0.5 s a
+// phase runs before it shows (tests set 0 to see every phase of a small render).
+ProgressDisplay progressDisplay() {
+  ProgressDisplay d;
+  d.terminal = isatty(STDERR_FILENO);
+  if (const char* after = std::getenv("PENUMBRA_PROGRESS_AFTER")) {
+    char* end = nullptr;
+    const double s = std::strtod(after, &end);
+    if (end != after && *end == '\0' && s >= 0.0) d.quietSeconds = s;
+  }
+  return d;
+}
+
 
 ProgressMeter::ProgressMeter(ProgressDisplay display) : display_(std::move(display)) {}
 
@@ -37,6 +53,11 @@ void ProgressMeter::end() {
   phase_.clear();
 }
 
+void ProgressMeter::setContext(std::string context) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  context_ = std::move(context);
+}
+
 void ProgressMeter::poll() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (phase_.empty()) return;
@@ -54,6 +75,7 @@ void ProgressMeter::poll() {
 
 void ProgressMeter::draw(double fraction, double elapsed) {
   std::string line = phaseLine(phase_, fraction, elapsed);
+  if (!context_.empty()) line = context_ + " | " + line;
   if (display_.terminal) {
     if (lineOpen_ && line == shown_) return;  // nothing moved since the last redraw
     std::fprintf(display_.out, "\r\033[K%s", line.c_str());

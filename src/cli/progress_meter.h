@@ -24,11 +24,15 @@ struct ProgressDisplay {
   std::function<double()> clock;
 };
 
+// Where and when progress shows for a command: a terminal or a log, after the
+// default quiet time or PENUMBRA_PROGRESS_AFTER seconds (tests set 0).
+ProgressDisplay progressDisplay();
+
 // The workers only add to the current phase's counter (core/progress.h). Drawing
 // happens on the thread calling poll() (the ticker: 10 times a second) or at a
 // phase's start and end (the pipeline's thread), never on a worker; the mutex is
 // shared by those two threads only, so no worker ever waits for the terminal.
-class ProgressMeter {
+class ProgressMeter final : public ProgressPhases {
  public:
   explicit ProgressMeter(ProgressDisplay display);
   ~ProgressMeter();  // stops the ticker and closes the line
@@ -37,8 +41,11 @@ class ProgressMeter {
 
   // Starts a phase (ending the previous one): its counter, reset to `expected` units
   // (0: the workers announce theirs). Call only while no worker counts.
-  ProgressCounter* begin(const std::string& phase, uint64_t expected = 0);
-  void end();     // the phase is over: its 100% line, if it ran long enough to show
+  ProgressCounter* begin(const std::string& phase, uint64_t expected = 0) override;
+  void end() override;  // the phase is over: its 100% line, if it ran long enough to show
+  // A many-render command's place (sweep, batch: "sweep 3/12 | run-id"), shown before
+  // the phase; set by the scheduling thread between phases.
+  void setContext(std::string context);
   void poll();    // draws the current phase if it is old enough (and, in a log, due)
   void finish();  // ends the phase and the terminal's line
   // Polls every 100 ms on a thread of its own until finish() or destruction.
@@ -60,6 +67,7 @@ class ProgressMeter {
   std::mutex mutex_;
   ProgressCounter counter_;
   std::string phase_;  // empty: between phases
+  std::string context_;
   double start_ = 0.0;
   int quarter_ = -1;       // a log: the last quarter of this phase printed (-1: none)
   bool lineOpen_ = false;  // a terminal: a line is drawn with no newline after it
@@ -69,14 +77,5 @@ class ProgressMeter {
   std::condition_variable wake_;
   bool stop_ = false;
 };
-
-// For the pipeline, whose meter is optional (sweep, batch and tests pass none):
-// the phase's counter, or null (nothing counts).
-inline ProgressCounter* beginPhase(ProgressMeter* meter, const std::string& phase, uint64_t expected = 0) {
-  return meter ? meter->begin(phase, expected) : nullptr;
-}
-inline void endPhase(ProgressMeter* meter) {
-  if (meter) meter->end();
-}
 
 }  // namespace penumbra

@@ -1,11 +1,15 @@
 // Options of `penumbra sweep`, the progress line, and the closing summary.
 #include "cli/sweep_command.h"
 #include "cli/sweep_run.h"
+#include "cli/plan_command.h"
+#include "cli/progress_meter.h"
+#include "plan/memory_limit.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <unistd.h>
 #include <filesystem>
+#include <optional>
 #include <iostream>
 
 namespace penumbra {
@@ -13,7 +17,8 @@ namespace penumbra {
 struct SweepCommand::Options {
   CLI::App* command = nullptr;
   std::string scene, out, reference, aov, photons, k, depth, spp;
-  std::vector<std::string> vary, overrides;
+  std::vector<std::string> vary, overrides, enable, disable;
+  std::string maxMemory;
   int threads = 0;
   bool force = false, noGateCompare = false, quiet = false;
 };
@@ -35,6 +40,8 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
   c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
+  c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a run estimated to need more, e.g. 8G (default: the memory available)");
+  addPassOptions(*c, o.enable, o.disable);
   c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 }
 
@@ -63,24 +70,27 @@ int SweepCommand::run() {
   req.threads = o.threads;
   req.force = o.force;
   req.compareGate = !o.noGateCompare;
+  req.plan = passOverrides(o.enable, o.disable);
+  if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
   req.plotScript = std::filesystem::exists(script) ? script.string() : "";
   const bool tty = isatty(STDERR_FILENO);
+  std::optional<ProgressMeter> meter;
   std::string last;
   if (!o.quiet) {
-    // On a terminal one line redrawn in place; otherwise a line per finished run.
-    req.progress = [tty, &last](const std::string& line) {
-      if (tty) {
-        std::cerr << "\r\033[K" << line << std::flush;
-      } else if (line.find("| done |") != std::string::npos && line != last) {
-        std::cerr << line << "\n";
-      }
+    meter.emplace(progressDisplay());
+    meter->startTicker();
+    req.phases = &*meter;
+    // On a terminal the run's place heads the meter's line; otherwise a line per finished run.
+    req.progress = [&](const std::string& line) {
+      if (tty) meter->setContext(line);
+      else if (line.find("| done |") != std::string::npos && line != last) std::cerr << line << "\n";
       last = line;
     };
   }
   SweepOutcome out = runSweep(req);
+  if (meter) meter->finish();
   if (!o.quiet) {
-    if (tty) std::cerr << "\n";
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     const SweepTotals& t = out.totals;
     std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {} emission(s), {} prefix cut(s), {} map "

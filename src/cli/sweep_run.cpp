@@ -1,15 +1,14 @@
-// The sweep's schedule: runs grouped by what they share (cli/reuse_key.h), the
-// reference first, then each group's photon emission once, its budgets' maps
-// from largest to smallest, and every run of a budget on the same maps.
+// The sweep's schedule: every run planned and admitted through the render session
+// (one BVH per geometry), the reference first, then each photon group's emission
+// once, its budgets' maps from largest to smallest, and every run of a budget on
+// the same maps.
 #include "cli/sweep_run.h"
 #include "cli/plot_script.h"
 #include "cli/progress_line.h"
-#include "cli/render_frame.h"
-#include "cli/reuse_key.h"
+#include "plan/render_session.h"
 #include "core/error.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
-#include "io/scene_loader.h"
 #include "io/temp_file.h"
 #include <tbb/global_control.h>
 #include <tbb/info.h>
@@ -18,38 +17,23 @@
 #include <filesystem>
 #include <map>
 #include <set>
-#include <memory>
 
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A run, loaded and checked: its settings (the geometry lives with its group).
+// A run of the grid: its planned job and whether an earlier sweep finished it.
 struct PlannedRun {
   size_t index = 0;
-  Camera camera;
-  RenderSettings render;
-  PhotonSettings photons;
-  ReuseKeys keys;
-  PhotonBudgets budgets;
-  RenderPlan plan;        // the run's plan (split by reach once its BVH exists)
-  PhotonNeeds needs;      // ... which maps it reads
-  bool textures = false;  // ... and whether it reads textures
-  double loadSeconds = 0.0;
+  PlannedJob job;
   bool done = false;  // finished by an earlier sweep into the same folder
-};
-
-// What runs of one geometry share: the scene they were loaded from and its assets.
-struct GeometryGroup {
-  Scene scene;  // the first run's; others swap in their camera/render/photons
-  SceneAssets assets;
-  bool built = false;
 };
 
 class Sweep {
  public:
-  explicit Sweep(const SweepRequest& request) : req_(request), spec_(request.spec) {}
+  Sweep(const SweepRequest& request, RenderSession& session)
+      : req_(request), spec_(request.spec), session_(session) {}
 
   SweepOutcome run() {
     const fs::path dir(req_.outDir);
@@ -61,7 +45,7 @@ class Sweep {
     if (!req_.force) finished = readFinishedRows(csvPath_, spec_.knobs);
     plan(finished);
     loadReference();
-    splitByReach();
+    prepare();
     rows_.resize(spec_.runs.size());
     for (const PlannedRun& p : runs_) {
       if (p.done) { rows_[p.index] = finished[spec_.runs[p.index].id]; ++totals_.resumed; }
@@ -79,39 +63,21 @@ class Sweep {
   }
 
  private:
-  // Loads every run (so a bad one fails before any work) and keeps only its settings.
+  // Plans every run (so a bad one fails before any work).
   void plan(const std::map<std::string, SweepRow>& finished) {
     for (size_t i = 0; i < spec_.runs.size(); ++i) {
       const SweepRun& run = spec_.runs[i];
       PlannedRun p;
       p.index = i;
-      Stopwatch clock;
-      Scene scene;
       try {
-        scene = loadScene(req_.scenePath, run.overrides);
-        p.keys = reuseKeys(req_.scenePath, run.overrides);
+        p.job = session_.plan(JobRequest{req_.scenePath, run.overrides, req_.aov, {}, {}});
       } catch (const InputError& e) {
         throw InputError("sweep run '" + run.id + "': " + e.what());
       }
-      p.loadSeconds = clock.seconds();
-      if (i == 0) aov_ = parseAov(req_.aov.empty() ? scene.render.aov : req_.aov);
-      p.plan = makePlan(scene, aov_);
-      const RenderPlan& plan = p.plan;
-      applyPlan(plan, scene);
-      p.needs = photonNeeds(plan);
-      p.textures = plan[Pass::Textures].on;
-      p.camera = scene.camera;
-      p.render = scene.render;
-      p.photons = scene.photons;
-      p.budgets = budgetsOf(scene);
       auto f = finished.find(run.id);
       p.done = f != finished.end() && fs::exists(fs::path(req_.outDir) / f->second.image);
-      if (i == 0) sceneName_ = scene.name;
-      if (!geometry_.count(p.keys.geometry)) {
-        geometry_[p.keys.geometry] = std::make_unique<GeometryGroup>();
-        geometry_[p.keys.geometry]->scene = std::move(scene);
-      }
-      runs_.push_back(p);
+      if (i == 0) sceneName_ = p.job.sceneName;
+      runs_.push_back(std::move(p));
     }
   }
 
@@ -138,7 +104,7 @@ class Sweep {
     std::vector<std::string> order;
     for (const PlannedRun& p : runs_) {
       if (p.done) continue;
-      const std::string key = p.keys.geometry + "\n" + p.keys.photons;
+      const std::string key = p.job.keys.geometry + "\n" + p.job.keys.photons;
       if (!byKey.count(key)) order.push_back(key);
       byKey[key].push_back(p.index);
     }
@@ -150,78 +116,54 @@ class Sweep {
     return groups;
   }
 
-  // Each run still to render gets the plan's light split by reach, as a lone render
-  // of it would (needs its geometry's BVH, so after every run has loaded): the same
-  // budgets per light, and a pass no light feeds off, in every pass of the run.
-  void splitByReach() {
+  // Each run still to render is prepared as a lone render of it would be (its BVH,
+  // the plan's light split by reach, the photon estimate against the memory limit),
+  // all before the first photon.
+  void prepare() {
     for (PlannedRun& p : runs_) {
       if (p.done) continue;
-      GeometryGroup& geo = assetsFor(p);
-      Scene& scene = geo.scene;
-      scene.camera = p.camera;
-      scene.render = p.render;
-      scene.photons = p.photons;
-      penumbra::splitByReach(p.plan, scene, *geo.assets.tracer);
-      applyPlan(p.plan, scene);
-      p.render = scene.render;
-      p.photons = scene.photons;
-      p.budgets = budgetsOf(scene);
-      p.needs = photonNeeds(p.plan);
+      const size_t builds = session_.sceneBuilds();
+      session_.prepare(p.job);
+      if (session_.sceneBuilds() > builds) {
+        ++totals_.bvhBuilds;
+        bvhSeconds_[p.job.keys.geometry] = session_.assets(p.job).bvhSeconds;
+      }
     }
-  }
-
-  GeometryGroup& assetsFor(const PlannedRun& p) {
-    GeometryGroup& g = *geometry_[p.keys.geometry];
-    if (!g.built) {
-      g.assets = prepareAssets(g.scene, p.textures);
-      g.built = true;
-      ++totals_.bvhBuilds;
-      bvhSeconds_[p.keys.geometry] = g.assets.bvhSeconds;
-    }
-    return g;
   }
 
   void renderGroup(const std::vector<size_t>& group) {
-    GeometryGroup& geo = assetsFor(runs_[group[0]]);
-    const double bvh = bvhSeconds_[runs_[group[0]].keys.geometry];
-    // One emission at each map's largest budget, gated if any run gates.
-    Scene& scene = geo.scene;
-    scene.camera = runs_[group[0]].camera;
-    scene.render = runs_[group[0]].render;
-    scene.photons = runs_[group[0]].photons;
-    PhotonBudgets top;
+    const PlannedJob& lead = runs_[group[0]].job;
+    const double bvh = bvhSeconds_[lead.keys.geometry];
+    // One emission at each map's largest budget, of every map any run reads.
+    MapBudgets top;
     std::vector<uint64_t> smaller;
-    std::vector<PhotonBudgets> budgets;
+    std::vector<MapBudgets> budgets;
     PhotonNeeds needs;
     for (size_t i : group) {
-      needs |= runs_[i].needs;
-      const PlannedRun& p = runs_[i];
-      top.maxWith(p.budgets);
-      scene.photons.gate = scene.photons.gate || p.photons.gate;
-      scene.render.shadows = scene.render.shadows || p.render.shadows;
-      for (uint64_t b : {p.budgets.shadow, p.budgets.indirect, p.budgets.global, p.budgets.caustic}) smaller.push_back(b);
-      if (std::find(budgets.begin(), budgets.end(), p.budgets) == budgets.end()) budgets.push_back(p.budgets);
+      const MapBudgets b = planBudgets(runs_[i].job.plan);
+      needs |= photonNeeds(runs_[i].job.plan);
+      top.maxWith(b);
+      for (uint64_t n : {b.shadow, b.indirect, b.global, b.caustic}) smaller.push_back(n);
+      if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
     }
-    top.writeTo(scene.photons);
     status_ = "photons";
     showProgress();
-    Emission emission = emitPhotonsFor(scene, *geo.assets.tracer, needs, 0, smaller);
+    const Scene& scene = session_.sceneFor(lead);
+    const TraceScene& tracer = *session_.assets(lead).tracer;
+    Emission emission = emitPhotonsFor(scene, tracer, needs, top, 0, smaller);
     ++totals_.emissions;
     // The reference's budget first, then the largest to the smallest.
     std::sort(budgets.begin(), budgets.end(),
-              [](const PhotonBudgets& a, const PhotonBudgets& b) { return a.total() > b.total(); });
+              [](const MapBudgets& a, const MapBudgets& b) { return a.total() > b.total(); });
     bool emissionCharged = false;
-    for (const PhotonBudgets& b : budgets) {
+    for (const MapBudgets& b : budgets) {
       PhotonStage stage;
       status_ = "maps";
       showProgress();
       Stopwatch build;
-      PhotonStage* maps = &stage;
       if (!buildStage(emission, b, false, stage)) {
         // Not a prefix of this emission (a light split that does not nest): emit it alone.
-        Scene alone = scene;
-        b.writeTo(alone.photons);
-        Emission own = emitPhotonsFor(alone, *geo.assets.tracer, needs, 0);
+        Emission own = emitPhotonsFor(session_.sceneFor(lead), tracer, needs, b, 0);
         ++totals_.emissions;
         buildStage(own, own.budgets, true, stage);
       } else if (stage.fromPrefix) {
@@ -232,35 +174,25 @@ class Sweep {
       double firstSpent = build.seconds() + (emissionCharged ? 0.0 : emission.seconds);
       emissionCharged = true;
       std::vector<size_t> order;
-      for (size_t i : group) if (runs_[i].budgets == b) order.push_back(i);
+      for (size_t i : group) if (planBudgets(runs_[i].job.plan) == b) order.push_back(i);
       std::stable_partition(order.begin(), order.end(), [&](size_t i) { return i == referenceRun_; });
       for (size_t i : order) {
         Reuse reuse;
-        reuse.bvh = !usedGeometry_.insert(runs_[i].keys.geometry).second;
+        reuse.bvh = !usedGeometry_.insert(runs_[i].job.keys.geometry).second;
         reuse.maps = firstSpent == 0.0;
         reuse.prefixOf = stage.fromPrefix ? emission.budgets.total() : 0;
-        renderRun(runs_[i], geo, *maps, bvh, firstSpent, reuse);
+        renderRun(runs_[i], stage, bvh, firstSpent, reuse);
         firstSpent = 0.0;
       }
     }
   }
 
-  RenderResult renderOne(GeometryGroup& geo, PhotonStage& stage, const PlannedRun& p, bool gate) {
-    Scene& scene = geo.scene;
-    scene.camera = p.camera;
-    scene.render = p.render;
-    scene.photons = p.photons;
-    scene.photons.gate = gate;
-    RenderResult result;
-    FrameOptions frame;
-    frame.aov = aov_;
-    frame.needs = p.needs;
-    frame.progress = [this](const char* phase, double f) {
-      status_ = fmt::format("{} {:.0f}%", phase, 100.0 * f);
-      showProgress();
-    };
-    renderFrame(scene, geo.assets, stage, frame, result);
-    return result;
+  // The run's frame, or with gate = false the same run with every shadow ray cast.
+  RenderResult renderOne(PhotonStage& stage, const PlannedRun& p, bool gate) {
+    if (gate) return session_.frame(p.job, stage);
+    PlannedJob ungated = p.job;
+    ungated.plan[Pass::Gate].on = false;
+    return session_.frame(ungated, stage);
   }
 
   struct Reuse {
@@ -268,18 +200,17 @@ class Sweep {
     uint64_t prefixOf = 0;  // > 0: photons cut out of an emission of this many
   };
 
-  void renderRun(const PlannedRun& p, GeometryGroup& geo, PhotonStage& stage, double bvh, double spentBefore,
-                 const Reuse& reuse) {
+  void renderRun(const PlannedRun& p, PhotonStage& stage, double bvh, double spentBefore, const Reuse& reuse) {
     const SweepRun& run = spec_.runs[p.index];
     current_ = p.index;
     Stopwatch clock;
-    RenderResult result = renderOne(geo, stage, p, p.photons.gate);
+    RenderResult result = renderOne(stage, p, true);
     const RenderStats& st = result.stats;
     SweepRow row;
     row.id = run.id;
     row.values = run.values;
     row.reference = p.index == referenceRun_;
-    row.load = p.loadSeconds;
+    row.load = p.job.loadSeconds;
     row.bvh = bvh;
     row.emit = stage.emitSeconds;
     row.maps = stage.buildSeconds;
@@ -288,7 +219,7 @@ class Sweep {
     row.render = st.time.render;
     row.total = row.load + row.bvh + row.emit + row.maps + row.precompute + row.render;
     fillCounts(row, st);
-    row.gate = p.photons.gate && st.rays.gateQueries > 0;
+    row.gate = p.job.plan[Pass::Gate].on && st.rays.gateQueries > 0;
     std::vector<std::string> reused;
     if (reuse.bvh) reused.push_back("bvh");
     if (reuse.prefixOf > 0) reused.push_back(fmt::format("photons(prefix of {})", reuse.prefixOf));
@@ -300,7 +231,7 @@ class Sweep {
     if (row.gate && req_.compareGate) {
       status_ = "ungated";
       showProgress();
-      RenderResult ungated = renderOne(geo, stage, p, false);
+      RenderResult ungated = renderOne(stage, p, false);
       row.ungatedRender = ungated.stats.time.render + ungated.stats.time.precompute;
       row.ungatedShadowRays = ungated.stats.rays.shadow;
       row.gateRmse = compareImages(result.image, ungated.image).rmse;
@@ -345,8 +276,8 @@ class Sweep {
 
   const SweepRequest& req_;
   const SweepSpec& spec_;
+  RenderSession& session_;
   std::vector<PlannedRun> runs_;
-  std::map<std::string, std::unique_ptr<GeometryGroup>> geometry_;
   std::map<std::string, double> bvhSeconds_;
   std::set<std::string> usedGeometry_;  // geometry keys an earlier run rendered with
   std::vector<SweepRow> rows_;
@@ -356,7 +287,6 @@ class Sweep {
   size_t current_ = SIZE_MAX;
   size_t finishedNow_ = 0;
   std::string csvPath_, sceneName_, status_;
-  Aov aov_ = Aov::Beauty;
   std::vector<std::string> notes_;
   Stopwatch clock_;
 };
@@ -366,7 +296,13 @@ class Sweep {
 SweepOutcome runSweep(const SweepRequest& request) {
   const int threads = request.threads > 0 ? request.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  Sweep sweep(request);
+  SessionOptions options;
+  options.maxMemoryBytes = request.maxMemoryBytes;
+  options.plan = request.plan;
+  options.threads = threads;
+  options.progress = request.phases;
+  RenderSession session(options);
+  Sweep sweep(request, session);
   return sweep.run();
 }
 

@@ -5,6 +5,8 @@
 #pragma once
 #include "cli/sweep_results.h"
 #include "cli/sweep_spec.h"
+#include "core/progress.h"
+#include "plan/render_plan.h"
 #include <functional>
 #include <string>
 #include <vector>
@@ -21,8 +23,12 @@ struct SweepRequest {
   bool force = false;         // redo every run, even those results.csv has
   bool compareGate = true;    // gated runs: render again ungated for the gate's trade-off
   std::string plotScript;     // scripts/plot_tradeoff.py; empty: no plot
-  // One line describing the sweep's progress (run i of n, phase, elapsed, ETA).
+  uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available
+  PlanOverrides plan;           // --enable / --disable, for every run
+  // One line describing the sweep's progress (run i of n, phase, elapsed, ETA),
+  // called on the sweep's own thread.
   std::function<void(const std::string& line)> progress;
+  ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
 };
 
 struct SweepOutcome {

@@ -3,6 +3,7 @@
 #pragma once
 #include <atomic>
 #include <cstdint>
+#include <string>
 
 namespace penumbra {
 
@@ -36,6 +37,29 @@ inline void progressAdd(ProgressCounter* c, uint64_t n) {
 }
 inline void progressExpect(ProgressCounter* c, uint64_t n) {
   if (c) c->expect(n);
+}
+
+// Where a render announces its phases (photons, maps, lookups, render): the CLI's
+// progress display implements it. Only the thread running the render calls it,
+// between phases; workers only add to the counter it returns, and nothing is ever
+// called back on a worker.
+class ProgressPhases {
+ public:
+  // Starts a phase (ending the previous one) with its counter reset to `expected`
+  // units (0: the workers announce theirs).
+  virtual ProgressCounter* begin(const std::string& phase, uint64_t expected = 0) = 0;
+  virtual void end() = 0;
+
+ protected:
+  ~ProgressPhases() = default;
+};
+
+// The display is optional (tests and benchmarks pass none): null counts nothing.
+inline ProgressCounter* beginPhase(ProgressPhases* phases, const std::string& phase, uint64_t expected = 0) {
+  return phases ? phases->begin(phase, expected) : nullptr;
+}
+inline void endPhase(ProgressPhases* phases) {
+  if (phases) phases->end();
 }
 
 }  // namespace penumbra

@@ -102,14 +102,14 @@ struct RenderSettings {
   std::string aov = "beauty";  // default view; the CLI's --aov overrides it
   int lightSamples = 16;       // samples per area light per shading point
   bool packets = true;  // camera rays (and their shadow rays) as Embree packets; same image
-  // Set by the render plan (cli/render_plan.h), not the scene file: false skips that
+  // Set by the render plan (plan/render_plan.h), not the scene file: false skips that
   // recursion at every hit (reflection includes glass's reflected branch).
   bool reflection = true, refraction = true;
 };
 
 enum class IndirectEstimator { Classic, Density };
 // on: always ask the shadow map; off: every shadow test is a ray; auto: build the
-// shadow map only where the cost model says it pays (cli/gate_decision.h).
+// shadow map only where the cost model says it pays (plan/gate_decision.h).
 enum class GateMode { Off, On, Auto };
 // exact: every gate vote and estimate gathers its k nearest photons (the definition);
 // precomputed: both are computed once per cell of a hash grid and read by one query.

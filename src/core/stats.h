@@ -51,7 +51,7 @@ struct RenderStats {
   std::string gateMode = "auto";     // photons.gate as given
   bool gate = false;                 // ... and as decided
   std::string gateReason;            // why (auto: the cost model's estimate)
-  std::string plan;                  // the render plan as JSON (cli/render_plan.h)
+  std::string plan;                  // the render plan as JSON (plan/render_plan.h)
   uint64_t cacheRecords = 0;         // precomputed: cells (last pass)
   uint64_t cacheLazyCells = 0;       // precomputed: cells the cache has computed on first use so far
   float cacheCell = 0.0f;            // precomputed: cell size (last pass)

@@ -111,8 +111,9 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   enum : uint64_t { kShadowStream = 1, kIndirectStream = 2 };
 
   // Without the gate (or without shadows) nobody reads the shadow map: do not pay for it.
-  bool wantShadowMap = options.shadowMap && ps.gate && scene.render.shadows;
-  std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? ps.shadowPhotons : 0);
+  const MapBudgets budgets = options.budgets ? *options.budgets : budgetsOf(scene);
+  bool wantShadowMap = options.shadowMap && (options.budgets || (ps.gate && scene.render.shadows));
+  std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? budgets.shadow : 0);
   std::vector<PhotonBatch> shadowBatches = makeBatches(shadowCounts, options.batchSize);
   BatchBuffers<ShadowPhoton> shadowBuffers(shadowBatches.size());
   PrefixCuts* shadowCuts = nullptr;
@@ -137,7 +138,7 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   maps.shadow = shadowBuffers.finish();
 
   const std::vector<double> indirectWeights = reachWeighted(weights, options.indirectReach);
-  std::vector<uint64_t> indirectCounts = splitByWeight(indirectWeights, options.indirectMap ? ps.indirectPhotons : 0);
+  std::vector<uint64_t> indirectCounts = splitByWeight(indirectWeights, options.indirectMap ? budgets.indirect : 0);
   std::vector<PhotonBatch> indirectBatches = makeBatches(indirectCounts, options.batchSize);
   bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
   BatchBuffers<IndirectPhoton> indirectBuffers(indirectBatches.size());

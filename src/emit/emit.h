@@ -9,10 +9,28 @@
 #include "core/scene.h"
 #include "emit/photon_prefix.h"
 #include "geometry/trace_scene.h"
+#include <algorithm>
+#include <optional>
 
 namespace penumbra {
 
+// Photons to emit per map; the stages' callers pass the plan's (plan/photon_stage.h).
+struct MapBudgets {
+  uint64_t shadow = 0, indirect = 0, global = 0, caustic = 0;
+  bool operator==(const MapBudgets& o) const {
+    return shadow == o.shadow && indirect == o.indirect && global == o.global && caustic == o.caustic;
+  }
+  uint64_t total() const { return shadow + indirect + global + caustic; }
+  void maxWith(const MapBudgets& o) {
+    shadow = std::max(shadow, o.shadow), indirect = std::max(indirect, o.indirect);
+    global = std::max(global, o.global), caustic = std::max(caustic, o.caustic);
+  }
+};
+
 struct EmitOptions {
+  // Empty: the scene's photons.* budgets, with shadow photons only when photons.gate
+  // and render.shadows are on.
+  std::optional<MapBudgets> budgets;
   uint32_t batchSize = 4096;  // photons per task; each batch owns one random stream
   int maxHitsPerLine = 64;    // shadow photons kept per line at most
   bool shadowMap = true;      // false: the caller will not consult the gate (e.g. --aov indirect)
@@ -51,6 +69,12 @@ struct ClassicCuts {
 };
 PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options = {},
                        ClassicCuts* cuts = nullptr);
+
+// The scene's own photons.* budgets.
+inline MapBudgets budgetsOf(const Scene& scene) {
+  const PhotonSettings& ps = scene.photons;
+  return {ps.shadowPhotons, ps.indirectPhotons, ps.globalPhotons, ps.causticPhotons};
+}
 
 // Photons per light for a budget, proportional to each point light's power.
 // With `reach` (emit/light_reach.h), by power times reach: the indirect map's split.

@@ -257,12 +257,12 @@ std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& 
 PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass,
                                     const EmitOptions& options) {
   PhysicalPhotons out;
-  const PhotonSettings& ps = scene.photons;
+  const MapBudgets budgets = options.budgets ? *options.budgets : budgetsOf(scene);
   out.global = runPass(scene, tracer, PassKind::Global, pass,
-                       options.globalMap ? ps.globalPhotons : 0, options, out.emittedGlobal,
+                       options.globalMap ? budgets.global : 0, options, out.emittedGlobal,
                        out.globalTally, out.globalCuts);
   out.caustic = runPass(scene, tracer, PassKind::Caustic, pass,
-                        options.causticMap ? ps.causticPhotons : 0, options, out.emittedCaustic,
+                        options.causticMap ? budgets.caustic : 0, options, out.emittedCaustic,
                         out.causticTally, out.causticCuts);
   return out;
 }

@@ -5,6 +5,12 @@
 #include "gather/morton.h"
 #include "core/mapped_memory.h"
 #include <nanoflann.hpp>
+// This file relies on nanoflann 1.4.x internals: the index array `vAcc`,
+// `SearchParams`, `SkipInitialBuildIndex`, and result sets without `sort()`.
+// 1.5 and 1.6 renamed or changed each of them (Debian 12's 1.4.3 says 0x142).
+static_assert(NANOFLANN_VERSION >= 0x142 && NANOFLANN_VERSION < 0x150,
+              "penumbra's KD tree needs nanoflann 1.4.x (vAcc, SearchParams, SkipInitialBuildIndex, "
+              "result sets without sort()); 1.5+ renamed or changed them");
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

@@ -36,6 +36,12 @@ struct LookupCacheParams {
   ProgressCounter* progress = nullptr;
 };
 
+// Whether a cache built with `a` answers for `b` (every parameter but the progress).
+inline bool sameLookup(const LookupCacheParams& a, const LookupCacheParams& b) {
+  return a.cellSize == b.cellSize && a.indirect == b.indirect && a.k == b.k && a.maxRadius == b.maxRadius &&
+         a.radius == b.radius && a.gate == b.gate && a.gateParams == b.gateParams;
+}
+
 // The cell size: `scale` times the median distance to the k-th nearest photon of
 // `map` (at most 256 probes), but never so small that the cells outnumber the map's
 // photons / kMinPhotonsPerCell: a cell must cost less than the gathers it replaces.

@@ -14,6 +14,10 @@ struct GateParams {
   float minNormalCos = 0.5f;  // a photon votes only if its normal . n > this
   int minVoters = 8;          // fewer voters than this: not enough evidence -> Mixed
   bool glassBlocks = false;   // physical model: behind glass counts as shadow, not Mixed
+  bool operator==(const GateParams& o) const {
+    return k == o.k && maxRadius == o.maxRadius && minNormalCos == o.minNormalCos && minVoters == o.minVoters &&
+           glassBlocks == o.glassBlocks;
+  }
 };
 
 // Mixed means "no confident answer": the tracer casts a real shadow ray.

@@ -1,7 +1,7 @@
 // Shared by the hard-case suite: render a JSON scene string through the whole
 // pipeline, check it is sane (finite, bounded), and compare images.
 #pragma once
-#include "cli/pipeline.h"
+#include "plan/pipeline.h"
 #include "core/color.h"
 #include "core/error.h"
 #include "io/image_io.h"

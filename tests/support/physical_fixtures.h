@@ -8,7 +8,7 @@
 #include "emit/emit_physical.h"
 #include "gather/photon_map.h"
 #include "gather/radiance_estimate.h"
-#include "integrator/physical.h"
+#include "trace/physical.h"
 #include "io/shapes.h"
 #include <gtest/gtest.h>
 #include <cmath>

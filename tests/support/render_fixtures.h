@@ -1,9 +1,9 @@
 // The render Rig: renders a hand-built Scene through the integrators, without
 // photon maps unless a test attaches them.
 #pragma once
-#include "integrator/camera.h"
-#include "integrator/render.h"
-#include "integrator/shading.h"
+#include "trace/camera.h"
+#include "trace/render.h"
+#include "trace/shading.h"
 #include "geometry/trace_scene.h"
 #include "support/scene_fixtures.h"
 

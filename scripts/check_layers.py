@@ -1,0 +1,39 @@
+#!/usr/bin/env python3
+"""Fails when a part of src/ includes a part it must not.
+
+The allowed matrix is read from docs/ARCHITECTURE.md (the table under
+"## Layers"), so it is written once. Usage: check_layers.py [REPO_ROOT]
+"""
+import pathlib
+import re
+import sys
+
+root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent)
+doc = (root / "docs" / "ARCHITECTURE.md").read_text()
+
+# The table rows: | part | may include |
+section = doc.split("## Layers", 1)[1].split("\n## ", 1)[0]
+allowed = {}
+for line in section.splitlines():
+    cells = [c.strip(" `") for c in line.strip().strip("|").split("|")]
+    if len(cells) < 2 or not re.fullmatch(r"[a-z]+", cells[0]):
+        continue
+    allowed[cells[0]] = {p.strip(" `") for p in cells[1].split(",") if p.strip(" `")} | {cells[0]}
+
+parts = sorted(p.name for p in (root / "src").iterdir() if p.is_dir())
+problems = [f"src/{p}: no row in docs/ARCHITECTURE.md's layer table" for p in parts if p not in allowed]
+include = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/[^"]+"', re.M)
+for part in parts:
+    for f in sorted((root / "src" / part).rglob("*")):
+        if f.suffix not in (".h", ".cpp"):
+            continue
+        for m in include.finditer(f.read_text()):
+            target = m.group(1)
+            if target in parts and target not in allowed.get(part, set()):
+                line = f.read_text()[: m.start()].count("\n") + 1
+                problems.append(f"{f.relative_to(root)}:{line}: {part} includes {target}/ (allowed: "
+                                f"{', '.join(sorted(allowed.get(part, set())))})")
+for p in problems:
+    print(p)
+print(f"layers: {len(parts)} parts checked, {len(problems)} problem(s)")
+sys.exit(1 if problems else 0)

@@ -1,0 +1,34 @@
+// Every cost the plan reasons with, in one place: per-operation times and bytes
+// measured on the project's machine (docs/PERFORMANCE.md, "Resource estimate").
+// Constants, not timings taken at render time, so decisions and images are the
+// same on every run; the gate decision, the resource estimate and batch's shard
+// balance all read them from here.
+#pragma once
+
+namespace penumbra::cost {
+
+// Nanoseconds on one core.
+constexpr double kShadowRayNs = 50.0;       // rtcOccluded1 to a light (bench_lookup)
+constexpr double kRayNs = 100.0;            // a camera, shadow or specular ray with its shading
+constexpr double kPhotonSegmentNs = 140.0;  // one photon ray + surface + store (bench_photons)
+constexpr double kBuildNsPerPhoton = 200.0; // KD build per stored photon
+constexpr double kGatherNsPerNeighbour = 60.0;  // exact gathers, per neighbour
+constexpr double kLookupNs = 80.0;          // one precomputed query per shading point, all lights
+constexpr double kExactVoteNs = 3000.0;     // one exact k-nearest gate vote per light
+constexpr double kShadowPhotonNs = 520.0;   // emit + build + cache, per emitted shadow photon
+constexpr double kCameraSampleNs = 500.0;   // batch's shard balance: a camera sample or a photon
+constexpr double kStartupSeconds = 0.2;     // load, BVH, set-up of a small scene
+
+// Shares.
+constexpr double kAvoidable = 0.85;  // shadow tests a gate answers without a ray (soft_shadows)
+constexpr double kSpillSlowdown = 0.3;  // extra time per doubling of photon data past the caches
+
+// Bytes.
+constexpr double kIndexBytes = 8.25;               // KD index per photon: a 64-bit slot plus its part's nodes
+constexpr double kBvhBytesPerPrimitive = 70.0;     // Embree's default BVH, triangles or spheres
+constexpr double kCacheBytesPerRecord = 70.0;      // a lookup-cache slot, its verdicts and lazy-cell table
+constexpr double kBaseBytes = 140.0 * 1024 * 1024; // the process before any scene data
+constexpr double kTextureCacheBytes = 1024.0 * 1024 * 1024;  // OIIO's cache cap (texture_lookup.cpp)
+constexpr double kCacheFriendlyBytes = 256.0 * 1024 * 1024;  // photon data that still runs at full speed
+
+}  // namespace penumbra::cost

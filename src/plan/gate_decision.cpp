@@ -1,0 +1,39 @@
+// The gate's cost model: what its shadow photons and lookups cost against the
+// shadow rays it would avoid, both estimated from the scene before any work.
+#include "plan/gate_decision.h"
+#include "plan/cost_model.h"
+#include "core/light_sample.h"
+#include <fmt/format.h>
+
+namespace penumbra {
+
+GateDecision decideGate(const Scene& scene) {
+  using namespace cost;
+  GateDecision d;
+  const PhotonSettings& ps = scene.photons;
+  // Shadow tests per shading point: one per delta light, light_samples per area
+  // light; directional lights emit no shadow photons, so the gate never answers them.
+  double testsPerPoint = 0.0;
+  int gatedLights = 0;
+  for (const Light& l : scene.lights) {
+    if (l.type == LightType::Directional || maxComponent(l.radiance()) <= 0.0f) continue;
+    testsPerPoint += lightSampleCount(l, scene.render.lightSamples);
+    ++gatedLights;
+  }
+  if (!scene.render.shadows || gatedLights == 0 || ps.shadowPhotons == 0) {
+    d.reason = "auto: off: no shadow tests the gate could answer";
+    return d;
+  }
+  // Camera hits bound the shading points from below; reflections add to both sides.
+  const double points = double(scene.camera.width) * scene.camera.height * scene.camera.spp;
+  const double lookupNs = ps.lookup == PhotonLookup::Precomputed ? kLookupNs : kExactVoteNs * gatedLights;
+  d.savedMs = points * testsPerPoint * kShadowRayNs * kAvoidable * 1e-6;
+  d.costMs = (double(ps.shadowPhotons) * kShadowPhotonNs + points * lookupNs) * 1e-6;
+  d.gate = d.savedMs > d.costMs;
+  d.reason = fmt::format("auto: {}: would save ~{:.0f} ms of shadow rays for ~{:.0f} ms of photons "
+                         "and lookups ({:.0f} shadow tests per shading point)",
+                         d.gate ? "on" : "off", d.savedMs, d.costMs, testsPerPoint);
+  return d;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,19 @@
+// Whether the shadow gate pays for itself in one render (photons.gate: auto): a
+// cost model over the frame's shading points, light samples and shadow photons.
+#pragma once
+#include "core/scene.h"
+#include <string>
+
+namespace penumbra {
+
+struct GateDecision {
+  bool gate = false;
+  double savedMs = 0.0;  // estimated shadow-ray time the gate would avoid (one core)
+  double costMs = 0.0;   // estimated photon pass + lookup time it would add (one core)
+  std::string reason;    // one line for the summary and --stats
+};
+
+// The shadow-ray, lookup and shadow-photon costs of plan/cost_model.h.
+GateDecision decideGate(const Scene& scene);
+
+}  // namespace penumbra

@@ -1,0 +1,81 @@
+// Why canonical paths and inodes both: "./a.png", "dir/../a.png" and a symlink or
+// hard link to a.png all overwrite a.png; weakly_canonical catches the spellings
+// (also for files that do not exist yet), equivalent() the links.
+#include "plan/output_safety.h"
+#include "core/error.h"
+#include "io/image_io.h"
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool sameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec) && !ec) return true;
+  const fs::path ca = fs::weakly_canonical(a, ec);
+  if (ec) return false;
+  const fs::path cb = fs::weakly_canonical(b, ec);
+  return !ec && ca == cb;
+}
+
+// A report (JSON) file: any name, in a writable directory, not a directory itself.
+void checkReportPath(const OutputPath& out) {
+  const fs::path target(out.path);
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code ec;
+  auto fail = [&](const std::string& why) {
+    throw InputError(out.what + " " + out.path + ": cannot write: " + why);
+  };
+  if (out.path.empty()) fail("empty path");
+  if (!fs::is_directory(dir, ec)) fail("directory '" + dir.string() + "' does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) fail("directory '" + dir.string() + "' is not writable");
+  if (fs::is_directory(target, ec)) fail("it is a directory");
+}
+
+}  // namespace
+
+std::vector<std::string> sceneInputs(const Scene& scene, const std::string& scenePath) {
+  std::vector<std::string> inputs{scenePath};
+  for (const Texture& t : scene.textures) {
+    if (t.path.rfind("builtin:", 0) != 0) inputs.push_back(t.path);
+  }
+  // The loader has already validated the file, so a parse failure here cannot be
+  // the user's problem to report twice: keep what we have.
+  std::ifstream in(scenePath, std::ios::binary);
+  nlohmann::json root = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!root.is_object() || !root.contains("objects") || !root["objects"].is_array()) return inputs;
+  const fs::path base = fs::path(scenePath).parent_path();
+  for (const auto& object : root["objects"]) {
+    if (!object.is_object() || !object.contains("file") || !object["file"].is_string()) continue;
+    fs::path p(object["file"].get<std::string>());
+    if (p.is_relative()) p = base / p;
+    inputs.push_back(p.lexically_normal().string());
+  }
+  return inputs;
+}
+
+void checkOutputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const OutputPath& out = outputs[i];
+    if (out.image) checkImageOutputPath(out.path);
+    else checkReportPath(out);
+    for (const std::string& input : inputs) {
+      if (sameFile(out.path, input)) {
+        throw InputError(out.what + " " + out.path + ": is an input of this render (" + input +
+                         "); refusing to overwrite it");
+      }
+    }
+    for (size_t j = 0; j < i; ++j) {
+      if (sameFile(out.path, outputs[j].path)) {
+        throw InputError(out.what + " " + out.path + ": names the same file as " + outputs[j].what);
+      }
+    }
+  }
+}
+
+}  // namespace penumbra

@@ -1,0 +1,162 @@
+// Emission and map builds for one render or a group of renders sharing photons.
+#include "plan/photon_stage.h"
+#include "core/stats.h"
+#include <tbb/parallel_invoke.h>
+#include <exception>
+
+namespace penumbra {
+namespace {
+// Up to this many photons in all, the maps are built side by side (each build is
+// deterministic on its own, so the order changes nothing but the schedule).
+constexpr size_t kSideBySidePhotons = size_t(1) << 21;
+
+template <class Photon>
+PhotonBatches<Photon> photonsFor(PhotonBatches<Photon>& all, const PrefixCuts& cuts, uint64_t full,
+                                 uint64_t wanted, bool consume, bool& ok) {
+  if (wanted == full) return consume ? std::move(all) : all;
+  const PrefixCut* cut = cuts.find(wanted);
+  if (!cut) {
+    ok = false;
+    return {};
+  }
+  return takePrefix(all, *cut);
+}
+
+// The photons the emitters will trace, so the bar's total is known up front: each
+// map's budget, unless the emitter skips that map (no gate, no specular target).
+uint64_t photonsAskedFor(const Scene& scene, const EmitOptions& o, const MapBudgets& b) {
+  if (scene.lights.empty()) return 0;
+  uint64_t n = 0;
+  if (o.shadowMap) n += b.shadow;
+  if (o.indirectMap) n += b.indirect;
+  if (o.globalMap) n += b.global;
+  if (o.causticMap && b.caustic > 0 && !specularTargets(scene).empty()) n += b.caustic;
+  return n;
+}
+
+}  // namespace
+
+PhotonNeeds photonNeeds(const RenderPlan& plan) {
+  PhotonNeeds needs;
+  needs.shadow = plan[Pass::Gate].on;
+  needs.indirect = plan[Pass::IndirectPhotons].on;
+  needs.global = plan[Pass::GlobalPhotons].on;
+  needs.caustic = plan[Pass::CausticPhotons].on;
+  needs.indirectReach = plan[Pass::IndirectPhotons].reach;
+  needs.globalReach = plan[Pass::GlobalPhotons].reach;
+  needs.causticReach = plan[Pass::CausticPhotons].reach;
+  return needs;
+}
+
+MapBudgets planBudgets(const RenderPlan& plan) {
+  auto budget = [&](Pass p) { return plan[p].on ? plan[p].budget : 0; };
+  return {budget(Pass::Gate), budget(Pass::IndirectPhotons), budget(Pass::GlobalPhotons),
+          budget(Pass::CausticPhotons)};
+}
+
+Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const PhotonNeeds& needs,
+                        const MapBudgets& budgets, uint32_t pass, const std::vector<uint64_t>& smaller,
+                        ProgressCounter* progress) {
+  Emission e;
+  e.physical = scene.render.model == ShadingModel::Physical;
+  e.numLights = scene.lights.size();
+  if (!needs.any()) return e;
+  Stopwatch clock;
+  EmitOptions options;
+  options.budgets = budgets;
+  options.prefixBudgets = smaller;
+  options.indirectReach = needs.indirectReach;
+  options.globalReach = needs.globalReach;
+  options.causticReach = needs.causticReach;
+  // The physical gate's shadow photons do not change between passes: pass 0 only.
+  options.shadowMap = needs.shadow && (!e.physical || pass == 0);
+  options.indirectMap = needs.indirect;
+  options.globalMap = e.physical && needs.global;
+  options.causticMap = e.physical && needs.caustic;
+  options.progress = progress;
+  progressExpect(progress, photonsAskedFor(scene, options, budgets));
+  if (options.shadowMap || options.indirectMap) {
+    e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
+  }
+  if (e.physical) {
+    e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
+  }
+  e.budgets = {e.classic.emittedShadow, e.classic.emittedIndirect, e.photons.emittedGlobal,
+               e.photons.emittedCaustic};
+  e.seconds = clock.seconds();
+  return e;
+}
+
+bool buildStage(Emission& e, const MapBudgets& wanted, bool consume, PhotonStage& stage,
+                ProgressCounter* progress) {
+  bool ok = true;
+  // A map the emission left empty (not needed, or no light) stays empty at any budget.
+  auto budget = [](uint64_t emitted, uint64_t want) { return emitted == 0 ? 0 : want; };
+  const MapBudgets b{budget(e.budgets.shadow, wanted.shadow), budget(e.budgets.indirect, wanted.indirect),
+                        budget(e.budgets.global, wanted.global), budget(e.budgets.caustic, wanted.caustic)};
+  auto shadow = photonsFor(e.classic.shadow, e.classicCuts.shadow, e.budgets.shadow, b.shadow, consume, ok);
+  auto indirect = photonsFor(e.classic.indirect, e.classicCuts.indirect, e.budgets.indirect, b.indirect,
+                             consume, ok);
+  auto global = photonsFor(e.photons.global, e.photons.globalCuts, e.budgets.global, b.global, consume, ok);
+  auto caustic = photonsFor(e.photons.caustic, e.photons.causticCuts, e.budgets.caustic, b.caustic,
+                            consume, ok);
+  if (!ok) return false;
+
+  stage.budgets = b;
+  stage.fromPrefix = !(b == e.budgets);
+  stage.emittedShadow = b.shadow;
+  stage.emittedIndirect = b.indirect;
+  stage.emittedGlobal = b.global;
+  stage.emittedCaustic = b.caustic;
+  // A prefix's own emission was not timed: charge it its share of the photons
+  // (emission time is linear in the photons traced; docs/sweep.md).
+  const double full = double(e.budgets.total()), part = double(b.total());
+  stage.emitSeconds = full > 0.0 ? e.seconds * part / full : e.seconds;
+  stage.notes = e.notes;
+  // Converts stored flux back into photon colour: emitted / (4 pi x summed intensity).
+  stage.classicScale = e.classic.classicScale;
+  if (stage.fromPrefix && e.budgets.indirect > 0) {
+    stage.classicScale = e.classic.classicScale * float(double(b.indirect) / double(e.budgets.indirect));
+  }
+  Stopwatch clock;
+  MapBuildOptions build;
+  build.progress = progress;
+  const size_t photons = shadow.size() + indirect.size() + global.size() + caustic.size();
+  progressExpect(progress, 2 * photons);
+  auto buildShadow = [&] { stage.shadow.build(std::move(shadow), e.numLights, build); };
+  auto buildIndirect = [&] { stage.indirect.build(std::move(indirect), build); };
+  auto buildGlobal = [&] { stage.global.build(std::move(global), build); };
+  auto buildCaustic = [&] { stage.caustic.build(std::move(caustic), build); };
+  if (photons <= kSideBySidePhotons) {
+    // Small maps: a tree under one part builds on one thread, so only building the
+    // maps side by side keeps both cores busy (cornell_physical: 2 x ~190k photons).
+    // Each build keeps its own exception (out of memory): one escaping would cancel
+    // the others' inner loops half-way; the first is rethrown once all have ended.
+    std::exception_ptr failed[4];
+    auto guarded = [&failed](int i, auto& buildMap) {
+      return [&failed, &buildMap, i] {
+        try {
+          buildMap();
+        } catch (...) {
+          failed[i] = std::current_exception();
+        }
+      };
+    };
+    tbb::parallel_invoke(guarded(0, buildShadow), guarded(1, buildIndirect), guarded(2, buildGlobal),
+                         guarded(3, buildCaustic));
+    for (const std::exception_ptr& e : failed)
+      if (e) std::rethrow_exception(e);
+  } else {
+    // Large maps one after another, each parallel inside (its sort by chunks, its
+    // tree by parts): a map's sorted array then reuses the memory the previous map's
+    // batches just freed, where building side by side asked for fresh pages for all.
+    buildShadow();
+    buildIndirect();
+    buildGlobal();
+    buildCaustic();
+  }
+  stage.buildSeconds = clock.seconds();
+  return true;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,56 @@
+// One render, top to bottom: plan the job (load, view, outputs, passes, estimate),
+// prepare it (BVH, light split, pilot), build its photon maps, render its frame with
+// every pass, write the image. Every step is the render session's (render_session.h).
+#include "plan/pipeline.h"
+#include "plan/image_metadata.h"
+#include "plan/render_session.h"
+#include "io/image_io.h"
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+namespace penumbra {
+
+RenderResult runRender(const RenderRequest& request) {
+  Stopwatch total;
+  const int threads = request.threads > 0 ? request.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+
+  SessionOptions options;
+  options.maxMemoryBytes = request.maxMemoryBytes;
+  options.plan = request.plan;
+  options.threads = threads;
+  options.progress = request.progress;
+  options.notice = request.notice;
+  RenderSession session(options);
+
+  // Bad views, pixels, outputs and oversized jobs fail here, before any heavy work.
+  JobRequest job;
+  job.scenePath = request.scenePath;
+  job.overrides = request.overrides;
+  job.view = request.aov;
+  job.tracePixel = request.tracePixel;
+  const bool toStdout = request.outputPath.empty() || request.outputPath == "-";
+  if (!request.outputPath.empty() && !(request.tracePixel && toStdout)) {
+    job.outputs.push_back({request.outputPath, "-o", !request.tracePixel});
+  }
+  for (const std::string& stats : request.statsPaths) job.outputs.push_back({stats, "--stats", false});
+  PlannedJob planned = session.plan(job);
+
+  session.prepare(planned);
+  PhotonStage& stage = session.photons(planned);
+  RenderResult result = session.frame(planned, stage);
+  RenderStats& stats = result.stats;
+  stats.time.buildBvh = session.assets(planned).bvhSeconds;
+
+  if (!request.outputPath.empty() && !request.tracePixel) {
+    Stopwatch phase;
+    writeImage(request.outputPath, result.image,
+               renderMetadata(session.sceneFor(planned), stats, planned.viewName, request.outputPath), request.display);
+    stats.time.write = phase.seconds();
+  }
+  stats.time.total = total.seconds();
+  stats.peakRssBytes = peakRssBytes();
+  return result;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,186 @@
+// One frame from built photon maps: the context the integrators read, the
+// precomputed lookups, and the physical model's progressive passes.
+#include "plan/render_frame.h"
+#include "gather/lookup_cache.h"
+#include "gather/radiance_estimate.h"
+#include "trace/camera.h"
+#include "trace/light_visibility.h"
+#include "trace/shading.h"
+#include "io/texture_gen.h"
+#include <fmt/format.h>
+
+namespace penumbra {
+namespace {
+
+// photons.lookup = precomputed: the gate verdicts and the indirect (classic) or global
+// (physical) estimate, once per cell, from the maps just built. `radius` > 0 is the
+// physical pass's fixed gather radius.
+void buildLookup(const Scene& scene, LookupCache& cache, std::optional<LookupCacheParams>* cachedKey,
+                 double* builtSeconds,
+                 ShadingContext& ctx, float radius, RenderStats& stats, ProgressPhases* meter,
+                 const std::string& phaseName) {
+  const PhotonSettings& ps = scene.photons;
+  if (ps.lookup != PhotonLookup::Precomputed) return;
+  Stopwatch phase;
+  const bool physical = scene.render.model == ShadingModel::Physical;
+  const IndirectPhotonMap* map = physical ? ctx.globalMap : ctx.indirectMap;
+  LookupCacheParams params;
+  params.gate = ps.gate && scene.render.shadows && ctx.shadowMap;
+  params.gateParams = gateParamsFor(scene);
+  if (map) {
+    params.indirect = physical ? CachedIndirect::Irradiance
+                      : ps.estimator == IndirectEstimator::Density ? CachedIndirect::Density
+                                                                   : CachedIndirect::Classic;
+  }
+  if (!params.gate && !map) return;  // nothing to precompute
+  params.k = physical ? ps.kGlobal : ps.kIndirect;
+  params.maxRadius = physical ? 0.0f : ps.maxRadius;
+  params.radius = physical ? radius : 0.0f;
+  params.cellSize = radius > 0.0f ? cacheCellSize(radius, params.k, ps.lookupCell)
+                                  : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
+  if (!cachedKey || !*cachedKey || !sameLookup(**cachedKey, params)) {
+    params.progress = beginPhase(meter, phaseName);
+    cache.build(params.gate ? ctx.shadowMap : nullptr, map, params);
+    endPhase(meter);
+    params.progress = nullptr;
+    if (cachedKey) *cachedKey = params;
+    if (builtSeconds) *builtSeconds = phase.seconds();
+  }
+  ctx.lookup = cache.empty() ? nullptr : &cache;
+  stats.time.precompute += phase.seconds();
+  stats.cacheRecords = cache.records();
+  stats.cacheCell = cache.cellSize();
+  stats.cacheBytes = cache.memoryBytes();
+}
+
+void addStage(const PhotonStage& s, RenderStats& stats) {
+  stats.time.emit += s.emitSeconds;
+  stats.time.buildMaps += s.buildSeconds;
+  stats.emittedShadow += s.emittedShadow;
+  stats.emittedIndirect += s.emittedIndirect;
+  stats.emittedCaustic += s.emittedCaustic;
+  stats.emittedGlobal += s.emittedGlobal;
+  stats.storedShadow += s.shadow.size();
+  stats.storedIndirect += s.indirect.size();
+  stats.storedCaustic += s.caustic.size();
+  stats.storedGlobal += s.global.size();
+}
+
+// Progressive radii (Knaus & Zwicker 2011): r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1), so
+// the average of the passes converges. A radius still 0 (first pass, or every earlier
+// pass stored nothing) starts from this pass's photons; afterwards it only shrinks.
+void stepRadius(const PhotonSettings& ps, uint32_t pass, float& r, const IndirectPhotonMap& map, int k) {
+  if (r > 0.0f) {
+    r *= std::sqrt((pass + ps.alpha) / (pass + 1.0f));
+  } else {
+    GatherScratch scratch;
+    r = ps.radius > 0.0f ? ps.radius : typicalKnnRadius(map, k, scratch);
+  }
+}
+
+// "render", or "render 2/4" in pass 2 of 4 progressive passes.
+std::string phaseName(const char* phase, int pass, int passes) {
+  return passes > 1 ? fmt::format("{} {}/{}", phase, pass + 1, passes) : std::string(phase);
+}
+
+}  // namespace
+
+std::unique_ptr<TextureLookup> loadTextures(const Scene& scene) {
+  if (scene.textures.empty()) return nullptr;
+  std::vector<std::string> paths;
+  for (const Texture& t : scene.textures) {
+    // Procedural textures are generated once into the cache, then read like files.
+    paths.push_back(t.path.rfind("builtin:", 0) == 0 ? builtinTexturePath(t.path) : t.path);
+  }
+  return std::make_unique<TextureLookup>(paths);
+}
+
+SceneAssets prepareAssets(const Scene& scene, bool textures) {
+  SceneAssets assets;
+  Stopwatch clock;
+  assets.tracer = std::make_unique<TraceScene>(scene);
+  assets.bvhSeconds = clock.seconds();
+  if (textures) assets.textures = loadTextures(scene);
+  return assets;
+}
+
+void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& stage,
+                 const FrameOptions& options, RenderResult& result) {
+  RenderStats& stats = result.stats;
+  const bool physical = scene.render.model == ShadingModel::Physical;
+  const Aov aov = options.aov;
+  ShadingContext ctx{scene, *assets.tracer};
+  ctx.textures = assets.textures.get();
+  ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
+  ctx.hasGlass = sceneHasGlass(scene);
+  ctx.classicScale = stage.classicScale;
+  ctx.shadowMap = stage.shadow.size() > 0 ? &stage.shadow : nullptr;
+  for (const std::string& n : stage.notes) result.notes.push_back(n);
+  if (!physical && scene.photons.indirectPhotons > 0 && stage.emittedIndirect > 0 && stage.indirect.empty()) {
+    result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
+                           "using the ambient term");
+  }
+  const bool needsLight = aov != Aov::Depth && aov != Aov::Normal;
+  const int passes = physical && needsLight && !options.tracePixel ? scene.photons.passes : 1;
+  stats.passes = passes;
+
+  LookupCache cache;
+  PhotonStage later;  // the maps of physical passes >= 1 (fresh photons each)
+  RenderOptions render;
+  render.aov = aov;
+  for (int pass = 0; pass < passes; ++pass) {
+    const PhotonStage* maps = &stage;
+    if (pass > 0) {
+      later = PhotonStage();
+      PhotonNeeds needs = options.needs;
+      needs.shadow = false;  // the gate's photons are pass 0's, for every pass
+      Emission e = emitPhotonsFor(scene, *assets.tracer, needs, options.budgets, static_cast<uint32_t>(pass), {},
+                                  beginPhase(options.progress, phaseName("photons", pass, passes)));
+      buildStage(e, e.budgets, true, later, beginPhase(options.progress, phaseName("maps", pass, passes)));
+      endPhase(options.progress);
+      maps = &later;
+    }
+    addStage(*maps, stats);
+    ctx.indirectMap = maps->indirect.empty() ? nullptr : &maps->indirect;
+    ctx.causticMap = maps->caustic.empty() ? nullptr : &maps->caustic;
+    ctx.globalMap = maps->global.empty() ? nullptr : &maps->global;
+    ctx.pass = static_cast<uint32_t>(pass);
+    float radius = 0.0f;
+    if (physical && needsLight && passes > 1) {
+      stepRadius(scene.photons, ctx.pass, ctx.causticRadius, maps->caustic, scene.photons.kCaustic);
+      stepRadius(scene.photons, ctx.pass, ctx.globalRadius, maps->global, scene.photons.kGlobal);
+      stats.causticRadius = ctx.causticRadius;
+      stats.globalRadius = ctx.globalRadius;
+      radius = ctx.globalRadius;
+    }
+    // Pass 0 keeps its lookups with its maps, for later frames on the same maps.
+    if (needsLight) {
+      const std::string lookups = phaseName("lookups", pass, passes);
+      if (pass == 0) {
+        buildLookup(scene, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats, options.progress,
+                    lookups);
+      } else {
+        buildLookup(scene, cache, nullptr, nullptr, ctx, radius, stats, options.progress, lookups);
+      }
+    }
+    Stopwatch phase;
+    if (options.tracePixel) {
+      result.rayTree = tracePixel(ctx, options.tracePixel->first, options.tracePixel->second);
+      break;
+    }
+    render.tiles = beginPhase(options.progress, phaseName("render", pass, passes));
+    Image image = renderImage(ctx, render, stats.rays);
+    endPhase(options.progress);
+    if (ctx.lookup) stats.cacheLazyCells = ctx.lookup->lazyCells();
+    if (pass == 0) result.image = std::move(image);
+    else for (size_t i = 0; i < image.pixels.size(); ++i) result.image.pixels[i] += image.pixels[i];
+    stats.time.render += phase.seconds();
+  }
+  // Progressive passes are independent estimates: their mean is the image.
+  if (passes > 1) {
+    for (Color& c : result.image.pixels) c /= static_cast<float>(passes);
+  }
+  stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, stage.bytes() + later.bytes());
+}
+
+}  // namespace penumbra

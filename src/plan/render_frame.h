@@ -1,0 +1,40 @@
+// The stages after the photons: a scene's Embree scene and textures (shareable by
+// every render of the same geometry), and one frame rendered from built photon
+// maps, with its precomputed lookups and progressive passes.
+#pragma once
+#include "plan/photon_stage.h"
+#include "plan/pipeline.h"
+#include "core/progress.h"
+#include "geometry/trace_scene.h"
+#include "trace/texture_lookup.h"
+#include <memory>
+
+namespace penumbra {
+
+// Built once per geometry; the tracer reads the Scene it was built from, which
+// must outlive it (a sweep keeps that scene beside it).
+struct SceneAssets {
+  std::unique_ptr<TraceScene> tracer;
+  std::unique_ptr<TextureLookup> textures;
+  double bvhSeconds = 0.0;
+};
+// textures = false: the plan skips them (a view that reads no colour, or --disable textures).
+SceneAssets prepareAssets(const Scene& scene, bool textures = true);
+// The scene's textures (procedural ones generated once into the cache); null: none.
+std::unique_ptr<TextureLookup> loadTextures(const Scene& scene);
+
+struct FrameOptions {
+  Aov aov = Aov::Beauty;
+  PhotonNeeds needs;    // the plan's photon passes, for progressive passes >= 1
+  MapBudgets budgets;   // ... and their photons per pass
+  std::optional<std::pair<int, int>> tracePixel;
+  ProgressPhases* progress = nullptr;  // the command's display; null: none
+};
+
+// Renders every pass of `scene` into result.image (or its ray tree), pass 0 from
+// `stage`; later physical passes emit their own photons. Fills result.stats'
+// photon, lookup, ray and render fields (not load, BVH or write).
+void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& stage,
+                 const FrameOptions& options, RenderResult& result);
+
+}  // namespace penumbra

@@ -1,0 +1,253 @@
+// Each pass's rule: on only where the view reads it and the scene can make it
+// contribute, with the reason in words; then the user's --enable / --disable.
+#include "plan/render_plan.h"
+#include "plan/gate_decision.h"
+#include "core/bsdf.h"
+#include "core/error.h"
+#include "core/light_sample.h"
+#include "emit/emit.h"
+#include "emit/emit_physical.h"
+#include "emit/light_reach.h"
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+namespace penumbra {
+namespace {
+
+constexpr const char* kNames[kPassCount] = {
+    "gate", "indirect-photons", "global-photons", "caustic-photons", "shadow-rays", "reflection",
+    "refraction", "textures", "light-samples", "packets", "precompute"};
+
+PassDecision on(std::string reason, uint64_t budget = 0) { return {true, std::move(reason), budget, {}, {}}; }
+PassDecision off(std::string reason) { return {false, std::move(reason), 0, {}, {}}; }
+
+struct SceneFacts {
+  bool photonLight = false, areaLight = false, anyLight = false;
+  bool reflective = false, transparent = false, bounces = false, smooth = false;
+  int areaLights = 0;
+};
+
+SceneFacts factsOf(const Scene& scene) {
+  SceneFacts f;
+  for (const Light& l : scene.lights) {
+    if (maxComponent(l.radiance()) <= 0.0f) continue;
+    f.anyLight = true;
+    f.photonLight = f.photonLight || l.type != LightType::Directional;
+    if (lightSampleCount(l, 2) > 1) { f.areaLight = true; ++f.areaLights; }
+  }
+  const bool physical = scene.render.model == ShadingModel::Physical;
+  for (const Material& m : scene.materials) {
+    const Bsdf b = makeBsdf(m, scene.render.model, scene.photons.sampling);
+    f.transparent = f.transparent || m.transparent;
+    f.reflective = f.reflective || m.transparent || (physical ? hasDeltaLobe(b) : m.kr > 0.0f);
+    f.bounces = f.bounces || m.pR > 0.0f || m.pT > 0.0f;
+    f.smooth = f.smooth || hasSmoothLobe(b);
+  }
+  return f;
+}
+
+bool readsLight(Aov aov) { return aov != Aov::Depth && aov != Aov::Normal; }
+
+void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
+  const SceneFacts f = factsOf(scene);
+  const PhotonSettings& ps = scene.photons;
+  const bool physical = scene.render.model == ShadingModel::Physical;
+  const bool light = readsLight(aov);
+  const std::string view = fmt::format("the {} view reads no light", aov == Aov::Depth ? "depth" : "normal");
+  const bool direct = light && aov != Aov::Indirect && aov != Aov::Caustic;
+
+  // Shadow rays, and the gate that replaces some of them.
+  if (!direct) plan[Pass::ShadowRays] = off(light ? "this view has no direct light" : view);
+  else if (!f.anyLight) plan[Pass::ShadowRays] = off("no light");
+  else if (!scene.render.shadows) plan[Pass::ShadowRays] = off("render.shadows is false");
+  else plan[Pass::ShadowRays] = on("every light a shading point faces");
+  PassDecision& gate = plan[Pass::Gate];
+  if (!plan[Pass::ShadowRays].on) {
+    gate = off("no shadow rays to replace");
+  } else if (ps.gateMode == GateMode::Auto) {
+    const GateDecision d = decideGate(scene);
+    gate = d.gate ? on(d.reason, ps.shadowPhotons) : off(d.reason);
+  } else {
+    gate = ps.gate ? on("photons.gate is on", ps.shadowPhotons) : off("photons.gate is off");
+    if (gate.on && !f.photonLight) gate = off("only directional lights: they emit no shadow photons");
+  }
+  if (gate.on) gate.perLight = splitBudget(scene, gate.budget);
+
+  // Photon maps.
+  auto photons = [&](Pass p, bool read, uint64_t budget, const char* key, const char* cannot) {
+    PassDecision& d = plan[p];
+    if (!read) d = off(light ? "this view does not read it" : view);
+    else if (budget == 0) d = off(fmt::format("photons.{} is 0", key));
+    else if (!f.photonLight) d = off("only directional lights: no photons");
+    else if (cannot) d = off(cannot);
+    else d = on(fmt::format("{} photons", budget), budget);
+  };
+  if (physical) {
+    plan[Pass::IndirectPhotons] = off("the physical model has global and caustic maps instead");
+    photons(Pass::GlobalPhotons, aov == Aov::Beauty || aov == Aov::Indirect, ps.globalPhotons, "global",
+            !f.smooth ? "no diffuse or glossy surface to store a photon on" : ps.maxBounces == 0 ? "photons.max_bounces is 0" : nullptr);
+    const bool specular = !specularTargets(scene).empty();
+    photons(Pass::CausticPhotons, aov == Aov::Beauty || aov == Aov::Caustic, ps.causticPhotons, "caustic",
+            !specular ? "no specular surface for a caustic" : ps.maxBounces == 0 ? "photons.max_bounces is 0" : nullptr);
+  } else {
+    plan[Pass::GlobalPhotons] = off("classic model");
+    plan[Pass::CausticPhotons] = off("classic model");
+    // The density estimator stores only photons that bounced; the classic one every hit.
+    const bool density = ps.estimator == IndirectEstimator::Density;
+    photons(Pass::IndirectPhotons, aov == Aov::Beauty || aov == Aov::Indirect, ps.indirectPhotons, "indirect",
+            density && !f.bounces ? "no surface can bounce a photon: every p_r and p_t is 0" : nullptr);
+  }
+  if (plan[Pass::IndirectPhotons].on) plan[Pass::IndirectPhotons].perLight = splitBudget(scene, ps.indirectPhotons);
+
+  // Recursion, textures, samples, packets, lookups.
+  const bool deeper = scene.render.maxDepth > 0;
+  plan[Pass::Reflection] = !light ? off(view) : !deeper ? off("render.max_depth is 0")
+                           : f.reflective ? on("mirror or glass material") : off("no mirror or glass material");
+  plan[Pass::Refraction] = !light ? off(view) : !deeper ? off("render.max_depth is 0")
+                           : f.transparent ? on("transparent material") : off("no transparent material");
+  plan[Pass::Textures] = scene.textures.empty() ? off("no texture")
+                         : !light ? off(view)
+                                  : on(fmt::format("{} texture(s)", scene.textures.size()));
+  plan[Pass::LightSamples] = !direct || !f.areaLight ? off(f.areaLight ? "this view has no direct light" : "no area light")
+                             : on(fmt::format("{} per area light ({} area lights)", scene.render.lightSamples, f.areaLights),
+                                  static_cast<uint64_t>(scene.render.lightSamples));
+  plan[Pass::Packets] = scene.render.packets ? on("render.packets is true (the same image, faster)")
+                                             : off("render.packets is false");
+  const bool maps = gate.on || plan[Pass::IndirectPhotons].on || plan[Pass::GlobalPhotons].on;
+  plan[Pass::Precompute] = ps.lookup != PhotonLookup::Precomputed ? off("photons.lookup is exact")
+                           : !maps ? off("no gate or indirect map to precompute")
+                                   : on("photons.lookup is precomputed");
+}
+
+}  // namespace
+
+const char* passName(Pass pass) { return kNames[static_cast<size_t>(pass)]; }
+
+Pass parsePass(const std::string& name) {
+  std::string known;
+  for (size_t i = 0; i < kPassCount; ++i) {
+    if (name == kNames[i]) return static_cast<Pass>(i);
+    known += (i ? ", " : "") + std::string(kNames[i]);
+  }
+  throw InputError("unknown pass '" + name + "' (known: " + known + ")");
+}
+
+RenderPlan makePlan(const Scene& scene, Aov aov, const PlanOverrides& overrides) {
+  RenderPlan plan;
+  plan.aov = aov;
+  decide(plan, scene, aov);
+  const PhotonSettings& ps = scene.photons;
+  for (Pass p : overrides.enable) {
+    PassDecision& d = plan[p];
+    if (d.on) {  // pinned on: nothing later (the light split) may turn it off
+      d.overridden = true;
+      continue;
+    }
+    d.on = true;
+    d.overridden = true;
+    // Forcing a pass on that the scene cannot use costs time but adds nothing, except
+    // the gate (its verdicts replace shadow rays) and fewer packets (same image).
+    d.changesImage = p == Pass::Gate || p == Pass::Precompute || (p == Pass::ShadowRays && !scene.render.shadows);
+    d.reason = "on (--enable " + std::string(passName(p)) + "; was: " + d.reason + ")";
+    if (p == Pass::Gate) { d.budget = ps.shadowPhotons; d.perLight = splitBudget(scene, d.budget); }
+    if (p == Pass::IndirectPhotons) { d.budget = ps.indirectPhotons; d.perLight = splitBudget(scene, d.budget); }
+    if (p == Pass::GlobalPhotons) d.budget = ps.globalPhotons;
+    if (p == Pass::CausticPhotons) d.budget = ps.causticPhotons;
+    if (p == Pass::LightSamples) d.budget = static_cast<uint64_t>(scene.render.lightSamples);
+  }
+  for (Pass p : overrides.disable) {
+    PassDecision& d = plan[p];
+    if (!d.on) continue;
+    d.on = false;
+    d.overridden = true;
+    d.changesImage = p != Pass::Packets;
+    d.reason = "off (--disable " + std::string(passName(p)) + (d.changesImage ? "; changes the image" : "") + ")";
+  }
+  return plan;
+}
+
+void applyPlan(const RenderPlan& plan, Scene& scene) {
+  PhotonSettings& ps = scene.photons;
+  RenderSettings& rs = scene.render;
+  ps.gate = plan[Pass::Gate].on;
+  ps.shadowPhotons = plan[Pass::Gate].on ? plan[Pass::Gate].budget : 0;
+  ps.indirectPhotons = plan[Pass::IndirectPhotons].on ? plan[Pass::IndirectPhotons].budget : 0;
+  ps.globalPhotons = plan[Pass::GlobalPhotons].on ? plan[Pass::GlobalPhotons].budget : 0;
+  ps.causticPhotons = plan[Pass::CausticPhotons].on ? plan[Pass::CausticPhotons].budget : 0;
+  // Off: lights reach every surface facing them (render.shadows = false).
+  if (plan[Pass::ShadowRays].overridden) rs.shadows = plan[Pass::ShadowRays].on;
+  rs.reflection = plan[Pass::Reflection].on;
+  rs.refraction = plan[Pass::Refraction].on;
+  if (!plan[Pass::LightSamples].on && plan[Pass::LightSamples].overridden) rs.lightSamples = 1;
+  rs.packets = plan[Pass::Packets].on;
+  if (!plan[Pass::Precompute].on) ps.lookup = PhotonLookup::Exact;
+  else ps.lookup = PhotonLookup::Precomputed;
+}
+
+void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer) {
+  const bool density = scene.photons.estimator == IndirectEstimator::Density;
+  struct Target {
+    Pass pass;
+    ReachRule rule;
+    const char* where;
+  };
+  std::vector<Target> targets = {
+      {Pass::GlobalPhotons, ReachRule::Scattering, "a surface that scatters photons"},
+      {Pass::CausticPhotons, ReachRule::Specular, "a specular surface (area lights; point and directional lights aim)"}};
+  // Not the classic estimator: it averages photon colours (not a density), so each
+  // photon must carry its light's colour at the weight the power split gives it.
+  if (density) targets.push_back({Pass::IndirectPhotons, ReachRule::Bouncing, "a surface that bounces photons (p_r or p_t > 0)"});
+  for (const Target& t : targets) {
+    PassDecision& d = plan[t.pass];
+    if (!d.on || d.overridden || d.budget == 0) continue;
+    d.reach = measureReach(scene, tracer, t.rule);
+    if (t.pass == Pass::IndirectPhotons) d.perLight = splitBudget(scene, d.budget, d.reach);
+    else d.perLight = splitPhysicalBudget(scene, tracer, t.pass == Pass::CausticPhotons, d.budget, d.reach);
+    int none = 0, emitting = 0;
+    std::vector<std::string> shares;
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+      const bool aimed = t.pass == Pass::CausticPhotons && isDeltaLight(scene.lights[l]);
+      if (aimed || !(maxComponent(scene.lights[l].radiance()) > 0.0f)) continue;
+      ++emitting;
+      none += d.reach[l] == 0.0f;
+      shares.push_back(fmt::format("light {} {:.0f}%", l, 100.0 * d.reach[l]));
+    }
+    if (shares.size() > 4) shares.clear();  // many lights: the counts say it (per_light in --stats)
+    uint64_t given = 0;
+    for (uint64_t c : d.perLight) given += c;
+    const std::string pilot = fmt::format("{} pilot photons per light", kReachPilots);
+    if (given == 0) {
+      d = off(fmt::format("no light's photons reach {} ({})", t.where, pilot));
+    } else if (emitting > 1 || none > 0) {
+      d.reason += fmt::format("; split by the power reaching {} ({}{}{})", t.where, pilot,
+                              shares.empty() ? "" : ": " + fmt::format("{}", fmt::join(shares, ", ")),
+                              none ? fmt::format("; {} of {} lights reach none and emit none", none, emitting) : "");
+    }
+  }
+}
+
+std::string planText(const RenderPlan& plan) {
+  std::string s;
+  for (size_t i = 0; i < kPassCount; ++i) {
+    const PassDecision& d = plan.passes[i];
+    s += fmt::format("{:<17} {:<4} {}\n", kNames[i], d.on ? "on" : "off", d.reason);
+  }
+  return s;
+}
+
+std::string planJson(const RenderPlan& plan) {
+  nlohmann::json j = nlohmann::json::object();
+  for (size_t i = 0; i < kPassCount; ++i) {
+    const PassDecision& d = plan.passes[i];
+    nlohmann::json p = {{"on", d.on}, {"reason", d.reason}};
+    if (d.budget > 0) p["budget"] = d.budget;
+    if (!d.perLight.empty()) p["per_light"] = d.perLight;
+    if (d.overridden) p["overridden"] = true;
+    if (d.changesImage) p["changes_image"] = true;
+    j[kNames[i]] = p;
+  }
+  return j.dump();
+}
+
+}  // namespace penumbra

@@ -1,0 +1,169 @@
+// The session's steps in the order every command runs them: plan (load, view,
+// outputs, plan, estimate without photons), prepare (BVH, light split, pilot,
+// whole estimate), photons (cached stages), frame.
+#include "plan/render_session.h"
+#include "core/error.h"
+#include "io/scene_loader.h"
+#include "plan/output_safety.h"
+#include <fmt/format.h>
+#include <stdexcept>
+
+namespace penumbra {
+
+namespace {
+
+// The job's settings and plan on the session's shared scene of its geometry.
+void setJobSettings(Scene& scene, const PlannedJob& job) {
+  scene.camera = job.camera;
+  scene.render = job.render;
+  scene.photons = job.photons;
+  applyPlan(job.plan, scene);
+}
+
+const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m == GateMode::On ? "on" : "off"; }
+
+}  // namespace
+
+RenderSession::RenderSession(SessionOptions options) : options_(std::move(options)) {}
+
+PlannedJob RenderSession::plan(const JobRequest& request) {
+  PlannedJob job;
+  job.request = request;
+  Stopwatch clock;
+  Scene scene = loadScene(request.scenePath, request.overrides);
+  job.loadSeconds = clock.seconds();
+  job.sceneName = scene.name;
+  job.sceneFile = scene.file;
+  job.camera = scene.camera;
+  job.render = scene.render;
+  job.photons = scene.photons;
+  job.viewName = request.view.empty() ? scene.render.aov : request.view;
+  job.aov = parseAov(job.viewName);
+  if (scene.render.model != ShadingModel::Physical && (job.aov == Aov::Direct || job.aov == Aov::Caustic)) {
+    throw InputError(scene.file + ": view '" + job.viewName + "' needs the physical model (render.model: \"physical\")");
+  }
+  if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
+  job.keys = reuseKeys(request.scenePath, request.overrides);
+  job.inputs = sceneInputs(scene, request.scenePath);
+  checkOutputs(request.outputs, job.inputs);
+  // Before any work: what runs and why (photons.gate = auto is decided here too).
+  job.plan = makePlan(scene, job.aov, options_.plan);
+  for (const PassDecision& d : job.plan.passes) {
+    if (d.overridden && d.changesImage) job.notes.push_back("plan override: " + d.reason);
+  }
+  setJobSettings(scene, job);
+  job.admission = admitJob(scene, job.plan, options_.threads, request.tracePixel.has_value(), options_.maxMemoryBytes);
+  std::unique_ptr<Geometry>& g = geometry_[job.keys.geometry];
+  if (!g) {
+    g = std::make_unique<Geometry>();
+    g->scene = std::move(scene);
+  }
+  return job;
+}
+
+RenderSession::Geometry& RenderSession::geometryOf(const PlannedJob& job) {
+  auto g = geometry_.find(job.keys.geometry);
+  if (g == geometry_.end()) throw std::logic_error("a job of another session");
+  return *g->second;
+}
+
+const Scene& RenderSession::sceneFor(const PlannedJob& job) {
+  Scene& scene = geometryOf(job).scene;
+  setJobSettings(scene, job);
+  return scene;
+}
+
+const SceneAssets& RenderSession::assets(const PlannedJob& job) {
+  Geometry& g = geometryOf(job);
+  const bool textures = job.plan[Pass::Textures].on;
+  if (!g.built) {
+    g.assets = prepareAssets(g.scene, textures);
+    g.built = true;
+    g.textures = textures;
+    ++sceneBuilds_;
+  } else if (textures && !g.textures) {
+    g.assets.textures = loadTextures(g.scene);
+    g.textures = true;
+  }
+  return g.assets;
+}
+
+void RenderSession::prepare(PlannedJob& job) {
+  if (job.prepared) return;
+  const SceneAssets& a = assets(job);
+  splitByReach(job.plan, sceneFor(job), *a.tracer);  // needs rays: the BVH is the first work
+  confirmJob(job.admission, sceneFor(job), *a.tracer, options_.notice);
+  job.prepared = true;
+}
+
+PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, bool* reused) {
+  const PlannedJob& job = *jobs.front();
+  PhotonNeeds needs;
+  MapBudgets budgets;
+  for (const PlannedJob* j : jobs) {
+    if (!j->prepared) throw std::logic_error("photons of a job not prepared");
+    if (j->keys.photons != job.keys.photons) throw std::logic_error("photons shared by jobs that differ");
+    needs |= photonNeeds(j->plan);
+    budgets.maxWith(planBudgets(j->plan));
+  }
+  const PhotonStageKey key{job.keys.geometry, job.keys.photons, budgets,
+                           needs.shadow, needs.indirect, needs.global, needs.caustic};
+  auto hit = std::find_if(stages_.begin(), stages_.end(), [&](const CachedStage& c) { return c.key == key; });
+  if (hit != stages_.end()) {
+    stages_.splice(stages_.begin(), stages_, hit);
+    if (reused) *reused = true;
+    return *stages_.front().stage;
+  }
+  if (reused) *reused = false;
+  const SceneAssets& a = assets(job);
+  const Scene& scene = sceneFor(job);
+  auto stage = std::make_unique<PhotonStage>();
+  Emission e = emitPhotonsFor(scene, *a.tracer, needs, key.budgets, 0, {}, beginPhase(options_.progress, "photons"));
+  buildStage(e, e.budgets, true, *stage, beginPhase(options_.progress, "maps"));
+  endPhase(options_.progress);
+  ++photonBuilds_;
+  cachedBytes_ += stage->bytes();
+  stages_.push_front({key, std::move(stage)});
+  // Keep the newest always; drop the least recently used beyond the cap.
+  while (stages_.size() > 1 && cachedBytes_ > options_.stageCacheBytes) {
+    cachedBytes_ -= stages_.back().stage->bytes();
+    stages_.pop_back();
+    ++evictions_;
+  }
+  peakStageBytes_ = std::max(peakStageBytes_, cachedBytes_);
+  return *stages_.front().stage;
+}
+
+RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {
+  if (!job.prepared) throw std::logic_error("a frame of a job not prepared");
+  const SceneAssets& a = assets(job);
+  const Scene& scene = sceneFor(job);
+  RenderResult result;
+  result.estimate = job.admission.estimate;
+  result.notes = job.notes;
+  RenderStats& stats = result.stats;
+  stats.time.load = job.loadSeconds;
+  stats.gateMode = gateModeName(job.photons.gateMode);
+  stats.gate = job.plan[Pass::Gate].on;
+  stats.gateReason = job.plan[Pass::Gate].reason;
+  stats.plan = planJson(job.plan);
+  stats.scene = job.sceneName;
+  stats.width = job.camera.width;
+  stats.height = job.camera.height;
+  stats.spp = job.camera.spp;
+  stats.threads = options_.threads;
+  stats.seed = job.render.seed;
+  stats.model = job.render.model == ShadingModel::Physical ? "physical" : "classic";
+  stats.lookup = job.plan[Pass::Precompute].on ? "precomputed" : "exact";
+  FrameOptions frame;
+  frame.aov = job.aov;
+  frame.needs = photonNeeds(job.plan);
+  frame.budgets = planBudgets(job.plan);
+  frame.tracePixel = job.request.tracePixel;
+  frame.progress = options_.progress;
+  renderFrame(scene, a, stage, frame, result);
+  endPhase(options_.progress);
+  return result;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,118 @@
+// The render session: the one wiring behind render, sweep and batch. It loads,
+// plans and admits every job before any heavy work, keeps each geometry's prepared
+// scene (BVH, textures) and the photon stages (LRU under a byte cap), and renders
+// frames from them; the commands only choose what to render and in which order.
+#pragma once
+#include "core/progress.h"
+#include "plan/job_admission.h"
+#include "plan/output_safety.h"
+#include "plan/photon_stage.h"
+#include "plan/render_frame.h"
+#include "plan/render_plan.h"
+#include "plan/reuse_key.h"
+#include <functional>
+#include <list>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+struct SessionOptions {
+  uint64_t maxMemoryBytes = 0;          // --max-memory; 0 = the memory available
+  uint64_t stageCacheBytes = 4ull << 30;  // photon stages kept for later jobs (LRU)
+  PlanOverrides plan;                   // --enable / --disable, for every job
+  int threads = 1;                      // for the estimate (the caller limits TBB)
+  ProgressPhases* progress = nullptr;   // the command's display; null: none
+  // Told on the session's thread, e.g. that a job is estimated to take hours.
+  std::function<void(const std::string& note)> notice;
+};
+
+// One render a command asks for: a scene with its overrides, one view, and the
+// files it will write (checked against each other and every input up front).
+struct JobRequest {
+  std::string scenePath;
+  std::vector<std::string> overrides;
+  std::string view;  // empty: the scene's render.aov
+  std::vector<OutputPath> outputs;
+  std::optional<std::pair<int, int>> tracePixel;
+};
+
+// A job loaded, planned and admitted: nothing large is allocated yet. It keeps its
+// settings as the user gave them; its geometry is the session's, by `keys.geometry`.
+struct PlannedJob {
+  JobRequest request;
+  std::string sceneName, sceneFile;
+  Camera camera;
+  RenderSettings render;
+  PhotonSettings photons;
+  std::string viewName;
+  Aov aov = Aov::Beauty;
+  RenderPlan plan;
+  ReuseKeys keys;
+  Admission admission;
+  std::vector<std::string> inputs;  // every file the job reads
+  std::vector<std::string> notes;
+  double loadSeconds = 0.0;
+  bool prepared = false;  // split by reach and confirmed (RenderSession::prepare)
+};
+
+class RenderSession {
+ public:
+  explicit RenderSession(SessionOptions options);
+
+  // Loads the scene, checks the view and the outputs, plans every pass and checks
+  // the estimate without photons. Throws InputError (exit 2) before any heavy work.
+  // The first job of a geometry keeps its loaded scene for the others.
+  PlannedJob plan(const JobRequest& request);
+
+  // The job's geometry built (BVH, and textures when its plan reads them), its light
+  // split by reach, the pilot if the photons are large, and the whole estimate
+  // against the memory limit: still before any photon. Needed by the steps below.
+  void prepare(PlannedJob& job);
+
+  // The scene and assets a prepared job renders with: its geometry's, read with the
+  // job's settings and plan (the session's scene is shared, so only it sets them).
+  const SceneAssets& assets(const PlannedJob& job);
+  const Scene& sceneFor(const PlannedJob& job);
+
+  // The photon maps of jobs that share them (views of one scene and settings): the
+  // union of the maps they read at the largest budgets, emitted and built once and
+  // kept under the byte cap for later jobs; `reused` is set when they came from it.
+  PhotonStage& photons(const std::vector<const PlannedJob*>& jobs, bool* reused = nullptr);
+  PhotonStage& photons(const PlannedJob& job, bool* reused = nullptr) { return photons({&job}, reused); }
+
+  // Every pass of one frame from `stage`, into an image (or the pixel's ray tree).
+  RenderResult frame(const PlannedJob& job, PhotonStage& stage);
+
+
+  size_t sceneBuilds() const { return sceneBuilds_; }
+  size_t photonBuilds() const { return photonBuilds_; }
+  size_t evictions() const { return evictions_; }
+  uint64_t peakStageBytes() const { return peakStageBytes_; }
+  const SessionOptions& options() const { return options_; }
+
+ private:
+  struct Geometry {
+    Scene scene;  // the first job's load; each job's settings are set before it is read
+    SceneAssets assets;
+    bool textures = false;
+    bool built = false;
+  };
+  struct CachedStage {
+    PhotonStageKey key;
+    std::unique_ptr<PhotonStage> stage;
+  };
+  Geometry& geometryOf(const PlannedJob& job);
+
+  SessionOptions options_;
+  std::map<std::string, std::unique_ptr<Geometry>> geometry_;
+  std::list<CachedStage> stages_;  // most recently used first
+  uint64_t cachedBytes_ = 0, peakStageBytes_ = 0;
+  size_t sceneBuilds_ = 0, photonBuilds_ = 0, evictions_ = 0;
+};
+
+}  // namespace penumbra

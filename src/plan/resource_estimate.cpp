@@ -1,0 +1,215 @@
+// The resource model: stored photons from emitted counts x stores per path, bytes
+// per record, image and BVH sizes, and a per-operation time model (plan/cost_model.h).
+#include "plan/resource_estimate.h"
+#include "plan/cost_model.h"
+#include "core/light_sample.h"
+#include "core/photon.h"
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+using namespace cost;
+constexpr int kBuiltinTextureWidth = 2048;  // texture_gen.cpp's default; "@W" overrides
+constexpr int kMaxHitsPerLine = 64;  // EmitOptions::maxHitsPerLine
+
+bool hasSpecular(const Scene& scene) {
+  for (const Material& m : scene.materials) {
+    if (m.kr > 0.0f || m.transparent) return true;
+  }
+  return false;
+}
+
+// How often one straight line can cross a mesh: once if it is flat, twice if it
+// is convex (checked for meshes small enough to test every vertex against every
+// face), otherwise once per triangle up to the emitter's cap.
+int maxCrossings(const TriangleMesh& mesh) {
+  const size_t t = mesh.triangles.size();
+  if (t == 0) return 0;
+  if (t > 2048 || mesh.positions.size() > 4096) return kMaxHitsPerLine;
+  Vec3 lo(mesh.positions[0]), hi(mesh.positions[0]);
+  for (const Vec3& p : mesh.positions) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  const float eps = 1e-4f * std::max(1e-6f, glm::length(hi - lo));
+  bool planar = true, convex = true;
+  for (const auto& tri : mesh.triangles) {
+    const Vec3 a = mesh.positions[tri[0]];
+    Vec3 n = glm::cross(mesh.positions[tri[1]] - a, mesh.positions[tri[2]] - a);
+    const float len = glm::length(n);
+    if (!(len > 0.0f)) continue;
+    n /= len;
+    bool above = false, below = false;
+    for (const Vec3& p : mesh.positions) {
+      const float d = glm::dot(n, p - a);
+      above |= d > eps;
+      below |= d < -eps;
+    }
+    planar &= !above && !below;
+    convex &= !(above && below);
+  }
+  if (planar) return 1;
+  if (convex) return 2;
+  return static_cast<int>(std::min<size_t>(t, kMaxHitsPerLine));
+}
+
+// Sum over b = from..to of s^b: the expected stores of a path that survives each
+// bounce with probability at most s and meets at most to + 1 surfaces.
+double survivalSeries(double s, int from, int to) {
+  double sum = 0.0, term = std::pow(s, from);
+  for (int b = from; b <= to && term > 1e-12; ++b, term *= s) sum += term;
+  return sum;
+}
+
+std::string gib(double bytes) { return formatBytes(bytes); }
+
+// From the file's header only (no pixels are read); a builtin texture from its name.
+double textureBytes(const Scene& scene) {
+  double bytes = 0.0;
+  for (const Texture& t : scene.textures) {
+    if (t.path.rfind("builtin:", 0) == 0) {
+      const size_t at = t.path.find('@');
+      const double w = at == std::string::npos ? kBuiltinTextureWidth : std::atof(t.path.c_str() + at + 1);
+      bytes += w * (w / 2) * 3.0 * 4.0 / 3.0;
+      continue;
+    }
+    auto in = OIIO::ImageInput::open(t.path);
+    if (!in) continue;  // the texture stage reports unreadable files
+    const OIIO::ImageSpec& spec = in->spec();
+    bytes += double(spec.width) * spec.height * spec.nchannels * spec.format.size() * 4.0 / 3.0;
+  }
+  return std::min(bytes, kTextureCacheBytes);
+}
+
+}  // namespace
+
+StoreRates analyticStoreRates(const Scene& scene) {
+  StoreRates r;
+  const int bounces = scene.photons.maxBounces;
+  int crossings = 2 * static_cast<int>(scene.spheres.size());
+  for (const TriangleMesh& m : scene.meshes) crossings = std::min(kMaxHitsPerLine, crossings + maxCrossings(m));
+  r.shadow = std::min(kMaxHitsPerLine, crossings);
+  // Classic roulette: a path goes on with p_r + p_t, so the surest material bounds
+  // every path (a closed box of it reaches the bound: nothing escapes).
+  double s = 0.0;
+  for (const Material& m : scene.materials) s = std::max(s, std::min(1.0, double(m.pR) + m.pT));
+  const bool firstHit = scene.photons.estimator == IndirectEstimator::Classic;
+  r.indirect = survivalSeries(s, firstHit ? 0 : 1, bounces);
+  // Physical: survival is the sampled weight, up to 1 for mirrors and glass, and a
+  // photon is stored at most once per surface after the first: bounded by the cap.
+  r.global = bounces;
+  r.caustic = bounces;
+  return r;
+}
+
+ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& options,
+                                   const StoreRates& rates) {
+  ResourceEstimate e;
+  e.rates = rates;
+  e.plan = options.photons;
+  e.threads = std::max(1, options.threads);
+  const PhotonPlan& p = e.plan;
+  // The rates are means per path; a run's total strays from n x mean by ~sqrt(n)
+  // paths' worth, so 3 sigma (sd per path <= mean for these geometric counts) on top.
+  const auto stored = [](uint64_t n, double rate) {
+    return n > 0 ? n * rate * (1.0 + 3.0 / std::sqrt(double(n))) : 0.0;
+  };
+  const double shadow = stored(p.shadow, rates.shadow), indirect = stored(p.indirect, rates.indirect);
+  const double global = stored(p.global, rates.global), caustic = stored(p.caustic, rates.caustic);
+  e.storedPhotons = shadow + indirect + global + caustic;
+  e.photonBytes = shadow * (sizeof(ShadowPhoton) + kIndexBytes) +
+                  (indirect + global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
+  // The emitters' blocks and the sorted arrays each hold a copy while the maps build
+  // (one map after another, so this bounds the peak from above).
+  e.photonPeakBytes = e.photonBytes + shadow * sizeof(ShadowPhoton) +
+                      (indirect + global + caustic) * sizeof(IndirectPhoton);
+  // A progressive pass emits its photons while the previous pass's maps still stand.
+  if (p.passes > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
+  const PhotonSettings& ps = scene.photons;
+  if (ps.lookup == PhotonLookup::Precomputed) {
+    const double k = std::max(1, scene.render.model == ShadingModel::Classic ? ps.kIndirect : ps.kGlobal);
+    e.cacheBytes = 2.0 * (indirect + global + shadow) / k * kCacheBytesPerRecord;
+  }
+  const double pixels = double(scene.camera.width) * scene.camera.height;
+  // The frame, a second one to sum progressive passes, and the writer's copy.
+  if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * (p.passes > 1 ? 2 : 1) + 12 + 6);
+  double primitives = scene.spheres.size(), meshBytes = 0.0;
+  for (const TriangleMesh& m : scene.meshes) {
+    primitives += m.triangles.size();
+    meshBytes += m.positions.size() * 12.0 + m.normals.size() * 12.0 + m.uvs.size() * 8.0 +
+                 m.triangles.size() * 12.0;
+  }
+  e.bvhBytes = primitives * kBvhBytesPerPrimitive;
+  e.sceneBytes = meshBytes + textureBytes(scene);
+  e.baseBytes = kBaseBytes;
+
+  // Time: each stored photon is one traced segment, plus the one that escapes.
+  const double emitted = double(p.shadow + p.indirect + p.global + p.caustic);
+  const double photonNs = (e.storedPhotons + emitted) * kPhotonSegmentNs + e.storedPhotons * kBuildNsPerPhoton;
+  // Past the caches the emission's stores and the build's gathers wait on memory:
+  // 1M paths x 1024 bounces in a closed box (251M stored, 8 GB) took 227 core-s,
+  // 2.2x the flat per-photon costs; fig14 (0.45 GB) is within 10% of them.
+  const double spill = std::max(1.0, e.photonPeakBytes / kCacheFriendlyBytes);
+  e.photonSeconds = photonNs * (1.0 + kSpillSlowdown * std::log2(spill)) * p.passes / e.threads * 1e-9;
+  const double samples = options.tracePixel ? 1.0 : pixels * scene.camera.spp;
+  double rays = 1.0, lookupNs = 0.0;
+  const bool lit = options.aov != Aov::Depth && options.aov != Aov::Normal;
+  if (lit && scene.render.shadows) {
+    double tests = 0.0;
+    for (const Light& l : scene.lights) tests += lightSampleCount(l, scene.render.lightSamples);
+    if (p.shadow > 0) {
+      tests *= 1.0 - kAvoidable;
+      lookupNs += ps.lookup == PhotonLookup::Precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();
+    }
+    rays += tests;
+  }
+  const auto gather = [&](int k) {
+    return ps.lookup == PhotonLookup::Precomputed ? kLookupNs : k * kGatherNsPerNeighbour;
+  };
+  if (p.indirect > 0) lookupNs += gather(ps.kIndirect);
+  if (p.global > 0) lookupNs += gather(ps.kGlobal);
+  if (p.caustic > 0) lookupNs += gather(ps.kCaustic);
+  // Mirrors and glass repeat the shading at each level of the recursion.
+  // (cornell_physical, depth 10: 2.3 gathers per camera sample).
+  const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;
+  e.renderSeconds = kStartupSeconds +
+                    samples * (rays * kRayNs + lookupNs) * depth * p.passes / e.threads * 1e-9;
+  return e;
+}
+
+std::string formatBytes(double bytes) {
+  if (bytes >= 1024.0 * 1024 * 1024) return fmt::format("{:.1f} GiB", bytes / (1024.0 * 1024 * 1024));
+  if (bytes >= 1024.0 * 1024) return fmt::format("{:.1f} MiB", bytes / (1024.0 * 1024));
+  return fmt::format("{:.1f} KiB", bytes / 1024.0);
+}
+
+std::string formatDuration(double s) {
+  if (s >= 2 * 3600.0) return fmt::format("{:.0f} h", s / 3600.0);
+  if (s >= 120.0) return fmt::format("{:.0f} min", s / 60.0);
+  return fmt::format("{:.0f} s", s);
+}
+
+std::string describeMemory(const ResourceEstimate& e) {
+  return fmt::format("~{} (photons {} for {:.3g} stored, image {}, bvh {}, cache {}, scene {}, base {})",
+                     gib(e.totalBytes()), gib(e.photonPeakBytes), e.storedPhotons, gib(e.imageBytes),
+                     gib(e.bvhBytes), gib(e.cacheBytes), gib(e.sceneBytes), gib(e.baseBytes));
+}
+
+std::string estimateToJson(const ResourceEstimate& e) {
+  nlohmann::json j;
+  j["bytes"] = {{"total", e.totalBytes()},     {"photon_maps", e.photonBytes},
+                {"photon_peak", e.photonPeakBytes}, {"lookup_cache", e.cacheBytes},
+                {"image", e.imageBytes},       {"bvh", e.bvhBytes},
+                {"scene", e.sceneBytes},       {"base", e.baseBytes}};
+  j["stored_photons"] = e.storedPhotons;
+  j["store_rates"] = {{"shadow", e.rates.shadow}, {"indirect", e.rates.indirect},
+                      {"global", e.rates.global}, {"caustic", e.rates.caustic},
+                      {"measured", e.rates.measured}};
+  j["seconds"] = {{"total", e.seconds()}, {"photons", e.photonSeconds}, {"render", e.renderSeconds},
+                  {"threads", e.threads}};
+  return j.dump();
+}
+
+}  // namespace penumbra

@@ -1,0 +1,64 @@
+// What a render will need before it allocates anything: photon storage, image
+// buffers, BVH, lookup cache and wall time, from the scene alone (plus an optional
+// pilot emission's measured store rates). Plain data; the limit check is memory_limit.h.
+#pragma once
+#include "core/scene.h"
+#include "trace/render.h"
+#include <cstdint>
+#include <string>
+
+namespace penumbra {
+
+// Photons stored per emitted photon, for each map the render will build.
+struct StoreRates {
+  double shadow = 0.0;    // hits kept per shadow line
+  double indirect = 0.0;  // classic indirect map, per path
+  double global = 0.0;    // physical global map, per path and pass
+  double caustic = 0.0;   // physical caustic map, per path and pass
+  bool measured = false;  // true: from a pilot emission (photon_pilot.h), else analytic bounds
+};
+
+// The photons the render plan's passes emit (plan/render_plan.h: photonPlanOf).
+struct PhotonPlan {
+  uint64_t shadow = 0, indirect = 0, global = 0, caustic = 0;  // emitted, per pass
+  int passes = 1;
+};
+
+struct ResourceEstimate {
+  StoreRates rates;
+  PhotonPlan plan;
+  double storedPhotons = 0.0;  // the largest pass's, all maps together
+  // Bytes. photons: the maps as built (records + KD index); photonPeak adds the
+  // transient copy made while merging and ordering them.
+  double photonBytes = 0.0, photonPeakBytes = 0.0, cacheBytes = 0.0, imageBytes = 0.0,
+         bvhBytes = 0.0, sceneBytes = 0.0, baseBytes = 0.0;
+  double totalBytes() const {
+    return photonPeakBytes + cacheBytes + imageBytes + bvhBytes + sceneBytes + baseBytes;
+  }
+  // Seconds of wall time on `threads` threads.
+  double photonSeconds = 0.0, renderSeconds = 0.0;
+  int threads = 1;
+  double seconds() const { return photonSeconds + renderSeconds; }
+};
+
+struct EstimateOptions {
+  PhotonPlan photons;  // the plan's photon passes
+  Aov aov = Aov::Beauty;
+  int threads = 1;
+  bool tracePixel = false;  // one pixel's ray tree: no image, no passes
+};
+
+// Upper bounds on stores per emitted photon from geometry and materials only.
+StoreRates analyticStoreRates(const Scene& scene);
+
+ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& options,
+                                   const StoreRates& rates);
+
+// "~37.2 GiB (photons 36.0 GiB, image 1.1 GiB, ...)" and "~64 h": for messages.
+std::string formatBytes(double bytes);
+std::string formatDuration(double seconds);
+std::string describeMemory(const ResourceEstimate& e);
+// The `estimate` object of the --stats JSON.
+std::string estimateToJson(const ResourceEstimate& e);
+
+}  // namespace penumbra

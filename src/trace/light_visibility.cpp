@@ -1,0 +1,234 @@
+// Light visibility through the ambiguity gate, and the ambient/indirect term.
+// Only the penumbra (photons disagree) pays for a real shadow ray.
+#include "trace/light_visibility.h"
+#include "gather/photon_map.h"
+#include "core/bsdf.h"
+#include "core/light_sample.h"
+
+namespace penumbra {
+
+ThreadState::ThreadState() : scratch(std::make_unique<GatherScratch>()) {}
+ThreadState::~ThreadState() = default;
+ThreadState::ThreadState(ThreadState&&) noexcept = default;
+
+namespace {
+
+// Transmittance along a shadow ray. Opaque scenes need one occlusion query;
+// with glass, walk the segment and filter by the tint of every surface entered
+// (Whitted's tinted shadows: cheap, no caustic focusing). A walk that meets the
+// light's own surface has arrived.
+Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                          const LightIncidence& in, ThreadState& ts) {
+  ++ts.counts.shadow;
+  Ray ray;
+  if (!shadowRayTo(s, in, ray)) return Color(1.0f);  // the origin is already at the light
+  if (ts.shadingPoint == 1 && lightIndex < 32 && ((ts.knownShadows >> lightIndex) & 1u)) {
+    // This very ray was traced ahead in a packet (tracePrimaryShadows).
+    return ((ts.blockedShadows >> lightIndex) & 1u) ? Color(0.0f) : Color(1.0f);
+  }
+  const bool finite = std::isfinite(in.distance);
+  // The physical model's glass blocks shadow rays: its light arrives as caustic photons.
+  const bool tinted = ctx.hasGlass && ctx.scene.render.model == ShadingModel::Classic;
+  if (ctx.scene.lights[lightIndex].type == LightType::Sphere && !tinted) {
+    // Near a sphere light's silhouette the ray from the lifted origin can enter the
+    // sphere before the sampled point: whatever it meets first decides, and meeting
+    // the light itself means it arrived.
+    Hit hit;
+    if (!ctx.tracer.intersect(ray, hit)) return Color(1.0f);
+    return ctx.scene.materials[ctx.tracer.materialOf(hit)].light == static_cast<int>(lightIndex)
+               ? Color(1.0f) : Color(0.0f);
+  }
+  if (!tinted) return ctx.tracer.occluded(ray) ? Color(0.0f) : Color(1.0f);
+  Color t(1.0f);
+  for (int crossing = 0; crossing < 32; ++crossing) {
+    Hit hit;
+    if (!ctx.tracer.intersect(ray, hit)) return t;
+    SurfaceRecord h = ctx.tracer.surface(ray, hit, kSurfaceGeometric);
+    const Material& m = ctx.scene.materials[h.material];
+    if (m.light == static_cast<int>(lightIndex)) return t;  // reached the light itself
+    if (!m.transparent) return Color(0.0f);
+    if (h.frontFace) t *= m.tint;
+    if (maxComponent(t) < ctx.scene.render.minWeight) return Color(0.0f);
+    ray.origin = spawnOrigin(h, ray.dir);
+    if (finite) ray.tMax = glm::dot(in.point - ray.origin, ray.dir) - in.margin;
+    if (ray.tMax <= 0.0f) return t;
+  }
+  return Color(0.0f);
+}
+
+}  // namespace
+
+bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray) {
+  ray = Ray{spawnOrigin(s, in.wi), in.wi};
+  // A point on the edge where two faces meet (a room's corner) may sit a rounding
+  // error behind the other face and see it at t ~ 0: occluders nearer than a few
+  // times the point's own error cannot be told from it, so they do not shadow.
+  ray.tMin = 4.0f * s.spread;
+  if (std::isfinite(in.distance)) {
+    // Aim from the lifted origin at the sample itself (pbrt's SpawnRayTo): measured
+    // from the shading point instead, a lift of e along n would move the ray's
+    // crossing of the light's plane by e / cos, more than the margin at grazing angles.
+    const Vec3 d = in.point - ray.origin;
+    const float len = glm::length(d);
+    if (!(len > in.margin)) return false;
+    ray.dir = d / len;
+    ray.tMax = len - in.margin;
+  }
+  return true;
+}
+
+GateParams gateParamsFor(const Scene& scene) {
+  GateParams params;
+  params.k = scene.photons.kShadow;
+  params.maxRadius = scene.photons.maxRadius;
+  // A small k cannot muster the default quorum; let every neighbour count.
+  params.minVoters = std::min(params.minVoters, params.k);
+  params.glassBlocks = scene.render.model == ShadingModel::Physical;
+  return params;
+}
+
+const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
+                             CachedAnswer& storage, ThreadState& ts) {
+  if (!ctx.lookup) return nullptr;
+  ++ts.counts.cacheLookups;
+  storage = ctx.lookup->find(s.position, s.ng);
+  return &storage;
+}
+
+GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                        const CachedAnswer* cached, ThreadState& ts, std::string* note) {
+  const PhotonSettings& ps = ctx.scene.photons;
+  if (!ps.gate || !ctx.shadowMap || !ctx.shadowMap->hasPhotons(lightIndex)) return GateVerdict::Mixed;
+  ++ts.counts.gateQueries;
+  GateVerdict v;
+  const bool precomputed = cached && ctx.lookup->hasGate();
+  if (precomputed) {
+    // The precomputed verdict of the point's cell; no cell there: a shadow ray.
+    v = cached->verdicts ? static_cast<GateVerdict>(cached->verdicts[lightIndex]) : GateVerdict::Mixed;
+  } else {
+    v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, gateParamsFor(ctx.scene), *ts.scratch);
+  }
+  // Shadowed means every voter sits behind something opaque; photons behind
+  // glass alone make the vote Mixed, since only a ray can measure the tint.
+  const char* how = precomputed ? "gate (precomputed): " : "gate: ";
+  if (v == GateVerdict::Lit) {
+    ++ts.counts.gateLit;
+    if (note) *note = std::string(how) + "lit";
+  } else if (v == GateVerdict::Shadowed) {
+    ++ts.counts.gateShadowed;
+    if (note) *note = std::string(how) + "shadowed";
+  } else {
+    ++ts.counts.gateMixed;
+    if (note) *note = std::string(how) + "mixed, shadow ray";
+  }
+  return v;
+}
+
+Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                const LightIncidence& in, ThreadState& ts) {
+  Color t = shadowTransmittance(ctx, s, lightIndex, in, ts);
+  if (ts.recorder) {
+    // The shadow ray joins the ray tree under the ray whose hit it lights.
+    RayRecord r;
+    r.kind = "shadow";
+    r.parent = ts.currentRecord;
+    r.depth = ts.currentRecord >= 0 ? (*ts.recorder)[ts.currentRecord].depth + 1 : 0;
+    r.origin = spawnOrigin(s, in.wi);
+    r.dir = in.wi;
+    r.hit = maxComponent(t) < 1.0f;  // blocked or filtered on the way to the light
+    r.contribution = t;
+    r.note = "light " + std::to_string(lightIndex) + (r.hit ? (maxComponent(t) > 0.0f ? ": through glass" : ": blocked") : ": clear");
+    ts.recorder->push_back(r);
+  }
+  return t;
+}
+
+Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
+                  const CachedAnswer* cached, ThreadState& ts) {
+  if (!ctx.indirectMap || ctx.indirectMap->empty()) return m.ambient * ctx.scene.render.ambient;
+  const PhotonSettings& ps = ctx.scene.photons;
+  if (cached && ctx.lookup->indirectKind() != CachedIndirect::None) {
+    if (cached->hasIndirect) {
+      return ctx.lookup->indirectKind() == CachedIndirect::Density
+                 ? m.diffuse * cached->indirect
+                 : m.ambient * cached->indirect * ctx.classicScale;
+    }
+    // No cell near the point: its own cell's estimate, computed once and kept (a
+    // gather per point here cost the showcase ~40% of its render).
+    ++ts.counts.cacheFallbacks;
+    const Color v = ctx.lookup->lazyIndirect(*ctx.indirectMap, s.position, s.ng, *ts.scratch);
+    return ctx.lookup->indirectKind() == CachedIndirect::Density ? m.diffuse * v
+                                                                  : m.ambient * v * ctx.classicScale;
+  }
+  ++ts.counts.gatherQueries;
+  if (ps.estimator == IndirectEstimator::Density) {
+    // Irradiance from the cone-filtered density, reflected like direct light
+    // (k_d E), so direct and indirect share the same units.
+    auto e = ctx.indirectMap->density(s.position, s.ng, ps.kIndirect, ps.maxRadius, *ts.scratch);
+    ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
+    return m.diffuse * e.value;
+  }
+  // Classic (the report's): the cone-weighted sum of photon colours over the
+  // photon count replaces the global ambient light; the material's ambient
+  // colour still filters it.
+  auto e = ctx.indirectMap->classic(s.position, s.ng, ps.kIndirect, ps.maxRadius, *ts.scratch);
+  ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
+  return m.ambient * e.value * ctx.classicScale;
+}
+
+// Shadow packets: the same shadow rays shadowTransmittance builds (shadowRayTo from the
+// same surface record and light sample), only traced 16 at a time.
+
+uint32_t packetShadowLights(const ShadingContext& ctx, bool direct) {
+  const Scene& scene = ctx.scene;
+  const bool tinted = ctx.hasGlass && scene.render.model == ShadingModel::Classic;
+  if (!direct || !scene.render.shadows || tinted) return 0;
+  uint32_t mask = 0;
+  for (uint32_t li = 0; li < scene.lights.size() && li < 32; ++li) {
+    const Light& light = scene.lights[li];
+    if (!isDeltaLight(light) || maxComponent(light.radiance()) <= 0.0f) continue;
+    // As gateVerdict: with a gate for this light the verdict, not the ray, comes first.
+    const bool gated = scene.photons.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(li);
+    if (!gated) mask |= 1u << li;
+  }
+  return mask;
+}
+
+void tracePrimaryShadows(const ShadingContext& ctx, uint32_t lights, const Ray* rays,
+                         const Hit* hits, int n, uint32_t* known, uint32_t* blocked,
+                         PrimaryShadowScratch& scratch) {
+  for (int i = 0; i < n; ++i) known[i] = blocked[i] = 0;
+  if (lights == 0) return;
+  const Scene& scene = ctx.scene;
+  scratch.rays.resize(static_cast<size_t>(n));
+  scratch.owner.resize(static_cast<size_t>(n));
+  scratch.blocked.resize(static_cast<size_t>(n));
+  for (uint32_t li = 0; li < scene.lights.size() && li < 32; ++li) {
+    if (!((lights >> li) & 1u)) continue;
+    const Light& light = scene.lights[li];
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+      if (!hits[i].valid()) continue;
+      const Material& m = scene.materials[ctx.tracer.materialOf(hits[i])];
+      if (maxComponent(m.emission) > 0.0f) continue;  // an emitter only glows
+      if (scene.render.model == ShadingModel::Physical &&
+          !hasSmoothLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling)) && m.texture < 0)
+        continue;  // a mirror or glass: no direct term (a texture may add a lobe: keep it)
+      // The record the integrators build (position, normals and error bounds do not
+      // depend on the uv fields).
+      const SurfaceRecord s = ctx.tracer.surface(rays[i], hits[i], kSurfaceShadingNormal);
+      // A delta light's one sample, as directFromLight draws it.
+      const LightIncidence in = sampleLight(prepareLight(light, s.position), 0.5f, 0.5f);
+      if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
+      known[i] |= 1u << li;
+      if (!shadowRayTo(s, in, scratch.rays[static_cast<size_t>(count)])) continue;  // at the light: clear
+      scratch.owner[static_cast<size_t>(count++)] = i;
+    }
+    ctx.tracer.occludedPacket(scratch.rays.data(), count, scratch.blocked.data());
+    for (int j = 0; j < count; ++j) {
+      if (scratch.blocked[static_cast<size_t>(j)]) blocked[scratch.owner[static_cast<size_t>(j)]] |= 1u << li;
+    }
+  }
+}
+
+}  // namespace penumbra

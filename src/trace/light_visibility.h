@@ -1,0 +1,136 @@
+// How much of a light reaches a shading point: the photon-map ambiguity gate
+// decides when a shadow ray is needed; shadow rays through glass are tinted.
+#pragma once
+#include "core/bsdf.h"
+#include "core/light_sample.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "gather/lookup_cache.h"
+#include "trace/shading.h"
+#include <vector>
+
+namespace penumbra {
+
+// The gate's vote parameters for this scene (also what a lookup cache precomputes).
+GateParams gateParamsFor(const Scene& scene);
+
+// A shading point's precomputed answer (null: ask the photon map).
+using CachedAnswer = LookupCache::Answer;
+
+// The gate's verdict for one light at a shading point (Mixed when the gate is off
+// or has no photons of that light): from the cache when there is one, else by the
+// k-nearest vote. Counts the query and its outcome.
+GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                        const CachedAnswer* cached, ThreadState& ts, std::string* note);
+// The shadow ray from a shading point towards a light sample: from the lifted origin,
+// ignoring occluders within 4 x spread, stopping `margin` short of the light. False
+// when the origin is already at the light (nothing can block it).
+bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray);
+// One shadow ray, recorded under --trace-pixel. Classic: glass tints the ray (a
+// walk through every surface); physical: glass blocks it like anything else (light
+// through glass arrives as caustic photons).
+Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
+                const LightIncidence& in, ThreadState& ts);
+
+// Direct light from light `li` at a shading point: the mean over its samples (one
+// for a delta light, render.light_samples for an area light, stratified, from the
+// shading point's own random stream) of visibility x f cos x incidence, with f the
+// BSDF and `weigh(t, f, in)` one sample's contribution at transmittance t (each
+// model multiplies in the order its images were made with). The gate is asked once,
+// at the first sample that reaches the surface: shadowed -> nothing; mixed -> one
+// ray per sample; lit -> no ray at all, and the Lambertian part in closed form
+// (unoccludedIrradiance), so only a glossy lobe still takes the samples.
+template <class Weigh>
+Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,
+                      const CachedAnswer* cached, ThreadState& ts, std::string* note,
+                      const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo, Weigh&& weigh) {
+  const Light& light = ctx.scene.lights[li];
+  const bool area = !isDeltaLight(light);
+  const int n = lightSampleCount(light, ctx.scene.render.lightSamples);
+  // Only an area light draws random numbers (a delta light's one sample is exact).
+  Rng rng(area ? hashKey(ts.sampleKey, ts.shadingPoint, li) : 0);
+  const LightSampler sampler = prepareLight(light, s.position);
+  const bool shadows = ctx.scene.render.shadows;
+  const Bsdf* lobes = &bsdf;  // after a lit verdict: only what the closed form left out
+  Bsdf glossy;
+  GateVerdict v = shadows ? GateVerdict::Mixed : GateVerdict::Lit;
+  bool asked = !shadows, closedTried = !area;
+  Color closed(0.0f), sum(0.0f);
+  for (int j = 0; j < n; ++j) {
+    // One sample of an area light is uniform, not its centre (stratified2D's n = 1).
+    const Vec2 u = !area ? Vec2(0.5f) : n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
+    const LightIncidence in = sampleLight(sampler, u.x, u.y);
+    if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
+    Color f = evaluateBsdf(*lobes, frame, wo, in.wi);
+    if (!asked) {
+      if (maxComponent(f) <= 0.0f) continue;
+      asked = true;
+      v = gateVerdict(ctx, s, li, cached, ts, note);
+      if (v == GateVerdict::Shadowed) {
+        ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
+        return Color(0.0f);
+      }
+    }
+    if (v == GateVerdict::Lit && !closedTried) {
+      closedTried = true;
+      Color E;
+      const Color kd = lambertCoefficient(bsdf);
+      if (maxComponent(kd) > 0.0f && unoccludedIrradiance(sampler, s.ns, s.ng, E)) {
+        closed = kd * E;
+        glossy = glossyPart(bsdf);
+        lobes = &glossy;
+        if (!(bsdfFlags(glossy) & kBsdfGlossy)) {
+          if (shadows) ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
+          return closed;
+        }
+        f = evaluateBsdf(glossy, frame, wo, in.wi);
+      }
+    }
+    if (maxComponent(f) <= 0.0f) continue;
+    if (v == GateVerdict::Lit) {
+      if (shadows) ++ts.counts.shadowRaysAvoided;
+      sum += weigh(Color(1.0f), f, in);
+      continue;
+    }
+    const Color t = shadowRay(ctx, s, li, in, ts);
+    if (maxComponent(t) > 0.0f) sum += weigh(t, f, in);
+  }
+  return closed + (n > 1 ? sum / static_cast<float>(n) : sum);
+}
+
+// The precomputed answer at a shading point, or null without a lookup cache.
+const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
+                             CachedAnswer& storage, ThreadState& ts);
+
+// The term that replaces ambient light: the indirect photon map's estimate, or
+// the material's ambient colour times the global ambient when there is no map.
+Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
+                  const CachedAnswer* cached, ThreadState& ts);
+
+// ---- Shadow packets: the shadow rays of a packet of camera hits, traced ahead as
+// occlusion packets (one per light) and read back by the shading that would cast them.
+
+// The lights (bit li, li < 32) whose shadow ray at a camera hit can be traced ahead:
+// delta lights (one exact sample, no random numbers) that emit, with shadows on, a
+// plain occlusion test (not the classic model's walk through glass) and no gate to
+// consult (the gate decides whether a ray is cast at all). `direct`: the view adds
+// direct light (classic beauty; physical beauty and direct); zero otherwise.
+uint32_t packetShadowLights(const ShadingContext& ctx, bool direct);
+
+// Reused buffers: one packet's worth of shadow rays and the hits they belong to.
+struct PrimaryShadowScratch {
+  std::vector<Ray> rays;
+  std::vector<int> owner;
+  std::vector<uint8_t> blocked;
+};
+
+// For n camera rays and their first hits (invalid: a miss), traces for every light
+// of `lights` the shadow ray directFromLight would cast at that hit (shading point 1
+// of its sample), as packets. Bit li of known[i] says hit i's answer for light li is
+// in bit li of blocked[i]; hits that cannot cast one stay unknown and are answered by
+// a single ray if shading asks after all, so the image never depends on this.
+void tracePrimaryShadows(const ShadingContext& ctx, uint32_t lights, const Ray* rays,
+                         const Hit* hits, int n, uint32_t* known, uint32_t* blocked,
+                         PrimaryShadowScratch& scratch);
+
+}  // namespace penumbra

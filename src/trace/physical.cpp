@@ -1,0 +1,145 @@
+// Physical shading. At a diffuse or glossy hit: direct light from every light by
+// shadow rays (opaque and glass both block), plus the caustic and global photon
+// estimates; mirror and glass lobes are followed by rays, weighted by their
+// reflectance and Fresnel (both branches of glass, as the Whitted tracer does).
+#include "trace/physical.h"
+#include "core/bsdf.h"
+#include "core/light_sample.h"
+#include "core/optics.h"
+#include "gather/radiance_estimate.h"
+#include "trace/light_visibility.h"
+#include "trace/texture_lookup.h"
+
+namespace penumbra {
+namespace {
+
+Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf& bsdf,
+                  const BsdfFrame& frame, const Vec3& wo, const CachedAnswer* cached,
+                  ThreadState& ts, std::string* note) {
+  Color sum(0.0f);
+  const auto& lights = ctx.scene.lights;
+  for (uint32_t li = 0; li < lights.size(); ++li) {
+    if (maxComponent(lights[li].radiance()) <= 0.0f) continue;
+    std::string one;
+    sum += directFromLight(
+        ctx, s, li, cached, ts, note ? &one : nullptr, bsdf, frame, wo,
+        [](const Color& t, const Color& f, const LightIncidence& in) { return t * f * in.radiance; });
+    if (note && !one.empty()) *note += (note->empty() ? "" : "; ") + one;
+  }
+  return sum;
+}
+
+Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k, float radius,
+                 const SurfaceRecord& s, const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo,
+                 const CachedAnswer* cached, ThreadState& ts) {
+  if (!map || map->empty()) return Color(0.0f);
+  // The cache holds irradiance / pi: it answers a Lambertian BSDF exactly; a glossy
+  // lobe needs the photons' directions, so it gathers.
+  if (cached && ctx.lookup->indirectKind() == CachedIndirect::Irradiance &&
+      bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy)) {
+    if (cached->hasIndirect) return (1.0f - bsdf.kr) * bsdf.diffuse * cached->indirect;
+    ++ts.counts.cacheFallbacks;  // no cell near: its own cell's estimate, kept
+    return (1.0f - bsdf.kr) * bsdf.diffuse * ctx.lookup->lazyIndirect(*map, s.position, s.ng, *ts.scratch);
+  }
+  ++ts.counts.gatherQueries;
+  RadianceEstimate e = photonRadiance(*map, bsdf, frame, s.position, wo, k, radius, *ts.scratch);
+  ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
+  return e.value;
+}
+
+}  // namespace
+
+Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const Color& throughput,
+                    RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts) {
+  Hit hit;
+  const bool found = ctx.tracer.intersect(ray, hit);
+  return tracePhysicalHit(ctx, ray, found ? &hit : nullptr, depth, throughput, kind, terms,
+                          parentRecord, ts);
+}
+
+Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, int depth,
+                       const Color& throughput, RayKind kind, uint8_t terms, int parentRecord,
+                       ThreadState& ts) {
+  countRay(kind, ts.counts);
+  --ts.raysLeft;
+  int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, throughput, parentRecord) : -1;
+
+  if (!found) {
+    Color c = (terms & kTermMissed) ? ctx.scene.render.background : Color(0.0f);
+    if (recIndex >= 0) (*ts.recorder)[recIndex].contribution = throughput * c;
+    return c;
+  }
+  const Hit& hit = *found;
+  const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
+  if (maxComponent(m.emission) > 0.0f) {
+    // An area light seen by the camera or through mirrors and glass (diffuse
+    // surfaces sample it directly instead): part of the direct term.
+    Color glow = (terms & kTermDirect) && (s.frontFace || m.twoSidedEmission) ? m.emission : Color(0.0f);
+    if (recIndex >= 0) endRecord(ts, recIndex, hit, s, m, throughput * glow, "emitter");
+    return glow;
+  }
+  ++ts.shadingPoint;
+  Bsdf bsdf = makeBsdf(m, ShadingModel::Physical, ctx.scene.photons.sampling);
+  if (m.texture >= 0 && ctx.textures) {
+    // A texture is the diffuse albedo's map: multiplied in, or added and kept <= 1.
+    Color texel = ctx.textures->lookup(m.texture, s, hit.t * ctx.pixelSpread, m.uvScale);
+    bsdf.diffuse = m.textureBlend == TextureBlend::Multiply
+                       ? bsdf.diffuse * texel
+                       : glm::min(bsdf.diffuse + texel, Color(1.0f) - bsdf.specular);
+  }
+  const BsdfFrame frame{s.ns, s.ng, s.frontFace};
+  const Vec3 wo = -ray.dir;
+  const PhotonSettings& ps = ctx.scene.photons;
+  std::string note;
+  ts.currentRecord = recIndex;
+
+  Color color(0.0f);
+  if (hasSmoothLobe(bsdf)) {
+    CachedAnswer storage;
+    const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);
+    if (terms & kTermDirect)
+      color += directLight(ctx, s, bsdf, frame, wo, cached, ts, recIndex >= 0 ? &note : nullptr);
+    if (terms & kTermCaustic)  // caustics are sharp: always the direct gather
+      color += photonTerm(ctx, ctx.causticMap, ps.kCaustic, ctx.causticRadius, s, bsdf, frame, wo,
+                          nullptr, ts);
+    if (terms & kTermGlobal)
+      color += photonTerm(ctx, ctx.globalMap, ps.kGlobal, ctx.globalRadius, s, bsdf, frame, wo,
+                          cached, ts);
+  }
+
+  const RenderSettings& rs = ctx.scene.render;
+  if (depth < rs.maxDepth && hasDeltaLobe(bsdf)) {
+    auto follow = [&](const Vec3& dir, const Color& w, RayKind k) {
+      Color next = throughput * w;
+      if (!(k == RayKind::Reflection ? rs.reflection : rs.refraction)) return;  // the plan skips it
+      if (maxComponent(next) <= rs.minWeight || ts.raysLeft <= 0) return;
+      Ray r{spawnOrigin(s, dir), dir};
+      color += w * tracePhysical(ctx, r, depth + 1, next, k, terms, recIndex, ts);
+    };
+    if (bsdf.type == BsdfType::Dielectric) {
+      float etaI = s.frontFace ? 1.0f : bsdf.ior, etaT = s.frontFace ? bsdf.ior : 1.0f;
+      float fr = fresnelDielectric(glm::dot(s.ns, wo), etaI, etaT);
+      Vec3 t;
+      if (!refract(ray.dir, s.ns, etaI / etaT, t)) {
+        fr = 1.0f;
+        if (recIndex >= 0) note = "total internal reflection";
+      }
+      Color kt = (1.0f - fr) * (s.frontFace ? bsdf.tint : Color(1.0f));
+      // The stronger branch first: a tree that hits the ray budget loses the weaker.
+      if (fr >= maxComponent(kt)) {
+        follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection);
+        if (fr < 1.0f) follow(t, kt, RayKind::Refraction);
+      } else {
+        follow(t, kt, RayKind::Refraction);
+        follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection);
+      }
+    } else {
+      follow(mirrorDirection(ray.dir, s), Color(bsdf.kr), RayKind::Reflection);
+    }
+  }
+  if (recIndex >= 0) endRecord(ts, recIndex, hit, s, m, throughput * color, note);
+  return color;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,27 @@
+// The physical model's integrator: exact direct light by shadow rays, caustic and
+// global photon-map estimates at smooth surfaces, delta lobes followed by rays.
+#pragma once
+#include "trace/shading.h"
+
+namespace penumbra {
+
+// Which terms a physical render adds up: everything for beauty, one for an AOV.
+enum PhysicalTerms : uint8_t {
+  kTermDirect = 1 << 0,   // lights by shadow rays (or the gate)
+  kTermCaustic = 1 << 1,  // the caustic map: L S+ D
+  kTermGlobal = 1 << 2,   // the global map: light after >= 1 diffuse bounce
+  kTermMissed = 1 << 3,   // the background seen by rays that leave the scene
+  kTermAll = kTermDirect | kTermCaustic | kTermGlobal | kTermMissed,
+};
+
+// Radiance along `ray` in W/(sr m^2). `throughput` is the product of the delta
+// lobes' weights so far; recursion stops at max_depth or below min_weight.
+Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const Color& throughput,
+                    RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts);
+// The same for a ray already traced (a camera ray of a packet): `hit` is its first
+// hit, null on a miss.
+Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* hit, int depth,
+                       const Color& throughput, RayKind kind, uint8_t terms, int parentRecord,
+                       ThreadState& ts);
+
+}  // namespace penumbra

@@ -1,0 +1,56 @@
+// Helpers both integrators share: counting rays by kind, recording the ray tree
+// of one pixel (--trace-pixel, never on the render's hot path), mirror directions.
+#include "core/optics.h"
+#include "trace/shading.h"
+
+namespace penumbra {
+namespace {
+const char* kindName(RayKind k) {
+  switch (k) {
+    case RayKind::Camera: return "camera";
+    case RayKind::Reflection: return "reflection";
+    case RayKind::Refraction: return "refraction";
+  }
+  return "?";
+}
+}  // namespace
+
+void countRay(RayKind k, RayCounts& c) {
+  if (k == RayKind::Camera) ++c.camera;
+  else if (k == RayKind::Reflection) ++c.reflection;
+  else ++c.refraction;
+}
+
+int beginRecord(ThreadState& ts, RayKind kind, const Ray& ray, int depth, const Color& weight,
+                int parent) {
+  RayRecord r;
+  r.kind = kindName(kind);
+  r.parent = parent;
+  r.depth = depth;
+  r.origin = ray.origin;
+  r.dir = ray.dir;
+  r.weight = weight;
+  ts.recorder->push_back(r);
+  return static_cast<int>(ts.recorder->size()) - 1;
+}
+
+void endRecord(ThreadState& ts, int index, const Hit& hit, const SurfaceRecord& s,
+               const Material& m, const Color& contribution, const std::string& note) {
+  RayRecord& r = (*ts.recorder)[index];
+  r.hit = true;
+  r.t = hit.t;
+  r.position = s.position;
+  r.material = m.name;
+  r.entering = s.frontFace;
+  r.contribution = contribution;
+  if (!note.empty()) r.note += (r.note.empty() ? "" : "; ") + note;
+}
+
+// A shading normal can bend the mirror direction under the surface; fall back
+// to the geometric normal rather than reflect into the object.
+Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s) {
+  Vec3 r = reflect(dir, s.ns);
+  return glm::dot(r, s.ng) > 0.0f ? r : reflect(dir, s.ng);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,240 @@
+// Tiles are scheduled by tbb::parallel_for and write disjoint pixels; every
+// sample's random numbers come from (seed, pixel, sample), never from a thread.
+#include "trace/render.h"
+#include "core/error.h"
+#include "core/rng.h"
+#include "trace/camera.h"
+#include "trace/light_visibility.h"
+#include "trace/physical.h"
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <atomic>
+#include <limits>
+#include <numeric>
+
+namespace penumbra {
+
+Aov parseAov(const std::string& name) {
+  if (name == "beauty") return Aov::Beauty;
+  if (name == "depth") return Aov::Depth;
+  if (name == "normal") return Aov::Normal;
+  if (name == "indirect") return Aov::Indirect;
+  if (name == "direct") return Aov::Direct;
+  if (name == "caustic") return Aov::Caustic;
+  throw InputError("--aov: unknown view '" + name +
+                   "' (use beauty, depth, normal, indirect, direct or caustic)");
+}
+
+namespace {
+
+uint8_t physicalTerms(Aov aov) {
+  switch (aov) {
+    case Aov::Direct: return kTermDirect;
+    case Aov::Caustic: return kTermCaustic;
+    case Aov::Indirect: return kTermGlobal;
+    default: return kTermAll;
+  }
+}
+
+bool geometric(Aov aov) { return aov == Aov::Depth || aov == Aov::Normal; }
+
+// A geometric view's sample that hit nothing: no depth is -2 and no normal has r = -2,
+// so the pixel's mean can leave it out and count it against the coverage instead.
+constexpr float kNoHit = -2.0f;
+
+// One sample of the chosen view: the physical values for depth (distance along the
+// camera ray) and normal (world-space shading normal, facing the ray); writers map
+// them for display (io/aov_display.h). `hit`: the ray's first hit, already traced
+// (alone or in a packet); null on a miss.
+Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov aov, ThreadState& ts) {
+  ts.raysLeft = kMaxRaysPerSample;
+  if (ctx.scene.render.model == ShadingModel::Physical && !geometric(aov)) {
+    return tracePhysicalHit(ctx, ray, hit, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts);
+  }
+  if (aov == Aov::Beauty) return traceRayHit(ctx, ray, hit, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  ++ts.counts.camera;
+  if (!hit) return geometric(aov) ? Color(kNoHit) : Color(0.0f);
+  if (aov == Aov::Depth) return Color(hit->t);
+  SurfaceRecord s = ctx.tracer.surface(ray, *hit, kSurfaceShadingNormal);
+  if (aov == Aov::Normal) return s.ns;
+  const Material& m = ctx.scene.materials[s.material];
+  CachedAnswer storage;  // Aov::Indirect
+  return ambientTerm(ctx, s, m, lookupAt(ctx, s, storage, ts), ts);
+}
+
+Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
+  Hit hit;
+  const bool found = ctx.tracer.intersect(ray, hit);
+  return shadeTraced(ctx, ray, found ? &hit : nullptr, aov, ts);
+}
+
+// One sample into its pixel's running sum. A NaN or Inf sample would poison the pixel
+// (or be written as 0 and hide): drop it, count it, and let the pixel's other samples
+// stand. Geometric views average only the samples that hit: a miss is "no depth",
+// not 0 m, and its share of the pixel is the coverage.
+void addSample(const Color& c, Aov aov, glm::dvec3& sum, int& counted, ThreadState& ts) {
+  if (!isFinite(c)) {
+    ++ts.counts.nonfiniteSamples;
+    return;
+  }
+  if (geometric(aov) && c.r == kNoHit) return;
+  sum += glm::dvec3(c);
+  ++counted;
+}
+
+// A mean above float range is clamped to it (the writer clamps further). A pixel with
+// no sample counted is 0: black, or for a geometric view "no hit" (coverage 0).
+void storePixel(const glm::dvec3& sum, int counted, Aov aov, int spp, size_t index, Image& image) {
+  const double top = std::numeric_limits<float>::max();
+  image.pixels[index] = counted > 0 ? Color(glm::min(sum / double(counted), glm::dvec3(top)))
+                                    : Color(0.0f);
+  if (geometric(aov)) image.coverage[index] = static_cast<float>(counted) / static_cast<float>(spp);
+}
+
+// The packet path's per-thread buffers, sized for one tile on first use.
+struct TileBuffers {
+  std::vector<glm::ivec2> pixels;
+  std::vector<uint64_t> keys;
+  std::vector<Ray> rays;
+  std::vector<Hit> hits;
+  std::vector<glm::dvec3> sums;
+  std::vector<int> counted;
+  std::vector<uint32_t> known, blocked;
+  PrimaryShadowScratch shadows;
+};
+
+// One tile with its camera rays as packets: per sample index, every pixel's camera ray
+// (the same jitter, from the same (seed, pixel, sample) stream) is traced in packets,
+// then their shadow rays to eligible lights, then each pixel is shaded from its hit.
+// Each pixel still adds its samples in sample order, so the sums equal the single path's.
+void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov aov,
+                       uint32_t shadowLights, int x0, int y0, int x1, int y1, TileBuffers& b,
+                       ThreadState& ts, Image& image) {
+  const Camera& cam = ctx.scene.camera;
+  const size_t cap = static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0);
+  if (b.pixels.size() < cap) {
+    b.pixels.resize(cap); b.keys.resize(cap); b.rays.resize(cap); b.hits.resize(cap); b.sums.resize(cap);
+    b.counted.resize(cap); b.known.resize(cap); b.blocked.resize(cap);
+  }
+  // Pixels in 4x4 blocks: a 16-ray packet covers a square of the film, not a row.
+  int n = 0;
+  for (int by = y0; by < y1; by += 4)
+    for (int bx = x0; bx < x1; bx += 4)
+      for (int y = by; y < std::min(by + 4, y1); ++y)
+        for (int x = bx; x < std::min(bx + 4, x1); ++x) b.pixels[static_cast<size_t>(n++)] = {x, y};
+  for (int i = 0; i < n; ++i) { b.sums[i] = glm::dvec3(0.0); b.counted[i] = 0; }
+  const uint64_t seed = ctx.scene.render.seed;
+  const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
+  for (int s = 0; s < cam.spp; ++s) {
+    for (int i = 0; i < n; ++i) {
+      const glm::ivec2 p = b.pixels[i];
+      const uint64_t pixel = static_cast<uint64_t>(p.y) * cam.width + p.x;
+      b.keys[i] = hashKey(seed, pixel, first + static_cast<uint64_t>(s));
+      Rng rng(b.keys[i]);
+      const Vec2 off = stratified2D(s, cam.spp, rng);
+      b.rays[i] = camera.generate(p.x + off.x, p.y + off.y);
+    }
+    ctx.tracer.intersectPacket(b.rays.data(), n, b.hits.data());
+    tracePrimaryShadows(ctx, shadowLights, b.rays.data(), b.hits.data(), n, b.known.data(),
+                        b.blocked.data(), b.shadows);
+    for (int i = 0; i < n; ++i) {
+      beginSample(ts, b.keys[i]);
+      ts.knownShadows = b.known[i];
+      ts.blockedShadows = b.blocked[i];
+      const Hit* hit = b.hits[i].valid() ? &b.hits[i] : nullptr;
+      addSample(shadeTraced(ctx, b.rays[i], hit, aov, ts), aov, b.sums[i], b.counted[i], ts);
+    }
+  }
+  ts.knownShadows = ts.blockedShadows = 0;
+  for (int i = 0; i < n; ++i) {
+    const size_t index = static_cast<size_t>(b.pixels[i].y) * cam.width + b.pixels[i].x;
+    storePixel(b.sums[i], b.counted[i], aov, cam.spp, index, image);
+  }
+}
+
+}  // namespace
+
+Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCounts& counts) {
+  const Camera& cam = ctx.scene.camera;
+  CameraRays camera(cam);
+  Image image(cam.width, cam.height);
+  if (geometric(options.aov)) {
+    image.content = options.aov == Aov::Depth ? ImageContent::Depth : ImageContent::Normal;
+    image.coverage.assign(image.pixels.size(), 0.0f);
+  }
+  const int tile = options.tileSize;
+  const int tilesX = (cam.width + tile - 1) / tile, tilesY = (cam.height + tile - 1) / tile;
+  const int numTiles = tilesX * tilesY;
+  const uint64_t seed = ctx.scene.render.seed;
+  tbb::enumerable_thread_specific<ThreadState> states;
+  tbb::enumerable_thread_specific<TileBuffers> buffers;
+  const bool packets = ctx.scene.render.packets;
+  const bool physical = ctx.scene.render.model == ShadingModel::Physical;
+  const bool direct = options.aov == Aov::Beauty || (physical && options.aov == Aov::Direct);
+  const uint32_t shadowLights = packets ? packetShadowLights(ctx, direct) : 0;
+  progressExpect(options.tiles, static_cast<uint64_t>(numTiles));
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, numTiles, 1), [&](const tbb::blocked_range<int>& r) {
+    ThreadState& ts = states.local();
+    for (int t = r.begin(); t != r.end(); ++t) {
+      int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
+      int x1 = std::min(x0 + tile, cam.width), y1 = std::min(y0 + tile, cam.height);
+      if (packets) {
+        renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, buffers.local(), ts, image);
+      } else {
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) {
+            uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
+            glm::dvec3 sum(0.0);  // double: many finite samples near float's top cannot overflow
+            int counted = 0;
+            // A progressive pass continues the sample sequence where earlier passes stopped.
+            const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
+            for (int s = 0; s < cam.spp; ++s) {
+              Rng rng(hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
+              Vec2 off = stratified2D(s, cam.spp, rng);
+              beginSample(ts, hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
+              Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
+              addSample(c, options.aov, sum, counted, ts);
+            }
+            storePixel(sum, counted, options.aov, cam.spp, static_cast<size_t>(pixel), image);
+          }
+        }
+      }
+      progressAdd(options.tiles, 1);
+    }
+  });
+
+  for (const ThreadState& ts : states) counts += ts.counts;
+  return image;
+}
+
+void checkPixel(const Camera& cam, int x, int y) {
+  if (x < 0 || y < 0 || x >= cam.width || y >= cam.height) {
+    throw InputError("--trace-pixel: " + std::to_string(x) + "," + std::to_string(y) +
+                     " is outside the " + std::to_string(cam.width) + "x" + std::to_string(cam.height) +
+                     " image");
+  }
+}
+
+RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
+  const Camera& cam = ctx.scene.camera;
+  checkPixel(cam, x, y);
+  RayTree tree;
+  ThreadState ts;
+  ts.recorder = &tree;
+  uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
+  Rng rng(hashKey(ctx.scene.render.seed, pixel, 0));
+  Vec2 off = stratified2D(0, cam.spp, rng);
+  beginSample(ts, hashKey(ctx.scene.render.seed, pixel, 0));
+  CameraRays camera(cam);
+  Ray ray = camera.generate(x + off.x, y + off.y);
+  if (ctx.scene.render.model == ShadingModel::Physical) {
+    tracePhysical(ctx, ray, 0, Color(1.0f), RayKind::Camera, kTermAll, -1, ts);
+  } else {
+    traceRay(ctx, ray, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  }
+  return tree;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,38 @@
+// The tile-parallel image loop: camera rays, stratified samples per pixel, and
+// the depth/normal/indirect views (depth and normal as physical values, with
+// their coverage). Deterministic for any thread count.
+#pragma once
+#include "core/image.h"
+#include "core/progress.h"
+#include "core/ray_record.h"
+#include "trace/shading.h"
+#include <functional>
+#include <string>
+
+namespace penumbra {
+
+// Indirect is the ambient/indirect term (classic) or the global map (physical);
+// Direct and Caustic exist in the physical model only.
+enum class Aov { Beauty, Depth, Normal, Indirect, Direct, Caustic };
+
+// Parses "beauty", "depth", "normal", "indirect", "direct", "caustic"; throws
+// InputError otherwise.
+Aov parseAov(const std::string& name);
+
+struct RenderOptions {
+  Aov aov = Aov::Beauty;
+  int tileSize = 16;
+  // Expects every tile, then adds one per tile done (a relaxed atomic add); null: none.
+  ProgressCounter* tiles = nullptr;
+};
+
+// Renders the whole image; `counts` receives the sum of every thread's counters.
+Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCounts& counts);
+
+// Throws InputError unless (x, y) is a pixel of the camera's image.
+void checkPixel(const Camera& camera, int x, int y);
+
+// The full ray tree of one pixel's first sample (--trace-pixel).
+RayTree tracePixel(const ShadingContext& ctx, int x, int y);
+
+}  // namespace penumbra

@@ -1,0 +1,143 @@
+// Whitted recursion: local Phong lighting plus mirror and Fresnel-weighted
+// refraction rays. Photon maps enter only through light_visibility.
+#include "trace/shading.h"
+#include "core/bsdf.h"
+#include "core/light_sample.h"
+#include "core/optics.h"
+#include "trace/light_visibility.h"
+#include "trace/texture_lookup.h"
+
+namespace penumbra {
+namespace {
+
+// Phong through the BSDF and light interfaces: ambient (or the indirect estimate)
+// plus, per visible light, the classic BSDF (k_d N.L + k_s (R.V)^n) times the
+// light's incident term (I / d^2 for point lights).
+Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
+                   const Vec3& toEye, const Color& texel, ThreadState& ts, RayRecord* rec) {
+  CachedAnswer storage;
+  const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);
+  Color lit = ambientTerm(ctx, s, m, cached, ts);
+  const Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
+  const BsdfFrame frame{s.ns, s.ng, s.frontFace};
+  const auto& lights = ctx.scene.lights;
+  ++ts.shadingPoint;
+  for (uint32_t li = 0; li < lights.size(); ++li) {
+    if (maxComponent(lights[li].radiance()) <= 0.0f) continue;  // nothing to add: skip the shadow test
+    std::string note;
+    lit += directFromLight(
+        ctx, s, li, cached, ts, rec ? &note : nullptr, bsdf, frame, toEye,
+        [](const Color& t, const Color& f, const LightIncidence& in) { return t * in.radiance * f; });
+    if (rec && !note.empty()) rec->note += (rec->note.empty() ? "" : "; ") + note;
+  }
+  if (m.texture >= 0) lit = m.textureBlend == TextureBlend::Multiply ? lit * texel : lit + texel;
+  return lit;
+}
+
+}  // namespace
+
+bool sceneHasGlass(const Scene& scene) {
+  for (const Material& m : scene.materials) {
+    if (m.transparent) return true;
+  }
+  return false;
+}
+
+Color traceRay(const ShadingContext& ctx, const Ray& ray, int depth, const Color& weight,
+               float cone, RayKind kind, int parentRecord, ThreadState& ts) {
+  Hit hit;
+  const bool found = ctx.tracer.intersect(ray, hit);
+  return traceRayHit(ctx, ray, found ? &hit : nullptr, depth, weight, cone, kind, parentRecord, ts);
+}
+
+Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, int depth,
+                  const Color& weight, float cone, RayKind kind, int parentRecord, ThreadState& ts) {
+  countRay(kind, ts.counts);
+  --ts.raysLeft;
+  int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, weight, parentRecord) : -1;
+  auto finish = [&](const Color& c, auto&& fill) {
+    if (recIndex >= 0) {
+      RayRecord& r = (*ts.recorder)[recIndex];
+      fill(r);
+      r.contribution = weight * c;
+    }
+    return c;
+  };
+
+  if (!found) return finish(ctx.scene.render.background, [](RayRecord&) {});
+  const Hit& hit = *found;
+  const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
+  auto recordHit = [&](RayRecord& r) {
+    r.hit = true;
+    r.t = hit.t;
+    r.position = s.position;
+    r.material = m.name;
+    r.entering = s.frontFace;
+  };
+  if (maxComponent(m.emission) > 0.0f) {  // an area light's surface: it only glows
+    return finish(s.frontFace || m.twoSidedEmission ? m.emission : Color(0.0f), recordHit);
+  }
+  Vec3 toEye = -ray.dir;
+  float footprint = cone + hit.t * ctx.pixelSpread;
+
+  Color texel(1.0f);
+  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvScale);
+
+  // Local shading records its gate notes into this ray's record; fetch the
+  // pointer after children may have grown the vector, never hold it across.
+  RayRecord scratchRec;
+  ts.currentRecord = recIndex;
+  Color color = localShading(ctx, s, m, toEye, texel, ts, recIndex >= 0 ? &scratchRec : nullptr);
+
+  const RenderSettings& rs = ctx.scene.render;
+  bool deeper = depth < rs.maxDepth;
+  std::string note;
+  if (deeper && m.transparent) {
+    // Entering or leaving is decided by which side was hit, never by a flag
+    // carried along the path, so a ray that starts inside glass still exits.
+    float etaI = s.frontFace ? 1.0f : m.ior;
+    float etaT = s.frontFace ? m.ior : 1.0f;
+    float cosI = glm::dot(s.ns, toEye);
+    float kr = fresnelDielectric(cosI, etaI, etaT);
+    Vec3 tdir;
+    bool transmits = refract(ray.dir, s.ns, etaI / etaT, tdir) && kr < 1.0f;
+    if (!transmits) { kr = 1.0f; note = "total internal reflection"; }
+    Color kt = (1.0f - kr) * (s.frontFace ? m.tint : Color(1.0f));
+    Color reflW = weight * kr, transW = weight * kt;
+    // Both branches of every glass hit would double the tree per level; the
+    // stronger one goes first so a tree that hits the per-sample ray budget
+    // loses its weakest light.
+    auto reflectBranch = [&] {
+      if (!rs.reflection || maxComponent(reflW) <= rs.minWeight || ts.raysLeft <= 0) return;
+      Ray r{s.position, mirrorDirection(ray.dir, s)};
+      r.origin = spawnOrigin(s, r.dir);
+      color += kr * traceRay(ctx, r, depth + 1, reflW, footprint, RayKind::Reflection, recIndex, ts);
+    };
+    auto refractBranch = [&] {
+      if (!rs.refraction || !transmits || maxComponent(transW) <= rs.minWeight || ts.raysLeft <= 0) return;
+      Ray r{spawnOrigin(s, tdir), tdir};
+      color += kt * traceRay(ctx, r, depth + 1, transW, footprint, RayKind::Refraction, recIndex, ts);
+    };
+    if (maxComponent(reflW) >= maxComponent(transW)) {
+      reflectBranch();
+      refractBranch();
+    } else {
+      refractBranch();
+      reflectBranch();
+    }
+  } else if (deeper && rs.reflection && m.kr > 0.0f && maxComponent(weight) * m.kr > rs.minWeight &&
+             ts.raysLeft > 0) {
+    Vec3 rdir = mirrorDirection(ray.dir, s);
+    Ray r{spawnOrigin(s, rdir), rdir};
+    color += m.kr * traceRay(ctx, r, depth + 1, weight * m.kr, footprint, RayKind::Reflection, recIndex, ts);
+  }
+
+  return finish(color, [&](RayRecord& r) {
+    recordHit(r);
+    r.note = scratchRec.note;
+    if (!note.empty()) r.note += (r.note.empty() ? "" : "; ") + note;
+  });
+}
+
+}  // namespace penumbra
