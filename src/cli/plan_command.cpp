@@ -46,7 +46,6 @@ int PlanCommand::run() {
   // pass could be split (no textures, no photons, no render).
   const bool split = plan[Pass::IndirectPhotons].on || plan[Pass::GlobalPhotons].on || plan[Pass::CausticPhotons].on;
   if (split) {
-    applyPlan(plan, scene);
     const SceneAssets assets = prepareAssets(scene, false);
     splitByReach(plan, scene, *assets.tracer);
   }

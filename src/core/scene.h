@@ -102,9 +102,6 @@ struct RenderSettings {
   std::string aov = "beauty";  // default view; the CLI's --aov overrides it
   int lightSamples = 16;       // samples per area light per shading point
   bool packets = true;  // camera rays (and their shadow rays) as Embree packets; same image
-  // Set by the render plan (plan/render_plan.h), not the scene file: false skips that
-  // recursion at every hit (reflection includes glass's reflected branch).
-  bool reflection = true, refraction = true;
 };
 
 enum class IndirectEstimator { Classic, Density };

@@ -4,16 +4,17 @@
 #include "core/scene.h"
 #include "core/stats.h"
 #include "io/image_io.h"
+#include "plan/render_plan.h"
 #include <string>
 
 namespace penumbra {
 
-// The attributes for the image of `scene` (after its render plan) rendered as view
+// The attributes for the image of `scene` with the decisions of `plan`, rendered as view
 // `aov`, written to `outputPath`. Every file: penumbra:scene, scene_file, aov, model
 // and settings (one summary line). An EXR adds one penumbra:KEY per setting (listed
 // in docs/scene-format.md, "Image metadata"); a PNG does not, so its bytes stay those
 // of earlier versions. No value names a path beyond the scene file as given.
-ImageMetadata renderMetadata(const Scene& scene, const RenderStats& stats, const std::string& aov,
-                             const std::string& outputPath);
+ImageMetadata renderMetadata(const Scene& scene, const RenderPlan& plan, const RenderStats& stats,
+                             const std::string& aov, const std::string& outputPath);
 
 }  // namespace penumbra

@@ -23,6 +23,10 @@ Admission admitJob(const Scene& scene, const RenderPlan& plan, int threads, bool
   a.options.aov = plan.aov;
   a.options.threads = threads;
   a.options.tracePixel = tracePixel;
+  const FrameChoices choices = choicesOf(plan, scene);
+  a.options.shadows = choices.shadows;
+  a.options.lightSamples = choices.lightSamples;
+  a.options.precomputed = precomputedLookups(plan);
   a.bound = analyticStoreRates(scene);
   a.estimate = estimateResources(scene, a.options, a.bound);
   a.limit = memoryLimit(maxMemoryBytes);

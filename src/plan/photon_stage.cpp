@@ -144,8 +144,8 @@ bool buildStage(Emission& e, const MapBudgets& wanted, bool consume, PhotonStage
     };
     tbb::parallel_invoke(guarded(0, buildShadow), guarded(1, buildIndirect), guarded(2, buildGlobal),
                          guarded(3, buildCaustic));
-    for (const std::exception_ptr& e : failed)
-      if (e) std::rethrow_exception(e);
+    for (const std::exception_ptr& error : failed)
+      if (error) std::rethrow_exception(error);
   } else {
     // Large maps one after another, each parallel inside (its sort by chunks, its
     // tree by parts): a map's sorted array then reuses the memory the previous map's

@@ -20,12 +20,11 @@ void buildLookup(const Scene& scene, LookupCache& cache, std::optional<LookupCac
                  ShadingContext& ctx, float radius, RenderStats& stats, ProgressPhases* meter,
                  const std::string& phaseName) {
   const PhotonSettings& ps = scene.photons;
-  if (ps.lookup != PhotonLookup::Precomputed) return;
   Stopwatch phase;
   const bool physical = scene.render.model == ShadingModel::Physical;
   const IndirectPhotonMap* map = physical ? ctx.globalMap : ctx.indirectMap;
   LookupCacheParams params;
-  params.gate = ps.gate && scene.render.shadows && ctx.shadowMap;
+  params.gate = ctx.choices.gate && ctx.choices.shadows && ctx.shadowMap;
   params.gateParams = gateParamsFor(scene);
   if (map) {
     params.indirect = physical ? CachedIndirect::Irradiance
@@ -110,6 +109,8 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
   const bool physical = scene.render.model == ShadingModel::Physical;
   const Aov aov = options.aov;
   ShadingContext ctx{scene, *assets.tracer};
+  if (options.choices) ctx.choices = *options.choices;
+  const bool precomputed = options.precomputed ? *options.precomputed : scene.photons.lookup == PhotonLookup::Precomputed;
   ctx.textures = assets.textures.get();
   ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
   ctx.hasGlass = sceneHasGlass(scene);
@@ -154,7 +155,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
       radius = ctx.globalRadius;
     }
     // Pass 0 keeps its lookups with its maps, for later frames on the same maps.
-    if (needsLight) {
+    if (needsLight && precomputed) {
       const std::string lookups = phaseName("lookups", pass, passes);
       if (pass == 0) {
         buildLookup(scene, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats, options.progress,

@@ -27,6 +27,10 @@ struct FrameOptions {
   Aov aov = Aov::Beauty;
   PhotonNeeds needs;    // the plan's photon passes, for progressive passes >= 1
   MapBudgets budgets;   // ... and their photons per pass
+  // The plan's decisions for the tracer, and photons.lookup as planned; empty: the
+  // scene's own settings (FrameChoices::of).
+  std::optional<FrameChoices> choices;
+  std::optional<bool> precomputed;
   std::optional<std::pair<int, int>> tracePixel;
   ProgressPhases* progress = nullptr;  // the command's display; null: none
 };

@@ -167,22 +167,17 @@ RenderPlan makePlan(const Scene& scene, Aov aov, const PlanOverrides& overrides)
   return plan;
 }
 
-void applyPlan(const RenderPlan& plan, Scene& scene) {
-  PhotonSettings& ps = scene.photons;
-  RenderSettings& rs = scene.render;
-  ps.gate = plan[Pass::Gate].on;
-  ps.shadowPhotons = plan[Pass::Gate].on ? plan[Pass::Gate].budget : 0;
-  ps.indirectPhotons = plan[Pass::IndirectPhotons].on ? plan[Pass::IndirectPhotons].budget : 0;
-  ps.globalPhotons = plan[Pass::GlobalPhotons].on ? plan[Pass::GlobalPhotons].budget : 0;
-  ps.causticPhotons = plan[Pass::CausticPhotons].on ? plan[Pass::CausticPhotons].budget : 0;
+FrameChoices choicesOf(const RenderPlan& plan, const Scene& scene) {
+  FrameChoices c;
+  c.gate = plan[Pass::Gate].on;
   // Off: lights reach every surface facing them (render.shadows = false).
-  if (plan[Pass::ShadowRays].overridden) rs.shadows = plan[Pass::ShadowRays].on;
-  rs.reflection = plan[Pass::Reflection].on;
-  rs.refraction = plan[Pass::Refraction].on;
-  if (!plan[Pass::LightSamples].on && plan[Pass::LightSamples].overridden) rs.lightSamples = 1;
-  rs.packets = plan[Pass::Packets].on;
-  if (!plan[Pass::Precompute].on) ps.lookup = PhotonLookup::Exact;
-  else ps.lookup = PhotonLookup::Precomputed;
+  c.shadows = plan[Pass::ShadowRays].overridden ? plan[Pass::ShadowRays].on : scene.render.shadows;
+  c.reflection = plan[Pass::Reflection].on;
+  c.refraction = plan[Pass::Refraction].on;
+  const bool oneSample = !plan[Pass::LightSamples].on && plan[Pass::LightSamples].overridden;
+  c.lightSamples = oneSample ? 1 : scene.render.lightSamples;
+  c.packets = plan[Pass::Packets].on;
+  return c;
 }
 
 void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer) {

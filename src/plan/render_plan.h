@@ -1,10 +1,11 @@
 // The render plan: before any work, what a render of this scene, view and settings
-// runs, each pass with its budget and the reason, as plain data. The pipeline
-// applies it to the scene's settings; `penumbra plan` prints it; --stats holds it.
+// runs, each pass with its budget and the reason, as plain data. The stages read
+// its decisions beside the settings; `penumbra plan` prints it; --stats holds it.
 #pragma once
 #include "core/scene.h"
 #include "geometry/trace_scene.h"
 #include "trace/render.h"
+#include "trace/shading.h"
 #include <array>
 #include <cstdint>
 #include <string>
@@ -58,10 +59,12 @@ struct PlanOverrides {
 // the plan resolves it), the view and the overrides.
 RenderPlan makePlan(const Scene& scene, Aov aov, const PlanOverrides& overrides = {});
 
-// Writes the plan into the settings the stages read: photon budgets, gate,
-// shadows, recursion flags, light samples, packets, lookup. Textures are the
-// pipeline's (loaded only when the plan says so).
-void applyPlan(const RenderPlan& plan, Scene& scene);
+// The plan's decisions the tracer reads (gate, shadows, recursion, light samples,
+// packets), beside `scene`'s settings, which stay as the user gave them. The photon
+// budgets are planBudgets (plan/photon_stage.h); textures the session's.
+FrameChoices choicesOf(const RenderPlan& plan, const Scene& scene);
+// photons.lookup = precomputed, unless the plan found nothing to precompute.
+inline bool precomputedLookups(const RenderPlan& plan) { return plan[Pass::Precompute].on; }
 
 // Once the BVH exists, before any photon: the indirect, global and caustic passes'
 // budgets split over the lights by power times the share of each light's photons

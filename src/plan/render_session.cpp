@@ -12,12 +12,11 @@ namespace penumbra {
 
 namespace {
 
-// The job's settings and plan on the session's shared scene of its geometry.
+// The job's settings, as the user gave them, on the session's scene of its geometry.
 void setJobSettings(Scene& scene, const PlannedJob& job) {
   scene.camera = job.camera;
   scene.render = job.render;
   scene.photons = job.photons;
-  applyPlan(job.plan, scene);
 }
 
 const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m == GateMode::On ? "on" : "off"; }
@@ -51,7 +50,6 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
   for (const PassDecision& d : job.plan.passes) {
     if (d.overridden && d.changesImage) job.notes.push_back("plan override: " + d.reason);
   }
-  setJobSettings(scene, job);
   job.admission = admitJob(scene, job.plan, options_.threads, request.tracePixel.has_value(), options_.maxMemoryBytes);
   std::unique_ptr<Geometry>& g = geometry_[job.keys.geometry];
   if (!g) {
@@ -159,6 +157,8 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {
   frame.aov = job.aov;
   frame.needs = photonNeeds(job.plan);
   frame.budgets = planBudgets(job.plan);
+  frame.choices = choicesOf(job.plan, scene);
+  frame.precomputed = precomputedLookups(job.plan);
   frame.tracePixel = job.request.tracePixel;
   frame.progress = options_.progress;
   renderFrame(scene, a, stage, frame, result);

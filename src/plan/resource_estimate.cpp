@@ -128,7 +128,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // A progressive pass emits its photons while the previous pass's maps still stand.
   if (p.passes > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
   const PhotonSettings& ps = scene.photons;
-  if (ps.lookup == PhotonLookup::Precomputed) {
+  if (options.precomputed) {
     const double k = std::max(1, scene.render.model == ShadingModel::Classic ? ps.kIndirect : ps.kGlobal);
     e.cacheBytes = 2.0 * (indirect + global + shadow) / k * kCacheBytesPerRecord;
   }
@@ -156,17 +156,17 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const double samples = options.tracePixel ? 1.0 : pixels * scene.camera.spp;
   double rays = 1.0, lookupNs = 0.0;
   const bool lit = options.aov != Aov::Depth && options.aov != Aov::Normal;
-  if (lit && scene.render.shadows) {
+  if (lit && options.shadows) {
     double tests = 0.0;
-    for (const Light& l : scene.lights) tests += lightSampleCount(l, scene.render.lightSamples);
+    for (const Light& l : scene.lights) tests += lightSampleCount(l, options.lightSamples);
     if (p.shadow > 0) {
       tests *= 1.0 - kAvoidable;
-      lookupNs += ps.lookup == PhotonLookup::Precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();
+      lookupNs += options.precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();
     }
     rays += tests;
   }
   const auto gather = [&](int k) {
-    return ps.lookup == PhotonLookup::Precomputed ? kLookupNs : k * kGatherNsPerNeighbour;
+    return options.precomputed ? kLookupNs : k * kGatherNsPerNeighbour;
   };
   if (p.indirect > 0) lookupNs += gather(ps.kIndirect);
   if (p.global > 0) lookupNs += gather(ps.kGlobal);

@@ -43,6 +43,10 @@ struct ResourceEstimate {
 
 struct EstimateOptions {
   PhotonPlan photons;  // the plan's photon passes
+  // ... and its decisions: shadow tests, light samples, precomputed lookups.
+  bool shadows = true;
+  int lightSamples = 16;
+  bool precomputed = false;
   Aov aov = Aov::Beauty;
   int threads = 1;
   bool tracePixel = false;  // one pixel's ray tree: no image, no passes

@@ -98,7 +98,7 @@ const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
 GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                         const CachedAnswer* cached, ThreadState& ts, std::string* note) {
   const PhotonSettings& ps = ctx.scene.photons;
-  if (!ps.gate || !ctx.shadowMap || !ctx.shadowMap->hasPhotons(lightIndex)) return GateVerdict::Mixed;
+  if (!ctx.choices.gate || !ctx.shadowMap || !ctx.shadowMap->hasPhotons(lightIndex)) return GateVerdict::Mixed;
   ++ts.counts.gateQueries;
   GateVerdict v;
   const bool precomputed = cached && ctx.lookup->hasGate();
@@ -182,13 +182,13 @@ Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Mater
 uint32_t packetShadowLights(const ShadingContext& ctx, bool direct) {
   const Scene& scene = ctx.scene;
   const bool tinted = ctx.hasGlass && scene.render.model == ShadingModel::Classic;
-  if (!direct || !scene.render.shadows || tinted) return 0;
+  if (!direct || !ctx.choices.shadows || tinted) return 0;
   uint32_t mask = 0;
   for (uint32_t li = 0; li < scene.lights.size() && li < 32; ++li) {
     const Light& light = scene.lights[li];
     if (!isDeltaLight(light) || maxComponent(light.radiance()) <= 0.0f) continue;
     // As gateVerdict: with a gate for this light the verdict, not the ray, comes first.
-    const bool gated = scene.photons.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(li);
+    const bool gated = ctx.choices.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(li);
     if (!gated) mask |= 1u << li;
   }
   return mask;

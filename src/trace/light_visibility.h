@@ -46,11 +46,11 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
                       const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo, Weigh&& weigh) {
   const Light& light = ctx.scene.lights[li];
   const bool area = !isDeltaLight(light);
-  const int n = lightSampleCount(light, ctx.scene.render.lightSamples);
+  const int n = lightSampleCount(light, ctx.choices.lightSamples);
   // Only an area light draws random numbers (a delta light's one sample is exact).
   Rng rng(area ? hashKey(ts.sampleKey, ts.shadingPoint, li) : 0);
   const LightSampler sampler = prepareLight(light, s.position);
-  const bool shadows = ctx.scene.render.shadows;
+  const bool shadows = ctx.choices.shadows;
   const Bsdf* lobes = &bsdf;  // after a lit verdict: only what the closed form left out
   Bsdf glossy;
   GateVerdict v = shadows ? GateVerdict::Mixed : GateVerdict::Lit;

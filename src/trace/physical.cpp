@@ -112,7 +112,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   if (depth < rs.maxDepth && hasDeltaLobe(bsdf)) {
     auto follow = [&](const Vec3& dir, const Color& w, RayKind k) {
       Color next = throughput * w;
-      if (!(k == RayKind::Reflection ? rs.reflection : rs.refraction)) return;  // the plan skips it
+      if (!(k == RayKind::Reflection ? ctx.choices.reflection : ctx.choices.refraction)) return;  // the plan skips it
       if (maxComponent(next) <= rs.minWeight || ts.raysLeft <= 0) return;
       Ray r{spawnOrigin(s, dir), dir};
       color += w * tracePhysical(ctx, r, depth + 1, next, k, terms, recIndex, ts);

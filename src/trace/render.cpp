@@ -169,7 +169,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   const uint64_t seed = ctx.scene.render.seed;
   tbb::enumerable_thread_specific<ThreadState> states;
   tbb::enumerable_thread_specific<TileBuffers> buffers;
-  const bool packets = ctx.scene.render.packets;
+  const bool packets = ctx.choices.packets;
   const bool physical = ctx.scene.render.model == ShadingModel::Physical;
   const bool direct = options.aov == Aov::Beauty || (physical && options.aov == Aov::Direct);
   const uint32_t shadowLights = packets ? packetShadowLights(ctx, direct) : 0;

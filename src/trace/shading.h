@@ -16,9 +16,25 @@ class TextureLookup;
 struct GatherScratch;
 
 // Read-only inputs shared by all render threads.
+// What the render plan decided for a frame (plan/render_plan.h: choicesOf), read by
+// the tracer beside the scene's settings, which stay as the user gave them. Without
+// a plan (tests), the settings themselves.
+struct FrameChoices {
+  bool gate = true;         // ask the shadow photon map before casting a shadow ray
+  bool shadows = true;      // false: lights reach every surface facing them
+  bool reflection = true;   // mirror and glass-reflected recursion
+  bool refraction = true;   // glass-transmitted recursion
+  int lightSamples = 16;    // per area light and shading point
+  bool packets = true;      // camera rays and their shadow rays as Embree packets
+  static FrameChoices of(const Scene& scene) {
+    return {scene.photons.gate, scene.render.shadows, true, true, scene.render.lightSamples, scene.render.packets};
+  }
+};
+
 struct ShadingContext {
   const Scene& scene;
   const TraceScene& tracer;
+  FrameChoices choices = FrameChoices::of(scene);
   const ShadowPhotonMap* shadowMap = nullptr;      // null: every shadow test is a ray
   const IndirectPhotonMap* indirectMap = nullptr;  // null: the ambient term is used
   const TextureLookup* textures = nullptr;

@@ -109,13 +109,13 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
     // stronger one goes first so a tree that hits the per-sample ray budget
     // loses its weakest light.
     auto reflectBranch = [&] {
-      if (!rs.reflection || maxComponent(reflW) <= rs.minWeight || ts.raysLeft <= 0) return;
+      if (!ctx.choices.reflection || maxComponent(reflW) <= rs.minWeight || ts.raysLeft <= 0) return;
       Ray r{s.position, mirrorDirection(ray.dir, s)};
       r.origin = spawnOrigin(s, r.dir);
       color += kr * traceRay(ctx, r, depth + 1, reflW, footprint, RayKind::Reflection, recIndex, ts);
     };
     auto refractBranch = [&] {
-      if (!rs.refraction || !transmits || maxComponent(transW) <= rs.minWeight || ts.raysLeft <= 0) return;
+      if (!ctx.choices.refraction || !transmits || maxComponent(transW) <= rs.minWeight || ts.raysLeft <= 0) return;
       Ray r{spawnOrigin(s, tdir), tdir};
       color += kt * traceRay(ctx, r, depth + 1, transW, footprint, RayKind::Refraction, recIndex, ts);
     };
@@ -126,7 +126,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
       refractBranch();
       reflectBranch();
     }
-  } else if (deeper && rs.reflection && m.kr > 0.0f && maxComponent(weight) * m.kr > rs.minWeight &&
+  } else if (deeper && ctx.choices.reflection && m.kr > 0.0f && maxComponent(weight) * m.kr > rs.minWeight &&
              ts.raysLeft > 0) {
     Vec3 rdir = mirrorDirection(ray.dir, s);
     Ray r{spawnOrigin(s, rdir), rdir};
