@@ -99,7 +99,7 @@ const std::vector<Query>& queries(bool shuffled) {
   return shuffled ? random : coherent;
 }
 
-// Maps are expensive (seconds, ~100-300 MB at 5M): keep only the most recent one of
+// Maps are expensive to build and to hold at 5M: keep only the most recent one of
 // each kind; benchmarks are registered so that ones sharing a map run back to back.
 struct MapKey {
   size_t n;

@@ -49,7 +49,7 @@ double nsPerQuery(const std::vector<Vec3>& points, int threads, Query query, int
 
 // The library's own ceiling: one plain nanoflann tree (leaf size 24, as the maps) over the
 // same photons, KNNResultSet queries of the same k at every 4th of the same points (in
-// order), one pass: no parts, no hints. 2-3x slower than the facade, so kept short.
+// order), one pass: no parts, no hints. Much slower than the facade, so kept short.
 struct Cloud {
   const PhotonArray<IndirectPhoton>* photons;
   size_t kdtree_get_point_count() const { return photons->size(); }

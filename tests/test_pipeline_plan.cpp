@@ -18,7 +18,7 @@ std::vector<std::string> shippedScenes() {
   std::vector<std::string> out;
   for (const auto& e : fs::directory_iterator(fs::path(PENUMBRA_SOURCE_DIR) / "scenes")) {
     // teapot_1m is fig05's teapot at 1M triangles, for the packet benchmark: its
-    // tessellation alone takes ~2.5 s per render, and it has no pass fig05 lacks.
+    // tessellation alone makes every render of it slow, and it has no pass fig05 lacks.
     if (e.path().extension() == ".json" && e.path().stem() != "teapot_1m") out.push_back(e.path().string());
   }
   std::sort(out.begin(), out.end());

@@ -31,8 +31,8 @@ void* mapPhotonMemory(size_t bytes) {
   if (mappedEnd > end) munmap(reinterpret_cast<void*>(end), mappedEnd - end);
   void* p = reinterpret_cast<void*>(aligned);
   // Advice only, refused where THP is off (then 4 KB pages fault in as written). Not
-  // populated: where freed memory goes back to the host (this project's VMs), every
-  // fresh page costs ~1.8 ms/MB however it is faulted, and an emitter's block is
+  // populated: where freed memory goes back to the host (this project's VMs), a
+  // fresh page costs the same however it is faulted, and an emitter's block is
   // written only as far as its batches reach.
   madvise(p, length, MADV_HUGEPAGE);
   return p;

@@ -1,7 +1,7 @@
 // Memory for large photon arrays, mapped straight from the kernel: from 2 MB on,
-// 2 MB-aligned and advised for transparent huge pages; below, populated up front. On
-// the VMs this project runs on a 4 KB first-touch fault costs ~11 us (168 MB: 0.49 s),
-// a 2 MB huge page one fault per 2 MB (168 MB recycled: ~0.015 s).
+// 2 MB-aligned and advised for transparent huge pages; below, populated up front.
+// First-touch faults of 4 KB pages are expensive on the VMs this project runs on; a
+// huge page takes one fault per 2 MB instead.
 #pragma once
 #include <cstddef>
 #include <utility>

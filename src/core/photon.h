@@ -47,8 +47,8 @@ struct PackedPower {
 };
 
 // Photon arrays reach hundreds of MB. std::vector(n) and resize(n) would zero every
-// element on one thread before the parallel pass that overwrites them all (0.2 s for
-// fig14's sorted maps, serial): this allocator leaves elements uninitialised instead,
+// element on one thread before the parallel pass that overwrites them all (a serial
+// first touch of every page): this allocator leaves elements uninitialised instead,
 // so the parallel writer touches the pages first. Only for trivially copyable
 // records, each of which is written before it is read. Large arrays are mapped from
 // the kernel (core/mapped_memory.h): huge pages from 2 MB on.

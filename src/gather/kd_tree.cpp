@@ -162,7 +162,7 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
   impl->parts.resize(parts);
   // Leaf order by a gather through one part-sized buffer per thread: independent
   // loads, where following the permutation's cycles in place waited on one cache
-  // miss per photon (85% of this function's time in fig14's profile).
+  // miss per photon, which dominated the build.
   const size_t largestPart = (count + parts - 1) / parts;
   tbb::enumerable_thread_specific<PhotonArray<Photon>> reorder(
       [&] { return PhotonArray<Photon>(largestPart); });
@@ -175,8 +175,8 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
         std::max<size_t>(leafSize, 1), nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex);
     part.index = std::make_unique<typename Impl::Index>(3, part.cloud, params);
     // nanoflann zero-fills its index array (4 B per photon, malloc'd) page by page,
-    // ~11 us per 4 KB fault on this project's VMs (fig14: 11.9k faults): populate
-    // it in one call first.
+    // and first-touch page faults dominate that on this project's VMs: populate it
+    // in one call first.
     part.index->vAcc.reserve(end - begin);
     prefaultForWrite(part.index->vAcc.data(), (end - begin) * sizeof(uint32_t));
     part.index->buildIndex();

@@ -74,9 +74,9 @@ struct GatherScratch {
   std::vector<uint32_t> buckets;  // sort scratch
 };
 
-// How a photon map is built. The defaults are the measured-faster choices
-// (bench_gather: Morton order speeds both build and queries; leaves of 48 photons
-// build fig14's maps ~9% faster than 24 at the same k = 50 query cost, within 3%).
+// How a photon map is built. The defaults are the faster choices in bench_gather:
+// Morton order speeds both build and queries, and leaves of 48 photons build faster
+// than leaves of 24 at about the same k = 50 query cost.
 struct MapBuildOptions {
   bool mortonSort = true;
   size_t leafSize = 48;

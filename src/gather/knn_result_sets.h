@@ -96,8 +96,8 @@ class SelectResultSet {
 };
 
 // Sorts keys[0..n) ascending, using tmp[0..n) and `counts` as scratch. The keys are
-// in random order, where a comparison sort's branches mispredict about half the time
-// (std::sort on 200 keys: ~3 us). Instead: a counting sort into n buckets by dist2
+// in random order, where a comparison sort's branches mispredict about half the time,
+// which makes std::sort slow here. Instead: a counting sort into n buckets by dist2
 // relative to the largest (photons are spread over a disc or ball, so the buckets
 // are balanced), then an insertion sort that only moves keys within their bucket.
 // The bucket is a monotone function of dist2, so the result is exactly sorted for

@@ -12,10 +12,9 @@ constexpr size_t kLazyProbes = 32;  // a longer run: compute without keeping
 
 void LookupCache::makeLazyTable() {
   // Fallbacks come from surfaces the photons did not reach in that orientation: far
-  // fewer cells than the photons reached (the showcase: 1,784 against 49k records).
-  // An eighth of the records (>= 4096 slots) keeps them at low load, costs 3 B per
-  // record and is constructed in microseconds; beyond it, points are still answered,
-  // just not kept.
+  // fewer cells than the photons reached. An eighth of the records (>= 4096 slots)
+  // keeps them at low load, costs 3 B per record and is cheap to construct; beyond
+  // it, points are still answered, just not kept.
   size_t size = 4096;
   while (size < records_ / 8) size *= 2;
   lazy_ = std::make_unique<LazyTable>();

@@ -96,8 +96,8 @@ std::vector<size_t> scatterPass(const Source& src, const uint32_t* srcKeys, Phot
 }
 
 // The second digit, bucket by bucket: each first-digit bucket is sorted stably by
-// (key & mask) through a per-thread buffer (fig14's buckets: up to ~5 MB, mostly in
-// cache) instead of a second streaming pass into a second full-size array.
+// (key & mask) through a per-thread buffer (a bucket is small enough to stay mostly
+// in cache) instead of a second streaming pass into a second full-size array.
 template <class Photon>
 void sortBuckets(Photon* photons, const uint32_t* keys, const std::vector<size_t>& starts, int digitBits) {
   const size_t buckets = size_t(1) << digitBits, mask = buckets - 1;

@@ -85,7 +85,7 @@ class TraceScene {
   // What a mesh hit needs of its triangle besides the vertices: the unit face normal
   // and the rounding bounds of a point interpolated on it. Computed once per
   // triangle (20 B each) rather than per hit: a cross product, a normalise and the
-  // vertex extents were a third of meshSurface, which photon paths call per hit.
+  // vertex extents were a large share of meshSurface, which photon paths call per hit.
   struct TriangleFrame {
     Vec3 ng;
     float error;   // along ng

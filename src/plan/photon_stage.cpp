@@ -129,7 +129,7 @@ bool buildStage(Emission& e, const MapBudgets& wanted, bool consume, PhotonStage
   auto buildCaustic = [&] { stage.caustic.build(std::move(caustic), build); };
   if (photons <= kSideBySidePhotons) {
     // Small maps: a tree under one part builds on one thread, so only building the
-    // maps side by side keeps both cores busy (cornell_physical: 2 x ~190k photons).
+    // maps side by side keeps both cores busy (cornell_physical's two maps, say).
     // Each build keeps its own exception (out of memory): one escaping would cancel
     // the others' inner loops half-way; the first is rethrown once all have ended.
     std::exception_ptr failed[4];

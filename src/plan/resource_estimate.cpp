@@ -148,9 +148,9 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // Time: each stored photon is one traced segment, plus the one that escapes.
   const double emitted = double(p.shadow + p.indirect + p.global + p.caustic);
   const double photonNs = (e.storedPhotons + emitted) * kPhotonSegmentNs + e.storedPhotons * kBuildNsPerPhoton;
-  // Past the caches the emission's stores and the build's gathers wait on memory:
-  // 1M paths x 1024 bounces in a closed box (251M stored, 8 GB) took 227 core-s,
-  // 2.2x the flat per-photon costs; fig14 (0.45 GB) is within 10% of them.
+  // Past the caches the emission's stores and the build's gathers wait on memory, so
+  // the per-photon costs grow with the log of the data past kCacheFriendlyBytes
+  // (the constants are in plan/cost_model.h).
   const double spill = std::max(1.0, e.photonPeakBytes / kCacheFriendlyBytes);
   e.photonSeconds = photonNs * (1.0 + kSpillSlowdown * std::log2(spill)) * p.passes / e.threads * 1e-9;
   const double samples = options.tracePixel ? 1.0 : pixels * scene.camera.spp;
@@ -171,8 +171,8 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   if (p.indirect > 0) lookupNs += gather(ps.kIndirect);
   if (p.global > 0) lookupNs += gather(ps.kGlobal);
   if (p.caustic > 0) lookupNs += gather(ps.kCaustic);
-  // Mirrors and glass repeat the shading at each level of the recursion.
-  // (cornell_physical, depth 10: 2.3 gathers per camera sample).
+  // Mirrors and glass repeat the shading at each level of the recursion, but few
+  // paths go many levels deep, so the factor is capped.
   const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;
   e.renderSeconds = kStartupSeconds +
                     samples * (rays * kRayNs + lookupNs) * depth * p.passes / e.threads * 1e-9;

@@ -154,7 +154,7 @@ Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Mater
                  : m.ambient * cached->indirect * ctx.classicScale;
     }
     // No cell near the point: its own cell's estimate, computed once and kept (a
-    // gather per point here cost the showcase ~40% of its render).
+    // gather per point here was a large share of the showcase's render).
     ++ts.counts.cacheFallbacks;
     const Color v = ctx.lookup->lazyIndirect(*ctx.indirectMap, s.position, s.ng, *ts.scratch);
     return ctx.lookup->indirectKind() == CachedIndirect::Density ? m.diffuse * v
