@@ -4,6 +4,8 @@
 #include "io/image_io.h"
 #include "support/cli_run.h"
 #include <gtest/gtest.h>
+#include <algorithm>
+#include <filesystem>
 
 namespace penumbra {
 namespace {
@@ -54,6 +56,54 @@ TEST(CliHabits, CheckValidatesWithoutRendering) {
   const auto bad = runCli("check " + quote(kScenes + "showcase.json") + " -D render.max_depth=-1");
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("render.max_depth"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// render, sweep and batch go through one render session: each refuses a job that
+// cannot fit (1e9 shadow photons in the gated Cornell box) before any photon, with
+// exit 2 and the same one-line estimate, and each takes --enable / --disable.
+TEST(CliHabits, EveryCommandRefusesAnOversizedJobWithTheSameEstimate) {
+  testing::ScratchDir dir;
+  const std::string scene = testing::quote(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/fig14_cornell.json");
+  const std::string huge = " --set photons.shadow=1e9 --set photons.gate=on --max-memory 8G";
+  const std::string jobs = dir.write("jobs.json", "{\"jobs\": [{\"scene\": \"" + std::string(PENUMBRA_SOURCE_DIR) +
+                                                      "/scenes/fig14_cornell.json\", \"output\": \"out.png\"}]}")
+                               .string();
+  const testing::CliResult render =
+      testing::runCli("render " + scene + " -o " + testing::quote((dir / "r.png").string()) + huge);
+  const testing::CliResult sweep =
+      testing::runCli("sweep " + scene + " -o " + testing::quote((dir / "sweep").string()) + " --spp 1" + huge);
+  const testing::CliResult batch = testing::runCli("batch " + testing::quote(jobs) + huge);
+  for (const testing::CliResult* r : {&render, &sweep, &batch}) {
+    EXPECT_EQ(r->exitCode, 2) << r->err;
+    EXPECT_EQ(std::count(r->err.begin(), r->err.end(), '\n'), 1) << r->err;
+    EXPECT_NE(r->err.find("needs ~"), std::string::npos) << r->err;
+  }
+  // The estimate itself, from "needs" on, is the same line in all three.
+  auto estimate = [](const std::string& err) { return err.substr(err.find("needs ~")); };
+  EXPECT_EQ(estimate(sweep.err), estimate(render.err));
+  EXPECT_EQ(estimate(batch.err), estimate(render.err));
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+}
+
+TEST(CliHabits, SweepAndBatchTakeThePlanOverrides) {
+  testing::ScratchDir dir;
+  const std::string scene = testing::quote(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/fig03_shadows.json");
+  const std::string small = " -q --set camera.width=24 --set camera.height=16 --disable gate --enable packets";
+  const testing::CliResult sweep =
+      testing::runCli("sweep " + scene + " -o " + testing::quote((dir / "sweep").string()) + " --spp 1" + small);
+  EXPECT_EQ(sweep.exitCode, 0) << sweep.err;
+  const testing::CliResult batch = testing::runCli("batch " + scene + " -o " + testing::quote(dir.path().string()) + small);
+  EXPECT_EQ(batch.exitCode, 0) << batch.err;
+  const testing::CliResult bad = testing::runCli("batch " + scene + " -o " + testing::quote(dir.path().string()) +
+                                                 " --disable no-such-pass");
+  EXPECT_EQ(bad.exitCode, 2) << bad.err;
 }
 
 }  // namespace

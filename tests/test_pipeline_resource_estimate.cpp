@@ -62,7 +62,9 @@ TEST(ResourceEstimate, PhotonBytesBoundAClosedBoxWithManyBounces) {
   expectBounds(r, "closed box");
   // The analytic bound alone (no pilot) is exact here up to noise: nothing escapes.
   const Scene scene = loadScene(closedBox(dir));
-  const ResourceEstimate analytic = estimateResources(scene, {}, analyticStoreRates(scene));
+  EstimateOptions options;
+  options.photons = photonPlanOf(makePlan(scene, Aov::Beauty), scene, false);
+  const ResourceEstimate analytic = estimateResources(scene, options, analyticStoreRates(scene));
   EXPECT_GE(analytic.photonBytes, double(r.stats.photonMapBytes));
   EXPECT_LE(analytic.photonBytes, 1.1 * double(r.stats.photonMapBytes));
   fs::remove_all(dir);
@@ -79,27 +81,21 @@ TEST(ResourceEstimate, EveryGallerySceneIsAdmittedWithRoomToSpare) {
   for (const auto& entry : fs::directory_iterator(kScenes)) {
     if (entry.path().extension() != ".json") continue;
     Scene scene = loadScene(entry.path().string());
-    RenderRequest req;
-    req.scenePath = entry.path().string();
-    req.maxMemoryBytes = 16ull << 30;
-    Admission a = admitRender(scene, req, parseAov(scene.render.aov), 2);
+    const RenderPlan plan = makePlan(scene, parseAov(scene.render.aov));
+    Admission a = admitJob(scene, plan, 2, false, 16ull << 30);
     TraceScene tracer(scene);
-    EXPECT_NO_THROW(confirmRender(a, scene, tracer, req)) << entry.path();
+    EXPECT_NO_THROW(confirmJob(a, scene, tracer, {})) << entry.path();
     EXPECT_LT(a.estimate.totalBytes(), 4.0 * (1ull << 30)) << entry.path() << describeMemory(a.estimate);
   }
 }
 
 TEST(ResourceEstimate, BillionShadowPhotonsNeedMoreThanThisMachine) {
-  Scene scene = loadScene(kScenes + "fig14_cornell.json", {"photons.shadow=1000000000", "photons.gate=on"});
-  scene.photons.gate = true;
-  RenderRequest req;
-  req.scenePath = kScenes + "fig14_cornell.json";
-  req.maxMemoryBytes = 24ull << 30;
-  Admission a = admitRender(scene, req, Aov::Beauty, 2);
+  const Scene scene = loadScene(kScenes + "fig14_cornell.json", {"photons.shadow=1000000000", "photons.gate=on"});
+  const RenderPlan plan = makePlan(scene, Aov::Beauty);
+  Admission a = admitJob(scene, plan, 2, false, 24ull << 30);
   TraceScene tracer(scene);
-  EXPECT_THROW(confirmRender(a, scene, tracer, req), InputError);
+  EXPECT_THROW(confirmJob(a, scene, tracer, {}), InputError);
   EXPECT_GT(a.estimate.photonPeakBytes, double(24ull << 30));
-  EXPECT_EQ(scene.photons.shadowPhotons, 1000000000u);  // the pilot gave the count back
 }
 
 TEST(ResourceEstimate, AHugeFrameSaysItsEstimateBeforeAnyPhotonOrTile) {
@@ -108,12 +104,19 @@ TEST(ResourceEstimate, AHugeFrameSaysItsEstimateBeforeAnyPhotonOrTile) {
   req.scenePath = kScenes + "fig03_shadows.json";
   req.overrides = {"camera.width=16384", "camera.height=16384", "camera.spp=4096"};
   std::string note;
-  bool progressed = false;
+  struct Phases final : ProgressPhases {
+    bool begun = false;
+    ProgressCounter* begin(const std::string&, uint64_t) override {
+      begun = true;
+      return nullptr;
+    }
+    void end() override {}
+  } phases;
   struct Stop {};
   req.notice = [&](const std::string& n) { note = n; throw Stop{}; };
-  req.progress = [&](const char*, double) { progressed = true; };
+  req.progress = &phases;
   EXPECT_THROW(runRender(req), Stop);
-  EXPECT_FALSE(progressed);
+  EXPECT_FALSE(phases.begun);
   EXPECT_NE(note.find("estimated ~"), std::string::npos) << note;
   EXPECT_NE(note.find(" h on "), std::string::npos) << note;
 }

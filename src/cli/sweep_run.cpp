@@ -76,7 +76,7 @@ class Sweep {
       }
       auto f = finished.find(run.id);
       p.done = f != finished.end() && fs::exists(fs::path(req_.outDir) / f->second.image);
-      if (i == 0) sceneName_ = p.job.sceneName;
+      if (i == 0) sceneName_ = p.job.scene.name;
       runs_.push_back(std::move(p));
     }
   }
@@ -100,16 +100,15 @@ class Sweep {
 
   // Runs still to do, grouped by (geometry, photon key); the reference's group first.
   std::vector<std::vector<size_t>> photonGroups() const {
-    std::map<std::string, std::vector<size_t>> byKey;
-    std::vector<std::string> order;
+    std::map<ReuseKeys, std::vector<size_t>> byKey;
+    std::vector<ReuseKeys> order;
     for (const PlannedRun& p : runs_) {
       if (p.done) continue;
-      const std::string key = p.job.keys.geometry + "\n" + p.job.keys.photons;
-      if (!byKey.count(key)) order.push_back(key);
-      byKey[key].push_back(p.index);
+      if (!byKey.count(p.job.keys)) order.push_back(p.job.keys);
+      byKey[p.job.keys].push_back(p.index);
     }
     std::vector<std::vector<size_t>> groups;
-    for (const std::string& k : order) groups.push_back(byKey[k]);
+    for (const ReuseKeys& k : order) groups.push_back(byKey[k]);
     std::stable_partition(groups.begin(), groups.end(), [&](const std::vector<size_t>& g) {
       return std::find(g.begin(), g.end(), referenceRun_) != g.end();
     });
@@ -148,7 +147,7 @@ class Sweep {
     }
     status_ = "photons";
     showProgress();
-    const Scene& scene = session_.sceneFor(lead);
+    const Scene& scene = lead.scene;
     const TraceScene& tracer = *session_.assets(lead).tracer;
     Emission emission = emitPhotonsFor(scene, tracer, needs, top, 0, smaller);
     ++totals_.emissions;
@@ -163,7 +162,7 @@ class Sweep {
       Stopwatch build;
       if (!buildStage(emission, b, false, stage)) {
         // Not a prefix of this emission (a light split that does not nest): emit it alone.
-        Emission own = emitPhotonsFor(session_.sceneFor(lead), tracer, needs, b, 0);
+        Emission own = emitPhotonsFor(lead.scene, tracer, needs, b, 0);
         ++totals_.emissions;
         buildStage(own, own.budgets, true, stage);
       } else if (stage.fromPrefix) {

@@ -2,6 +2,7 @@
 // lives here; quads, boxes, OBJ files and teapots all arrive as TriangleMesh.
 #pragma once
 #include "core/math.h"
+#include "core/shared_list.h"
 #include <array>
 #include <cstdint>
 #include <string>
@@ -143,7 +144,7 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Material> materials;
   std::vector<Sphere> spheres;
-  std::vector<TriangleMesh> meshes;
+  SharedList<TriangleMesh> meshes;  // shared by copies: the heavy part of a scene
   std::vector<Texture> textures;
   RenderSettings render;
   PhotonSettings photons;

@@ -11,6 +11,7 @@
 #include "emit/batch_buffers.h"
 #include "emit/budget.h"
 #include "emit/light_reach.h"
+#include "emit/photon_pass.h"
 #include <tbb/parallel_for.h>
 
 namespace penumbra {
@@ -113,61 +114,39 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   // Without the gate (or without shadows) nobody reads the shadow map: do not pay for it.
   const MapBudgets budgets = options.budgets ? *options.budgets : budgetsOf(scene);
   bool wantShadowMap = options.shadowMap && (options.budgets || (ps.gate && scene.render.shadows));
-  std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? budgets.shadow : 0);
-  std::vector<PhotonBatch> shadowBatches = makeBatches(shadowCounts, options.batchSize);
-  BatchBuffers<ShadowPhoton> shadowBuffers(shadowBatches.size());
-  PrefixCuts* shadowCuts = nullptr;
-  if (cuts && !options.prefixBudgets.empty()) {
-    cuts->shadow = PrefixCuts(weights, shadowCounts, options.prefixBudgets, shadowBatches);
-    shadowCuts = &cuts->shadow;
-  }
-  tbb::parallel_for(size_t(0), shadowBatches.size(), [&](size_t b) {
-    const PhotonBatch& batch = shadowBatches[b];
-    const Light& light = scene.lights[batch.light];
-    Rng rng(hashKey(seed, kShadowStream, batchStreamKey(batch)));
-    shadowBuffers.fill(b, [&](BatchAppender<ShadowPhoton>& out) {
-      traceBatch(shadowCuts, b, batch.count, out, [&](uint64_t) {
-        const PhotonRay r = startPhoton(light, bounds, rng);
-        traceShadowLine(tracer, r.origin, r.dir, static_cast<uint16_t>(batch.light),
-                        options.maxHitsPerLine, out);
+  const std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? budgets.shadow : 0);
+  maps.shadow = runPhotonPass<ShadowPhoton>(
+      weights, shadowCounts, options, cuts ? &cuts->shadow : nullptr, maps.emittedShadow,
+      [&](const PhotonBatch& batch) {
+        const Light& light = scene.lights[batch.light];
+        return [&light, &bounds, &tracer, &options, index = static_cast<uint16_t>(batch.light),
+                rng = Rng(hashKey(seed, kShadowStream, batchStreamKey(batch)))](
+                   BatchAppender<ShadowPhoton>& out) mutable {
+          const PhotonRay r = startPhoton(light, bounds, rng);
+          traceShadowLine(tracer, r.origin, r.dir, index, options.maxHitsPerLine, out);
+        };
       });
-    });
-    progressAdd(options.progress, batch.count);
-  });
-  if (shadowCuts) shadowCuts->finish(shadowBuffers.sizes());
-  maps.shadow = shadowBuffers.finish();
 
   const std::vector<double> indirectWeights = reachWeighted(weights, options.indirectReach);
-  std::vector<uint64_t> indirectCounts = splitByWeight(indirectWeights, options.indirectMap ? budgets.indirect : 0);
-  std::vector<PhotonBatch> indirectBatches = makeBatches(indirectCounts, options.batchSize);
-  bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
-  BatchBuffers<IndirectPhoton> indirectBuffers(indirectBatches.size());
-  PrefixCuts* indirectCuts = nullptr;
-  if (cuts && !options.prefixBudgets.empty()) {
-    cuts->indirect = PrefixCuts(indirectWeights, indirectCounts, options.prefixBudgets, indirectBatches);
-    indirectCuts = &cuts->indirect;
-  }
-  tbb::parallel_for(size_t(0), indirectBatches.size(), [&](size_t b) {
-    const PhotonBatch& batch = indirectBatches[b];
-    const Light& light = scene.lights[batch.light];
-    // Each photon carries an equal share of the light's flux (4 pi I for a point light).
-    const float count = static_cast<float>(indirectCounts[batch.light]);
-    Color power = light.type == LightType::Point ? light.radiance() * (4.0f * kPi / count)
-                                                 : lightPower(light, bounds) * (1.0f / count);
-    Rng rng(hashKey(seed, kIndirectStream, batchStreamKey(batch)));
-    indirectBuffers.fill(b, [&](BatchAppender<IndirectPhoton>& out) {
-      traceBatch(indirectCuts, b, batch.count, out, [&](uint64_t) {
-        const PhotonRay r = startPhoton(light, bounds, rng);
-        traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power, rng, storeFirstHit, out);
+  const std::vector<uint64_t> indirectCounts =
+      splitByWeight(indirectWeights, options.indirectMap ? budgets.indirect : 0);
+  const bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
+  maps.indirect = runPhotonPass<IndirectPhoton>(
+      indirectWeights, indirectCounts, options, cuts ? &cuts->indirect : nullptr, maps.emittedIndirect,
+      [&](const PhotonBatch& batch) {
+        const Light& light = scene.lights[batch.light];
+        // Each photon carries an equal share of the light's flux (4 pi I for a point light).
+        const float count = static_cast<float>(indirectCounts[batch.light]);
+        const Color power = light.type == LightType::Point ? light.radiance() * (4.0f * kPi / count)
+                                                           : lightPower(light, bounds) * (1.0f / count);
+        return [&scene, &tracer, &light, &bounds, power, storeFirstHit,
+                rng = Rng(hashKey(seed, kIndirectStream, batchStreamKey(batch)))](
+                   BatchAppender<IndirectPhoton>& out) mutable {
+          const PhotonRay r = startPhoton(light, bounds, rng);
+          traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power, rng, storeFirstHit, out);
+        };
       });
-    });
-    progressAdd(options.progress, batch.count);
-  });
-  if (indirectCuts) indirectCuts->finish(indirectBuffers.sizes());
-  maps.indirect = indirectBuffers.finish();
 
-  for (uint64_t c : shadowCounts) maps.emittedShadow += c;
-  for (uint64_t c : indirectCounts) maps.emittedIndirect += c;
   double intensity = 0.0;
   for (const Light& l : scene.lights) intensity += classicPhotonWeight(l);
   if (maps.emittedIndirect > 0 && intensity > 0.0) {

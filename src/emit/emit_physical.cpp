@@ -2,6 +2,7 @@
 // proportion to its power; the caustic pass aims them at the specular objects'
 // bounding spheres (Jensen's projection maps) and keeps only L S+ D paths.
 #include "emit/emit_physical.h"
+#include "emit/photon_pass.h"
 #include "core/bsdf.h"
 #include "core/light_sample.h"
 #include "core/rng.h"
@@ -181,46 +182,34 @@ PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& trac
   const std::vector<double> weights =
       photonWeights(scene, bounds, aims, kind == PassKind::Caustic,
                     kind == PassKind::Caustic ? options.causticReach : options.globalReach);
-  std::vector<uint64_t> counts = splitByWeight(weights, total);
-  std::vector<PhotonBatch> batches = makeBatches(counts, options.batchSize);
-  BatchBuffers<IndirectPhoton> buffers(batches.size());
-  PrefixCuts* prefix = nullptr;
-  if (!options.prefixBudgets.empty()) {
-    cuts = PrefixCuts(weights, counts, options.prefixBudgets, batches);
-    prefix = &cuts;
-  }
+  const std::vector<uint64_t> counts = splitByWeight(weights, total);
   tbb::enumerable_thread_specific<PhotonTally> tallies;
   const uint64_t stream = kind == PassKind::Caustic ? kCausticStream : kGlobalStream;
-  tbb::parallel_for(size_t(0), batches.size(), [&](size_t b) {
-    const PhotonBatch& batch = batches[b];
-    const Light& light = scene.lights[batch.light];
-    const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
-    Rng rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch)));
-    PhotonTally& t = tallies.local();
-    buffers.fill(b, [&](BatchAppender<IndirectPhoton>& out) {
-      traceBatch(prefix, b, batch.count, out, [&](uint64_t) {
-        PhotonRay r;
-        Color power = share;
-        if (kind == PassKind::Caustic && isDeltaLight(light)) {
-          power *= sampleAimed(light, bounds, aims[batch.light], rng, r);
-        } else {
-          // Area lights are not aimed at the specular objects: their caustic photons
-          // are the share of all photons whose path turns out L S+ D.
-          float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
-          r = emitterPhoton(light, bounds, u1, u2, u3, u4);
-        }
-        t.emitted += glm::dvec3(power);
-        if (maxComponent(power) <= 0.0f) return;
-        tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);
+  PhotonBatches<IndirectPhoton> photons = runPhotonPass<IndirectPhoton>(
+      weights, counts, options, &cuts, emitted, [&](const PhotonBatch& batch) {
+        const Light& light = scene.lights[batch.light];
+        const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
+        const bool aimed = kind == PassKind::Caustic && isDeltaLight(light);
+        return [&, &light = light, share, aimed, aim = aims[batch.light], &t = tallies.local(),
+                rng = Rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch)))](
+                   BatchAppender<IndirectPhoton>& out) mutable {
+          PhotonRay r;
+          Color power = share;
+          if (aimed) {
+            power *= sampleAimed(light, bounds, aim, rng, r);
+          } else {
+            // Area lights are not aimed at the specular objects: their caustic photons
+            // are the share of all photons whose path turns out L S+ D.
+            float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
+            r = emitterPhoton(light, bounds, u1, u2, u3, u4);
+          }
+          t.emitted += glm::dvec3(power);
+          if (maxComponent(power) <= 0.0f) return;
+          tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);
+        };
       });
-    });
-    progressAdd(options.progress, batch.count);
-  });
-  if (prefix) prefix->finish(buffers.sizes());
   for (const PhotonTally& t : tallies) tally += t;
-  emitted = 0;
-  for (uint64_t c : counts) emitted += c;
-  return buffers.finish();
+  return photons;
 }
 
 }  // namespace

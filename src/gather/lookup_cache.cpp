@@ -26,9 +26,6 @@ struct Entry {
   }
 };
 
-struct GateCounts {
-  uint32_t direct = 0, opaque = 0, glass = 0;
-};
 
 // Median k-th-neighbour distance at up to 256 photons of one shadow light.
 float typicalShadowRadius(const ShadowPhotonMap& map, int k, GatherScratch& s) {
@@ -211,13 +208,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
               }
             }
         for (size_t l = 0; l < numLights_; ++l) {
-          const GateCounts& c = sum[l];
-          const uint32_t shadowed = c.opaque + (g.glassBlocks ? c.glass : 0);
-          GateVerdict v = GateVerdict::Mixed;
-          if ((c.glass == 0 || g.glassBlocks) && (c.direct == 0 || shadowed == 0) &&
-              c.direct + shadowed >= static_cast<uint32_t>(std::max(g.minVoters, 1)))
-            v = c.direct > 0 ? GateVerdict::Lit : GateVerdict::Shadowed;
-          verdicts_[r * numLights_ + l] = static_cast<uint8_t>(v);
+          verdicts_[r * numLights_ + l] = static_cast<uint8_t>(verdictOf(sum[l], g));
         }
       }
       progressAdd(params.progress, range.size());

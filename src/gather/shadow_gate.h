@@ -23,9 +23,29 @@ struct GateParams {
 // Mixed means "no confident answer": the tracer casts a real shadow ray.
 enum class GateVerdict : uint8_t { Lit, Shadowed, Mixed };
 
+// The photons that voted on one light at one place: arrived directly, behind
+// something opaque, behind glass.
+struct GateCounts {
+  uint32_t direct = 0, opaque = 0, glass = 0;
+};
+
+// The voting rule, once for exact gathers and the precomputed cells: lit or
+// shadowed only when the voters agree, are at least minVoters, and (unless glass
+// blocks, as in the physical model) none saw the light through glass, whose tint
+// only a shadow ray can measure.
+inline GateVerdict verdictOf(const GateCounts& c, const GateParams& params) {
+  if (c.glass > 0 && !params.glassBlocks) return GateVerdict::Mixed;
+  const uint32_t shadowed = c.opaque + (params.glassBlocks ? c.glass : 0);
+  if (c.direct > 0 && shadowed > 0) return GateVerdict::Mixed;
+  if (c.direct + shadowed < static_cast<uint32_t>(params.minVoters > 1 ? params.minVoters : 1)) {
+    return GateVerdict::Mixed;
+  }
+  return c.direct > 0 ? GateVerdict::Lit : GateVerdict::Shadowed;
+}
+
 // Tallies the photons photons[indices[0..count)] against the shading normal n
 // (unit, facing the viewer). Stops decoding normals as soon as both kinds voted,
-// since nothing after that can change a Mixed verdict.
+// since nothing after that can change a Mixed verdict; then verdictOf decides.
 GateVerdict voteGate(const ShadowPhoton* photons, const uint32_t* indices, size_t count,
                      const Vec3& n, const GateParams& params);
 

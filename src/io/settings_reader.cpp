@@ -1,4 +1,6 @@
 // The scene's settings sections: camera, render and photons.
+#include "core/camera_frame.h"
+#include "core/view.h"
 #include "io/scene_sections.h"
 
 #include "io/float_checks.h"
@@ -44,11 +46,11 @@ void readCamera(const JsonNode& node, Camera& out) {
   out.height = node.intOr("height", out.height, 1, 16384);
   out.spp = node.intOr("spp", out.spp, 1, 4096);
 
-  // Check the frame in float, exactly as CameraRays builds it: forward =
-  // normalize(look_at - position), right = normalize(cross(forward, up)). A
-  // length of 1e-30 is fine in double but its square underflows in float: NaN.
+  // Check the frame the tracer will build (core/camera_frame.h), in float: a length
+  // of 1e-30 is fine in double but its square underflows in float: NaN.
   const JsonNode& at = node.has("look_at") ? node.child("look_at") : node;
-  const Vec3 forward = glm::normalize(out.lookAt - out.position);
+  const CameraFrame frame = cameraFrame(out);
+  const Vec3 forward = frame.forward;
   if (!isUnit(forward)) {
     at.fail("look_at equals position, or is too close to it for a view direction in single precision");
   }
@@ -57,8 +59,7 @@ void readCamera(const JsonNode& node, Camera& out) {
     upNode.fail("up has no direction in single precision (zero, or too short or long to normalise)");
   }
   const float sine = glm::length(glm::cross(forward, glm::normalize(out.up)));
-  const Vec3 right = glm::normalize(glm::cross(forward, out.up));
-  if (!(sine > 1e-6f) || !isUnit(right)) {
+  if (!(sine > 1e-6f) || !isUnit(frame.right)) {
     upNode.fail("up is parallel to the view direction (look_at - position)");
   }
 }
@@ -74,9 +75,8 @@ void readRender(const JsonNode& node, RenderSettings& out) {
   out.seed = node.uintOr("seed", out.seed, 0, std::numeric_limits<uint64_t>::max());
   out.minWeight = node.floatOr("min_weight", out.minWeight, Range::between(0.0, 1.0));
   out.shadows = node.boolOr("shadows", out.shadows);
-  // The views the tracer's parseAov() knows; checked here so a typo fails at load time.
-  const std::vector<std::string> views = {"beauty", "depth", "normal", "indirect", "direct",
-                                          "caustic"};
+  // Checked here so a typo fails at load time.
+  const std::vector<std::string> views(kViewNames.begin(), kViewNames.end());
   if (node.has("aov")) out.aov = views[node.child("aov").asEnum(views)];
   out.lightSamples = node.intOr("light_samples", out.lightSamples, 1, 1024);
   out.packets = node.boolOr("packets", out.packets);

@@ -45,7 +45,7 @@ RenderResult runRender(const RenderRequest& request) {
   if (!request.outputPath.empty() && !request.tracePixel) {
     Stopwatch phase;
     writeImage(request.outputPath, result.image,
-               renderMetadata(session.sceneFor(planned), planned.plan, stats, planned.viewName, request.outputPath), request.display);
+               renderMetadata(planned.scene, planned.plan, stats, planned.viewName, request.outputPath), request.display);
     stats.time.write = phase.seconds();
   }
   stats.time.total = total.seconds();

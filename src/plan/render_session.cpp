@@ -12,13 +12,6 @@ namespace penumbra {
 
 namespace {
 
-// The job's settings, as the user gave them, on the session's scene of its geometry.
-void setJobSettings(Scene& scene, const PlannedJob& job) {
-  scene.camera = job.camera;
-  scene.render = job.render;
-  scene.photons = job.photons;
-}
-
 const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m == GateMode::On ? "on" : "off"; }
 
 }  // namespace
@@ -29,13 +22,9 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
   PlannedJob job;
   job.request = request;
   Stopwatch clock;
-  Scene scene = loadScene(request.scenePath, request.overrides);
+  job.scene = loadScene(request.scenePath, request.overrides);
   job.loadSeconds = clock.seconds();
-  job.sceneName = scene.name;
-  job.sceneFile = scene.file;
-  job.camera = scene.camera;
-  job.render = scene.render;
-  job.photons = scene.photons;
+  const Scene& scene = job.scene;
   job.viewName = request.view.empty() ? scene.render.aov : request.view;
   job.aov = parseAov(job.viewName);
   if (scene.render.model != ShadingModel::Physical && (job.aov == Aov::Direct || job.aov == Aov::Caustic)) {
@@ -51,11 +40,13 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
     if (d.overridden && d.changesImage) job.notes.push_back("plan override: " + d.reason);
   }
   job.admission = admitJob(scene, job.plan, options_.threads, request.tracePixel.has_value(), options_.maxMemoryBytes);
+  // Equal geometry keys mean equal meshes: every job reads the first one's buffer.
   std::unique_ptr<Geometry>& g = geometry_[job.keys.geometry];
   if (!g) {
     g = std::make_unique<Geometry>();
-    g->scene = std::move(scene);
+    g->scene = job.scene;
   }
+  job.scene.meshes = g->scene.meshes;
   return job;
 }
 
@@ -63,12 +54,6 @@ RenderSession::Geometry& RenderSession::geometryOf(const PlannedJob& job) {
   auto g = geometry_.find(job.keys.geometry);
   if (g == geometry_.end()) throw std::logic_error("a job of another session");
   return *g->second;
-}
-
-const Scene& RenderSession::sceneFor(const PlannedJob& job) {
-  Scene& scene = geometryOf(job).scene;
-  setJobSettings(scene, job);
-  return scene;
 }
 
 const SceneAssets& RenderSession::assets(const PlannedJob& job) {
@@ -89,8 +74,8 @@ const SceneAssets& RenderSession::assets(const PlannedJob& job) {
 void RenderSession::prepare(PlannedJob& job) {
   if (job.prepared) return;
   const SceneAssets& a = assets(job);
-  splitByReach(job.plan, sceneFor(job), *a.tracer);  // needs rays: the BVH is the first work
-  confirmJob(job.admission, sceneFor(job), *a.tracer, options_.notice);
+  splitByReach(job.plan, job.scene, *a.tracer);  // needs rays: the BVH is the first work
+  confirmJob(job.admission, job.scene, *a.tracer, options_.notice);
   job.prepared = true;
 }
 
@@ -114,7 +99,7 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
   }
   if (reused) *reused = false;
   const SceneAssets& a = assets(job);
-  const Scene& scene = sceneFor(job);
+  const Scene& scene = job.scene;
   auto stage = std::make_unique<PhotonStage>();
   Emission e = emitPhotonsFor(scene, *a.tracer, needs, key.budgets, 0, {}, beginPhase(options_.progress, "photons"));
   buildStage(e, e.budgets, true, *stage, beginPhase(options_.progress, "maps"));
@@ -135,23 +120,23 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
 RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {
   if (!job.prepared) throw std::logic_error("a frame of a job not prepared");
   const SceneAssets& a = assets(job);
-  const Scene& scene = sceneFor(job);
+  const Scene& scene = job.scene;
   RenderResult result;
   result.estimate = job.admission.estimate;
   result.notes = job.notes;
   RenderStats& stats = result.stats;
   stats.time.load = job.loadSeconds;
-  stats.gateMode = gateModeName(job.photons.gateMode);
+  stats.gateMode = gateModeName(scene.photons.gateMode);
   stats.gate = job.plan[Pass::Gate].on;
   stats.gateReason = job.plan[Pass::Gate].reason;
   stats.plan = planJson(job.plan);
-  stats.scene = job.sceneName;
-  stats.width = job.camera.width;
-  stats.height = job.camera.height;
-  stats.spp = job.camera.spp;
+  stats.scene = scene.name;
+  stats.width = scene.camera.width;
+  stats.height = scene.camera.height;
+  stats.spp = scene.camera.spp;
   stats.threads = options_.threads;
-  stats.seed = job.render.seed;
-  stats.model = job.render.model == ShadingModel::Physical ? "physical" : "classic";
+  stats.seed = scene.render.seed;
+  stats.model = scene.render.model == ShadingModel::Physical ? "physical" : "classic";
   stats.lookup = job.plan[Pass::Precompute].on ? "precomputed" : "exact";
   FrameOptions frame;
   frame.aov = job.aov;

@@ -41,14 +41,12 @@ struct JobRequest {
   std::optional<std::pair<int, int>> tracePixel;
 };
 
-// A job loaded, planned and admitted: nothing large is allocated yet. It keeps its
-// settings as the user gave them; its geometry is the session's, by `keys.geometry`.
+// A job loaded, planned and admitted: nothing large is allocated yet. Its scene
+// keeps the settings as the user gave them and is never rewritten; its meshes are
+// the buffer every job of the same geometry shares (keys.geometry).
 struct PlannedJob {
   JobRequest request;
-  std::string sceneName, sceneFile;
-  Camera camera;
-  RenderSettings render;
-  PhotonSettings photons;
+  Scene scene;
   std::string viewName;
   Aov aov = Aov::Beauty;
   RenderPlan plan;
@@ -74,10 +72,8 @@ class RenderSession {
   // against the memory limit: still before any photon. Needed by the steps below.
   void prepare(PlannedJob& job);
 
-  // The scene and assets a prepared job renders with: its geometry's, read with the
-  // job's settings and plan (the session's scene is shared, so only it sets them).
+  // The BVH and textures a prepared job renders with: its geometry's.
   const SceneAssets& assets(const PlannedJob& job);
-  const Scene& sceneFor(const PlannedJob& job);
 
   // The photon maps of jobs that share them (views of one scene and settings): the
   // union of the maps they read at the largest budgets, emitted and built once and
@@ -97,7 +93,7 @@ class RenderSession {
 
  private:
   struct Geometry {
-    Scene scene;  // the first job's load; each job's settings are set before it is read
+    Scene scene;  // the first job's load, which the BVH reads; never changed
     SceneAssets assets;
     bool textures = false;
     bool built = false;

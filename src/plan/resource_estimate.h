@@ -3,7 +3,7 @@
 // pilot emission's measured store rates). Plain data; the limit check is memory_limit.h.
 #pragma once
 #include "core/scene.h"
-#include "trace/render.h"
+#include "core/view.h"
 #include <cstdint>
 #include <string>
 

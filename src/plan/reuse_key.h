@@ -4,6 +4,7 @@
 // camera, spp, depth, k or gate (a smaller photon budget is a prefix of a larger).
 #pragma once
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace penumbra {
@@ -11,6 +12,8 @@ namespace penumbra {
 struct ReuseKeys {
   std::string geometry;  // objects, materials, lights, render.model
   std::string photons;   // everything but the camera and the gather/render-only settings
+  bool operator==(const ReuseKeys& o) const { return geometry == o.geometry && photons == o.photons; }
+  bool operator<(const ReuseKeys& o) const { return std::tie(geometry, photons) < std::tie(o.geometry, o.photons); }
 };
 
 // Reads `scenePath`, applies `overrides` and derives both keys (canonical JSON

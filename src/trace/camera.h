@@ -1,5 +1,6 @@
 // Pinhole camera: maps a film position to a primary ray.
 #pragma once
+#include "core/camera_frame.h"
 #include "core/scene.h"
 #include "geometry/ray.h"
 
@@ -8,9 +9,10 @@ namespace penumbra {
 class CameraRays {
  public:
   explicit CameraRays(const Camera& c) : origin_(c.position), width_(c.width), height_(c.height) {
-    forward_ = glm::normalize(c.lookAt - c.position);
-    right_ = glm::normalize(glm::cross(forward_, c.up));
-    up_ = glm::cross(right_, forward_);
+    const CameraFrame frame = cameraFrame(c);
+    forward_ = frame.forward;
+    right_ = frame.right;
+    up_ = frame.up;
     tanHalf_ = std::tan(glm::radians(c.fovY) * 0.5f);
     aspect_ = static_cast<float>(c.width) / static_cast<float>(c.height);
   }

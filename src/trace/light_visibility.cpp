@@ -219,7 +219,7 @@ void tracePrimaryShadows(const ShadingContext& ctx, uint32_t lights, const Ray* 
       const SurfaceRecord s = ctx.tracer.surface(rays[i], hits[i], kSurfaceShadingNormal);
       // A delta light's one sample, as directFromLight draws it.
       const LightIncidence in = sampleLight(prepareLight(light, s.position), 0.5f, 0.5f);
-      if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
+      if (!facesLight(s, in)) continue;
       known[i] |= 1u << li;
       if (!shadowRayTo(s, in, scratch.rays[static_cast<size_t>(count)])) continue;  // at the light: clear
       scratch.owner[static_cast<size_t>(count++)] = i;

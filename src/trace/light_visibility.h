@@ -40,6 +40,13 @@ Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t ligh
 // at the first sample that reaches the surface: shadowed -> nothing; mixed -> one
 // ray per sample; lit -> no ray at all, and the Lambertian part in closed form
 // (unoccludedIrradiance), so only a glossy lobe still takes the samples.
+// Whether a light sample reaches the surface's side at all (the geometric and the
+// shading normal both face it): the test before any gate verdict or shadow ray, in
+// directFromLight and in the shadow packets that trace its rays ahead.
+inline bool facesLight(const SurfaceRecord& s, const LightIncidence& in) {
+  return in.valid && glm::dot(s.ng, in.wi) > 0.0f && glm::dot(s.ns, in.wi) > 0.0f;
+}
+
 template <class Weigh>
 Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,
                       const CachedAnswer* cached, ThreadState& ts, std::string* note,
@@ -60,7 +67,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     // One sample of an area light is uniform, not its centre (stratified2D's n = 1).
     const Vec2 u = !area ? Vec2(0.5f) : n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
     const LightIncidence in = sampleLight(sampler, u.x, u.y);
-    if (!in.valid || glm::dot(s.ng, in.wi) <= 0.0f || glm::dot(s.ns, in.wi) <= 0.0f) continue;
+    if (!facesLight(s, in)) continue;
     Color f = evaluateBsdf(*lobes, frame, wo, in.wi);
     if (!asked) {
       if (maxComponent(f) <= 0.0f) continue;

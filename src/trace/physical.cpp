@@ -7,6 +7,7 @@
 #include "core/light_sample.h"
 #include "core/optics.h"
 #include "gather/radiance_estimate.h"
+#include "trace/glass_split.h"
 #include "trace/light_visibility.h"
 #include "trace/texture_lookup.h"
 
@@ -118,20 +119,16 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
       color += w * tracePhysical(ctx, r, depth + 1, next, k, terms, recIndex, ts);
     };
     if (bsdf.type == BsdfType::Dielectric) {
-      float etaI = s.frontFace ? 1.0f : bsdf.ior, etaT = s.frontFace ? bsdf.ior : 1.0f;
-      float fr = fresnelDielectric(glm::dot(s.ns, wo), etaI, etaT);
-      Vec3 t;
-      if (!refract(ray.dir, s.ns, etaI / etaT, t)) {
-        fr = 1.0f;
-        if (recIndex >= 0) note = "total internal reflection";
-      }
-      Color kt = (1.0f - fr) * (s.frontFace ? bsdf.tint : Color(1.0f));
+      const GlassSplit glass = splitAtGlass(ray, s, bsdf.ior, bsdf.tint);
+      const float fr = glass.kr;
+      const Color& kt = glass.kt;
+      if (!glass.transmits && recIndex >= 0) note = "total internal reflection";
       // The stronger branch first: a tree that hits the ray budget loses the weaker.
       if (fr >= maxComponent(kt)) {
         follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection);
-        if (fr < 1.0f) follow(t, kt, RayKind::Refraction);
+        if (glass.transmits) follow(glass.refracted, kt, RayKind::Refraction);
       } else {
-        follow(t, kt, RayKind::Refraction);
+        follow(glass.refracted, kt, RayKind::Refraction);
         follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection);
       }
     } else {

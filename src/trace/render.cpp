@@ -15,17 +15,6 @@
 
 namespace penumbra {
 
-Aov parseAov(const std::string& name) {
-  if (name == "beauty") return Aov::Beauty;
-  if (name == "depth") return Aov::Depth;
-  if (name == "normal") return Aov::Normal;
-  if (name == "indirect") return Aov::Indirect;
-  if (name == "direct") return Aov::Direct;
-  if (name == "caustic") return Aov::Caustic;
-  throw InputError("--aov: unknown view '" + name +
-                   "' (use beauty, depth, normal, indirect, direct or caustic)");
-}
-
 namespace {
 
 uint8_t physicalTerms(Aov aov) {

@@ -5,19 +5,12 @@
 #include "core/image.h"
 #include "core/progress.h"
 #include "core/ray_record.h"
+#include "core/view.h"
 #include "trace/shading.h"
 #include <functional>
 #include <string>
 
 namespace penumbra {
-
-// Indirect is the ambient/indirect term (classic) or the global map (physical);
-// Direct and Caustic exist in the physical model only.
-enum class Aov { Beauty, Depth, Normal, Indirect, Direct, Caustic };
-
-// Parses "beauty", "depth", "normal", "indirect", "direct", "caustic"; throws
-// InputError otherwise.
-Aov parseAov(const std::string& name);
 
 struct RenderOptions {
   Aov aov = Aov::Beauty;

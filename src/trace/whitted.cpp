@@ -4,6 +4,7 @@
 #include "core/bsdf.h"
 #include "core/light_sample.h"
 #include "core/optics.h"
+#include "trace/glass_split.h"
 #include "trace/light_visibility.h"
 #include "trace/texture_lookup.h"
 
@@ -94,16 +95,12 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   bool deeper = depth < rs.maxDepth;
   std::string note;
   if (deeper && m.transparent) {
-    // Entering or leaving is decided by which side was hit, never by a flag
-    // carried along the path, so a ray that starts inside glass still exits.
-    float etaI = s.frontFace ? 1.0f : m.ior;
-    float etaT = s.frontFace ? m.ior : 1.0f;
-    float cosI = glm::dot(s.ns, toEye);
-    float kr = fresnelDielectric(cosI, etaI, etaT);
-    Vec3 tdir;
-    bool transmits = refract(ray.dir, s.ns, etaI / etaT, tdir) && kr < 1.0f;
-    if (!transmits) { kr = 1.0f; note = "total internal reflection"; }
-    Color kt = (1.0f - kr) * (s.frontFace ? m.tint : Color(1.0f));
+    const GlassSplit glass = splitAtGlass(ray, s, m.ior, m.tint);
+    const float kr = glass.kr;
+    const Color kt = glass.kt;
+    const bool transmits = glass.transmits;
+    const Vec3 tdir = glass.refracted;
+    if (!transmits) note = "total internal reflection";
     Color reflW = weight * kr, transW = weight * kt;
     // Both branches of every glass hit would double the tree per level; the
     // stronger one goes first so a tree that hits the per-sample ray budget
