@@ -33,6 +33,30 @@ for part in parts:
                 line = f.read_text()[: m.start()].count("\n") + 1
                 problems.append(f"{f.relative_to(root)}:{line}: {part} includes {target}/ (allowed: "
                                 f"{', '.join(sorted(allowed.get(part, set())))})")
+# Embree stays behind src/geometry's .cpp files: its headers are included only by those
+# and by geometry/embree_impl.h, which nothing outside src/geometry includes, so the
+# parts, tests and benchmarks that use TraceScene compile without them.
+embree = re.compile(r'^\s*#\s*include\s+[<"]embree\d*/', re.M)
+embree_impl = re.compile(r'^\s*#\s*include\s+"geometry/embree_impl\.h"', re.M)
+geometry = root / "src" / "geometry"
+for top in ("src", "tests", "bench", "fuzz"):
+    if not (root / top).is_dir():
+        continue
+    for f in sorted((root / top).rglob("*")):
+        if f.suffix not in (".h", ".hpp", ".cpp"):
+            continue
+        text = f.read_text()
+        inside = f.parent == geometry
+        for m in embree.finditer(text):
+            if not inside or (f.suffix != ".cpp" and f.name != "embree_impl.h"):
+                line = text[: m.start()].count("\n") + 1
+                problems.append(f"{f.relative_to(root)}:{line}: includes Embree (only src/geometry/*.cpp and "
+                                "geometry/embree_impl.h may)")
+        for m in embree_impl.finditer(text):
+            if not inside:
+                line = text[: m.start()].count("\n") + 1
+                problems.append(f"{f.relative_to(root)}:{line}: includes geometry/embree_impl.h (private to "
+                                "src/geometry)")
 for p in problems:
     print(p)
 print(f"layers: {len(parts)} parts checked, {len(problems)} problem(s)")

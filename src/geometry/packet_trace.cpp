@@ -1,6 +1,7 @@
 // TraceScene's packet queries: rays in SoA Embree packets (RTCRayHit16/8/4) with
 // valid masks and the coherent flag; each lane answers as the single-ray query would.
 #include "geometry/trace_scene.h"
+#include "geometry/embree_impl.h"
 #include <algorithm>
 #include <cmath>
 
@@ -102,9 +103,9 @@ void TraceScene::setPacketWidth(int width) {
 
 void TraceScene::intersectPacket(const Ray* rays, int n, Hit* hits) const {
   switch (packetWidth_) {
-    case 16: intersectK<16>(rtcScene_, rays, n, hits); break;
-    case 8: intersectK<8>(rtcScene_, rays, n, hits); break;
-    case 4: intersectK<4>(rtcScene_, rays, n, hits); break;
+    case 16: intersectK<16>(impl_->scene, rays, n, hits); break;
+    case 8: intersectK<8>(impl_->scene, rays, n, hits); break;
+    case 4: intersectK<4>(impl_->scene, rays, n, hits); break;
     default:
       for (int i = 0; i < n; ++i) {
         Hit h;
@@ -131,9 +132,9 @@ void TraceScene::intersectPacket(const Ray* rays, int n, Hit* hits) const {
 
 void TraceScene::occludedPacket(const Ray* rays, int n, uint8_t* blocked) const {
   switch (packetWidth_) {
-    case 16: return occludedK<16>(rtcScene_, rays, n, blocked);
-    case 8: return occludedK<8>(rtcScene_, rays, n, blocked);
-    case 4: return occludedK<4>(rtcScene_, rays, n, blocked);
+    case 16: return occludedK<16>(impl_->scene, rays, n, blocked);
+    case 8: return occludedK<8>(impl_->scene, rays, n, blocked);
+    case 4: return occludedK<4>(impl_->scene, rays, n, blocked);
     default:
       for (int i = 0; i < n; ++i) blocked[i] = occluded(rays[i]);
   }

@@ -1,5 +1,6 @@
 // Embree user-geometry callbacks for analytic spheres.
 #include "geometry/sphere_geometry.h"
+#include "geometry/embree_impl.h"
 #include <cmath>
 
 namespace penumbra {

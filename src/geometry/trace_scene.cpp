@@ -2,6 +2,7 @@
 // answers ray queries; expands hits into surface records for shading.
 #include "geometry/trace_scene.h"
 #include "core/error.h"
+#include "geometry/embree_impl.h"
 #include "geometry/sphere_geometry.h"
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -72,15 +73,16 @@ void TraceScene::computeFrames(const TriangleMesh& mesh, TriangleFrame* frames) 
   });
 }
 
-TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene) {
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("cannot create Embree device");
-  rtcSetDeviceErrorFunction(device_, onEmbreeError, &embreeError_);
-  rtcScene_ = rtcNewScene(device_);
-  if (robust) rtcSetSceneFlags(rtcScene_, RTC_SCENE_FLAG_ROBUST);
-  nativePacketWidth_ = rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) ? 16
-                       : rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) ? 8
-                       : rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED) ? 4
+TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene), impl_(std::make_unique<Impl>()) {
+  // impl_ owns the handles and releases them on every exit, the throws below included.
+  RTCDevice device = impl_->device = rtcNewDevice(nullptr);
+  if (!device) throw std::runtime_error("cannot create Embree device");
+  rtcSetDeviceErrorFunction(device, onEmbreeError, &impl_->embreeError);
+  RTCScene rtcScene = impl_->scene = rtcNewScene(device);
+  if (robust) rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST);
+  nativePacketWidth_ = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) ? 16
+                       : rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) ? 8
+                       : rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED) ? 4
                                                                                                     : 1;
   packetWidth_ = nativePacketWidth_;
 
@@ -96,40 +98,32 @@ TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene) {
     meshCentres_.push_back(mesh.positions.empty() ? Vec3(0.0f) : 0.5f * (lo + hi));
     meshRadii_.push_back(mesh.positions.empty() ? 1.0f : std::max(1e-6f, 0.5f * glm::length(hi - lo)));
     if (mesh.triangles.empty()) continue;
-    RTCGeometry geom = createMeshGeometry(device_, mesh);
-    unsigned id = rtcAttachGeometry(rtcScene_, geom);
+    RTCGeometry geom = createMeshGeometry(device, mesh);
+    unsigned id = rtcAttachGeometry(rtcScene, geom);
     rtcReleaseGeometry(geom);
     if (geometries_.size() <= id) geometries_.resize(id + 1);
     geometries_[id] = {false, static_cast<uint32_t>(m), frameOffset};
     frameOffset += mesh.triangles.size();
   }
   if (!scene.spheres.empty()) {
-    RTCGeometry geom = createSphereGeometry(device_, scene.spheres);
-    unsigned id = rtcAttachGeometry(rtcScene_, geom);
+    RTCGeometry geom = createSphereGeometry(device, scene.spheres);
+    unsigned id = rtcAttachGeometry(rtcScene, geom);
     rtcReleaseGeometry(geom);
     if (geometries_.size() <= id) geometries_.resize(id + 1);
     geometries_[id] = {true, 0};
   }
-  rtcCommitScene(rtcScene_);
+  rtcCommitScene(rtcScene);
   RTCBounds b;
-  rtcGetSceneBounds(rtcScene_, &b);
+  rtcGetSceneBounds(rtcScene, &b);
   Vec3 lo(b.lower_x, b.lower_y, b.lower_z), hi(b.upper_x, b.upper_y, b.upper_z);
   if (isFinite(lo) && isFinite(hi) && glm::all(glm::lessThanEqual(lo, hi))) {
     bounds_.center = 0.5f * (lo + hi);
     bounds_.radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
   }
-  if (!embreeError_.empty()) {
-    std::string message = embreeError_;
-    rtcReleaseScene(rtcScene_);
-    rtcReleaseDevice(device_);
-    throw std::runtime_error(message);
-  }
+  if (!impl_->embreeError.empty()) throw std::runtime_error(impl_->embreeError);  // impl_ releases scene and device
 }
 
-TraceScene::~TraceScene() {
-  rtcReleaseScene(rtcScene_);
-  rtcReleaseDevice(device_);
-}
+TraceScene::~TraceScene() = default;  // here, where Impl is complete
 
 bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
   if (!embreeAccepts(ray)) return false;
@@ -146,7 +140,7 @@ bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(rtcScene_, &context, &rh);
+  rtcIntersect1(impl_->scene, &context, &rh);
   // A non-finite distance can only come from geometry at the edge of float range;
   // treating it as a miss keeps NaN out of every position and offset after it.
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !std::isfinite(rh.ray.tfar)) return false;
@@ -171,7 +165,7 @@ bool TraceScene::occluded(const Ray& ray) const {
   r.mask = ~0u;
   r.id = 0;
   r.flags = 0;
-  rtcOccluded1(rtcScene_, &context, &r);
+  rtcOccluded1(impl_->scene, &context, &r);
   return r.tfar < 0.0f;
 }
 

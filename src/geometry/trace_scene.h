@@ -1,10 +1,12 @@
 // The Embree 3 device and scene built from a Scene: ray queries for the tracer
 // and the photon pass, and the expansion of a small Hit into a SurfaceRecord.
+// Embree stays behind the .cpp files (TraceScene::Impl, geometry/embree_impl.h):
+// the translation units that include this header do not compile Embree's headers.
 #pragma once
 #include "core/light_sample.h"
 #include "core/scene.h"
 #include "geometry/ray.h"
-#include <embree3/rtcore.h>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -77,6 +79,9 @@ class TraceScene {
   const Scene& scene() const { return scene_; }
 
  private:
+  // The Embree device and scene (geometry/embree_impl.h, for the geometry .cpp files only).
+  struct Impl;
+
   struct GeometryRef {
     bool sphere;
     uint32_t index;  // mesh index; spheres share one geometry and use primID
@@ -96,13 +101,11 @@ class TraceScene {
   SurfaceRecord meshSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
 
   const Scene& scene_;
-  RTCDevice device_ = nullptr;
-  RTCScene rtcScene_ = nullptr;
+  std::unique_ptr<Impl> impl_;
   std::vector<GeometryRef> geometries_;  // by Embree geomID
   std::vector<TriangleFrame> frames_;    // every mesh's triangles, mesh after mesh
   std::vector<Vec3> meshCentres_;        // for spherical UVs on meshes without uvs
   std::vector<float> meshRadii_;         // half-diagonal: spherical-uv scale on meshes without uvs
-  std::string embreeError_;              // first error Embree reported, if any
   int packetWidth_ = 1;
   int nativePacketWidth_ = 1;
   SceneSphere bounds_;
