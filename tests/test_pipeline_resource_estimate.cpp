@@ -62,7 +62,9 @@ TEST(ResourceEstimate, PhotonBytesBoundAClosedBoxWithManyBounces) {
   expectBounds(r, "closed box");
   // The analytic bound alone (no pilot) is exact here up to noise: nothing escapes.
   const Scene scene = loadScene(closedBox(dir));
-  const ResourceEstimate analytic = estimateResources(scene, {}, analyticStoreRates(scene));
+  EstimateOptions options;
+  options.photons = photonPlanOf(makePlan(scene, Aov::Beauty), scene, false);
+  const ResourceEstimate analytic = estimateResources(scene, options, analyticStoreRates(scene));
   EXPECT_GE(analytic.photonBytes, double(r.stats.photonMapBytes));
   EXPECT_LE(analytic.photonBytes, 1.1 * double(r.stats.photonMapBytes));
   fs::remove_all(dir);
@@ -82,9 +84,9 @@ TEST(ResourceEstimate, EveryGallerySceneIsAdmittedWithRoomToSpare) {
     RenderRequest req;
     req.scenePath = entry.path().string();
     req.maxMemoryBytes = 16ull << 30;
-    Admission a = admitRender(scene, req, parseAov(scene.render.aov), 2);
+    Admission a = admitJob(scene, makePlan(scene, parseAov(scene.render.aov)), 2, false, req.maxMemoryBytes);
     TraceScene tracer(scene);
-    EXPECT_NO_THROW(confirmRender(a, scene, tracer, req)) << entry.path();
+    EXPECT_NO_THROW(confirmJob(a, scene, tracer, [](const std::string&) {})) << entry.path();
     EXPECT_LT(a.estimate.totalBytes(), 4.0 * (1ull << 30)) << entry.path() << describeMemory(a.estimate);
   }
 }
@@ -95,9 +97,9 @@ TEST(ResourceEstimate, BillionShadowPhotonsNeedMoreThanThisMachine) {
   RenderRequest req;
   req.scenePath = kScenes + "fig14_cornell.json";
   req.maxMemoryBytes = 24ull << 30;
-  Admission a = admitRender(scene, req, Aov::Beauty, 2);
+  Admission a = admitJob(scene, makePlan(scene, Aov::Beauty), 2, false, req.maxMemoryBytes);
   TraceScene tracer(scene);
-  EXPECT_THROW(confirmRender(a, scene, tracer, req), InputError);
+  EXPECT_THROW(confirmJob(a, scene, tracer, [](const std::string&) {}), InputError);
   EXPECT_GT(a.estimate.photonPeakBytes, double(24ull << 30));
   EXPECT_EQ(scene.photons.shadowPhotons, 1000000000u);  // the pilot gave the count back
 }
@@ -108,12 +110,19 @@ TEST(ResourceEstimate, AHugeFrameSaysItsEstimateBeforeAnyPhotonOrTile) {
   req.scenePath = kScenes + "fig03_shadows.json";
   req.overrides = {"camera.width=16384", "camera.height=16384", "camera.spp=4096"};
   std::string note;
-  bool progressed = false;
   struct Stop {};
+  struct Phases final : ProgressPhases {
+    bool begun = false;
+    ProgressCounter* begin(const std::string&, uint64_t) override {
+      begun = true;
+      return nullptr;
+    }
+    void end() override {}
+  } phases;
   req.notice = [&](const std::string& n) { note = n; throw Stop{}; };
-  req.progress = [&](const char*, double) { progressed = true; };
+  req.progress = &phases;
   EXPECT_THROW(runRender(req), Stop);
-  EXPECT_FALSE(progressed);
+  EXPECT_FALSE(phases.begun);
   EXPECT_NE(note.find("estimated ~"), std::string::npos) << note;
   EXPECT_NE(note.find(" h on "), std::string::npos) << note;
 }
