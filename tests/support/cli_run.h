@@ -8,39 +8,11 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include "support/scratch_dir.h"
 
 namespace penumbra::testing {
 
 namespace fs = std::filesystem;
-
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::string pattern = (fs::temp_directory_path() / "penumbra-cli-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) std::abort();
-    path_ = pattern;
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(path_, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    std::ofstream(path_ / name, std::ios::binary) << text;
-    return path_ / name;
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-  const fs::path& path() const { return path_; }
-  // Names of entries containing ".tmp": what an interrupted write would leave.
-  int tempFiles() const {
-    int n = 0;
-    for (const auto& e : fs::directory_iterator(path_)) n += e.path().filename().string().find(".tmp") != std::string::npos;
-    return n;
-  }
-
- private:
-  fs::path path_;
-};
 
 inline std::string readFile(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
