@@ -145,12 +145,17 @@ int main(int argc, char** argv) {
   std::fprintf(out, "{\"scene\": \"%s\", \"threads\": %d, \"renders\": [\n", argv[1], req.threads);
   bool queried = false;
   for (int rep = 0; rep < reps; ++rep) {
-    std::atomic<double> renderStart{0.0};
-    req.progress = [&](const char* phase, double) {
-      // The first tile's report: the render phase has begun (one tile ago).
-      double zero = 0.0;
-      if (std::string(phase) == "render") renderStart.compare_exchange_strong(zero, monotonicNow());
-    };
+    // The render phase's start: when the pipeline begins it (before the first tile).
+    struct RenderStart final : ProgressPhases {
+      std::atomic<double> at{0.0};
+      ProgressCounter* begin(const std::string& phase, uint64_t) override {
+        double zero = 0.0;
+        if (phase.rfind("render", 0) == 0) at.compare_exchange_strong(zero, monotonicNow());
+        return nullptr;
+      }
+      void end() override {}
+    } renderStart;
+    req.progress = &renderStart;
     const double t0 = monotonicNow();
     const RenderResult r = runRender(req);
     const double t1 = monotonicNow();
@@ -161,7 +166,7 @@ int main(int argc, char** argv) {
                  "\"emit_s\": %.4f, \"maps_s\": %.4f, \"precompute_s\": %.4f, \"camera_rays\": %llu, "
                  "\"shadow_rays\": %llu, \"secondary_rays\": %llu, \"gathers\": %llu, \"gate_queries\": %llu, "
                  "\"cache_lookups\": %llu, \"cache_fallbacks\": %llu}\n",
-                 rep ? "," : "", t0, t1, renderStart.load(), s.time.total, s.time.render, s.time.emit,
+                 rep ? "," : "", t0, t1, renderStart.at.load(), s.time.total, s.time.render, s.time.emit,
                  s.time.buildMaps, s.time.precompute, (unsigned long long)s.rays.camera,
                  (unsigned long long)s.rays.shadow,
                  (unsigned long long)(s.rays.reflection + s.rays.refraction),
