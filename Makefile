@@ -10,7 +10,7 @@ PKGS := cmake ninja-build g++ pkg-config libtbb-dev libembree-dev libglm-dev \
         fonts-dejavu-core python3 python3-matplotlib
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build renderer render test bench scaling bench-profile gallery gallery-docs \
+.PHONY: all deps configure build renderer render test test-fast bench scaling bench-profile gallery gallery-docs \
         convergence clean san-deps fuzz test-asan test-tsan
 all: build
 
@@ -47,6 +47,10 @@ render: renderer
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# The stage tests only (label unit, tests/CMakeLists.txt): seconds, not minutes.
+test-fast: build
+	cd $(BUILD) && ctest -L unit -j $(JOBS) --output-on-failure
 
 # Benchmark suite (docs/PERFORMANCE.md, "Benchmark suite and 1-vs-2-core scaling"): each
 # executable writes Google Benchmark JSON to $(RESULTS)/NAME.json and its console output to

@@ -32,7 +32,10 @@ TEST_P(KnnRandom, MatchesBruteForceOn10kPoints) {
   EXPECT_EQ(s.dist2[0], 0.0f);
   EXPECT_EQ(photons[s.indices[0]].position, photons[1234].position);
 }
-INSTANTIATE_TEST_SUITE_P(MortonOnOff, KnnRandom, ::testing::Bool());
+INSTANTIATE_TEST_SUITE_P(MortonOnOff, KnnRandom, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                           return std::string(info.param ? "morton" : "no_morton");
+                         });
 
 TEST(Knn, RadiusBoundedReturnsFewerThanK) {
   IndirectPhotonMap map;

@@ -5,6 +5,7 @@
 #include "core/light_sample.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
+#include "support/scratch_dir.h"
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 #include <cstring>
@@ -15,13 +16,6 @@ namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path scratch(const std::string& name) {
-  fs::path dir = fs::path(testing::TempDir()) / ("penumbra_model_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
@@ -56,7 +50,8 @@ void writeObj(const fs::path& dir) {
 }
 
 TEST(ObjMaterials, UsemtlGroupsKeepTheirMtlMaterialsAndKeLightsTheScene) {
-  const fs::path dir = scratch("obj");
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   writeObj(dir);
   write(dir / "scene.json", R"({"render": {"model": "physical"}, "materials": {"grey": {"diffuse": 0.5}},
     "objects": [{"type": "mesh", "file": "room.obj", "translate": [0, 1, 0]}]})");
@@ -91,7 +86,8 @@ TEST(ObjMaterials, UsemtlGroupsKeepTheirMtlMaterialsAndKeLightsTheScene) {
 }
 
 TEST(ObjMaterials, TheScenesMaterialOverridesTheMtl) {
-  const fs::path dir = scratch("obj_named");
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   writeObj(dir);
   write(dir / "scene.json", R"({"materials": {"grey": {"diffuse": 0.5}},
     "objects": [{"type": "mesh", "file": "room.obj", "material": "grey"}]})");
@@ -102,7 +98,8 @@ TEST(ObjMaterials, TheScenesMaterialOverridesTheMtl) {
 }
 
 TEST(ObjMaterials, AnObjWithoutMaterialsStillNeedsOne) {
-  const fs::path dir = scratch("obj_plain");
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   write(dir / "t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   write(dir / "scene.json", R"({"materials": {"grey": {}}, "objects": [{"type": "mesh", "file": "t.obj"}]})");
   try {
@@ -235,7 +232,8 @@ void expectNear(const Vec3& a, const Vec3& b, float tol, const char* what) {
 }
 
 TEST(Gltf, AWholeGlbSceneBringsMeshesMaterialsCameraAndLights) {
-  const fs::path dir = scratch("glb");
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   writeGltf(makeGltf(), dir / "model.glb", true);
   write(dir / "model.json", R"({"render": {"model": "physical"}, "camera": {"width": 320}})");
   const Scene s = loadScene((dir / "model.glb").string());
@@ -281,7 +279,8 @@ TEST(Gltf, AWholeGlbSceneBringsMeshesMaterialsCameraAndLights) {
 }
 
 TEST(Gltf, AsAMeshObjectInAJsonScene) {
-  const fs::path dir = scratch("gltf_object");
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   writeGltf(makeGltf(), dir / "parts.gltf", false);
   write(dir / "scene.json", R"({"lights": [{"type": "point", "position": [0, 9, 0]}],
     "objects": [{"type": "mesh", "file": "parts.gltf", "translate": [0, 0, 100]}]})");
@@ -296,7 +295,8 @@ TEST(Gltf, AsAMeshObjectInAJsonScene) {
 }
 
 TEST(Gltf, BrokenFilesFailWithOneLine) {
-  const fs::path dir = scratch("gltf_bad");
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   write(dir / "junk.glb", "glTF but not really");
   try {
     loadScene((dir / "junk.glb").string());

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/tone_map.h"
+#include "support/scratch_dir.h"
 #include <gtest/gtest.h>
 #include <filesystem>
 #include <fstream>
@@ -41,8 +42,8 @@ std::string bytesOf(const fs::path& p) {
 }
 
 TEST(ToneMap, PngGetsTheCurveAndExrStaysLinear) {
-  const fs::path dir = fs::temp_directory_path() / ("penumbra-tonemap-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   Image image(2, 1);
   image.pixels = {Color(1.0f), Color(3.0f)};
   writeImage((dir / "default.png").string(), image);
@@ -55,7 +56,6 @@ TEST(ToneMap, PngGetsTheCurveAndExrStaysLinear) {
   writeImage((dir / "reinhard.exr").string(), image, {}, DisplayOptions{3.0f, ToneMap::Reinhard});
   const Image exr = readImage((dir / "reinhard.exr").string());
   EXPECT_EQ(exr.pixels[1].r, 3.0f);
-  fs::remove_all(dir);
 }
 
 }  // namespace

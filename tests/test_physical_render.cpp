@@ -6,6 +6,7 @@
 // pipeline at its analytic radiance, single-pass and progressive.
 #include "plan/pipeline.h"
 #include "core/error.h"
+#include "support/scratch_dir.h"
 #include <gtest/gtest.h>
 #include <unistd.h>
 #include <algorithm>
@@ -183,8 +184,8 @@ TEST(PhysicalRender, FurnaceThroughThePipelineMatchesTheAnalyticRadiance) {
   // ~1300 independent kernel discs in view (~0.3% per pass) plus the photon total's
   // ~0.2%; tolerance 1.5%, single pass (kNN) and 3 progressive passes (fixed shrinking
   // radii, which are unbiased on a uniform density).
-  const fs::path dir = fs::temp_directory_path() / ("penumbra_furnace_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   const std::string file = (dir / "furnace.json").string();
   std::ofstream(file) << kFurnace;
   const double e0 = 2.0 / (1.5 * 1.5), rho = 0.5, kPiD = 3.14159265358979323846;
@@ -199,7 +200,6 @@ TEST(PhysicalRender, FurnaceThroughThePipelineMatchesTheAnalyticRadiance) {
     const double want = rho / kPiD * e0 * rho / (1.0 - rho);
     EXPECT_NEAR(mean, want, 0.015 * want) << "passes=" << passes;
   }
-  fs::remove_all(dir);
 }
 
 }  // namespace

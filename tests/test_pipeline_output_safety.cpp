@@ -5,8 +5,6 @@
 #include "support/cli_run.h"
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <chrono>
-#include <thread>
 
 using namespace penumbra;
 using namespace penumbra::testing;
@@ -156,35 +154,18 @@ TEST(OutputSafety, StatsCarryTheEstimate) {
 }
 
 TEST(OutputSafety, SigintDuringTheImageWriteLeavesNoTempAndTheOldOutput) {
-  // A large depth image: its EXR write takes long enough to be caught in the act
-  // (the temp file exists from open to rename), and no photons delay it.
+  // The binary's test hook raises SIGINT once the image's temp file exists (between
+  // its creation and the rename), so the interrupt lands mid-write every time.
   ScratchDir dir;
   const fs::path out = dir / "out.exr";
   const std::string old = "the previous render, which must survive";
   dir.write("out.exr", old);
   const std::string scene = kScenes + "fig01_depth.json";
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    freopen("/dev/null", "w", stderr);
-    execl(PENUMBRA_BINARY, PENUMBRA_BINARY, "render", scene.c_str(), "-o", out.c_str(), "-q", "--aov",
-          "depth", "--set", "camera.width=4096", "--set", "camera.height=4096", (char*)nullptr);
-    _exit(127);
-  }
-  bool caught = false;
-  int status = 0;
-  for (;;) {
-    if (waitpid(child, &status, WNOHANG) == child) break;
-    if (dir.tempFiles() > 0) {
-      kill(child, SIGINT);
-      caught = true;
-      waitpid(child, &status, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
-  }
-  ASSERT_TRUE(caught) << "the render finished before its temp file was seen (status " << status << ")";
-  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << "status " << status;
+  const int status = runCliSignalledAt("temp-file:out.tmp:1",
+                                       {"render", scene, "-o", out.string(), "-q", "--aov", "depth", "--set",
+                                        "camera.width=64", "--set", "camera.height=64"});
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT)
+      << "status " << status << ": the hook did not interrupt the write";
   EXPECT_EQ(dir.tempFiles(), 0);
   EXPECT_EQ(readFile(out), old);
 }

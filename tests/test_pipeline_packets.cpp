@@ -73,7 +73,20 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"cornell_physical", "", {"photons.global=20000", "photons.caustic=20000"}},  // physical beauty
         Case{"cornell_physical", "direct", {"photons.global=20000", "photons.caustic=20000"}},                        // physical direct view
         Case{"cornell_physical", "caustic", {"photons.global=20000", "photons.caustic=20000"}},
-        Case{"cornell_physical", "depth", {"photons.global=20000", "photons.caustic=20000"}}));
+        Case{"cornell_physical", "depth", {"photons.global=20000", "photons.caustic=20000"}}),
+    // Named by scene, view and gate setting (the two fig11 cases differ only there),
+    // so ctest lists Scenes/PacketsMatchSingleRays.SameBytesAndCounts/fig11_gate_shadows_gate_on
+    // instead of /6 and the Case's raw bytes.
+    [](const ::testing::TestParamInfo<Case>& info) {
+      const Case& c = info.param;
+      std::string name = c.scene;
+      if (*c.aov) name += std::string("_") + c.aov;
+      for (const std::string& o : c.overrides) {
+        if (o == kNoGate) name += "_no_gate";
+        if (o == "photons.gate=true") name += "_gate_on";
+      }
+      return name;
+    });
 
 }  // namespace
 }  // namespace penumbra

@@ -6,6 +6,7 @@
 #include "plan/pipeline.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
+#include "support/scratch_dir.h"
 #include <gtest/gtest.h>
 #include <filesystem>
 #include <fstream>
@@ -56,8 +57,8 @@ TEST(ResourceEstimate, PhotonBytesBoundTheCornellBoxMaps) {
 }
 
 TEST(ResourceEstimate, PhotonBytesBoundAClosedBoxWithManyBounces) {
-  const fs::path dir = fs::temp_directory_path() / ("penumbra-estimate-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const penumbra::testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   const RenderResult r = render(closedBox(dir), {});
   expectBounds(r, "closed box");
   // The analytic bound alone (no pilot) is exact here up to noise: nothing escapes.
@@ -67,7 +68,6 @@ TEST(ResourceEstimate, PhotonBytesBoundAClosedBoxWithManyBounces) {
   const ResourceEstimate analytic = estimateResources(scene, options, analyticStoreRates(scene));
   EXPECT_GE(analytic.photonBytes, double(r.stats.photonMapBytes));
   EXPECT_LE(analytic.photonBytes, 1.1 * double(r.stats.photonMapBytes));
-  fs::remove_all(dir);
 }
 
 TEST(ResourceEstimate, PhotonBytesBoundThePhysicalMaps) {

@@ -5,6 +5,7 @@
 #include "io/image_io.h"
 #include "io/texture_gen.h"
 #include "support/render_fixtures.h"
+#include "support/scratch_dir.h"
 #include "geometry/sphere_geometry.h"
 #include "trace/texture_lookup.h"
 #include <OpenImageIO/imagebuf.h>
@@ -162,8 +163,8 @@ TEST_F(TextureLookupTest, RenderedGlobeMultipliesTheLitColour) {
 
 // 16-bit PNGs are sRGB-encoded like 8-bit ones, and grey + alpha reads as grey.
 TEST(TextureFormats, SixteenBitAndGreyAlphaAreLinearisedGrey) {
-  fs::path dir = fs::temp_directory_path() / ("penumbra-texfmt-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   auto write = [&](const std::string& name, int channels, OIIO::TypeDesc format) {
     OIIO::ImageBuf buf(OIIO::ImageSpec(8, 4, channels, OIIO::TypeDesc::FLOAT));
     std::vector<float> values(8 * 4 * channels, 0.5f);
@@ -187,7 +188,6 @@ TEST(TextureFormats, SixteenBitAndGreyAlphaAreLinearisedGrey) {
     EXPECT_NEAR(c.g, expected, 3e-3f) << paths[i];
     EXPECT_NEAR(c.b, expected, 3e-3f) << paths[i];
   }
-  fs::remove_all(dir);
 }
 
 // uv_scale repeats the texture: scaled by (2, 3), the cell at uv is the unscaled

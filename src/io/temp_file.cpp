@@ -3,11 +3,13 @@
 // instructions of the thread that is filling a slot.
 #include "io/temp_file.h"
 #include "core/error.h"
+#include <fcntl.h>
 #include <unistd.h>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -27,6 +29,45 @@ struct Slot {
 Slot gSlots[kSlots];
 static_assert(std::atomic<int>::is_always_lock_free, "the handler needs lock-free atomics");
 
+// Test-only hook: PENUMBRA_TEST_SIGNAL_AT=temp-file[:PREFIX[:N]] in the environment
+// when the cleanup is installed makes the Nth (default first) registered temp file
+// whose name starts with PREFIX (default any) exist at once and then raises SIGINT,
+// as if Ctrl-C arrived mid-write. Tests interrupt a write at a known point this way
+// instead of polling for the file. Read once; unset, a guard costs one relaxed load.
+struct SignalHook {
+  std::atomic<bool> armed{false};
+  std::string prefix;
+  int nth = 1;
+  std::atomic<int> seen{0};
+};
+SignalHook gHook;
+
+void readSignalHook() {
+  const char* env = std::getenv("PENUMBRA_TEST_SIGNAL_AT");
+  if (!env) return;
+  const std::string spec(env), phase = "temp-file";
+  if (spec.compare(0, phase.size(), phase) != 0) return;
+  std::string rest = spec.substr(phase.size());
+  if (!rest.empty() && rest[0] != ':') return;
+  if (!rest.empty()) rest.erase(0, 1);
+  const size_t colon = rest.rfind(':');
+  if (colon != std::string::npos) {
+    gHook.nth = std::atoi(rest.c_str() + colon + 1);
+    rest.erase(colon);
+  }
+  gHook.prefix = rest;
+  gHook.armed.store(gHook.nth > 0);
+}
+
+void signalHook(const std::string& path) {
+  if (!gHook.armed.load(std::memory_order_relaxed)) return;
+  if (fs::path(path).filename().string().compare(0, gHook.prefix.size(), gHook.prefix) != 0) return;
+  if (gHook.seen.fetch_add(1) + 1 != gHook.nth) return;
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT, 0644);
+  if (fd >= 0) ::close(fd);
+  std::raise(SIGINT);
+}
+
 extern "C" void onTerminatingSignal(int sig) {
   removeRegisteredTempFiles();
   // SA_RESETHAND restored the default action; SA_NODEFER lets this raise take it now.
@@ -36,15 +77,15 @@ extern "C" void onTerminatingSignal(int sig) {
 }  // namespace
 
 TempFileGuard::TempFileGuard(const std::string& path) {
-  if (path.size() + 1 > kPathMax) return;
-  for (int i = 0; i < kSlots; ++i) {
+  for (int i = 0; i < kSlots && path.size() + 1 <= kPathMax; ++i) {
     int expected = kFree;
     if (!gSlots[i].state.compare_exchange_strong(expected, kFilling)) continue;
     std::memcpy(gSlots[i].path, path.c_str(), path.size() + 1);
     gSlots[i].state.store(kArmed);
     slot_ = i;
-    return;
+    break;
   }
+  signalHook(path);
 }
 
 TempFileGuard::~TempFileGuard() {
@@ -67,6 +108,7 @@ void installTempFileCleanup() {
   action.sa_flags = SA_RESETHAND | SA_NODEFER;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  readSignalHook();
 }
 
 void writeTextFileAtomic(const std::string& path, const std::string& text) {

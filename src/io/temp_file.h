@@ -20,7 +20,9 @@ class TempFileGuard {
 };
 
 // SIGINT and SIGTERM remove every registered temp file, then die of the signal as
-// before (default action, so the parent sees the usual exit status).
+// before (default action, so the parent sees the usual exit status). Also reads the
+// test-only PENUMBRA_TEST_SIGNAL_AT=temp-file[:PREFIX[:N]] (temp_file.cpp): SIGINT
+// raised as soon as the Nth temp file named PREFIX... is registered and exists.
 void installTempFileCleanup();
 
 // The handler's body: unlinks every registered temp file. Async-signal-safe.

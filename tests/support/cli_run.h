@@ -1,46 +1,23 @@
 // Running the penumbra binary from a test: a scratch directory, shell quoting, and
 // the exit code, stdout and stderr of one command line.
 #pragma once
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+#include "support/scratch_dir.h"
+
+extern char** environ;
 
 namespace penumbra::testing {
 
 namespace fs = std::filesystem;
-
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::string pattern = (fs::temp_directory_path() / "penumbra-cli-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) std::abort();
-    path_ = pattern;
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(path_, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    std::ofstream(path_ / name, std::ios::binary) << text;
-    return path_ / name;
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-  const fs::path& path() const { return path_; }
-  // Names of entries containing ".tmp": what an interrupted write would leave.
-  int tempFiles() const {
-    int n = 0;
-    for (const auto& e : fs::directory_iterator(path_)) n += e.path().filename().string().find(".tmp") != std::string::npos;
-    return n;
-  }
-
- private:
-  fs::path path_;
-};
 
 inline std::string readFile(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -68,6 +45,34 @@ inline CliResult runCli(const std::string& args) {
   r.out = readFile(out);
   r.err = readFile(err);
   return r;
+}
+
+// Runs the binary on `args` (unquoted, no shell) with PENUMBRA_TEST_SIGNAL_AT=`at`
+// (io/temp_file.cpp's test hook: SIGINT at a named point, no polling) and stderr to
+// /dev/null; returns the wait status. Everything exec needs is built before the fork.
+inline int runCliSignalledAt(const std::string& at, const std::vector<std::string>& args) {
+  std::vector<std::string> envText;
+  for (char** e = environ; *e; ++e) {
+    if (std::strncmp(*e, "PENUMBRA_TEST_SIGNAL_AT=", 24) != 0) envText.emplace_back(*e);
+  }
+  envText.push_back("PENUMBRA_TEST_SIGNAL_AT=" + at);
+  std::vector<char*> env, argv = {const_cast<char*>(PENUMBRA_BINARY)};
+  for (std::string& e : envText) env.push_back(e.data());
+  env.push_back(nullptr);
+  std::vector<std::string> argText = args;
+  for (std::string& a : argText) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t child = fork();
+  if (child < 0) return -1;
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    if (null >= 0) ::dup2(null, 2);
+    ::execve(PENUMBRA_BINARY, argv.data(), env.data());
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  return status;
 }
 
 }  // namespace penumbra::testing
