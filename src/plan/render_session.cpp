@@ -31,7 +31,10 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
     throw InputError(scene.file + ": view '" + job.viewName + "' needs the physical model (render.model: \"physical\")");
   }
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
-  job.keys = reuseKeys(request.scenePath, request.overrides);
+  // A scene read from stdin can be read once: it shares nothing with another job.
+  if (request.scenePath == "-") job.keys = {"-\n" + std::to_string(stdinJobs_), "-\n" + std::to_string(stdinJobs_)};
+  else job.keys = reuseKeys(request.scenePath, request.overrides);
+  if (request.scenePath == "-") ++stdinJobs_;
   job.inputs = sceneInputs(scene, request.scenePath);
   checkOutputs(request.outputs, job.inputs);
   // Before any work: what runs and why (photons.gate = auto is decided here too).

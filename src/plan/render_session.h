@@ -109,6 +109,7 @@ class RenderSession {
   std::list<CachedStage> stages_;  // most recently used first
   uint64_t cachedBytes_ = 0, peakStageBytes_ = 0;
   size_t sceneBuilds_ = 0, photonBuilds_ = 0, evictions_ = 0;
+  size_t stdinJobs_ = 0;
 };
 
 }  // namespace penumbra
