@@ -33,7 +33,7 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--format", o.format, "Image format of scene files given directly: png or exr (several views: one layered exr)")
       ->check(CLI::IsMember({"png", "exr"}));
   c->add_option("-D,--set", o.overrides, "Override a scene value in every job")->take_all()->allow_extra_args(false);
-  c->add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   c->add_option("--shard", o.shard, "Render only shard I of N (1-based), e.g. 2/4");
   c->add_option("--list-shard", o.listShard, "Print the jobs shard I/N would take, and exit");
   c->add_option("--map-cache", o.mapCache, "Photon maps kept for later jobs, at most this much (LRU), e.g. 4G");

@@ -37,7 +37,7 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("-D,--set", o.overrides, "Override a scene value in every run")->take_all()->allow_extra_args(false);
   c->add_option("--reference", o.reference, "Reference image (EXR) for the error (default: the run at every knob's highest value)");
   c->add_option("--aov", o.aov, "View to render (default: the scene's render.aov)");
-  c->add_option("--threads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
   c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
   c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a run estimated to need more, e.g. 8G (default: the memory available)");
