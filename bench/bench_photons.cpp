@@ -27,7 +27,7 @@ void BM_EmitCornell(benchmark::State& state) {
   const penumbra::bench::CpuShare cpu;
   for (auto _ : state) {
     PhotonMaps maps = emitPhotons(scene, tracer);
-    emitted += maps.emittedShadow + maps.emittedIndirect;
+    emitted += maps.emitted[MapKind::Shadow] + maps.emitted[MapKind::Indirect];
     stored += maps.shadow.size() + maps.indirect.size();
   }
   cpu.report(state, static_cast<int>(state.range(0)));

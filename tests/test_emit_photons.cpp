@@ -53,8 +53,8 @@ TEST(EmitShadow, ClosedBoxEveryLineHitsExactlyOneWall) {
   EmitOptions options;
   options.batchSize = 1000;
   PhotonMaps maps = emitPhotons(scene, tracer, options);
-  EXPECT_EQ(maps.emittedShadow, 20000u);
-  EXPECT_EQ(maps.emittedIndirect, 0u);
+  EXPECT_EQ(maps.emitted[MapKind::Shadow], 20000u);
+  EXPECT_EQ(maps.emitted[MapKind::Indirect], 0u);
   EXPECT_TRUE(maps.indirect.empty());
   ASSERT_EQ(maps.shadow.size(), 20000u);
   for (const ShadowPhoton& p : maps.shadow) {
@@ -141,7 +141,7 @@ TEST(EmitIndirect, RussianRouletteClassicStoresEveryHit) {
     TraceScene tracer(scene);
     PhotonMaps maps = emitPhotons(scene, tracer);
     EXPECT_TRUE(maps.shadow.empty());
-    EXPECT_EQ(maps.emittedIndirect, n);
+    EXPECT_EQ(maps.emitted[MapKind::Indirect], n);
     // Hits per path: 1 + Geometric(p), mean 1/(1-p), variance p/(1-p)^2.
     const double mean = n / (1.0 - p), sd = std::sqrt(n * p) / (1.0 - p);
     expectWithinSigmas(static_cast<double>(maps.indirect.size()), mean, sd, 4.0,
@@ -288,7 +288,7 @@ TEST(Emit, ByteIdenticalForOneAndTwoThreads) {
                           one.shadow.size() * sizeof(ShadowPhoton)), 0);
     EXPECT_EQ(std::memcmp(m->indirect.flatten().data(), one.indirect.flatten().data(),
                           one.indirect.size() * sizeof(IndirectPhoton)), 0);
-    EXPECT_EQ(m->emittedShadow, one.emittedShadow);
+    EXPECT_EQ(m->emitted[MapKind::Shadow], one.emitted[MapKind::Shadow]);
     EXPECT_EQ(m->classicScale, one.classicScale);
   }
   // Each light's lines all start with one direct hit: its share of the budget.
@@ -345,8 +345,8 @@ TEST(SplitBudget, ProportionalToLuminanceAndExact) {
   PhotonMaps maps = emitPhotons(sunOnly, tracer);
   EXPECT_TRUE(maps.shadow.empty());
   EXPECT_TRUE(maps.indirect.empty());
-  EXPECT_EQ(maps.emittedShadow, 0u);
-  EXPECT_EQ(maps.emittedIndirect, 0u);
+  EXPECT_EQ(maps.emitted[MapKind::Shadow], 0u);
+  EXPECT_EQ(maps.emitted[MapKind::Indirect], 0u);
 }
 
 // A light whose weight overflowed (inf) or is undefined (NaN) gets nothing; the others

@@ -88,7 +88,7 @@ TEST_P(Furnace, GlobalMapGivesTheInterreflectionOfAClosedSphere) {
   PhysicalPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
   const glm::dvec3 phi = 4.0 * kPiD * glm::dvec3(colour) * double(intensity);
   const double gain = rho / (1.0 - rho);
-  EXPECT_EQ(photons.emittedGlobal, 500000u);
+  EXPECT_EQ(photons.emitted[MapKind::Global], 500000u);
   EXPECT_TRUE(photons.caustic.empty());  // nothing specular to aim at
   const PhotonTally& t = photons.globalTally;
   for (int c = 0; c < 3; ++c) {
@@ -97,7 +97,7 @@ TEST_P(Furnace, GlobalMapGivesTheInterreflectionOfAClosedSphere) {
     // Stored power per emitted photon is geometric: mean rho/(1-rho), variance
     // rho/(1-rho)^2, so the relative standard error is 1/sqrt(rho N) <= 0.2%;
     // tolerance 1% (>= 5 sigma).
-    EXPECT_LT(rel(t.storedGlobal[c], phi[c] * gain), 0.01) << "channel " << c;
+    EXPECT_LT(rel(t.stored[MapKind::Global][c], phi[c] * gain), 0.01) << "channel " << c;
     // Bookkeeping: every watt emitted is absorbed or capped (exact up to double rounding).
     EXPECT_NEAR(t.absorbed[c] + t.capped[c] + t.escaped[c], t.emitted[c], 1e-9 * t.emitted[c]);
   }

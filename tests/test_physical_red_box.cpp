@@ -69,7 +69,7 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   for (int c = 0; c < 3; ++c) {
     // Red: stored power per photon ~ geometric(0.9), rel. s.e. 1.05/sqrt(N) = 0.24%;
     // green/blue are dominated by the first bounce (s.e. ~0.1%). Tolerance 1%.
-    EXPECT_LT(rel(t.storedGlobal[c], stored[c]), 0.01) << "channel " << c;
+    EXPECT_LT(rel(t.stored[MapKind::Global][c], stored[c]), 0.01) << "channel " << c;
     EXPECT_EQ(t.escaped[c], 0.0);
     EXPECT_NEAR(t.absorbed[c] + t.capped[c], t.emitted[c], 1e-9 * t.emitted[c]);
   }
@@ -91,10 +91,10 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
     bound += glm::dvec3(0x1p-8 * maxComponent(c) / (1.0 - 0x1p-8));  // 2^-8 of the float's largest
   }
   for (int c = 0; c < 3; ++c) {
-    EXPECT_LE(std::abs(inMap[c] - t.storedGlobal[c]), bound[c]) << "channel " << c;
+    EXPECT_LE(std::abs(inMap[c] - t.stored[MapKind::Global][c]), bound[c]) << "channel " << c;
   }
-  std::printf("[ info ] map / tally - 1 per channel: %+.4f %+.4f %+.4f\n", inMap.r / t.storedGlobal.r - 1.0,
-              inMap.g / t.storedGlobal.g - 1.0, inMap.b / t.storedGlobal.b - 1.0);
+  std::printf("[ info ] map / tally - 1 per channel: %+.4f %+.4f %+.4f\n", inMap.r / t.stored[MapKind::Global].r - 1.0,
+              inMap.g / t.stored[MapKind::Global].g - 1.0, inMap.b / t.stored[MapKind::Global].b - 1.0);
 
   IndirectPhotonMap map;
   map.build(std::move(photons.global));
@@ -142,9 +142,9 @@ TEST(RedBox, PhysicalStoredPowerFollowsTheBounceCap) {
     PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer);
     const glm::dvec3 want = expectedStoredPhysical(m);
     for (int c = 0; c < 3; ++c) {
-      EXPECT_LT(rel(photons.globalTally.storedGlobal[c], want[c]), 0.01) << "M=" << m << " ch " << c;
+      EXPECT_LT(rel(photons.globalTally.stored[MapKind::Global][c], want[c]), 0.01) << "M=" << m << " ch " << c;
     }
-    double red = photons.globalTally.storedGlobal.r;
+    double red = photons.globalTally.stored[MapKind::Global].r;
     if (m == 128) {
       EXPECT_LT(rel(red, last), 0.01) << "not converged from 64 to 128";
     }
@@ -173,7 +173,7 @@ TEST(RedBox, ClassicRouletteStoredPowerConvergesWithMaxBounces) {
       scene.photons.sampling = sampling;
       TraceScene tracer(scene);
       EmitOptions options;
-      options.shadowMap = false;
+      options.maps[MapKind::Shadow] = false;
       PhotonMaps maps = emitPhotons(scene, tracer, options);
       glm::dvec3 sum(0.0);
       for (const IndirectPhoton& p : maps.indirect) sum += glm::dvec3(p.power.color());

@@ -62,8 +62,8 @@ TEST(GlassEnergy, ClearGlassAloneLetsEveryPhotonEscape) {
     const char* what = slab ? "slab" : "sphere";
     EXPECT_TRUE(photons.global.empty()) << what;
     EXPECT_TRUE(photons.caustic.empty()) << what;
-    EXPECT_EQ(photons.emittedGlobal, 200000u);
-    EXPECT_EQ(photons.emittedCaustic, 200000u);
+    EXPECT_EQ(photons.emitted[MapKind::Global], 200000u);
+    EXPECT_EQ(photons.emitted[MapKind::Caustic], 200000u);
     for (const PhotonTally* t : {&photons.globalTally, &photons.causticTally}) {
       const char* pass = t == &photons.globalTally ? "global" : "caustic";
       for (int c = 0; c < 3; ++c) {
@@ -160,7 +160,7 @@ TEST(MirrorCaustic, LandsInTheMirrorsImageWithItsSolidAnglesPower) {
   std::vector<SceneSphere> targets = specularTargets(scene);
   ASSERT_EQ(targets.size(), 1u);  // the mirror only
   PhysicalPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
-  ASSERT_EQ(photons.emittedCaustic, 400000u);
+  ASSERT_EQ(photons.emitted[MapKind::Caustic], 400000u);
   ASSERT_FALSE(photons.caustic.empty());
   // The cone around the mirror's bounding sphere (half-diagonal 0.5 sqrt 2, x 1.001 + 1e-6).
   const double rt = 0.5 * std::sqrt(2.0) * 1.001 + 1e-6;
@@ -189,7 +189,7 @@ TEST(MirrorCaustic, LandsInTheMirrorsImageWithItsSolidAnglesPower) {
   // Hits are binomial with p = Omega_mirror / Omega_cone = 0.44: rel. s.e. 0.18% at
   // N = 400k. Tolerance 1% as asked.
   for (int c = 0; c < 3; ++c) EXPECT_LT(rel(total[c], I * omegaMirror), 0.01) << c;
-  EXPECT_LT(rel(photons.causticTally.storedCaustic.r, I * omegaMirror), 0.01);
+  EXPECT_LT(rel(photons.causticTally.stored[MapKind::Caustic].r, I * omegaMirror), 0.01);
 
   // The caustic radiance seen from below, on a 31 x 31 grid with |X|, |Z| <= 1.2 (the
   // kNN radius is ~0.03, well inside the image's edge at 1.5): rho/pi I 3 / d^3.

@@ -133,18 +133,18 @@ TEST(Determinism, RunRenderIsIdenticalForOneAndTwoThreads) {
   ASSERT_EQ(one.image.width, 64);
   ASSERT_EQ(one.image.height, 48);
   // Photon maps were really on, and the gate and the gather were used.
-  EXPECT_EQ(one.stats.emittedShadow, 30000u);
-  EXPECT_EQ(one.stats.emittedIndirect, 20000u);
-  EXPECT_GT(one.stats.storedShadow, 0u);
-  EXPECT_GT(one.stats.storedIndirect, 0u);
+  EXPECT_EQ(one.stats.emitted[MapKind::Shadow], 30000u);
+  EXPECT_EQ(one.stats.emitted[MapKind::Indirect], 20000u);
+  EXPECT_GT(one.stats.stored[MapKind::Shadow], 0u);
+  EXPECT_GT(one.stats.stored[MapKind::Indirect], 0u);
   EXPECT_GT(one.stats.rays.gateQueries, 0u);
   EXPECT_GT(one.stats.rays.gatherQueries, 0u);
   EXPECT_EQ(one.stats.rays.camera, 64u * 48u * 4u);
   EXPECT_EQ(one.stats.threads, 1);
   EXPECT_EQ(two.stats.threads, 2);
   // Same photons, same rays, same bytes.
-  EXPECT_EQ(one.stats.storedShadow, two.stats.storedShadow);
-  EXPECT_EQ(one.stats.storedIndirect, two.stats.storedIndirect);
+  EXPECT_EQ(one.stats.stored[MapKind::Shadow], two.stats.stored[MapKind::Shadow]);
+  EXPECT_EQ(one.stats.stored[MapKind::Indirect], two.stats.stored[MapKind::Indirect]);
   EXPECT_EQ(one.stats.rays.shadow, two.stats.rays.shadow);
   EXPECT_EQ(one.stats.rays.reflection, two.stats.rays.reflection);
   EXPECT_EQ(one.stats.rays.refraction, two.stats.rays.refraction);

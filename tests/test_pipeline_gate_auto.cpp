@@ -39,13 +39,13 @@ TEST(GateAuto, RenderSkipsTheShadowMapUnlessAskedFor) {
   RenderResult autoRun = runRender(req);
   EXPECT_FALSE(autoRun.stats.gate);
   EXPECT_EQ(autoRun.stats.gateMode, "auto");
-  EXPECT_EQ(autoRun.stats.storedShadow, 0u);  // no shadow photons emitted at all
+  EXPECT_EQ(autoRun.stats.stored[MapKind::Shadow], 0u);  // no shadow photons emitted at all
   EXPECT_EQ(autoRun.stats.rays.gateQueries, 0u);
   EXPECT_FALSE(autoRun.stats.gateReason.empty());
   req.overrides.push_back("photons.gate=on");
   RenderResult on = runRender(req);
   EXPECT_TRUE(on.stats.gate);
-  EXPECT_GT(on.stats.storedShadow, 0u);
+  EXPECT_GT(on.stats.stored[MapKind::Shadow], 0u);
   EXPECT_GT(on.stats.rays.gateQueries, 0u);
   req.overrides.back() = "photons.gate=off";
   EXPECT_FALSE(runRender(req).stats.gate);

@@ -76,10 +76,10 @@ TEST_P(PlanScenes, ForcingOnWhatThePlanSkippedChangesNoByte) {
   EXPECT_EQ(compareImages(forced.image, automatic.image).maxError, 0.0) << GetParam();
   // Skipped passes cost nothing: no photons or rays of that kind.
   const RenderStats& s = automatic.stats;
-  if (!plan[Pass::Gate].on) { EXPECT_EQ(s.emittedShadow + s.rays.gateQueries, 0u); }
-  if (!plan[Pass::IndirectPhotons].on) { EXPECT_EQ(s.emittedIndirect, 0u); }
-  if (!plan[Pass::GlobalPhotons].on) { EXPECT_EQ(s.emittedGlobal, 0u); }
-  if (!plan[Pass::CausticPhotons].on) { EXPECT_EQ(s.emittedCaustic, 0u); }
+  if (!plan[Pass::Gate].on) { EXPECT_EQ(s.emitted[MapKind::Shadow] + s.rays.gateQueries, 0u); }
+  if (!plan[Pass::IndirectPhotons].on) { EXPECT_EQ(s.emitted[MapKind::Indirect], 0u); }
+  if (!plan[Pass::GlobalPhotons].on) { EXPECT_EQ(s.emitted[MapKind::Global], 0u); }
+  if (!plan[Pass::CausticPhotons].on) { EXPECT_EQ(s.emitted[MapKind::Caustic], 0u); }
   if (!plan[Pass::ShadowRays].on) { EXPECT_EQ(s.rays.shadow, 0u); }
   if (!plan[Pass::Reflection].on) { EXPECT_EQ(s.rays.reflection, 0u); }
   if (!plan[Pass::Refraction].on) { EXPECT_EQ(s.rays.refraction, 0u); }

@@ -145,8 +145,8 @@ TEST(Progress, EveryPhaseCounterReachesItsTotal) {
     EXPECT_EQ(p.done, p.total) << p.phase;
   }
   ASSERT_EQ(names, (std::vector<std::string>{"photons", "maps", "lookups", "render"}));
-  EXPECT_EQ(meter.ended()[0].total, r.stats.emittedShadow + r.stats.emittedIndirect);
-  EXPECT_EQ(meter.ended()[1].total, 2 * (r.stats.storedShadow + r.stats.storedIndirect));
+  EXPECT_EQ(meter.ended()[0].total, r.stats.emitted[MapKind::Shadow] + r.stats.emitted[MapKind::Indirect]);
+  EXPECT_EQ(meter.ended()[1].total, 2 * (r.stats.stored[MapKind::Shadow] + r.stats.stored[MapKind::Indirect]));
   EXPECT_EQ(meter.ended()[3].total, 3u * 2u);  // 16-pixel tiles over 40 x 30
   EXPECT_EQ(contents(out), "");
   std::fclose(out);

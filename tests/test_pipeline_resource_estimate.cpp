@@ -51,7 +51,7 @@ TEST(ResourceEstimate, PhotonBytesBoundTheCornellBoxMaps) {
   const RenderResult r = render(kScenes + "fig14_cornell.json",
                                 {"camera.width=32", "camera.height=32", "photons.gate=on",
                                  "photons.shadow=400000", "photons.indirect=400000"});
-  ASSERT_GT(r.stats.storedShadow, 0u);
+  ASSERT_GT(r.stats.stored[MapKind::Shadow], 0u);
   EXPECT_TRUE(r.estimate.rates.measured);  // 9 surfaces a line could cross: the pilot ran
   expectBounds(r, "fig14");
 }

@@ -72,11 +72,11 @@ TEST(Reach, ABoxedLightGetsNoPhotonsAndTheStoredPowerIsUnchanged) {
   const Scene scene = boxedLightScene(200000);
   const TraceScene tracer(scene);
   EmitOptions bySplit;
-  bySplit.shadowMap = false;
+  bySplit.maps[MapKind::Shadow] = false;
   EmitOptions byReach = bySplit;
-  byReach.indirectReach = measureReach(scene, tracer, ReachRule::Bouncing);
+  byReach.reach[MapKind::Indirect] = measureReach(scene, tracer, ReachRule::Bouncing);
   EXPECT_EQ(splitBudget(scene, 200000), (std::vector<uint64_t>{100000, 100000}));
-  EXPECT_EQ(splitBudget(scene, 200000, byReach.indirectReach), (std::vector<uint64_t>{200000, 0}));
+  EXPECT_EQ(splitBudget(scene, 200000, byReach.reach[MapKind::Indirect]), (std::vector<uint64_t>{200000, 0}));
   const PhotonMaps power = emitPhotons(scene, tracer, bySplit);
   const PhotonMaps reach = emitPhotons(scene, tracer, byReach);
   // Every stored photon is light 0's (light 1's die in the black box, unstored: the
@@ -121,7 +121,7 @@ TEST(Reach, ThePlanSaysWhichLightsGetNothingAndTurnsOffAPassNoLightFeeds) {
   splitByReach(alone, scene, boxedOnly);
   EXPECT_FALSE(alone[Pass::IndirectPhotons].on);
   EXPECT_NE(alone[Pass::IndirectPhotons].reason.find("no light's photons reach"), std::string::npos);
-  EXPECT_EQ(planBudgets(alone).indirect, 0u);
+  EXPECT_EQ(planBudgets(alone)[MapKind::Indirect], 0u);
 
   // Forced on, the pass keeps the power split: "everything" means everything.
   PlanOverrides force;

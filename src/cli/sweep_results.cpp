@@ -85,8 +85,8 @@ void fillCounts(SweepRow& row, const RenderStats& st) {
   row.gateQueries = st.rays.gateQueries;
   row.shadowRaysAvoided = st.rays.shadowRaysAvoided;
   row.gatherQueries = st.rays.gatherQueries;
-  row.photonsEmitted = st.emittedShadow + st.emittedIndirect + st.emittedGlobal + st.emittedCaustic;
-  row.photonsStored = st.storedShadow + st.storedIndirect + st.storedGlobal + st.storedCaustic;
+  row.photonsEmitted = st.emitted.total();
+  row.photonsStored = st.stored.total();
 }
 
 std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs) {

@@ -134,15 +134,15 @@ class Sweep {
     const PlannedJob& lead = runs_[group[0]].job;
     const double bvh = bvhSeconds_[lead.keys.geometry];
     // One emission at each map's largest budget, of every map any run reads.
-    MapBudgets top;
+    MapCounts top;
     std::vector<uint64_t> smaller;
-    std::vector<MapBudgets> budgets;
+    std::vector<MapCounts> budgets;
     PhotonNeeds needs;
     for (size_t i : group) {
-      const MapBudgets b = planBudgets(runs_[i].job.plan);
+      const MapCounts b = planBudgets(runs_[i].job.plan);
       needs |= photonNeeds(runs_[i].job.plan);
       top.maxWith(b);
-      for (uint64_t n : {b.shadow, b.indirect, b.global, b.caustic}) smaller.push_back(n);
+      for (uint64_t n : b.values) smaller.push_back(n);
       if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
     }
     status_ = "photons";
@@ -153,9 +153,9 @@ class Sweep {
     ++totals_.emissions;
     // The reference's budget first, then the largest to the smallest.
     std::sort(budgets.begin(), budgets.end(),
-              [](const MapBudgets& a, const MapBudgets& b) { return a.total() > b.total(); });
+              [](const MapCounts& a, const MapCounts& b) { return a.total() > b.total(); });
     bool emissionCharged = false;
-    for (const MapBudgets& b : budgets) {
+    for (const MapCounts& b : budgets) {
       PhotonStage stage;
       status_ = "maps";
       showProgress();

@@ -1,6 +1,7 @@
 // Render statistics as plain counters. Parallel phases keep one RayCounts per
 // thread (tbb::enumerable_thread_specific) and add them up afterwards.
 #pragma once
+#include "core/map_kind.h"
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -43,8 +44,7 @@ struct RenderStats {
   RayCounts rays;
   std::string model = "classic";
   int passes = 1;
-  uint64_t emittedShadow = 0, emittedIndirect = 0, storedShadow = 0, storedIndirect = 0;
-  uint64_t emittedCaustic = 0, emittedGlobal = 0, storedCaustic = 0, storedGlobal = 0;
+  MapCounts emitted, stored;  // photons per map, over every pass
   float causticRadius = 0.0f, globalRadius = 0.0f;  // last pass's, when passes > 1
   uint64_t photonMapBytes = 0;
   std::string lookup = "exact";      // photons.lookup

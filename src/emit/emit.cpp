@@ -112,11 +112,11 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   enum : uint64_t { kShadowStream = 1, kIndirectStream = 2 };
 
   // Without the gate (or without shadows) nobody reads the shadow map: do not pay for it.
-  const MapBudgets budgets = options.budgets ? *options.budgets : budgetsOf(scene);
-  bool wantShadowMap = options.shadowMap && (options.budgets || (ps.gate && scene.render.shadows));
-  const std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? budgets.shadow : 0);
+  const MapCounts budgets = options.budgets ? *options.budgets : budgetsOf(scene);
+  bool wantShadowMap = options.maps[MapKind::Shadow] && (options.budgets || (ps.gate && scene.render.shadows));
+  const std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? budgets[MapKind::Shadow] : 0);
   maps.shadow = runPhotonPass<ShadowPhoton>(
-      weights, shadowCounts, options, cuts ? &cuts->shadow : nullptr, maps.emittedShadow,
+      weights, shadowCounts, options, cuts ? &cuts->shadow : nullptr, maps.emitted[MapKind::Shadow],
       [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         return [&light, &bounds, &tracer, &options, index = static_cast<uint16_t>(batch.light),
@@ -127,12 +127,12 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
         };
       });
 
-  const std::vector<double> indirectWeights = reachWeighted(weights, options.indirectReach);
+  const std::vector<double> indirectWeights = reachWeighted(weights, options.reach[MapKind::Indirect]);
   const std::vector<uint64_t> indirectCounts =
-      splitByWeight(indirectWeights, options.indirectMap ? budgets.indirect : 0);
+      splitByWeight(indirectWeights, options.maps[MapKind::Indirect] ? budgets[MapKind::Indirect] : 0);
   const bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
   maps.indirect = runPhotonPass<IndirectPhoton>(
-      indirectWeights, indirectCounts, options, cuts ? &cuts->indirect : nullptr, maps.emittedIndirect,
+      indirectWeights, indirectCounts, options, cuts ? &cuts->indirect : nullptr, maps.emitted[MapKind::Indirect],
       [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         // Each photon carries an equal share of the light's flux (4 pi I for a point light).
@@ -149,8 +149,8 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
 
   double intensity = 0.0;
   for (const Light& l : scene.lights) intensity += classicPhotonWeight(l);
-  if (maps.emittedIndirect > 0 && intensity > 0.0) {
-    maps.classicScale = static_cast<float>(maps.emittedIndirect / (4.0 * kPi * intensity));
+  if (maps.emitted[MapKind::Indirect] > 0 && intensity > 0.0) {
+    maps.classicScale = static_cast<float>(maps.emitted[MapKind::Indirect] / (4.0 * kPi * intensity));
   }
   return maps;
 }

@@ -9,41 +9,28 @@
 #include "core/scene.h"
 #include "emit/photon_prefix.h"
 #include "geometry/trace_scene.h"
+#include "core/map_kind.h"
 #include <algorithm>
 #include <optional>
 
 namespace penumbra {
 
-// Photons to emit per map; the stages' callers pass the plan's (plan/photon_stage.h).
-struct MapBudgets {
-  uint64_t shadow = 0, indirect = 0, global = 0, caustic = 0;
-  bool operator==(const MapBudgets& o) const {
-    return shadow == o.shadow && indirect == o.indirect && global == o.global && caustic == o.caustic;
-  }
-  uint64_t total() const { return shadow + indirect + global + caustic; }
-  void maxWith(const MapBudgets& o) {
-    shadow = std::max(shadow, o.shadow), indirect = std::max(indirect, o.indirect);
-    global = std::max(global, o.global), caustic = std::max(caustic, o.caustic);
-  }
-};
-
 struct EmitOptions {
   // Empty: the scene's photons.* budgets, with shadow photons only when photons.gate
   // and render.shadows are on.
-  std::optional<MapBudgets> budgets;
+  std::optional<MapCounts> budgets;  // photons to emit per map
   uint32_t batchSize = 4096;  // photons per task; each batch owns one random stream
   int maxHitsPerLine = 64;    // shadow photons kept per line at most
-  bool shadowMap = true;      // false: the caller will not consult the gate (e.g. --aov indirect)
-  bool indirectMap = true;    // false: shadow photons only (the physical model's gate)
-  bool globalMap = true;      // physical model: false skips the global pass (views that do not read it)
-  bool causticMap = true;     // physical model: false skips the caustic pass
+  // The maps to emit (false: nobody reads it, e.g. the gate's shadow photons under
+  // --aov indirect); each emitter skips the maps of the other model.
+  PerMap<bool> maps{{true, true, true, true}};
   // Smaller budgets to record inside this emission (emit/photon_prefix.h), for every
   // map emitted: a budget below a map's own is cut out of it afterwards.
   std::vector<uint64_t> prefixBudgets;
   // Per light, the fraction of its photons that reach where each map stores
   // (emit/light_reach.h; the render plan measures it): budgets are split by power
   // times this. Empty: by power alone. The gate's shadow photons keep the power split.
-  std::vector<float> indirectReach, globalReach, causticReach;
+  PerMap<std::vector<float>> reach;
   // Each finished batch adds its photon count (one atomic add per batch); null: none.
   ProgressCounter* progress = nullptr;
 };
@@ -53,8 +40,7 @@ struct EmitOptions {
 struct PhotonMaps {
   PhotonBatches<ShadowPhoton> shadow;
   PhotonBatches<IndirectPhoton> indirect;
-  uint64_t emittedShadow = 0;
-  uint64_t emittedIndirect = 0;
+  MapCounts emitted;  // shadow and indirect
   // Converts stored indirect flux back into photon colour (a white light's photons -> 1):
   // emitted photons / (4 pi x summed luminous intensity). Used by the classic estimator.
   float classicScale = 1.0f;
@@ -71,9 +57,14 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
                        ClassicCuts* cuts = nullptr);
 
 // The scene's own photons.* budgets.
-inline MapBudgets budgetsOf(const Scene& scene) {
+inline MapCounts budgetsOf(const Scene& scene) {
   const PhotonSettings& ps = scene.photons;
-  return {ps.shadowPhotons, ps.indirectPhotons, ps.globalPhotons, ps.causticPhotons};
+  MapCounts b;
+  b[MapKind::Shadow] = ps.shadowPhotons;
+  b[MapKind::Indirect] = ps.indirectPhotons;
+  b[MapKind::Global] = ps.globalPhotons;
+  b[MapKind::Caustic] = ps.causticPhotons;
+  return b;
 }
 
 // Photons per light for a budget, proportional to each point light's power.

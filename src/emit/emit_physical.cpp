@@ -16,14 +16,13 @@ namespace penumbra {
 
 PhotonTally& PhotonTally::operator+=(const PhotonTally& o) {
   emitted += o.emitted; escaped += o.escaped; absorbed += o.absorbed; capped += o.capped;
-  storedCaustic += o.storedCaustic; storedGlobal += o.storedGlobal;
+  for (MapKind k : kAllMaps) stored[k] += o.stored[k];
   return *this;
 }
 
 namespace {
 
 enum : uint64_t { kGlobalStream = 3, kCausticStream = 4 };
-enum class PassKind { Global, Caustic };
 
 // The caustic pass samples directions (point lights) or disc points (directional
 // lights) only towards the targets, from the mixture of one cone or disc per
@@ -108,7 +107,7 @@ float sampleAimed(const Light& light, const SceneSphere& bounds, const Aim& aim,
 // Follows one photon; stores it at smooth surfaces as the pass dictates and plays
 // Russian roulette by the sampled weight: survive with q = min(1, max weight), then
 // power *= weight / q, so E[power after] = power x albedo, per channel.
-void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ray ray, Color power,
+void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray ray, Color power,
                  Rng& rng, BatchAppender<IndirectPhoton>& out, PhotonTally& tally) {
   const PhotonSettings& ps = scene.photons;
   int diffuseBounces = 0, specularBounces = 0;
@@ -125,10 +124,10 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ra
     SurfaceRecord s = tracer.surface(ray, hit, kSurfaceShadingNormal);
     Bsdf bsdf = makeBsdf(scene.materials[s.material], ShadingModel::Physical, ps.sampling);
     if (hasSmoothLobe(bsdf)) {
-      bool store = pass == PassKind::Global ? diffuseBounces > 0 : specularBounces > 0;
+      bool store = pass == MapKind::Global ? diffuseBounces > 0 : specularBounces > 0;
       if (store) {
         out.push_back({s.position, power, encodeOctahedral(ray.dir), encodeOctahedral(s.ng)});
-        (pass == PassKind::Global ? tally.storedGlobal : tally.storedCaustic) += glm::dvec3(power);
+        tally.stored[pass] += glm::dvec3(power);
       }
     }
     float uLobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), uRr = rng.uniform();
@@ -136,7 +135,7 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, PassKind pass, Ra
     bool delta = bs.flags & kBsdfSpecular;
     // The caustic pass ends at the first non-specular bounce: what follows is the
     // global map's (and a direct hit, the shadow rays').
-    if (!bs.valid || (pass == PassKind::Caustic && !delta)) {
+    if (!bs.valid || (pass == MapKind::Caustic && !delta)) {
       tally.absorbed += glm::dvec3(power);
       return;
     }
@@ -170,26 +169,26 @@ std::vector<double> photonWeights(const Scene& scene, const SceneSphere& bounds,
   return weights;
 }
 
-PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, PassKind kind,
+PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, MapKind kind,
                                       uint64_t pass, uint64_t total, const EmitOptions& options,
                                       uint64_t& emitted, PhotonTally& tally, PrefixCuts& cuts) {
   const SceneSphere bounds = tracer.boundingSphere();
-  std::vector<SceneSphere> targets = kind == PassKind::Caustic ? specularTargets(scene)
+  std::vector<SceneSphere> targets = kind == MapKind::Caustic ? specularTargets(scene)
                                                                : std::vector<SceneSphere>{};
-  if (kind == PassKind::Caustic && targets.empty()) total = 0;
+  if (kind == MapKind::Caustic && targets.empty()) total = 0;
   std::vector<Aim> aims;
-  for (const Light& l : scene.lights) aims.push_back(kind == PassKind::Caustic ? aimAt(l, targets) : Aim{});
+  for (const Light& l : scene.lights) aims.push_back(kind == MapKind::Caustic ? aimAt(l, targets) : Aim{});
   const std::vector<double> weights =
-      photonWeights(scene, bounds, aims, kind == PassKind::Caustic,
-                    kind == PassKind::Caustic ? options.causticReach : options.globalReach);
+      photonWeights(scene, bounds, aims, kind == MapKind::Caustic,
+                    options.reach[kind]);
   const std::vector<uint64_t> counts = splitByWeight(weights, total);
   tbb::enumerable_thread_specific<PhotonTally> tallies;
-  const uint64_t stream = kind == PassKind::Caustic ? kCausticStream : kGlobalStream;
+  const uint64_t stream = kind == MapKind::Caustic ? kCausticStream : kGlobalStream;
   PhotonBatches<IndirectPhoton> photons = runPhotonPass<IndirectPhoton>(
       weights, counts, options, &cuts, emitted, [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
-        const bool aimed = kind == PassKind::Caustic && isDeltaLight(light);
+        const bool aimed = kind == MapKind::Caustic && isDeltaLight(light);
         return [&, &light = light, share, aimed, aim = aims[batch.light], &t = tallies.local(),
                 rng = Rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch)))](
                    BatchAppender<IndirectPhoton>& out) mutable {
@@ -246,12 +245,12 @@ std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& 
 PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass,
                                     const EmitOptions& options) {
   PhysicalPhotons out;
-  const MapBudgets budgets = options.budgets ? *options.budgets : budgetsOf(scene);
-  out.global = runPass(scene, tracer, PassKind::Global, pass,
-                       options.globalMap ? budgets.global : 0, options, out.emittedGlobal,
+  const MapCounts budgets = options.budgets ? *options.budgets : budgetsOf(scene);
+  out.global = runPass(scene, tracer, MapKind::Global, pass,
+                       options.maps[MapKind::Global] ? budgets[MapKind::Global] : 0, options, out.emitted[MapKind::Global],
                        out.globalTally, out.globalCuts);
-  out.caustic = runPass(scene, tracer, PassKind::Caustic, pass,
-                        options.causticMap ? budgets.caustic : 0, options, out.emittedCaustic,
+  out.caustic = runPass(scene, tracer, MapKind::Caustic, pass,
+                        options.maps[MapKind::Caustic] ? budgets[MapKind::Caustic] : 0, options, out.emitted[MapKind::Caustic],
                         out.causticTally, out.causticCuts);
   return out;
 }

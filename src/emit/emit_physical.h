@@ -14,13 +14,13 @@ namespace penumbra {
 // exactly when every surface's sample weight is <= 1 with survival 1 (glass).
 struct PhotonTally {
   glm::dvec3 emitted{0.0}, escaped{0.0}, absorbed{0.0}, capped{0.0};
-  glm::dvec3 storedCaustic{0.0}, storedGlobal{0.0};  // power of the photons stored
+  PerMap<glm::dvec3> stored;  // power of the photons stored, caustic and global
   PhotonTally& operator+=(const PhotonTally& o);
 };
 
 struct PhysicalPhotons {
   PhotonBatches<IndirectPhoton> caustic, global;
-  uint64_t emittedCaustic = 0, emittedGlobal = 0;
+  MapCounts emitted;  // global and caustic
   PhotonTally causticTally, globalTally;
   PrefixCuts causticCuts, globalCuts;  // options.prefixBudgets (tallies cover the full emission)
 };
@@ -35,7 +35,7 @@ PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer
 std::vector<SceneSphere> specularTargets(const Scene& scene);
 
 // The global (caustic = false) or caustic pass's photons per light for `total`, as
-// emitPhysicalPhotons splits them given options.globalReach / causticReach = `reach`.
+// emitPhysicalPhotons splits them given options.reach[MapKind::Global / Caustic] = `reach`.
 std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& tracer, bool caustic,
                                           uint64_t total, const std::vector<float>& reach = {});
 

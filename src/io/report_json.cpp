@@ -28,12 +28,11 @@ std::string statsToJson(const RenderStats& s) {
                {"refraction", r.refraction}};
   j["model"] = s.model;
   j["passes"] = s.passes;
-  j["photons"] = {{"emitted_shadow", s.emittedShadow}, {"emitted_indirect", s.emittedIndirect},
-                  {"stored_shadow", s.storedShadow}, {"stored_indirect", s.storedIndirect},
-                  {"emitted_caustic", s.emittedCaustic}, {"stored_caustic", s.storedCaustic},
-                  {"emitted_global", s.emittedGlobal}, {"stored_global", s.storedGlobal},
-                  {"final_radius_caustic", s.causticRadius},
-                  {"final_radius_global", s.globalRadius}};
+  j["photons"] = {{"final_radius_caustic", s.causticRadius}, {"final_radius_global", s.globalRadius}};
+  for (MapKind k : kAllMaps) {
+    j["photons"][std::string("emitted_") + mapName(k)] = s.emitted[k];
+    j["photons"][std::string("stored_") + mapName(k)] = s.stored[k];
+  }
   j["gate"] = {{"mode", s.gateMode},             {"on", s.gate},
                {"reason", s.gateReason},
                {"queries", r.gateQueries},      {"lit", r.gateLit},
@@ -97,14 +96,14 @@ std::string statsSummary(const RenderStats& s) {
                        100.0 * r.gateShadowed / r.gateQueries, 100.0 * r.gateMixed / r.gateQueries,
                        r.shadowRaysAvoided);
   }
-  if (s.emittedCaustic || s.emittedGlobal) {
+  if (s.emitted[MapKind::Caustic] || s.emitted[MapKind::Global]) {
     out += fmt::format("  photons ({} pass{}): {} caustic stored of {} emitted, {} global stored of {} emitted\n",
-                       s.passes, s.passes == 1 ? "" : "es", s.storedCaustic, s.emittedCaustic,
-                       s.storedGlobal, s.emittedGlobal);
+                       s.passes, s.passes == 1 ? "" : "es", s.stored[MapKind::Caustic], s.emitted[MapKind::Caustic],
+                       s.stored[MapKind::Global], s.emitted[MapKind::Global]);
   }
-  if (s.emittedShadow || s.emittedIndirect) {
+  if (s.emitted[MapKind::Shadow] || s.emitted[MapKind::Indirect]) {
     out += fmt::format("  photons: {} shadow stored of {} emitted, {} indirect stored of {} emitted, maps {:.1f} MB\n",
-                       s.storedShadow, s.emittedShadow, s.storedIndirect, s.emittedIndirect,
+                       s.stored[MapKind::Shadow], s.emitted[MapKind::Shadow], s.stored[MapKind::Indirect], s.emitted[MapKind::Indirect],
                        s.photonMapBytes / 1e6);
   }
   return out;

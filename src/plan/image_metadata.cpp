@@ -25,12 +25,12 @@ std::string summary(const Scene& scene, const RenderPlan& plan, const RenderStat
       physical ? fmt::format("global_photons={} caustic_photons={} k_global={} k_caustic={} "
                              "passes={} alpha={} radius={} max_bounces={} shadow_photons={} "
                              "k_shadow={} gate={}",
-                             planBudgets(plan).global, planBudgets(plan).caustic, ps.kGlobal, ps.kCaustic, ps.passes,
-                             ps.alpha, ps.radius, ps.maxBounces, stats.emittedShadow, ps.kShadow,
+                             planBudgets(plan)[MapKind::Global], planBudgets(plan)[MapKind::Caustic], ps.kGlobal, ps.kCaustic, ps.passes,
+                             ps.alpha, ps.radius, ps.maxBounces, stats.emitted[MapKind::Shadow], ps.kShadow,
                              onOff(gate))
                : fmt::format("shadow_photons={} indirect_photons={} k_shadow={} k_indirect={} "
                              "max_radius={} max_bounces={} sampling={} gate={} estimator={}",
-                             stats.emittedShadow, stats.emittedIndirect, ps.kShadow, ps.kIndirect,
+                             stats.emitted[MapKind::Shadow], stats.emitted[MapKind::Indirect], ps.kShadow, ps.kIndirect,
                              ps.maxRadius, ps.maxBounces,
                              ps.sampling == HemisphereSampling::Cosine ? "cosine" : "uniform",
                              onOff(gate),
@@ -48,7 +48,7 @@ void addSettings(const Scene& scene, const RenderPlan& plan, const RenderStats& 
   const RenderSettings& rs = scene.render;
   const PhotonSettings& ps = scene.photons;
   const FrameChoices choices = choicesOf(plan, scene);
-  const MapBudgets budgets = planBudgets(plan);
+  const MapCounts budgets = planBudgets(plan);
   const bool precomputed = precomputedLookups(plan);
   const bool physical = rs.model == ShadingModel::Physical;
   auto add = [&m](const std::string& key, const auto& value) { m.emplace_back("penumbra:" + key, fmt::format("{}", value)); };
@@ -67,11 +67,11 @@ void addSettings(const Scene& scene, const RenderPlan& plan, const RenderStats& 
   auto rgb = [](const Color& c) { return fmt::format("{} {} {}", c.r, c.g, c.b); };
   add("background", rgb(rs.background));
   if (!physical) add("ambient", rgb(rs.ambient));
-  add("photons.shadow", budgets.shadow);
+  add("photons.shadow", budgets[MapKind::Shadow]);
   add("photons.k_shadow", ps.kShadow);
   if (physical) {
-    add("photons.global", budgets.global);
-    add("photons.caustic", budgets.caustic);
+    add("photons.global", budgets[MapKind::Global]);
+    add("photons.caustic", budgets[MapKind::Caustic]);
     add("photons.k_global", ps.kGlobal);
     add("photons.k_caustic", ps.kCaustic);
     add("photons.passes", ps.passes);
@@ -80,7 +80,7 @@ void addSettings(const Scene& scene, const RenderPlan& plan, const RenderStats& 
     if (stats.passes > 1) add("photons.final_global_radius", stats.globalRadius);
     if (stats.passes > 1) add("photons.final_caustic_radius", stats.causticRadius);
   } else {
-    add("photons.indirect", budgets.indirect);
+    add("photons.indirect", budgets[MapKind::Indirect]);
     add("photons.k_indirect", ps.kIndirect);
     add("photons.max_radius", ps.maxRadius);
     add("photons.sampling", ps.sampling == HemisphereSampling::Cosine ? "cosine" : "uniform");

@@ -9,8 +9,8 @@
 namespace penumbra {
 
 PhotonPlan photonPlanOf(const RenderPlan& plan, const Scene& scene, bool tracePixel) {
-  const MapBudgets b = planBudgets(plan);
-  PhotonPlan p{b.shadow, b.indirect, b.global, b.caustic, 1};
+  const MapCounts b = planBudgets(plan);
+  PhotonPlan p{b, 1};
   const bool lit = plan.aov != Aov::Depth && plan.aov != Aov::Normal;
   if (scene.render.model == ShadingModel::Physical && lit && !tracePixel) p.passes = std::max(1, scene.photons.passes);
   return p;

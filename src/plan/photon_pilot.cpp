@@ -24,23 +24,33 @@ StoreRates measureStoreRates(const Scene& scene, const TraceScene& tracer, const
   StoreRates r = bound;
   r.measured = true;
   auto margin = [](double measured, double cap) { return std::min(cap, measured * kPilotMargin); };
-  if (plan.shadow > 0 || plan.indirect > 0) {
+  using K = MapKind;
+  const MapCounts& n = plan.emitted;
+  auto pilot = [&](K k) { return std::min(n[k], kPilotPhotons); };
+  auto measure = [&](K k, size_t stored, uint64_t emitted) {
+    if (n[k] > 0) r.perPhoton[k] = margin(rate(stored, emitted), bound.perPhoton[k]);
+  };
+  if (n[K::Shadow] > 0 || n[K::Indirect] > 0) {
     EmitOptions options;
-    options.budgets = MapBudgets{std::min(plan.shadow, kPilotPhotons), std::min(plan.indirect, kPilotPhotons), 0, 0};
-    options.shadowMap = plan.shadow > 0;
-    options.indirectMap = plan.indirect > 0;
+    options.budgets = MapCounts();
+    (*options.budgets)[K::Shadow] = pilot(K::Shadow);
+    (*options.budgets)[K::Indirect] = pilot(K::Indirect);
+    options.maps[K::Shadow] = n[K::Shadow] > 0;
+    options.maps[K::Indirect] = n[K::Indirect] > 0;
     PhotonMaps maps = emitPhotons(scene, tracer, options);
-    if (plan.shadow > 0) r.shadow = margin(rate(maps.shadow.size(), maps.emittedShadow), bound.shadow);
-    if (plan.indirect > 0) r.indirect = margin(rate(maps.indirect.size(), maps.emittedIndirect), bound.indirect);
+    measure(K::Shadow, maps.shadow.size(), maps.emitted[K::Shadow]);
+    measure(K::Indirect, maps.indirect.size(), maps.emitted[K::Indirect]);
   }
-  if (plan.global > 0 || plan.caustic > 0) {
+  if (n[K::Global] > 0 || n[K::Caustic] > 0) {
     EmitOptions options;
-    options.budgets = MapBudgets{0, 0, std::min(plan.global, kPilotPhotons), std::min(plan.caustic, kPilotPhotons)};
-    options.globalMap = plan.global > 0;
-    options.causticMap = plan.caustic > 0;
+    options.budgets = MapCounts();
+    (*options.budgets)[K::Global] = pilot(K::Global);
+    (*options.budgets)[K::Caustic] = pilot(K::Caustic);
+    options.maps[K::Global] = n[K::Global] > 0;
+    options.maps[K::Caustic] = n[K::Caustic] > 0;
     PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer, 0, options);
-    if (plan.global > 0) r.global = margin(rate(photons.global.size(), photons.emittedGlobal), bound.global);
-    if (plan.caustic > 0) r.caustic = margin(rate(photons.caustic.size(), photons.emittedCaustic), bound.caustic);
+    measure(K::Global, photons.global.size(), photons.emitted[K::Global]);
+    measure(K::Caustic, photons.caustic.size(), photons.emitted[K::Caustic]);
   }
   return r;
 }

@@ -24,13 +24,12 @@ PhotonBatches<Photon> photonsFor(PhotonBatches<Photon>& all, const PrefixCuts& c
 
 // The photons the emitters will trace, so the bar's total is known up front: each
 // map's budget, unless the emitter skips that map (no gate, no specular target).
-uint64_t photonsAskedFor(const Scene& scene, const EmitOptions& o, const MapBudgets& b) {
+uint64_t photonsAskedFor(const Scene& scene, const EmitOptions& o, const MapCounts& b) {
   if (scene.lights.empty()) return 0;
   uint64_t n = 0;
-  if (o.shadowMap) n += b.shadow;
-  if (o.indirectMap) n += b.indirect;
-  if (o.globalMap) n += b.global;
-  if (o.causticMap && b.caustic > 0 && !specularTargets(scene).empty()) n += b.caustic;
+  for (MapKind k : kAllMaps) {
+    if (o.maps[k] && (k != MapKind::Caustic || (b[k] > 0 && !specularTargets(scene).empty()))) n += b[k];
+  }
   return n;
 }
 
@@ -38,24 +37,21 @@ uint64_t photonsAskedFor(const Scene& scene, const EmitOptions& o, const MapBudg
 
 PhotonNeeds photonNeeds(const RenderPlan& plan) {
   PhotonNeeds needs;
-  needs.shadow = plan[Pass::Gate].on;
-  needs.indirect = plan[Pass::IndirectPhotons].on;
-  needs.global = plan[Pass::GlobalPhotons].on;
-  needs.caustic = plan[Pass::CausticPhotons].on;
-  needs.indirectReach = plan[Pass::IndirectPhotons].reach;
-  needs.globalReach = plan[Pass::GlobalPhotons].reach;
-  needs.causticReach = plan[Pass::CausticPhotons].reach;
+  for (MapKind k : kAllMaps) {
+    needs.maps[k] = plan[photonPass(k)].on;
+    needs.reach[k] = plan[photonPass(k)].reach;
+  }
   return needs;
 }
 
-MapBudgets planBudgets(const RenderPlan& plan) {
-  auto budget = [&](Pass p) { return plan[p].on ? plan[p].budget : 0; };
-  return {budget(Pass::Gate), budget(Pass::IndirectPhotons), budget(Pass::GlobalPhotons),
-          budget(Pass::CausticPhotons)};
+MapCounts planBudgets(const RenderPlan& plan) {
+  MapCounts b;
+  for (MapKind k : kAllMaps) b[k] = plan[photonPass(k)].on ? plan[photonPass(k)].budget : 0;
+  return b;
 }
 
 Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const PhotonNeeds& needs,
-                        const MapBudgets& budgets, uint32_t pass, const std::vector<uint64_t>& smaller,
+                        const MapCounts& budgets, uint32_t pass, const std::vector<uint64_t>& smaller,
                         ProgressCounter* progress) {
   Emission e;
   e.physical = scene.render.model == ShadingModel::Physical;
@@ -65,49 +61,45 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
   EmitOptions options;
   options.budgets = budgets;
   options.prefixBudgets = smaller;
-  options.indirectReach = needs.indirectReach;
-  options.globalReach = needs.globalReach;
-  options.causticReach = needs.causticReach;
+  options.reach = needs.reach;
+  options.maps = needs.maps;
   // The physical gate's shadow photons do not change between passes: pass 0 only.
-  options.shadowMap = needs.shadow && (!e.physical || pass == 0);
-  options.indirectMap = needs.indirect;
-  options.globalMap = e.physical && needs.global;
-  options.causticMap = e.physical && needs.caustic;
+  options.maps[MapKind::Shadow] = needs.maps[MapKind::Shadow] && (!e.physical || pass == 0);
+  options.maps[MapKind::Global] = e.physical && needs.maps[MapKind::Global];
+  options.maps[MapKind::Caustic] = e.physical && needs.maps[MapKind::Caustic];
   options.progress = progress;
   progressExpect(progress, photonsAskedFor(scene, options, budgets));
-  if (options.shadowMap || options.indirectMap) {
+  if (options.maps[MapKind::Shadow] || options.maps[MapKind::Indirect]) {
     e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
   }
   if (e.physical) {
     e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
   }
-  e.budgets = {e.classic.emittedShadow, e.classic.emittedIndirect, e.photons.emittedGlobal,
-               e.photons.emittedCaustic};
+  e.budgets = e.classic.emitted;
+  e.budgets += e.photons.emitted;
   e.seconds = clock.seconds();
   return e;
 }
 
-bool buildStage(Emission& e, const MapBudgets& wanted, bool consume, PhotonStage& stage,
+bool buildStage(Emission& e, const MapCounts& wanted, bool consume, PhotonStage& stage,
                 ProgressCounter* progress) {
   bool ok = true;
   // A map the emission left empty (not needed, or no light) stays empty at any budget.
   auto budget = [](uint64_t emitted, uint64_t want) { return emitted == 0 ? 0 : want; };
-  const MapBudgets b{budget(e.budgets.shadow, wanted.shadow), budget(e.budgets.indirect, wanted.indirect),
-                        budget(e.budgets.global, wanted.global), budget(e.budgets.caustic, wanted.caustic)};
-  auto shadow = photonsFor(e.classic.shadow, e.classicCuts.shadow, e.budgets.shadow, b.shadow, consume, ok);
-  auto indirect = photonsFor(e.classic.indirect, e.classicCuts.indirect, e.budgets.indirect, b.indirect,
+  MapCounts b;
+  for (MapKind k : kAllMaps) b[k] = budget(e.budgets[k], wanted[k]);
+  using K = MapKind;
+  auto shadow = photonsFor(e.classic.shadow, e.classicCuts.shadow, e.budgets[K::Shadow], b[K::Shadow], consume, ok);
+  auto indirect = photonsFor(e.classic.indirect, e.classicCuts.indirect, e.budgets[K::Indirect], b[K::Indirect],
                              consume, ok);
-  auto global = photonsFor(e.photons.global, e.photons.globalCuts, e.budgets.global, b.global, consume, ok);
-  auto caustic = photonsFor(e.photons.caustic, e.photons.causticCuts, e.budgets.caustic, b.caustic,
+  auto global = photonsFor(e.photons.global, e.photons.globalCuts, e.budgets[K::Global], b[K::Global], consume, ok);
+  auto caustic = photonsFor(e.photons.caustic, e.photons.causticCuts, e.budgets[K::Caustic], b[K::Caustic],
                             consume, ok);
   if (!ok) return false;
 
   stage.budgets = b;
   stage.fromPrefix = !(b == e.budgets);
-  stage.emittedShadow = b.shadow;
-  stage.emittedIndirect = b.indirect;
-  stage.emittedGlobal = b.global;
-  stage.emittedCaustic = b.caustic;
+  stage.emitted = b;
   // A prefix's own emission was not timed: charge it its share of the photons
   // (emission time is linear in the photons traced; docs/sweep.md).
   const double full = double(e.budgets.total()), part = double(b.total());
@@ -115,8 +107,8 @@ bool buildStage(Emission& e, const MapBudgets& wanted, bool consume, PhotonStage
   stage.notes = e.notes;
   // Converts stored flux back into photon colour: emitted / (4 pi x summed intensity).
   stage.classicScale = e.classic.classicScale;
-  if (stage.fromPrefix && e.budgets.indirect > 0) {
-    stage.classicScale = e.classic.classicScale * float(double(b.indirect) / double(e.budgets.indirect));
+  if (stage.fromPrefix && e.budgets[K::Indirect] > 0) {
+    stage.classicScale = e.classic.classicScale * float(double(b[K::Indirect]) / double(e.budgets[K::Indirect]));
   }
   Stopwatch clock;
   MapBuildOptions build;

@@ -28,7 +28,7 @@ struct Emission {
   PhotonMaps classic;          // classic maps; the physical model's gate photons (shadow)
   ClassicCuts classicCuts;
   PhysicalPhotons photons;     // physical caustic and global photons
-  MapBudgets budgets;       // what was emitted
+  MapCounts budgets;       // what was emitted
   size_t numLights = 0;
   double seconds = 0.0;
   std::vector<std::string> notes;
@@ -36,16 +36,19 @@ struct Emission {
 
 // Which maps to emit and build: the render plan's photon passes (plan/render_plan.h).
 struct PhotonNeeds {
-  bool shadow = false, indirect = false, global = false, caustic = false;
+  PerMap<bool> maps;
   // Per light, the share of photons of use to each map (the plan's splitByReach);
   // empty: budgets split by power. A function of the scene, so equal for every view.
-  std::vector<float> indirectReach, globalReach, causticReach;
-  bool any() const { return shadow || indirect || global || caustic; }
+  PerMap<std::vector<float>> reach;
+  bool any() const {
+    for (bool m : maps.values) if (m) return true;
+    return false;
+  }
   PhotonNeeds& operator|=(const PhotonNeeds& o) {
-    shadow |= o.shadow; indirect |= o.indirect; global |= o.global; caustic |= o.caustic;
-    if (indirectReach.empty()) indirectReach = o.indirectReach;
-    if (globalReach.empty()) globalReach = o.globalReach;
-    if (causticReach.empty()) causticReach = o.causticReach;
+    for (MapKind k : kAllMaps) {
+      maps[k] = maps[k] || o.maps[k];
+      if (reach[k].empty()) reach[k] = o.reach[k];
+    }
     return *this;
   }
 };
@@ -55,22 +58,21 @@ PhotonNeeds photonNeeds(const RenderPlan& plan);
 // changes which photons are emitted (plan/reuse_key.h), the budgets and the maps read.
 struct PhotonStageKey {
   std::string geometry, photons;
-  MapBudgets budgets;
-  bool shadow = false, indirect = false, global = false, caustic = false;
+  MapCounts budgets;
+  PerMap<bool> maps;
   bool operator==(const PhotonStageKey& o) const {
-    return geometry == o.geometry && photons == o.photons && budgets == o.budgets && shadow == o.shadow &&
-           indirect == o.indirect && global == o.global && caustic == o.caustic;
+    return geometry == o.geometry && photons == o.photons && budgets == o.budgets && maps == o.maps;
   }
 };
 
 // The photons the plan's passes emit per map (0 for a pass that is off).
-MapBudgets planBudgets(const RenderPlan& plan);
+MapCounts planBudgets(const RenderPlan& plan);
 
 // Emits `budgets` of the maps in `needs` for progressive pass `pass`, recording
 // `smaller` budgets. `progress` (if any) expects the photons asked for and counts
 // each batch traced.
 Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const PhotonNeeds& needs,
-                        const MapBudgets& budgets, uint32_t pass, const std::vector<uint64_t>& smaller = {},
+                        const MapCounts& budgets, uint32_t pass, const std::vector<uint64_t>& smaller = {},
                         ProgressCounter* progress = nullptr);
 
 // Built photon maps and what they cost.
@@ -78,8 +80,8 @@ struct PhotonStage {
   ShadowPhotonMap shadow;
   IndirectPhotonMap indirect, caustic, global;
   float classicScale = 1.0f;
-  MapBudgets budgets;
-  uint64_t emittedShadow = 0, emittedIndirect = 0, emittedCaustic = 0, emittedGlobal = 0;
+  MapCounts budgets;
+  MapCounts emitted;
   double emitSeconds = 0.0, buildSeconds = 0.0;
   bool fromPrefix = false;  // cut out of a larger emission
   std::vector<std::string> notes;
@@ -98,7 +100,7 @@ struct PhotonStage {
 // moved out when `consume`, else copied) or a recorded smaller one. Returns false,
 // leaving `stage` untouched, when some map's budget is neither.
 // `progress` (if any) expects 2 units per photon and counts them (MapBuildOptions).
-bool buildStage(Emission& emission, const MapBudgets& budgets, bool consume, PhotonStage& stage,
+bool buildStage(Emission& emission, const MapCounts& budgets, bool consume, PhotonStage& stage,
                 ProgressCounter* progress = nullptr);
 
 }  // namespace penumbra

@@ -55,14 +55,11 @@ void buildLookup(const Scene& scene, LookupCache& cache, std::optional<LookupCac
 void addStage(const PhotonStage& s, RenderStats& stats) {
   stats.time.emit += s.emitSeconds;
   stats.time.buildMaps += s.buildSeconds;
-  stats.emittedShadow += s.emittedShadow;
-  stats.emittedIndirect += s.emittedIndirect;
-  stats.emittedCaustic += s.emittedCaustic;
-  stats.emittedGlobal += s.emittedGlobal;
-  stats.storedShadow += s.shadow.size();
-  stats.storedIndirect += s.indirect.size();
-  stats.storedCaustic += s.caustic.size();
-  stats.storedGlobal += s.global.size();
+  stats.emitted += s.emitted;
+  stats.stored[MapKind::Shadow] += s.shadow.size();
+  stats.stored[MapKind::Indirect] += s.indirect.size();
+  stats.stored[MapKind::Caustic] += s.caustic.size();
+  stats.stored[MapKind::Global] += s.global.size();
 }
 
 // Progressive radii (Knaus & Zwicker 2011): r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1), so
@@ -117,7 +114,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
   ctx.classicScale = stage.classicScale;
   ctx.shadowMap = stage.shadow.size() > 0 ? &stage.shadow : nullptr;
   for (const std::string& n : stage.notes) result.notes.push_back(n);
-  if (!physical && scene.photons.indirectPhotons > 0 && stage.emittedIndirect > 0 && stage.indirect.empty()) {
+  if (!physical && scene.photons.indirectPhotons > 0 && stage.emitted[MapKind::Indirect] > 0 && stage.indirect.empty()) {
     result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
                            "using the ambient term");
   }
@@ -134,7 +131,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     if (pass > 0) {
       later = PhotonStage();
       PhotonNeeds needs = options.needs;
-      needs.shadow = false;  // the gate's photons are pass 0's, for every pass
+      needs.maps[MapKind::Shadow] = false;  // the gate's photons are pass 0's, for every pass
       Emission e = emitPhotonsFor(scene, *assets.tracer, needs, options.budgets, static_cast<uint32_t>(pass), {},
                                   beginPhase(options.progress, phaseName("photons", pass, passes)));
       buildStage(e, e.budgets, true, later, beginPhase(options.progress, phaseName("maps", pass, passes)));

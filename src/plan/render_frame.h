@@ -26,7 +26,7 @@ std::unique_ptr<TextureLookup> loadTextures(const Scene& scene);
 struct FrameOptions {
   Aov aov = Aov::Beauty;
   PhotonNeeds needs;    // the plan's photon passes, for progressive passes >= 1
-  MapBudgets budgets;   // ... and their photons per pass
+  MapCounts budgets;   // ... and their photons per pass
   // The plan's decisions for the tracer, and photons.lookup as planned; empty: the
   // scene's own settings (FrameChoices::of).
   std::optional<FrameChoices> choices;

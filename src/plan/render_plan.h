@@ -2,6 +2,7 @@
 // runs, each pass with its budget and the reason, as plain data. The stages read
 // its decisions beside the settings; `penumbra plan` prints it; --stats holds it.
 #pragma once
+#include "core/map_kind.h"
 #include "core/scene.h"
 #include "geometry/trace_scene.h"
 #include "trace/render.h"
@@ -28,6 +29,12 @@ enum class Pass : uint8_t {
   Count
 };
 constexpr size_t kPassCount = static_cast<size_t>(Pass::Count);
+
+// The pass that emits and builds a map (the gate's is the shadow map).
+constexpr Pass photonPass(MapKind k) {
+  constexpr Pass kPasses[kMapKinds] = {Pass::Gate, Pass::IndirectPhotons, Pass::GlobalPhotons, Pass::CausticPhotons};
+  return kPasses[static_cast<size_t>(k)];
+}
 
 // "gate", "indirect-photons", ...: the names --enable / --disable take.
 const char* passName(Pass pass);

@@ -85,15 +85,14 @@ void RenderSession::prepare(PlannedJob& job) {
 PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, bool* reused) {
   const PlannedJob& job = *jobs.front();
   PhotonNeeds needs;
-  MapBudgets budgets;
+  MapCounts budgets;
   for (const PlannedJob* j : jobs) {
     if (!j->prepared) throw std::logic_error("photons of a job not prepared");
     if (j->keys.photons != job.keys.photons) throw std::logic_error("photons shared by jobs that differ");
     needs |= photonNeeds(j->plan);
     budgets.maxWith(planBudgets(j->plan));
   }
-  const PhotonStageKey key{job.keys.geometry, job.keys.photons, budgets,
-                           needs.shadow, needs.indirect, needs.global, needs.caustic};
+  const PhotonStageKey key{job.keys.geometry, job.keys.photons, budgets, needs.maps};
   auto hit = std::find_if(stages_.begin(), stages_.end(), [&](const CachedStage& c) { return c.key == key; });
   if (hit != stages_.end()) {
     stages_.splice(stages_.begin(), stages_, hit);

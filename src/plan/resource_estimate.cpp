@@ -90,17 +90,17 @@ StoreRates analyticStoreRates(const Scene& scene) {
   const int bounces = scene.photons.maxBounces;
   int crossings = 2 * static_cast<int>(scene.spheres.size());
   for (const TriangleMesh& m : scene.meshes) crossings = std::min(kMaxHitsPerLine, crossings + maxCrossings(m));
-  r.shadow = std::min(kMaxHitsPerLine, crossings);
+  r.perPhoton[MapKind::Shadow] = std::min(kMaxHitsPerLine, crossings);
   // Classic roulette: a path goes on with p_r + p_t, so the surest material bounds
   // every path (a closed box of it reaches the bound: nothing escapes).
   double s = 0.0;
   for (const Material& m : scene.materials) s = std::max(s, std::min(1.0, double(m.pR) + m.pT));
   const bool firstHit = scene.photons.estimator == IndirectEstimator::Classic;
-  r.indirect = survivalSeries(s, firstHit ? 0 : 1, bounces);
+  r.perPhoton[MapKind::Indirect] = survivalSeries(s, firstHit ? 0 : 1, bounces);
   // Physical: survival is the sampled weight, up to 1 for mirrors and glass, and a
   // photon is stored at most once per surface after the first: bounded by the cap.
-  r.global = bounces;
-  r.caustic = bounces;
+  r.perPhoton[MapKind::Global] = bounces;
+  r.perPhoton[MapKind::Caustic] = bounces;
   return r;
 }
 
@@ -116,8 +116,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const auto stored = [](uint64_t n, double rate) {
     return n > 0 ? n * rate * (1.0 + 3.0 / std::sqrt(double(n))) : 0.0;
   };
-  const double shadow = stored(p.shadow, rates.shadow), indirect = stored(p.indirect, rates.indirect);
-  const double global = stored(p.global, rates.global), caustic = stored(p.caustic, rates.caustic);
+  PerMap<double> n;
+  for (MapKind k : kAllMaps) n[k] = stored(p.emitted[k], rates.perPhoton[k]);
+  const double shadow = n[MapKind::Shadow], indirect = n[MapKind::Indirect];
+  const double global = n[MapKind::Global], caustic = n[MapKind::Caustic];
   e.storedPhotons = shadow + indirect + global + caustic;
   e.photonBytes = shadow * (sizeof(ShadowPhoton) + kIndexBytes) +
                   (indirect + global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
@@ -146,7 +148,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.baseBytes = kBaseBytes;
 
   // Time: each stored photon is one traced segment, plus the one that escapes.
-  const double emitted = double(p.shadow + p.indirect + p.global + p.caustic);
+  const double emitted = double(p.emitted.total());
   const double photonNs = (e.storedPhotons + emitted) * kPhotonSegmentNs + e.storedPhotons * kBuildNsPerPhoton;
   // Past the caches the emission's stores and the build's gathers wait on memory, so
   // the per-photon costs grow with the log of the data past kCacheFriendlyBytes
@@ -159,7 +161,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   if (lit && options.shadows) {
     double tests = 0.0;
     for (const Light& l : scene.lights) tests += lightSampleCount(l, options.lightSamples);
-    if (p.shadow > 0) {
+    if (p.emitted[MapKind::Shadow] > 0) {
       tests *= 1.0 - kAvoidable;
       lookupNs += options.precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();
     }
@@ -168,9 +170,9 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const auto gather = [&](int k) {
     return options.precomputed ? kLookupNs : k * kGatherNsPerNeighbour;
   };
-  if (p.indirect > 0) lookupNs += gather(ps.kIndirect);
-  if (p.global > 0) lookupNs += gather(ps.kGlobal);
-  if (p.caustic > 0) lookupNs += gather(ps.kCaustic);
+  if (p.emitted[MapKind::Indirect] > 0) lookupNs += gather(ps.kIndirect);
+  if (p.emitted[MapKind::Global] > 0) lookupNs += gather(ps.kGlobal);
+  if (p.emitted[MapKind::Caustic] > 0) lookupNs += gather(ps.kCaustic);
   // Mirrors and glass repeat the shading at each level of the recursion, but few
   // paths go many levels deep, so the factor is capped.
   const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;
@@ -204,9 +206,8 @@ std::string estimateToJson(const ResourceEstimate& e) {
                 {"image", e.imageBytes},       {"bvh", e.bvhBytes},
                 {"scene", e.sceneBytes},       {"base", e.baseBytes}};
   j["stored_photons"] = e.storedPhotons;
-  j["store_rates"] = {{"shadow", e.rates.shadow}, {"indirect", e.rates.indirect},
-                      {"global", e.rates.global}, {"caustic", e.rates.caustic},
-                      {"measured", e.rates.measured}};
+  j["store_rates"] = {{"measured", e.rates.measured}};
+  for (MapKind k : kAllMaps) j["store_rates"][mapName(k)] = e.rates.perPhoton[k];
   j["seconds"] = {{"total", e.seconds()}, {"photons", e.photonSeconds}, {"render", e.renderSeconds},
                   {"threads", e.threads}};
   return j.dump();

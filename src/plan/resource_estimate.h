@@ -2,6 +2,7 @@
 // buffers, BVH, lookup cache and wall time, from the scene alone (plus an optional
 // pilot emission's measured store rates). Plain data; the limit check is memory_limit.h.
 #pragma once
+#include "core/map_kind.h"
 #include "core/scene.h"
 #include "core/view.h"
 #include <cstdint>
@@ -10,17 +11,15 @@
 namespace penumbra {
 
 // Photons stored per emitted photon, for each map the render will build.
+// Shadow: hits kept per shadow line; the others: stores per path (and pass).
 struct StoreRates {
-  double shadow = 0.0;    // hits kept per shadow line
-  double indirect = 0.0;  // classic indirect map, per path
-  double global = 0.0;    // physical global map, per path and pass
-  double caustic = 0.0;   // physical caustic map, per path and pass
+  PerMap<double> perPhoton;
   bool measured = false;  // true: from a pilot emission (photon_pilot.h), else analytic bounds
 };
 
-// The photons the render plan's passes emit (plan/render_plan.h: photonPlanOf).
+// The photons the render plan's passes emit (plan/job_admission.h: photonPlanOf).
 struct PhotonPlan {
-  uint64_t shadow = 0, indirect = 0, global = 0, caustic = 0;  // emitted, per pass
+  MapCounts emitted;  // per pass
   int passes = 1;
 };
 

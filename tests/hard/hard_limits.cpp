@@ -77,12 +77,12 @@ TEST(HardLimits, KLargerThanTheMapEqualsKEqualsTheMap) {
   expectKBeyondTheMapIsTheMap(
       "physical", {"photons.global=150", "photons.caustic=100", "photons.max_bounces=2"},
       "photons.k_global", "photons.k_caustic",
-      [](const RenderStats& s) { return std::pair<uint64_t, uint64_t>(s.storedGlobal, s.storedCaustic); });
+      [](const RenderStats& s) { return std::pair<uint64_t, uint64_t>(s.stored[MapKind::Global], s.stored[MapKind::Caustic]); });
   // Classic: the indirect map and the gate's shadow map.
   expectKBeyondTheMapIsTheMap(
       "classic", {"photons.indirect=200", "photons.shadow=300", "photons.gate=on"},
       "photons.k_indirect", "photons.k_shadow",
-      [](const RenderStats& s) { return std::pair<uint64_t, uint64_t>(s.storedIndirect, s.storedShadow); });
+      [](const RenderStats& s) { return std::pair<uint64_t, uint64_t>(s.stored[MapKind::Indirect], s.stored[MapKind::Shadow]); });
 }
 
 // max_depth 0: no mirror or glass ray at all, so the physical mirror (kr = 1) and
