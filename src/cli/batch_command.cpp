@@ -87,20 +87,14 @@ int BatchCommand::run() {
   req.mapCacheBytes = parseMemorySize(o.mapCache);
   if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
   req.plan = passOverrides(o.enable, o.disable);
-  const bool tty = isatty(STDERR_FILENO);
-  std::optional<ProgressMeter> meter;
+  std::optional<ItemProgress> progress;
   if (!o.quiet) {
-    meter.emplace(progressDisplay());
-    meter->startTicker();
-    req.phases = &*meter;
-    // On a terminal the job's place heads the meter's line; otherwise a line per finished job.
-    req.progress = [&](const std::string& line) {
-      if (tty) meter->setContext(line);
-      else if (line.find("| done |") != std::string::npos) std::cerr << line << "\n";
-    };
+    progress.emplace();
+    req.phases = progress->phases();
+    req.progress = [&](const std::string& line) { progress->line(line); };
   }
   const BatchOutcome out = runBatch(req);
-  if (meter) meter->finish();
+  if (progress) progress->finish();
   if (!o.quiet) {
     std::cerr << batchSummary(out);
   }

@@ -8,8 +8,6 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 #include <fmt/format.h>
 #include <filesystem>
 #include <map>
@@ -73,17 +71,9 @@ double jobCost(const BatchJob& job) {
 }
 
 BatchOutcome runBatch(const BatchRequest& req) {
-  const int threads = req.threads > 0 ? req.threads : tbb::info::default_concurrency();
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   Stopwatch clock;
   BatchOutcome out;
-  SessionOptions options;
-  options.maxMemoryBytes = req.maxMemoryBytes;
-  options.stageCacheBytes = req.mapCacheBytes;
-  options.plan = req.plan;
-  options.threads = threads;
-  options.progress = req.phases;
-  RenderSession session(options);
+  RenderSession session({req.maxMemoryBytes, req.plan, req.threads, req.phases, {}, req.mapCacheBytes});
 
   // 1. Every job loaded, planned and admitted, its outputs checked, before the first render.
   std::vector<PreparedJob> prepared(req.jobs.size());

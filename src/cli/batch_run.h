@@ -5,7 +5,7 @@
 #pragma once
 #include "cli/batch_jobs.h"
 #include "core/progress.h"
-#include "plan/render_plan.h"
+#include "plan/render_session.h"
 #include <functional>
 #include <string>
 #include <vector>
@@ -18,7 +18,7 @@ struct BatchRequest {
   int threads = 0;
   bool force = false;       // render even jobs whose outputs are up to date
   bool keepGoing = false;   // a job that fails validation is reported, not fatal
-  uint64_t mapCacheBytes = 4ull << 30;  // photon maps kept for later jobs (LRU)
+  uint64_t mapCacheBytes = kStageCacheBytes;  // photon maps kept for later jobs (LRU)
   uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available
   PlanOverrides plan;           // --enable / --disable, for every job
   // Called on the batch's own thread with one line per job and phase.

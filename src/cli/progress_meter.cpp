@@ -53,6 +53,14 @@ void ProgressMeter::end() {
   phase_.clear();
 }
 
+ItemProgress::ItemProgress() : terminal_(isatty(STDERR_FILENO)), meter_(progressDisplay()) { meter_.startTicker(); }
+
+void ItemProgress::line(const std::string& line) {
+  if (terminal_) meter_.setContext(line);
+  else if (line.find("| done |") != std::string::npos && line != last_) std::fprintf(stderr, "%s\n", line.c_str());
+  last_ = line;
+}
+
 void ProgressMeter::setContext(std::string context) {
   std::lock_guard<std::mutex> lock(mutex_);
   context_ = std::move(context);

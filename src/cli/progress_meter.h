@@ -78,4 +78,21 @@ class ProgressMeter final : public ProgressPhases {
   bool stop_ = false;
 };
 
+// A many-render command's progress (sweep, batch): on a terminal each item's line
+// heads the meter's phase line; in a log, one line per finished item ("| done |").
+// Lines arrive on the command's own thread.
+class ItemProgress {
+ public:
+  ItemProgress();
+  ~ItemProgress() { finish(); }
+  ProgressPhases* phases() { return &meter_; }
+  void line(const std::string& line);
+  void finish() { meter_.finish(); }
+
+ private:
+  bool terminal_;
+  ProgressMeter meter_;
+  std::string last_;
+};
+
 }  // namespace penumbra

@@ -74,22 +74,14 @@ int SweepCommand::run() {
   if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
   req.plotScript = std::filesystem::exists(script) ? script.string() : "";
-  const bool tty = isatty(STDERR_FILENO);
-  std::optional<ProgressMeter> meter;
-  std::string last;
+  std::optional<ItemProgress> progress;
   if (!o.quiet) {
-    meter.emplace(progressDisplay());
-    meter->startTicker();
-    req.phases = &*meter;
-    // On a terminal the run's place heads the meter's line; otherwise a line per finished run.
-    req.progress = [&](const std::string& line) {
-      if (tty) meter->setContext(line);
-      else if (line.find("| done |") != std::string::npos && line != last) std::cerr << line << "\n";
-      last = line;
-    };
+    progress.emplace();
+    req.phases = progress->phases();
+    req.progress = [&](const std::string& line) { progress->line(line); };
   }
   SweepOutcome out = runSweep(req);
-  if (meter) meter->finish();
+  if (progress) progress->finish();
   if (!o.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     const SweepTotals& t = out.totals;

@@ -10,8 +10,6 @@
 #include "io/image_compare.h"
 #include "io/image_io.h"
 #include "io/temp_file.h"
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 #include <fmt/format.h>
 #include <algorithm>
 #include <filesystem>
@@ -293,14 +291,7 @@ class Sweep {
 }  // namespace
 
 SweepOutcome runSweep(const SweepRequest& request) {
-  const int threads = request.threads > 0 ? request.threads : tbb::info::default_concurrency();
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  SessionOptions options;
-  options.maxMemoryBytes = request.maxMemoryBytes;
-  options.plan = request.plan;
-  options.threads = threads;
-  options.progress = request.phases;
-  RenderSession session(options);
+  RenderSession session({request.maxMemoryBytes, request.plan, request.threads, request.phases, {}, kStageCacheBytes});
   Sweep sweep(request, session);
   return sweep.run();
 }

@@ -5,23 +5,13 @@
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
 #include "io/image_io.h"
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 
 namespace penumbra {
 
 RenderResult runRender(const RenderRequest& request) {
   Stopwatch total;
-  const int threads = request.threads > 0 ? request.threads : tbb::info::default_concurrency();
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-
-  SessionOptions options;
-  options.maxMemoryBytes = request.maxMemoryBytes;
-  options.plan = request.plan;
-  options.threads = threads;
-  options.progress = request.progress;
-  options.notice = request.notice;
-  RenderSession session(options);
+  RenderSession session(
+      {request.maxMemoryBytes, request.plan, request.threads, request.progress, request.notice, kStageCacheBytes});
 
   // Bad views, pixels, outputs and oversized jobs fail here, before any heavy work.
   JobRequest job;

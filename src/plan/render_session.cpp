@@ -6,6 +6,7 @@
 #include "io/scene_loader.h"
 #include "plan/output_safety.h"
 #include <fmt/format.h>
+#include <tbb/info.h>
 #include <stdexcept>
 
 namespace penumbra {
@@ -16,7 +17,16 @@ const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m =
 
 }  // namespace
 
-RenderSession::RenderSession(SessionOptions options) : options_(std::move(options)) {}
+namespace {
+SessionOptions resolved(SessionOptions o) {
+  if (o.threads <= 0) o.threads = tbb::info::default_concurrency();
+  return o;
+}
+}  // namespace
+
+RenderSession::RenderSession(SessionOptions options)
+    : options_(resolved(std::move(options))),
+      limit_(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(options_.threads)) {}
 
 PlannedJob RenderSession::plan(const JobRequest& request) {
   PlannedJob job;

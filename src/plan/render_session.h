@@ -4,6 +4,7 @@
 // frames from them; the commands only choose what to render and in which order.
 #pragma once
 #include "core/progress.h"
+#include <tbb/global_control.h>
 #include "plan/job_admission.h"
 #include "plan/output_safety.h"
 #include "plan/photon_stage.h"
@@ -21,14 +22,17 @@
 
 namespace penumbra {
 
+// Photon stages a session keeps for later jobs by default (batch's --map-cache).
+constexpr uint64_t kStageCacheBytes = 4ull << 30;
+
 struct SessionOptions {
   uint64_t maxMemoryBytes = 0;          // --max-memory; 0 = the memory available
-  uint64_t stageCacheBytes = 4ull << 30;  // photon stages kept for later jobs (LRU)
   PlanOverrides plan;                   // --enable / --disable, for every job
-  int threads = 1;                      // for the estimate (the caller limits TBB)
+  int threads = 0;                      // worker threads, 0 = all cores
   ProgressPhases* progress = nullptr;   // the command's display; null: none
   // Told on the session's thread, e.g. that a job is estimated to take hours.
   std::function<void(const std::string& note)> notice;
+  uint64_t stageCacheBytes = kStageCacheBytes;  // photon stages kept for later jobs (LRU)
 };
 
 // One render a command asks for: a scene with its overrides, one view, and the
@@ -104,7 +108,8 @@ class RenderSession {
   };
   Geometry& geometryOf(const PlannedJob& job);
 
-  SessionOptions options_;
+  SessionOptions options_;  // threads resolved (> 0)
+  tbb::global_control limit_;  // TBB's parallelism for the session's lifetime
   std::map<std::string, std::unique_ptr<Geometry>> geometry_;
   std::list<CachedStage> stages_;  // most recently used first
   uint64_t cachedBytes_ = 0, peakStageBytes_ = 0;
