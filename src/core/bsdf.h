@@ -68,7 +68,9 @@ inline bool hasDeltaLobe(const Bsdf& b) { return bsdfFlags(b) & kBsdfSpecular; }
 // the light, both unit. Zero when wi is below the geometric surface.
 Color evaluateBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi);
 
-// Solid-angle density with which sampleBsdf picks wi through a non-delta lobe.
+// Solid-angle density with which sampleBsdf picks wi through an Opaque BSDF's
+// non-delta lobes. 0 for ClassicPhong (the report's photon roulette bounces by p_r
+// and p_t, not by importance-sampling f) and for Dielectric (delta lobes only).
 float pdfBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi);
 
 // Samples an incident direction wi for outgoing wo from three uniform numbers.

@@ -218,7 +218,8 @@ void tracePrimaryShadows(const ShadingContext& ctx, uint32_t lights, const Ray* 
       // depend on the uv fields).
       const SurfaceRecord s = ctx.tracer.surface(rays[i], hits[i], kSurfaceShadingNormal);
       // A delta light's one sample, as directFromLight draws it.
-      const LightIncidence in = sampleLight(prepareLight(light, s.position), 0.5f, 0.5f);
+      const Vec2 u = deltaLightSample();
+      const LightIncidence in = sampleLight(prepareLight(light, s.position), u.x, u.y);
       if (!facesLight(s, in)) continue;
       known[i] |= 1u << li;
       if (!shadowRayTo(s, in, scratch.rays[static_cast<size_t>(count)])) continue;  // at the light: clear

@@ -47,6 +47,10 @@ inline bool facesLight(const SurfaceRecord& s, const LightIncidence& in) {
   return in.valid && glm::dot(s.ng, in.wi) > 0.0f && glm::dot(s.ns, in.wi) > 0.0f;
 }
 
+// A delta light's one sample (exact: no random numbers), in directFromLight and in
+// the shadow packets that trace its ray ahead.
+inline Vec2 deltaLightSample() { return Vec2(0.5f); }
+
 template <class Weigh>
 Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,
                       const CachedAnswer* cached, ThreadState& ts, std::string* note,
@@ -65,7 +69,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   Color closed(0.0f), sum(0.0f);
   for (int j = 0; j < n; ++j) {
     // One sample of an area light is uniform, not its centre (stratified2D's n = 1).
-    const Vec2 u = !area ? Vec2(0.5f) : n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
+    const Vec2 u = !area ? deltaLightSample() : n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
     const LightIncidence in = sampleLight(sampler, u.x, u.y);
     if (!facesLight(s, in)) continue;
     Color f = evaluateBsdf(*lobes, frame, wo, in.wi);
