@@ -15,13 +15,11 @@ namespace {
 
 const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m == GateMode::On ? "on" : "off"; }
 
-}  // namespace
-
-namespace {
 SessionOptions resolved(SessionOptions o) {
   if (o.threads <= 0) o.threads = tbb::info::default_concurrency();
   return o;
 }
+
 }  // namespace
 
 RenderSession::RenderSession(SessionOptions options)
@@ -41,10 +39,13 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
     throw InputError(scene.file + ": view '" + job.viewName + "' needs the physical model (render.model: \"physical\")");
   }
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
-  // A scene read from stdin can be read once: it shares nothing with another job.
-  if (request.scenePath == "-") job.keys = {"-\n" + std::to_string(stdinJobs_), "-\n" + std::to_string(stdinJobs_)};
-  else job.keys = reuseKeys(request.scenePath, request.overrides);
-  if (request.scenePath == "-") ++stdinJobs_;
+  if (request.scenePath == "-") {
+    // A scene read from stdin can be read once: it shares nothing with another job.
+    const std::string own = "-\n" + std::to_string(stdinJobs_++);
+    job.keys = {own, own};
+  } else {
+    job.keys = reuseKeys(request.scenePath, request.overrides);
+  }
   job.inputs = sceneInputs(scene, request.scenePath);
   checkOutputs(request.outputs, job.inputs);
   // Before any work: what runs and why (photons.gate = auto is decided here too).
