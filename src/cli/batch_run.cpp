@@ -49,16 +49,6 @@ bool upToDate(const PreparedJob& p, const std::vector<std::string>& extra) {
 }
 
 
-// Whether a job rendered before job `j` had its geometry (and so built its scene).
-bool renderedBefore(const std::vector<PreparedJob>& jobs, const std::vector<bool>& current, size_t j) {
-  for (size_t i = 0; i < j; ++i) {
-    if (jobs[i].error.empty() && !current[i] && jobs[i].views.front().keys.geometry == jobs[j].views.front().keys.geometry) {
-      return true;
-    }
-  }
-  return false;
-}
-
 }  // namespace
 
 double jobCost(const BatchJob& job) {
@@ -104,17 +94,22 @@ BatchOutcome runBatch(const BatchRequest& req) {
   for (size_t j = 0; j < prepared.size(); ++j) {
     current[j] = prepared[j].error.empty() && !req.force && upToDate(prepared[j], req.extraInputs);
   }
+  std::vector<bool> builtScene(prepared.size(), false);  // this job's prepare built its BVH
   // 2. The jobs to render prepared (BVH, light split, the photon estimate against the
   // memory limit) before the first photon of any of them.
   for (size_t j = 0; j < prepared.size(); ++j) {
     PreparedJob& p = prepared[j];
     if (!p.error.empty() || current[j]) continue;
+    const size_t builds = session.sceneBuilds();
     try {
       for (PlannedJob& v : p.views) session.prepare(v);
     } catch (const InputError& e) {
       p.error = e.what();
       if (!req.keepGoing) throw InputError("batch job '" + p.job->name + "' (" + p.job->where + "): " + e.what());
+    } catch (const std::exception& e) {
+      p.error = e.what();  // out of memory or an Embree failure: this job fails, the batch goes on
     }
+    builtScene[j] = session.sceneBuilds() > builds;
   }
 
   // 3. Render, sharing what the keys allow.
@@ -141,7 +136,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
         std::vector<std::string> reused;
         std::vector<const PlannedJob*> views;
         for (const PlannedJob& v : p.views) views.push_back(&v);
-        if (renderedBefore(prepared, current, j)) reused.push_back("scene");
+        if (!builtScene[j]) reused.push_back("scene");
         bool stageReused = false;
         PhotonStage& stage = session.photons(views, &stageReused);
         if (stageReused) {

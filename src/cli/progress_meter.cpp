@@ -64,6 +64,13 @@ void ItemProgress::line(const std::string& line) {
 void ProgressMeter::setContext(std::string context) {
   std::lock_guard<std::mutex> lock(mutex_);
   context_ = std::move(context);
+  // Between phases a terminal shows the place itself (a job up to date, or failed).
+  if (display_.terminal && phase_.empty() && context_ != shown_) {
+    std::fprintf(display_.out, "\r\033[K%s", context_.c_str());
+    std::fflush(display_.out);
+    shown_ = context_;
+    lineOpen_ = true;
+  }
 }
 
 void ProgressMeter::poll() {

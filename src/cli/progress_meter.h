@@ -44,7 +44,7 @@ class ProgressMeter final : public ProgressPhases {
   ProgressCounter* begin(const std::string& phase, uint64_t expected = 0) override;
   void end() override;  // the phase is over: its 100% line, if it ran long enough to show
   // A many-render command's place (sweep, batch: "sweep 3/12 | run-id"), shown before
-  // the phase; set by the scheduling thread between phases.
+  // the phase, or alone between phases on a terminal; set by the scheduling thread.
   void setContext(std::string context);
   void poll();    // draws the current phase if it is old enough (and, in a log, due)
   void finish();  // ends the phase and the terminal's line

@@ -147,7 +147,10 @@ class Sweep {
     showProgress();
     const Scene& scene = lead.scene;
     const TraceScene& tracer = *session_.assets(lead).tracer;
-    Emission emission = emitPhotonsFor(scene, tracer, needs, top, 0, smaller);
+    Emission emission = [&] {
+      const PhaseGuard phase(req_.phases);
+      return emitPhotonsFor(scene, tracer, needs, top, 0, smaller, beginPhase(req_.phases, "photons"));
+    }();
     ++totals_.emissions;
     // The reference's budget first, then the largest to the smallest.
     std::sort(budgets.begin(), budgets.end(),
@@ -158,7 +161,8 @@ class Sweep {
       status_ = "maps";
       showProgress();
       Stopwatch build;
-      if (!buildStage(emission, b, false, stage)) {
+      const PhaseGuard phase(req_.phases);
+      if (!buildStage(emission, b, false, stage, beginPhase(req_.phases, "maps"))) {
         // Not a prefix of this emission (a light split that does not nest): emit it alone.
         Emission own = emitPhotonsFor(lead.scene, tracer, needs, b, 0);
         ++totals_.emissions;

@@ -62,4 +62,17 @@ inline void endPhase(ProgressPhases* phases) {
   if (phases) phases->end();
 }
 
+// Ends the current phase when it goes out of scope, thrown through or not, so a
+// failed step never leaves its phase drawn under the next one.
+class PhaseGuard {
+ public:
+  explicit PhaseGuard(ProgressPhases* phases) : phases_(phases) {}
+  ~PhaseGuard() { endPhase(phases_); }
+  PhaseGuard(const PhaseGuard&) = delete;
+  PhaseGuard& operator=(const PhaseGuard&) = delete;
+
+ private:
+  ProgressPhases* phases_;
+};
+
 }  // namespace penumbra

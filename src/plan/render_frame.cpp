@@ -38,6 +38,7 @@ void buildLookup(const Scene& scene, LookupCache& cache, std::optional<LookupCac
   params.cellSize = radius > 0.0f ? cacheCellSize(radius, params.k, ps.lookupCell)
                                   : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
   if (!cachedKey || !*cachedKey || !sameLookup(**cachedKey, params)) {
+    if (cachedKey) cachedKey->reset();  // a build that throws leaves no key to a half-built cache
     params.progress = beginPhase(meter, phaseName);
     cache.build(params.gate ? ctx.shadowMap : nullptr, map, params);
     endPhase(meter);

@@ -12,7 +12,7 @@
 namespace penumbra {
 
 // Built once per geometry; the tracer reads the Scene it was built from, which
-// must outlive it (a sweep keeps that scene beside it).
+// must outlive it (the render session keeps it with the assets).
 struct SceneAssets {
   std::unique_ptr<TraceScene> tracer;
   std::unique_ptr<TextureLookup> textures;

@@ -6,6 +6,7 @@
 #include "io/scene_loader.h"
 #include "plan/output_safety.h"
 #include <fmt/format.h>
+#include <algorithm>
 #include <tbb/info.h>
 #include <stdexcept>
 
@@ -114,19 +115,21 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
   const SceneAssets& a = assets(job);
   const Scene& scene = job.scene;
   auto stage = std::make_unique<PhotonStage>();
+  const PhaseGuard phases(options_.progress);
   Emission e = emitPhotonsFor(scene, *a.tracer, needs, key.budgets, 0, {}, beginPhase(options_.progress, "photons"));
   buildStage(e, e.budgets, true, *stage, beginPhase(options_.progress, "maps"));
-  endPhase(options_.progress);
   ++photonBuilds_;
-  cachedBytes_ += stage->bytes();
   stages_.push_front({key, std::move(stage)});
+  // Counted afresh: a stage grows after it is cached (its frames add lookup caches).
+  uint64_t cached = 0;
+  for (const CachedStage& c : stages_) cached += c.stage->bytes();
   // Keep the newest always; drop the least recently used beyond the cap.
-  while (stages_.size() > 1 && cachedBytes_ > options_.stageCacheBytes) {
-    cachedBytes_ -= stages_.back().stage->bytes();
+  while (stages_.size() > 1 && cached > options_.stageCacheBytes) {
+    cached -= stages_.back().stage->bytes();
     stages_.pop_back();
     ++evictions_;
   }
-  peakStageBytes_ = std::max(peakStageBytes_, cachedBytes_);
+  peakStageBytes_ = std::max(peakStageBytes_, cached);
   return *stages_.front().stage;
 }
 
@@ -159,8 +162,8 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {
   frame.precomputed = precomputedLookups(job.plan);
   frame.tracePixel = job.request.tracePixel;
   frame.progress = options_.progress;
+  const PhaseGuard phases(options_.progress);
   renderFrame(scene, a, stage, frame, result);
-  endPhase(options_.progress);
   return result;
 }
 

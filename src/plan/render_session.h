@@ -112,7 +112,7 @@ class RenderSession {
   tbb::global_control limit_;  // TBB's parallelism for the session's lifetime
   std::map<std::string, std::unique_ptr<Geometry>> geometry_;
   std::list<CachedStage> stages_;  // most recently used first
-  uint64_t cachedBytes_ = 0, peakStageBytes_ = 0;
+  uint64_t peakStageBytes_ = 0;
   size_t sceneBuilds_ = 0, photonBuilds_ = 0, evictions_ = 0;
   size_t stdinJobs_ = 0;
 };

@@ -97,7 +97,6 @@ const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
 
 GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                         const CachedAnswer* cached, ThreadState& ts, std::string* note) {
-  const PhotonSettings& ps = ctx.scene.photons;
   if (!ctx.choices.gate || !ctx.shadowMap || !ctx.shadowMap->hasPhotons(lightIndex)) return GateVerdict::Mixed;
   ++ts.counts.gateQueries;
   GateVerdict v;
