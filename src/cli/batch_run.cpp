@@ -77,9 +77,10 @@ BatchOutcome runBatch(const BatchRequest& req) {
         for (const OutputPath& q : outputs) seen = seen || q.path == o.path;
         if (!seen) outputs.push_back({o.path, "output", true});
       }
-      for (size_t v = 0; v < p.job->outputs.size(); ++v) {
-        JobRequest view{p.job->scene, p.job->overrides, p.job->outputs[v].view, v == 0 ? outputs : std::vector<OutputPath>{}, {}};
-        p.views.push_back(session.plan(view));
+      if (p.job->outputs.empty()) throw InputError("the job writes no output");
+      p.views.push_back(session.plan({p.job->scene, p.job->overrides, p.job->outputs.front().view, outputs, {}}));
+      for (size_t v = 1; v < p.job->outputs.size(); ++v) {
+        p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
       }
       p.inputs = p.views.front().inputs;
       p.stamp = stampOf(*p.job);

@@ -33,13 +33,6 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
   Stopwatch clock;
   job.scene = loadScene(request.scenePath, request.overrides);
   job.loadSeconds = clock.seconds();
-  const Scene& scene = job.scene;
-  job.viewName = request.view.empty() ? scene.render.aov : request.view;
-  job.aov = parseAov(job.viewName);
-  if (scene.render.model != ShadingModel::Physical && (job.aov == Aov::Direct || job.aov == Aov::Caustic)) {
-    throw InputError(scene.file + ": view '" + job.viewName + "' needs the physical model (render.model: \"physical\")");
-  }
-  if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
   if (request.scenePath == "-") {
     // A scene read from stdin can be read once: it shares nothing with another job.
     const std::string own = "-\n" + std::to_string(stdinJobs_++);
@@ -47,14 +40,9 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
   } else {
     job.keys = reuseKeys(request.scenePath, request.overrides);
   }
-  job.inputs = sceneInputs(scene, request.scenePath);
+  job.inputs = sceneInputs(job.scene, request.scenePath);
   checkOutputs(request.outputs, job.inputs);
-  // Before any work: what runs and why (photons.gate = auto is decided here too).
-  job.plan = makePlan(scene, job.aov, options_.plan);
-  for (const PassDecision& d : job.plan.passes) {
-    if (d.overridden && d.changesImage) job.notes.push_back("plan override: " + d.reason);
-  }
-  job.admission = admitJob(scene, job.plan, options_.threads, request.tracePixel.has_value(), options_.maxMemoryBytes);
+  planAndAdmit(job);
   // Equal geometry keys mean equal meshes: every job reads the first one's buffer.
   std::unique_ptr<Geometry>& g = geometry_[job.keys.geometry];
   if (!g) {
@@ -63,6 +51,33 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
   }
   job.scene.meshes = g->scene.meshes;
   return job;
+}
+
+PlannedJob RenderSession::planView(const PlannedJob& base, const std::string& view) {
+  PlannedJob job = base;
+  job.request.view = view;
+  job.request.outputs.clear();  // checked with the job's first view
+  job.notes.clear();
+  job.prepared = false;
+  planAndAdmit(job);
+  return job;
+}
+
+void RenderSession::planAndAdmit(PlannedJob& job) const {
+  const Scene& scene = job.scene;
+  const JobRequest& request = job.request;
+  job.viewName = request.view.empty() ? scene.render.aov : request.view;
+  job.aov = parseAov(job.viewName);
+  if (scene.render.model != ShadingModel::Physical && (job.aov == Aov::Direct || job.aov == Aov::Caustic)) {
+    throw InputError(scene.file + ": view '" + job.viewName + "' needs the physical model (render.model: \"physical\")");
+  }
+  if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
+  // Before any work: what runs and why (photons.gate = auto is decided here too).
+  job.plan = makePlan(scene, job.aov, options_.plan);
+  for (const PassDecision& d : job.plan.passes) {
+    if (d.overridden && d.changesImage) job.notes.push_back("plan override: " + d.reason);
+  }
+  job.admission = admitJob(scene, job.plan, options_.threads, request.tracePixel.has_value(), options_.maxMemoryBytes);
 }
 
 RenderSession::Geometry& RenderSession::geometryOf(const PlannedJob& job) {

@@ -70,6 +70,9 @@ class RenderSession {
   // the estimate without photons. Throws InputError (exit 2) before any heavy work.
   // The first job of a geometry keeps its loaded scene for the others.
   PlannedJob plan(const JobRequest& request);
+  // Another view of a planned job's scene and settings, planned and admitted
+  // without loading the scene again (batch's views of one job).
+  PlannedJob planView(const PlannedJob& job, const std::string& view);
 
   // The job's geometry built (BVH, and textures when its plan reads them), its light
   // split by reach, the pilot if the photons are large, and the whole estimate
@@ -107,6 +110,7 @@ class RenderSession {
     std::unique_ptr<PhotonStage> stage;
   };
   Geometry& geometryOf(const PlannedJob& job);
+  void planAndAdmit(PlannedJob& job) const;  // view, plan and estimate of a loaded job
 
   SessionOptions options_;  // threads resolved (> 0)
   tbb::global_control limit_;  // TBB's parallelism for the session's lifetime
