@@ -26,29 +26,26 @@ StoreRates measureStoreRates(const Scene& scene, const TraceScene& tracer, const
   auto margin = [](double measured, double cap) { return std::min(cap, measured * kPilotMargin); };
   using K = MapKind;
   const MapCounts& n = plan.emitted;
-  auto pilot = [&](K k) { return std::min(n[k], kPilotPhotons); };
+  // The pilot's options for one emitter's two maps: at most kPilotPhotons each.
+  auto pilotOf = [&](K a, K b) {
+    EmitOptions options;
+    options.budgets = MapCounts();
+    for (K k : {a, b}) {
+      (*options.budgets)[k] = std::min(n[k], kPilotPhotons);
+      options.maps[k] = n[k] > 0;
+    }
+    return options;
+  };
   auto measure = [&](K k, size_t stored, uint64_t emitted) {
     if (n[k] > 0) r.perPhoton[k] = margin(rate(stored, emitted), bound.perPhoton[k]);
   };
   if (n[K::Shadow] > 0 || n[K::Indirect] > 0) {
-    EmitOptions options;
-    options.budgets = MapCounts();
-    (*options.budgets)[K::Shadow] = pilot(K::Shadow);
-    (*options.budgets)[K::Indirect] = pilot(K::Indirect);
-    options.maps[K::Shadow] = n[K::Shadow] > 0;
-    options.maps[K::Indirect] = n[K::Indirect] > 0;
-    PhotonMaps maps = emitPhotons(scene, tracer, options);
+    const PhotonMaps maps = emitPhotons(scene, tracer, pilotOf(K::Shadow, K::Indirect));
     measure(K::Shadow, maps.shadow.size(), maps.emitted[K::Shadow]);
     measure(K::Indirect, maps.indirect.size(), maps.emitted[K::Indirect]);
   }
   if (n[K::Global] > 0 || n[K::Caustic] > 0) {
-    EmitOptions options;
-    options.budgets = MapCounts();
-    (*options.budgets)[K::Global] = pilot(K::Global);
-    (*options.budgets)[K::Caustic] = pilot(K::Caustic);
-    options.maps[K::Global] = n[K::Global] > 0;
-    options.maps[K::Caustic] = n[K::Caustic] > 0;
-    PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer, 0, options);
+    const PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer, 0, pilotOf(K::Global, K::Caustic));
     measure(K::Global, photons.global.size(), photons.emitted[K::Global]);
     measure(K::Caustic, photons.caustic.size(), photons.emitted[K::Caustic]);
   }
