@@ -51,10 +51,10 @@ struct Fixture {
     shadow.build(std::move(emitted.shadow), scene.lights.size());
     indirect.build(std::move(emitted.indirect));
     const PhotonSettings& ps = scene.photons;
-    gate = gateParamsFor(scene);
+    gate = gateParamsFor(scene, integratorFor(scene.render.model).glass);
     k = ps.kIndirect;
     maxRadius = ps.maxRadius;
-    // As src/cli/pipeline.cpp buildLookup() does for the classic model.
+    // As plan/render_frame.cpp buildLookup() does for the classic model.
     LookupCacheParams params;
     params.gate = true;
     params.gateParams = gate;

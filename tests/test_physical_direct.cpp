@@ -144,8 +144,8 @@ TEST_P(Furnace, GlobalMapGivesTheInterreflectionOfAClosedSphere) {
 
 // Named rho_0_50 and rho_0_73: ctest lists the generated name (NO_PRETTY_VALUES).
 INSTANTIATE_TEST_SUITE_P(Albedo, Furnace, ::testing::Values(0.5f, 0.73f),
-                         [](const ::testing::TestParamInfo<float>& info) {
-                           return "rho_0_" + std::to_string(int(std::lround(info.param * 100.0f)));
+                         [](const ::testing::TestParamInfo<float>& tp) {
+                           return "rho_0_" + std::to_string(int(std::lround(tp.param * 100.0f)));
                          });
 
 // ---------------------------------------------------------------------------

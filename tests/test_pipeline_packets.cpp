@@ -77,8 +77,8 @@ INSTANTIATE_TEST_SUITE_P(
     // Named by scene, view and gate setting (the two fig11 cases differ only there),
     // so ctest lists Scenes/PacketsMatchSingleRays.SameBytesAndCounts/fig11_gate_shadows_gate_on
     // instead of /6 and the Case's raw bytes.
-    [](const ::testing::TestParamInfo<Case>& info) {
-      const Case& c = info.param;
+    [](const ::testing::TestParamInfo<Case>& tp) {
+      const Case& c = tp.param;
       std::string name = c.scene;
       if (*c.aov) name += std::string("_") + c.aov;
       for (const std::string& o : c.overrides) {

@@ -103,8 +103,8 @@ TEST_P(PlanScenes, ApproximationsThePlanSkippedStayWithinTheNoise) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, PlanScenes, ::testing::ValuesIn(shippedScenes()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           return fs::path(info.param).stem().string();
+                         [](const ::testing::TestParamInfo<std::string>& tp) {
+                           return fs::path(tp.param).stem().string();
                          });
 
 TEST(Plan, ReasonsNameWhyAPassIsOff) {

@@ -28,9 +28,9 @@ SweepRequest cornellSweep(const std::string& dir) {
   SweepRequest req;
   req.scenePath = kCornell;
   req.outDir = dir;
-  req.spec = expandGrid({namedKnob("photons", "3e3,2e4", ShadingModel::Physical),
-                         namedKnob("k", "8,40", ShadingModel::Physical),
-                         namedKnob("spp", "1,2", ShadingModel::Physical)},
+  req.spec = expandGrid({namedKnob("photons", "3e3,2e4", physicalTransport()),
+                         namedKnob("k", "8,40", physicalTransport()),
+                         namedKnob("spp", "1,2", physicalTransport())},
                         base);
   req.threads = 2;
   return req;
@@ -48,15 +48,15 @@ Image standalone(const std::string& scene, const std::vector<std::string>& overr
 }
 
 TEST(Sweep, GridExpandsEveryCombinationWithIntegerCounts) {
-  SweepSpec spec = expandGrid({namedKnob("photons", "1e4,1e5", ShadingModel::Classic),
-                               namedKnob("depth", "1,8,4", ShadingModel::Classic)},
+  SweepSpec spec = expandGrid({namedKnob("photons", "1e4,1e5", classicTransport()),
+                               namedKnob("depth", "1,8,4", classicTransport())},
                               {"camera.spp=1"});
   ASSERT_EQ(spec.runs.size(), 6u);
   EXPECT_EQ(spec.runs[0].id, "photons=1e4 depth=1");
   EXPECT_EQ(spec.runs[0].overrides,
             (std::vector<std::string>{"camera.spp=1", "photons.indirect=10000", "render.max_depth=1"}));
   EXPECT_EQ(spec.runs[spec.highest].id, "photons=1e5 depth=8");  // numeric, not the last listed
-  EXPECT_THROW(expandGrid({namedKnob("spp", "1,2", ShadingModel::Classic), keyKnob("camera.spp=3")}, {}),
+  EXPECT_THROW(expandGrid({namedKnob("spp", "1,2", classicTransport()), keyKnob("camera.spp=3")}, {}),
                InputError);
   EXPECT_THROW(keyKnob("photons.k_shadow"), InputError);
   EXPECT_THROW(splitValues("1,,2", "--k"), InputError);
@@ -129,7 +129,7 @@ TEST(Sweep, RunsSplitTheirLightsByReachInEveryPassAsALoneRenderDoes) {
   SweepRequest req;
   req.scenePath = scene;
   req.outDir = (dir / "out").string();
-  req.spec = expandGrid({namedKnob("spp", "1,2", ShadingModel::Physical)}, {});
+  req.spec = expandGrid({namedKnob("spp", "1,2", physicalTransport())}, {});
   req.threads = 2;
   const SweepOutcome out = runSweep(req);
   ASSERT_EQ(out.rows.size(), 2u);
@@ -175,7 +175,7 @@ TEST(Sweep, SigintLeavesEveryFinishedRowAndNoPartialFile) {
   for (const auto& e : fs::recursive_directory_iterator(out)) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
   }
-  const std::vector<SweepKnob> knobs = {namedKnob("spp", "1,2,3,4,5,6", ShadingModel::Classic)};
+  const std::vector<SweepKnob> knobs = {namedKnob("spp", "1,2,3,4,5,6", classicTransport())};
   const auto rows = readFinishedRows((out / "results.csv").string(), knobs);
   ASSERT_EQ(rows.size(), 2u);
   for (const auto& [id, row] : rows) EXPECT_TRUE(fs::exists(out / row.image)) << id;

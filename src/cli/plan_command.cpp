@@ -3,6 +3,7 @@
 #include "cli/plan_command.h"
 #include "core/error.h"
 #include "plan/render_frame.h"
+#include "plan/transport_model.h"
 #include "io/scene_loader.h"
 #include <iostream>
 
@@ -64,7 +65,7 @@ int CheckCommand::run() {
     const Scene s = loadScene(path, overrides_);
     size_t triangles = 0;
     for (const TriangleMesh& m : s.meshes) triangles += m.triangles.size();
-    std::cout << path << ": ok (" << (s.render.model == ShadingModel::Physical ? "physical" : "classic") << ", "
+    std::cout << path << ": ok (" << transportOf(s).name() << ", "
               << s.meshes.size() << " meshes with " << triangles << " triangles, " << s.spheres.size()
               << " spheres, " << s.lights.size() << " lights, " << s.materials.size() << " materials)\n";
   }

@@ -57,7 +57,7 @@ int SweepCommand::run() {
   const std::pair<const char*, const std::string*> named[] = {
       {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
   for (const auto& [name, list] : named) {
-    if (!list->empty()) knobs.push_back(namedKnob(name, *list, base.render.model));
+    if (!list->empty()) knobs.push_back(namedKnob(name, *list, transportOf(base)));
   }
   for (const std::string& v : o.vary) knobs.push_back(keyKnob(v));
 

@@ -63,17 +63,15 @@ std::string overrideValue(const std::string& value) {
   return value;
 }
 
-SweepKnob namedKnob(const std::string& name, const std::string& list, ShadingModel model) {
+SweepKnob namedKnob(const std::string& name, const std::string& list, const TransportModel& model) {
   SweepKnob knob;
   knob.name = name;
   knob.values = splitValues(list, "--" + name);
-  const bool physical = model == ShadingModel::Physical;
-  if (name == "photons") {
-    knob.keys = physical ? std::vector<std::string>{"photons.global", "photons.caustic"}
-                         : std::vector<std::string>{"photons.indirect"};
-  } else if (name == "k") {
-    knob.keys = physical ? std::vector<std::string>{"photons.k_global", "photons.k_caustic"}
-                         : std::vector<std::string>{"photons.k_indirect"};
+  if (name == "photons" || name == "k") {
+    // Every map that carries the model's light: photons.global and photons.caustic, ...
+    for (MapKind k : model.lightMaps()) {
+      knob.keys.push_back(fmt::format("photons.{}{}", name == "k" ? "k_" : "", mapName(k)));
+    }
   } else if (name == "depth") {
     knob.keys = {"render.max_depth"};
   } else if (name == "spp") {

@@ -3,6 +3,7 @@
 // the run at every knob's highest value (the default reference).
 #pragma once
 #include "core/scene.h"
+#include "plan/transport_model.h"
 #include <string>
 #include <vector>
 
@@ -33,7 +34,7 @@ std::vector<std::string> splitValues(const std::string& list, const std::string&
 // A named knob for the scene's model: photons -> photons.indirect (classic) or
 // photons.global and photons.caustic (physical); k -> photons.k_indirect or
 // photons.k_global and photons.k_caustic; depth -> render.max_depth; spp -> camera.spp.
-SweepKnob namedKnob(const std::string& name, const std::string& list, ShadingModel model);
+SweepKnob namedKnob(const std::string& name, const std::string& list, const TransportModel& model);
 // --vary KEY=v1,v2: any scene key.
 SweepKnob keyKnob(const std::string& arg);
 

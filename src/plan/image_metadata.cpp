@@ -1,6 +1,7 @@
 // The penumbra:* header attributes of a render's output image. Written once per
 // image, so plain strings: readable with oiiotool --info -v or exrheader.
 #include "plan/image_metadata.h"
+#include "plan/transport_model.h"
 #include "plan/photon_stage.h"
 #include <fmt/format.h>
 #include <algorithm>
@@ -19,22 +20,7 @@ const char* onOff(bool on) { return on ? "on" : "off"; }
 // The one-line summary every output carries (unchanged since before the EXR keys).
 std::string summary(const Scene& scene, const RenderPlan& plan, const RenderStats& stats) {
   const auto& ps = scene.photons;
-  const bool gate = plan[Pass::Gate].on;
-  const bool physical = scene.render.model == ShadingModel::Physical;
-  std::string photons =
-      physical ? fmt::format("global_photons={} caustic_photons={} k_global={} k_caustic={} "
-                             "passes={} alpha={} radius={} max_bounces={} shadow_photons={} "
-                             "k_shadow={} gate={}",
-                             planBudgets(plan)[MapKind::Global], planBudgets(plan)[MapKind::Caustic], ps.kGlobal, ps.kCaustic, ps.passes,
-                             ps.alpha, ps.radius, ps.maxBounces, stats.emitted[MapKind::Shadow], ps.kShadow,
-                             onOff(gate))
-               : fmt::format("shadow_photons={} indirect_photons={} k_shadow={} k_indirect={} "
-                             "max_radius={} max_bounces={} sampling={} gate={} estimator={}",
-                             stats.emitted[MapKind::Shadow], stats.emitted[MapKind::Indirect], ps.kShadow, ps.kIndirect,
-                             ps.maxRadius, ps.maxBounces,
-                             ps.sampling == HemisphereSampling::Cosine ? "cosine" : "uniform",
-                             onOff(gate),
-                             ps.estimator == IndirectEstimator::Classic ? "classic" : "density");
+  std::string photons = transportOf(scene).photonSummary(scene, planBudgets(plan), stats, plan[Pass::Gate].on);
   photons += precomputedLookups(plan)
                  ? fmt::format(" lookup=precomputed lookup_cell={}", ps.lookupCell)
                  : std::string(" lookup=exact");
@@ -50,7 +36,6 @@ void addSettings(const Scene& scene, const RenderPlan& plan, const RenderStats& 
   const FrameChoices choices = choicesOf(plan, scene);
   const MapCounts budgets = planBudgets(plan);
   const bool precomputed = precomputedLookups(plan);
-  const bool physical = rs.model == ShadingModel::Physical;
   auto add = [&m](const std::string& key, const auto& value) { m.emplace_back("penumbra:" + key, fmt::format("{}", value)); };
   add("version", PENUMBRA_VERSION);
   add("width", scene.camera.width);
@@ -66,26 +51,9 @@ void addSettings(const Scene& scene, const RenderPlan& plan, const RenderStats& 
   add("packets", onOff(choices.packets));
   auto rgb = [](const Color& c) { return fmt::format("{} {} {}", c.r, c.g, c.b); };
   add("background", rgb(rs.background));
-  if (!physical) add("ambient", rgb(rs.ambient));
   add("photons.shadow", budgets[MapKind::Shadow]);
   add("photons.k_shadow", ps.kShadow);
-  if (physical) {
-    add("photons.global", budgets[MapKind::Global]);
-    add("photons.caustic", budgets[MapKind::Caustic]);
-    add("photons.k_global", ps.kGlobal);
-    add("photons.k_caustic", ps.kCaustic);
-    add("photons.passes", ps.passes);
-    add("photons.alpha", ps.alpha);
-    add("photons.radius", ps.radius);
-    if (stats.passes > 1) add("photons.final_global_radius", stats.globalRadius);
-    if (stats.passes > 1) add("photons.final_caustic_radius", stats.causticRadius);
-  } else {
-    add("photons.indirect", budgets[MapKind::Indirect]);
-    add("photons.k_indirect", ps.kIndirect);
-    add("photons.max_radius", ps.maxRadius);
-    add("photons.sampling", ps.sampling == HemisphereSampling::Cosine ? "cosine" : "uniform");
-    add("photons.estimator", ps.estimator == IndirectEstimator::Classic ? "classic" : "density");
-  }
+  transportOf(scene).addModelSettings(scene, budgets, stats, m);
   add("photons.max_bounces", ps.maxBounces);
   add("photons.lookup", precomputed ? "precomputed" : "exact");
   if (precomputed) add("photons.lookup_cell", ps.lookupCell);
@@ -107,7 +75,7 @@ ImageMetadata renderMetadata(const Scene& scene, const RenderPlan& plan, const R
   ImageMetadata m = {{"penumbra:scene", scene.name},
                      {"penumbra:scene_file", scene.file},
                      {"penumbra:aov", aov},
-                     {"penumbra:model", scene.render.model == ShadingModel::Physical ? "physical" : "classic"},
+                     {"penumbra:model", transportOf(scene).name()},
                      {"penumbra:settings", summary(scene, plan, stats)}};
   if (isExr(outputPath)) addSettings(scene, plan, stats, m);
   return m;

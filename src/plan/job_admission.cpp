@@ -4,16 +4,14 @@
 #include "plan/job_admission.h"
 #include "plan/photon_pilot.h"
 #include "plan/photon_stage.h"
+#include "plan/transport_model.h"
 #include <fmt/format.h>
 
 namespace penumbra {
 
 PhotonPlan photonPlanOf(const RenderPlan& plan, const Scene& scene, bool tracePixel) {
   const MapCounts b = planBudgets(plan);
-  PhotonPlan p{b, 1};
-  const bool lit = plan.aov != Aov::Depth && plan.aov != Aov::Normal;
-  if (scene.render.model == ShadingModel::Physical && lit && !tracePixel) p.passes = std::max(1, scene.photons.passes);
-  return p;
+  return {b, tracePixel ? 1 : transportOf(scene).passes(scene, plan.aov)};
 }
 
 Admission admitJob(const Scene& scene, const RenderPlan& plan, int threads, bool tracePixel,

@@ -1,6 +1,7 @@
 // Emission and map builds for one render or a group of renders sharing photons.
 #include "plan/photon_stage.h"
 #include "core/stats.h"
+#include "plan/transport_model.h"
 #include <tbb/parallel_invoke.h>
 #include <exception>
 
@@ -53,8 +54,8 @@ MapCounts planBudgets(const RenderPlan& plan) {
 Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const PhotonNeeds& needs,
                         const MapCounts& budgets, uint32_t pass, const std::vector<uint64_t>& smaller,
                         ProgressCounter* progress) {
+  const TransportModel& model = transportOf(scene);
   Emission e;
-  e.physical = scene.render.model == ShadingModel::Physical;
   e.numLights = scene.lights.size();
   if (!needs.any()) return e;
   Stopwatch clock;
@@ -62,19 +63,10 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
   options.budgets = budgets;
   options.prefixBudgets = smaller;
   options.reach = needs.reach;
-  options.maps = needs.maps;
-  // The physical gate's shadow photons do not change between passes: pass 0 only.
-  options.maps[MapKind::Shadow] = needs.maps[MapKind::Shadow] && (!e.physical || pass == 0);
-  options.maps[MapKind::Global] = e.physical && needs.maps[MapKind::Global];
-  options.maps[MapKind::Caustic] = e.physical && needs.maps[MapKind::Caustic];
+  options.maps = model.emittedMaps(needs.maps, pass);
   options.progress = progress;
   progressExpect(progress, photonsAskedFor(scene, options, budgets));
-  if (options.maps[MapKind::Shadow] || options.maps[MapKind::Indirect]) {
-    e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
-  }
-  if (e.physical) {
-    e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
-  }
+  model.emit(scene, tracer, options, pass, e);
   e.budgets = e.classic.emitted;
   e.budgets += e.photons.emitted;
   e.seconds = clock.seconds();

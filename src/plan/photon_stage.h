@@ -24,7 +24,6 @@ namespace penumbra {
 // One emission (pass 0 of the physical model, or the classic pass) with the raw
 // photons of every map the view reads, and the prefix cuts asked for.
 struct Emission {
-  bool physical = false;
   PhotonMaps classic;          // classic maps; the physical model's gate photons (shadow)
   ClassicCuts classicCuts;
   PhysicalPhotons photons;     // physical caustic and global photons

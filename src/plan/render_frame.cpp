@@ -1,6 +1,7 @@
 // One frame from built photon maps: the context the integrators read, the
 // precomputed lookups, and the physical model's progressive passes.
 #include "plan/render_frame.h"
+#include "plan/transport_model.h"
 #include "gather/lookup_cache.h"
 #include "gather/radiance_estimate.h"
 #include "trace/camera.h"
@@ -12,29 +13,34 @@
 namespace penumbra {
 namespace {
 
-// photons.lookup = precomputed: the gate verdicts and the indirect (classic) or global
-// (physical) estimate, once per cell, from the maps just built. `radius` > 0 is the
-// physical pass's fixed gather radius.
-void buildLookup(const Scene& scene, LookupCache& cache, std::optional<LookupCacheParams>* cachedKey,
-                 double* builtSeconds,
-                 ShadingContext& ctx, float radius, RenderStats& stats, ProgressPhases* meter,
-                 const std::string& phaseName) {
+// The built map of a light-map kind the context reads (null: none).
+const IndirectPhotonMap* lightMap(const ShadingContext& ctx, MapKind k) {
+  switch (k) {
+    case MapKind::Indirect: return ctx.indirectMap;
+    case MapKind::Global: return ctx.globalMap;
+    case MapKind::Caustic: return ctx.causticMap;
+    default: return nullptr;
+  }
+}
+
+// photons.lookup = precomputed: the gate verdicts and the model's indirect estimate
+// (IndirectLookup), once per cell, from the maps just built. `radius` > 0 is a
+// progressive pass's fixed gather radius.
+void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& cache,
+                 std::optional<LookupCacheParams>* cachedKey, double* builtSeconds, ShadingContext& ctx,
+                 float radius, RenderStats& stats, ProgressPhases* meter, const std::string& phaseName) {
   const PhotonSettings& ps = scene.photons;
   Stopwatch phase;
-  const bool physical = scene.render.model == ShadingModel::Physical;
-  const IndirectPhotonMap* map = physical ? ctx.globalMap : ctx.indirectMap;
+  const IndirectLookup recipe = model.indirectLookup(ps);
+  const IndirectPhotonMap* map = lightMap(ctx, recipe.map);
   LookupCacheParams params;
   params.gate = ctx.choices.gate && ctx.choices.shadows && ctx.shadowMap;
-  params.gateParams = gateParamsFor(scene);
-  if (map) {
-    params.indirect = physical ? CachedIndirect::Irradiance
-                      : ps.estimator == IndirectEstimator::Density ? CachedIndirect::Density
-                                                                   : CachedIndirect::Classic;
-  }
+  params.gateParams = gateParamsFor(scene, ctx.choices.integrator->glass);
+  if (map) params.indirect = recipe.kind;
   if (!params.gate && !map) return;  // nothing to precompute
-  params.k = physical ? ps.kGlobal : ps.kIndirect;
-  params.maxRadius = physical ? 0.0f : ps.maxRadius;
-  params.radius = physical ? radius : 0.0f;
+  params.k = recipe.k;
+  params.maxRadius = recipe.maxRadius;
+  params.radius = radius;
   params.cellSize = radius > 0.0f ? cacheCellSize(radius, params.k, ps.lookupCell)
                                   : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
   if (!cachedKey || !*cachedKey || !sameLookup(**cachedKey, params)) {
@@ -104,7 +110,7 @@ SceneAssets prepareAssets(const Scene& scene, bool textures) {
 void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& stage,
                  const FrameOptions& options, RenderResult& result) {
   RenderStats& stats = result.stats;
-  const bool physical = scene.render.model == ShadingModel::Physical;
+  const TransportModel& model = transportOf(scene);
   const Aov aov = options.aov;
   ShadingContext ctx{scene, *assets.tracer};
   if (options.choices) ctx.choices = *options.choices;
@@ -115,12 +121,12 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
   ctx.classicScale = stage.classicScale;
   ctx.shadowMap = stage.shadow.size() > 0 ? &stage.shadow : nullptr;
   for (const std::string& n : stage.notes) result.notes.push_back(n);
-  if (!physical && scene.photons.indirectPhotons > 0 && stage.emitted[MapKind::Indirect] > 0 && stage.indirect.empty()) {
+  if (stage.emitted[MapKind::Indirect] > 0 && stage.indirect.empty()) {
     result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
                            "using the ambient term");
   }
   const bool needsLight = aov != Aov::Depth && aov != Aov::Normal;
-  const int passes = physical && needsLight && !options.tracePixel ? scene.photons.passes : 1;
+  const int passes = options.tracePixel ? 1 : model.passes(scene, aov);
   stats.passes = passes;
 
   LookupCache cache;
@@ -145,7 +151,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     ctx.globalMap = maps->global.empty() ? nullptr : &maps->global;
     ctx.pass = static_cast<uint32_t>(pass);
     float radius = 0.0f;
-    if (physical && needsLight && passes > 1) {
+    if (passes > 1) {
       stepRadius(scene.photons, ctx.pass, ctx.causticRadius, maps->caustic, scene.photons.kCaustic);
       stepRadius(scene.photons, ctx.pass, ctx.globalRadius, maps->global, scene.photons.kGlobal);
       stats.causticRadius = ctx.causticRadius;
@@ -156,10 +162,10 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     if (needsLight && precomputed) {
       const std::string lookups = phaseName("lookups", pass, passes);
       if (pass == 0) {
-        buildLookup(scene, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats, options.progress,
+        buildLookup(scene, model, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats, options.progress,
                     lookups);
       } else {
-        buildLookup(scene, cache, nullptr, nullptr, ctx, radius, stats, options.progress, lookups);
+        buildLookup(scene, model, cache, nullptr, nullptr, ctx, radius, stats, options.progress, lookups);
       }
     }
     Stopwatch phase;

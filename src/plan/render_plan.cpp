@@ -2,12 +2,14 @@
 // contribute, with the reason in words; then the user's --enable / --disable.
 #include "plan/render_plan.h"
 #include "plan/gate_decision.h"
+#include "plan/transport_model.h"
 #include "core/bsdf.h"
 #include "core/error.h"
 #include "core/light_sample.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
 #include "emit/light_reach.h"
+#include <algorithm>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
@@ -24,11 +26,11 @@ PassDecision off(std::string reason) { return {false, std::move(reason), 0, {}, 
 
 struct SceneFacts {
   bool photonLight = false, areaLight = false, anyLight = false;
-  bool reflective = false, transparent = false, bounces = false, smooth = false;
+  bool reflective = false, transparent = false;
   int areaLights = 0;
 };
 
-SceneFacts factsOf(const Scene& scene) {
+SceneFacts factsOf(const Scene& scene, const TransportModel& model) {
   SceneFacts f;
   for (const Light& l : scene.lights) {
     if (maxComponent(l.radiance()) <= 0.0f) continue;
@@ -36,13 +38,9 @@ SceneFacts factsOf(const Scene& scene) {
     f.photonLight = f.photonLight || l.type != LightType::Directional;
     if (lightSampleCount(l, 2) > 1) { f.areaLight = true; ++f.areaLights; }
   }
-  const bool physical = scene.render.model == ShadingModel::Physical;
   for (const Material& m : scene.materials) {
-    const Bsdf b = makeBsdf(m, scene.render.model, scene.photons.sampling);
     f.transparent = f.transparent || m.transparent;
-    f.reflective = f.reflective || m.transparent || (physical ? hasDeltaLobe(b) : m.kr > 0.0f);
-    f.bounces = f.bounces || m.pR > 0.0f || m.pT > 0.0f;
-    f.smooth = f.smooth || hasSmoothLobe(b);
+    f.reflective = f.reflective || model.reflects(m, scene.photons);
   }
   return f;
 }
@@ -50,9 +48,9 @@ SceneFacts factsOf(const Scene& scene) {
 bool readsLight(Aov aov) { return aov != Aov::Depth && aov != Aov::Normal; }
 
 void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
-  const SceneFacts f = factsOf(scene);
+  const TransportModel& model = *plan.model;
+  const SceneFacts f = factsOf(scene, model);
   const PhotonSettings& ps = scene.photons;
-  const bool physical = scene.render.model == ShadingModel::Physical;
   const bool light = readsLight(aov);
   const std::string view = fmt::format("the {} view reads no light", aov == Aov::Depth ? "depth" : "normal");
   const bool direct = light && aov != Aov::Indirect && aov != Aov::Caustic;
@@ -74,29 +72,25 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
   }
   if (gate.on) gate.perLight = splitBudget(scene, gate.budget);
 
-  // Photon maps.
-  auto photons = [&](Pass p, bool read, uint64_t budget, const char* key, const char* cannot) {
-    PassDecision& d = plan[p];
-    if (!read) d = off(light ? "this view does not read it" : view);
-    else if (budget == 0) d = off(fmt::format("photons.{} is 0", key));
-    else if (!f.photonLight) d = off("only directional lights: no photons");
-    else if (cannot) d = off(cannot);
-    else d = on(fmt::format("{} photons", budget), budget);
-  };
-  if (physical) {
-    plan[Pass::IndirectPhotons] = off("the physical model has global and caustic maps instead");
-    photons(Pass::GlobalPhotons, aov == Aov::Beauty || aov == Aov::Indirect, ps.globalPhotons, "global",
-            !f.smooth ? "no diffuse or glossy surface to store a photon on" : ps.maxBounces == 0 ? "photons.max_bounces is 0" : nullptr);
-    const bool specular = !specularTargets(scene).empty();
-    photons(Pass::CausticPhotons, aov == Aov::Beauty || aov == Aov::Caustic, ps.causticPhotons, "caustic",
-            !specular ? "no specular surface for a caustic" : ps.maxBounces == 0 ? "photons.max_bounces is 0" : nullptr);
-  } else {
-    plan[Pass::GlobalPhotons] = off("classic model");
-    plan[Pass::CausticPhotons] = off("classic model");
-    // The density estimator stores only photons that bounced; the classic one every hit.
-    const bool density = ps.estimator == IndirectEstimator::Density;
-    photons(Pass::IndirectPhotons, aov == Aov::Beauty || aov == Aov::Indirect, ps.indirectPhotons, "indirect",
-            density && !f.bounces ? "no surface can bounce a photon: every p_r and p_t is 0" : nullptr);
+  // The model's light maps; the other model's stay off.
+  const MapCounts budgets = budgetsOf(scene);
+  for (MapKind k : kAllMaps) {
+    if (k == MapKind::Shadow) continue;
+    PassDecision& d = plan[photonPass(k)];
+    const auto& own = model.lightMaps();
+    if (std::find(own.begin(), own.end(), k) == own.end()) {
+      d = off(fmt::format("the {} model has no {} map", model.name(), mapName(k)));
+    } else if (!model.readsMap(k, aov)) {
+      d = off(light ? "this view does not read it" : view);
+    } else if (budgets[k] == 0) {
+      d = off(fmt::format("photons.{} is 0", mapName(k)));
+    } else if (!f.photonLight) {
+      d = off("only directional lights: no photons");
+    } else if (const char* cannot = model.cannotStore(k, scene)) {
+      d = off(cannot);
+    } else {
+      d = on(fmt::format("{} photons", budgets[k]), budgets[k]);
+    }
   }
   if (plan[Pass::IndirectPhotons].on) plan[Pass::IndirectPhotons].perLight = splitBudget(scene, ps.indirectPhotons);
 
@@ -114,7 +108,7 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
                                   static_cast<uint64_t>(scene.render.lightSamples));
   plan[Pass::Packets] = scene.render.packets ? on("render.packets is true (the same image, faster)")
                                              : off("render.packets is false");
-  const bool maps = gate.on || plan[Pass::IndirectPhotons].on || plan[Pass::GlobalPhotons].on;
+  const bool maps = gate.on || plan[photonPass(model.indirectLookup(ps).map)].on;
   plan[Pass::Precompute] = ps.lookup != PhotonLookup::Precomputed ? off("photons.lookup is exact")
                            : !maps ? off("no gate or indirect map to precompute")
                                    : on("photons.lookup is precomputed");
@@ -136,6 +130,7 @@ Pass parsePass(const std::string& name) {
 RenderPlan makePlan(const Scene& scene, Aov aov, const PlanOverrides& overrides) {
   RenderPlan plan;
   plan.aov = aov;
+  plan.model = &transportOf(scene);
   decide(plan, scene, aov);
   const PhotonSettings& ps = scene.photons;
   for (Pass p : overrides.enable) {
@@ -177,6 +172,7 @@ FrameChoices choicesOf(const RenderPlan& plan, const Scene& scene) {
   const bool oneSample = !plan[Pass::LightSamples].on && plan[Pass::LightSamples].overridden;
   c.lightSamples = oneSample ? 1 : scene.render.lightSamples;
   c.packets = plan[Pass::Packets].on;
+  c.integrator = &(plan.model ? *plan.model : transportOf(scene)).integrator();
   return c;
 }
 

@@ -51,9 +51,12 @@ struct PassDecision {
   bool changesImage = false;        // ... and the override can change the image
 };
 
+class TransportModel;
+
 struct RenderPlan {
   std::array<PassDecision, kPassCount> passes;
   Aov aov = Aov::Beauty;
+  const TransportModel* model = nullptr;  // the scene's transport model (transportOf)
   PassDecision& operator[](Pass p) { return passes[static_cast<size_t>(p)]; }
   const PassDecision& operator[](Pass p) const { return passes[static_cast<size_t>(p)]; }
 };

@@ -2,6 +2,7 @@
 // outputs, plan, estimate without photons), prepare (BVH, light split, pilot,
 // whole estimate), photons (cached stages), frame.
 #include "plan/render_session.h"
+#include "plan/transport_model.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
 #include "plan/output_safety.h"
@@ -68,7 +69,7 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
   const JobRequest& request = job.request;
   job.viewName = request.view.empty() ? scene.render.aov : request.view;
   job.aov = parseAov(job.viewName);
-  if (scene.render.model != ShadingModel::Physical && (job.aov == Aov::Direct || job.aov == Aov::Caustic)) {
+  if (!transportOf(scene).hasView(job.aov)) {
     throw InputError(scene.file + ": view '" + job.viewName + "' needs the physical model (render.model: \"physical\")");
   }
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
@@ -167,7 +168,7 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {
   stats.spp = scene.camera.spp;
   stats.threads = options_.threads;
   stats.seed = scene.render.seed;
-  stats.model = scene.render.model == ShadingModel::Physical ? "physical" : "classic";
+  stats.model = transportOf(scene).name();
   stats.lookup = job.plan[Pass::Precompute].on ? "precomputed" : "exact";
   FrameOptions frame;
   frame.aov = job.aov;

@@ -1,6 +1,7 @@
 // The resource model: stored photons from emitted counts x stores per path, bytes
 // per record, image and BVH sizes, and a per-operation time model (plan/cost_model.h).
 #include "plan/resource_estimate.h"
+#include "plan/transport_model.h"
 #include "plan/cost_model.h"
 #include "core/light_sample.h"
 #include "core/photon.h"
@@ -131,7 +132,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   if (p.passes > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
   const PhotonSettings& ps = scene.photons;
   if (options.precomputed) {
-    const double k = std::max(1, scene.render.model == ShadingModel::Classic ? ps.kIndirect : ps.kGlobal);
+    const double k = std::max(1, transportOf(scene).indirectLookup(ps).k);
     e.cacheBytes = 2.0 * (indirect + global + shadow) / k * kCacheBytesPerRecord;
   }
   const double pixels = double(scene.camera.width) * scene.camera.height;

@@ -27,8 +27,7 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uin
     return ((ts.blockedShadows >> lightIndex) & 1u) ? Color(0.0f) : Color(1.0f);
   }
   const bool finite = std::isfinite(in.distance);
-  // The physical model's glass blocks shadow rays: its light arrives as caustic photons.
-  const bool tinted = ctx.hasGlass && ctx.scene.render.model == ShadingModel::Classic;
+  const bool tinted = ctx.hasGlass && ctx.choices.integrator->glass == GlassShadows::Tint;
   if (ctx.scene.lights[lightIndex].type == LightType::Sphere && !tinted) {
     // Near a sphere light's silhouette the ray from the lifted origin can enter the
     // sphere before the sampled point: whatever it meets first decides, and meeting
@@ -77,13 +76,13 @@ bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray) {
   return true;
 }
 
-GateParams gateParamsFor(const Scene& scene) {
+GateParams gateParamsFor(const Scene& scene, GlassShadows glass) {
   GateParams params;
   params.k = scene.photons.kShadow;
   params.maxRadius = scene.photons.maxRadius;
   // A small k cannot muster the default quorum; let every neighbour count.
   params.minVoters = std::min(params.minVoters, params.k);
-  params.glassBlocks = scene.render.model == ShadingModel::Physical;
+  params.glassBlocks = glass == GlassShadows::Block;
   return params;
 }
 
@@ -105,7 +104,8 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
     // The precomputed verdict of the point's cell; no cell there: a shadow ray.
     v = cached->verdicts ? static_cast<GateVerdict>(cached->verdicts[lightIndex]) : GateVerdict::Mixed;
   } else {
-    v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, gateParamsFor(ctx.scene), *ts.scratch);
+    const GateParams params = gateParamsFor(ctx.scene, ctx.choices.integrator->glass);
+    v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch);
   }
   // Shadowed means every voter sits behind something opaque; photons behind
   // glass alone make the vote Mixed, since only a ray can measure the tint.
@@ -180,7 +180,7 @@ Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Mater
 
 uint32_t packetShadowLights(const ShadingContext& ctx, bool direct) {
   const Scene& scene = ctx.scene;
-  const bool tinted = ctx.hasGlass && scene.render.model == ShadingModel::Classic;
+  const bool tinted = ctx.hasGlass && ctx.choices.integrator->glass == GlassShadows::Tint;
   if (!direct || !ctx.choices.shadows || tinted) return 0;
   uint32_t mask = 0;
   for (uint32_t li = 0; li < scene.lights.size() && li < 32; ++li) {
@@ -210,9 +210,7 @@ void tracePrimaryShadows(const ShadingContext& ctx, uint32_t lights, const Ray* 
       if (!hits[i].valid()) continue;
       const Material& m = scene.materials[ctx.tracer.materialOf(hits[i])];
       if (maxComponent(m.emission) > 0.0f) continue;  // an emitter only glows
-      if (scene.render.model == ShadingModel::Physical &&
-          !hasSmoothLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling)) && m.texture < 0)
-        continue;  // a mirror or glass: no direct term (a texture may add a lobe: keep it)
+      if (!ctx.choices.integrator->shadesDirect(scene, m)) continue;
       // The record the integrators build (position, normals and error bounds do not
       // depend on the uv fields).
       const SurfaceRecord s = ctx.tracer.surface(rays[i], hits[i], kSurfaceShadingNormal);

@@ -11,8 +11,9 @@
 
 namespace penumbra {
 
-// The gate's vote parameters for this scene (also what a lookup cache precomputes).
-GateParams gateParamsFor(const Scene& scene);
+// The gate's vote parameters for this scene and model (also what a lookup cache
+// precomputes): a shadow photon behind glass votes "blocked" where glass blocks.
+GateParams gateParamsFor(const Scene& scene, GlassShadows glass);
 
 // A shading point's precomputed answer (null: ask the photon map).
 using CachedAnswer = LookupCache::Answer;

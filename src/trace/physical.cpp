@@ -139,4 +139,37 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   return color;
 }
 
+namespace {
+
+uint8_t physicalTerms(Aov aov) {
+  switch (aov) {
+    case Aov::Direct: return kTermDirect;
+    case Aov::Caustic: return kTermCaustic;
+    case Aov::Indirect: return kTermGlobal;
+    default: return kTermAll;
+  }
+}
+
+Color physicalSample(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov aov, ThreadState& ts) {
+  return tracePhysicalHit(ctx, ray, hit, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts);
+}
+
+void physicalTree(const ShadingContext& ctx, const Ray& ray, ThreadState& ts) {
+  tracePhysical(ctx, ray, 0, Color(1.0f), RayKind::Camera, kTermAll, -1, ts);
+}
+
+// Direct light lands on smooth lobes only; a mirror or glass has none, unless a
+// texture adds a diffuse albedo at the hit.
+bool physicalShadesDirect(const Scene& scene, const Material& m) {
+  return m.texture >= 0 || hasSmoothLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
+}
+
+}  // namespace
+
+const Integrator& physicalIntegrator() {
+  static const Integrator kPhysical{"physical", physicalSample, physicalTree, physicalShadesDirect,
+                                    GlassShadows::Block};
+  return kPhysical;
+}
+
 }  // namespace penumbra

@@ -5,7 +5,6 @@
 #include "core/rng.h"
 #include "trace/camera.h"
 #include "trace/light_visibility.h"
-#include "trace/physical.h"
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -17,39 +16,24 @@ namespace penumbra {
 
 namespace {
 
-uint8_t physicalTerms(Aov aov) {
-  switch (aov) {
-    case Aov::Direct: return kTermDirect;
-    case Aov::Caustic: return kTermCaustic;
-    case Aov::Indirect: return kTermGlobal;
-    default: return kTermAll;
-  }
-}
-
 bool geometric(Aov aov) { return aov == Aov::Depth || aov == Aov::Normal; }
 
 // A geometric view's sample that hit nothing: no depth is -2 and no normal has r = -2,
 // so the pixel's mean can leave it out and count it against the coverage instead.
 constexpr float kNoHit = -2.0f;
 
-// One sample of the chosen view: the physical values for depth (distance along the
-// camera ray) and normal (world-space shading normal, facing the ray); writers map
-// them for display (io/aov_display.h). `hit`: the ray's first hit, already traced
-// (alone or in a packet); null on a miss.
+// One sample of the chosen view: the transport model's integrator for views that
+// read light; here the physical values for depth (distance along the camera ray) and
+// normal (world-space shading normal, facing the ray), which writers map for display
+// (io/aov_display.h). `hit`: the ray's first hit, already traced (alone or in a
+// packet); null on a miss.
 Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov aov, ThreadState& ts) {
   ts.raysLeft = kMaxRaysPerSample;
-  if (ctx.scene.render.model == ShadingModel::Physical && !geometric(aov)) {
-    return tracePhysicalHit(ctx, ray, hit, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts);
-  }
-  if (aov == Aov::Beauty) return traceRayHit(ctx, ray, hit, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  if (!geometric(aov)) return ctx.choices.integrator->sample(ctx, ray, hit, aov, ts);
   ++ts.counts.camera;
-  if (!hit) return geometric(aov) ? Color(kNoHit) : Color(0.0f);
+  if (!hit) return Color(kNoHit);
   if (aov == Aov::Depth) return Color(hit->t);
-  SurfaceRecord s = ctx.tracer.surface(ray, *hit, kSurfaceShadingNormal);
-  if (aov == Aov::Normal) return s.ns;
-  const Material& m = ctx.scene.materials[s.material];
-  CachedAnswer storage;  // Aov::Indirect
-  return ambientTerm(ctx, s, m, lookupAt(ctx, s, storage, ts), ts);
+  return ctx.tracer.surface(ray, *hit, kSurfaceShadingNormal).ns;
 }
 
 Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
@@ -159,8 +143,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   tbb::enumerable_thread_specific<ThreadState> states;
   tbb::enumerable_thread_specific<TileBuffers> buffers;
   const bool packets = ctx.choices.packets;
-  const bool physical = ctx.scene.render.model == ShadingModel::Physical;
-  const bool direct = options.aov == Aov::Beauty || (physical && options.aov == Aov::Direct);
+  const bool direct = options.aov == Aov::Beauty || options.aov == Aov::Direct;
   const uint32_t shadowLights = packets ? packetShadowLights(ctx, direct) : 0;
   progressExpect(options.tiles, static_cast<uint64_t>(numTiles));
 
@@ -218,11 +201,7 @@ RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
   beginSample(ts, hashKey(ctx.scene.render.seed, pixel, 0));
   CameraRays camera(cam);
   Ray ray = camera.generate(x + off.x, y + off.y);
-  if (ctx.scene.render.model == ShadingModel::Physical) {
-    tracePhysical(ctx, ray, 0, Color(1.0f), RayKind::Camera, kTermAll, -1, ts);
-  } else {
-    traceRay(ctx, ray, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
-  }
+  ctx.choices.integrator->tree(ctx, ray, ts);
   return tree;
 }
 

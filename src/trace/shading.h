@@ -5,6 +5,7 @@
 #include "core/scene.h"
 #include "core/stats.h"
 #include "geometry/trace_scene.h"
+#include "trace/integrator.h"
 #include <memory>
 
 namespace penumbra {
@@ -15,7 +16,6 @@ class LookupCache;
 class TextureLookup;
 struct GatherScratch;
 
-// Read-only inputs shared by all render threads.
 // What the render plan decided for a frame (plan/render_plan.h: choicesOf), read by
 // the tracer beside the scene's settings, which stay as the user gave them. Without
 // a plan (tests), the settings themselves.
@@ -26,11 +26,14 @@ struct FrameChoices {
   bool refraction = true;   // glass-transmitted recursion
   int lightSamples = 16;    // per area light and shading point
   bool packets = true;      // camera rays and their shadow rays as Embree packets
+  const Integrator* integrator = nullptr;  // the transport model's shading
   static FrameChoices of(const Scene& scene) {
-    return {scene.photons.gate, scene.render.shadows, true, true, scene.render.lightSamples, scene.render.packets};
+    return {scene.photons.gate, scene.render.shadows, true, true, scene.render.lightSamples, scene.render.packets,
+            &integratorFor(scene.render.model)};
   }
 };
 
+// Read-only inputs shared by all render threads.
 struct ShadingContext {
   const Scene& scene;
   const TraceScene& tracer;
@@ -49,7 +52,7 @@ struct ShadingContext {
   uint32_t pass = 0;  // progressive pass: sample streams continue after earlier passes'
   float classicScale = 1.0f;  // turns stored photon flux back into photon colour
   float pixelSpread = 0.0f;   // radians per pixel, for texture filter widths
-  bool hasGlass = false;      // some material is transparent: shadows are tinted
+  bool hasGlass = false;      // some material is transparent (GlassShadows says what it does)
 };
 
 // Rays one camera sample may spawn (itself included). Every glass hit spawns two

@@ -137,4 +137,31 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   });
 }
 
+namespace {
+
+// Beauty is the whole recursion; the indirect view is the ambient term alone (the
+// indirect map's estimate, or render.ambient without one).
+Color whittedSample(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov aov, ThreadState& ts) {
+  if (aov == Aov::Beauty) return traceRayHit(ctx, ray, hit, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+  ++ts.counts.camera;
+  if (!hit) return Color(0.0f);
+  const SurfaceRecord s = ctx.tracer.surface(ray, *hit, kSurfaceShadingNormal);
+  CachedAnswer storage;
+  return ambientTerm(ctx, s, ctx.scene.materials[s.material], lookupAt(ctx, s, storage, ts), ts);
+}
+
+void whittedTree(const ShadingContext& ctx, const Ray& ray, ThreadState& ts) {
+  traceRay(ctx, ray, 0, Color(1.0f), 0.0f, RayKind::Camera, -1, ts);
+}
+
+// Phong lights every surface that is not itself a light.
+bool whittedShadesDirect(const Scene&, const Material&) { return true; }
+
+}  // namespace
+
+const Integrator& whittedIntegrator() {
+  static const Integrator kWhitted{"classic", whittedSample, whittedTree, whittedShadesDirect, GlassShadows::Tint};
+  return kWhitted;
+}
+
 }  // namespace penumbra

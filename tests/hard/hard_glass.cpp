@@ -79,7 +79,7 @@ TEST_P(HardGlassSlab, ThinSlabTransmitsTheAnalyticFraction) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, HardGlassSlab, ::testing::Values("physical", "classic"),
-                         [](const auto& info) { return info.param == "physical" ? "Physical" : "Classic"; });
+                         [](const auto& tp) { return tp.param == "physical" ? "Physical" : "Classic"; });
 
 // Camera inside a 200 x 1 x 200 glass slab (n = 1.5), one pixel looking up at the top
 // face at theta from its normal; above it a huge panel of radiance 1 facing down,

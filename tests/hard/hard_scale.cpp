@@ -138,9 +138,9 @@ TEST_P(HardScale, SameImageAtEveryScale) {
 INSTANTIATE_TEST_SUITE_P(Rooms, HardScale,
                          ::testing::Values(Case{"physical", Lamp::Quad}, Case{"classic", Lamp::Quad},
                                            Case{"physical", Lamp::Point}, Case{"classic", Lamp::Point}),
-                         [](const auto& info) {
-                           return std::string(info.param.model == "physical" ? "Physical" : "Classic") +
-                                  (info.param.lamp == Lamp::Quad ? "QuadLitRoomWithGlass" : "PointLitRoom");
+                         [](const auto& tp) {
+                           return std::string(tp.param.model == "physical" ? "Physical" : "Classic") +
+                                  (tp.param.lamp == Lamp::Quad ? "QuadLitRoomWithGlass" : "PointLitRoom");
                          });
 
 // The reported failure: a glass sphere scaled by 1e-5 rendered black. A sphere in

@@ -1,0 +1,99 @@
+// The physical model: BSDFs and lights in radiometric units, direct light by shadow
+// rays (or the gate), Jensen's caustic and global maps, and progressive passes whose
+// fixed gather radii shrink so that the mean of the passes converges.
+#include "core/bsdf.h"
+#include "emit/emit_physical.h"
+#include "plan/photon_stage.h"
+#include "plan/transport_model.h"
+#include <fmt/format.h>
+
+namespace penumbra {
+namespace {
+
+class PhysicalTransport final : public TransportModel {
+ public:
+  const char* name() const override { return "physical"; }
+  const Integrator& integrator() const override { return physicalIntegrator(); }
+  bool hasView(Aov) const override { return true; }
+
+  const std::vector<MapKind>& lightMaps() const override {
+    static const std::vector<MapKind> kMaps = {MapKind::Global, MapKind::Caustic};
+    return kMaps;
+  }
+  bool readsMap(MapKind map, Aov aov) const override {
+    if (map == MapKind::Global) return aov == Aov::Beauty || aov == Aov::Indirect;
+    return map == MapKind::Caustic && (aov == Aov::Beauty || aov == Aov::Caustic);
+  }
+  const char* cannotStore(MapKind map, const Scene& scene) const override {
+    if (map == MapKind::Global) {
+      bool smooth = false;
+      for (const Material& m : scene.materials) {
+        smooth = smooth || hasSmoothLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
+      }
+      if (!smooth) return "no diffuse or glossy surface to store a photon on";
+    } else if (specularTargets(scene).empty()) {
+      return "no specular surface for a caustic";
+    }
+    return scene.photons.maxBounces == 0 ? "photons.max_bounces is 0" : nullptr;
+  }
+  bool reflects(const Material& m, const PhotonSettings& ps) const override {
+    return m.transparent || hasDeltaLobe(makeBsdf(m, ShadingModel::Physical, ps.sampling));
+  }
+
+  PerMap<bool> emittedMaps(const PerMap<bool>& wanted, uint32_t pass) const override {
+    PerMap<bool> maps;
+    // The gate's shadow photons do not change between passes: pass 0 only.
+    maps[MapKind::Shadow] = wanted[MapKind::Shadow] && pass == 0;
+    maps[MapKind::Global] = wanted[MapKind::Global];
+    maps[MapKind::Caustic] = wanted[MapKind::Caustic];
+    return maps;
+  }
+  void emit(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, uint32_t pass,
+            Emission& e) const override {
+    if (options.maps[MapKind::Shadow]) e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
+    e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
+  }
+  int passes(const Scene& scene, Aov aov) const override {
+    return aov == Aov::Depth || aov == Aov::Normal ? 1 : std::max(1, scene.photons.passes);
+  }
+  IndirectLookup indirectLookup(const PhotonSettings& ps) const override {
+    // Irradiance answers the Lambertian part; a glossy lobe still gathers.
+    return {MapKind::Global, CachedIndirect::Irradiance, ps.kGlobal, 0.0f};
+  }
+
+  std::string photonSummary(const Scene& scene, const MapCounts& budgets, const RenderStats& stats,
+                            bool gate) const override {
+    const PhotonSettings& ps = scene.photons;
+    return fmt::format(
+        "global_photons={} caustic_photons={} k_global={} k_caustic={} "
+        "passes={} alpha={} radius={} max_bounces={} shadow_photons={} "
+        "k_shadow={} gate={}",
+        budgets[MapKind::Global], budgets[MapKind::Caustic], ps.kGlobal, ps.kCaustic, ps.passes, ps.alpha, ps.radius,
+        ps.maxBounces, stats.emitted[MapKind::Shadow], ps.kShadow, gate ? "on" : "off");
+  }
+  void addModelSettings(const Scene& scene, const MapCounts& budgets, const RenderStats& stats,
+                        ImageMetadata& m) const override {
+    const PhotonSettings& ps = scene.photons;
+    auto add = [&m](const char* key, const auto& value) {
+      m.emplace_back(std::string("penumbra:") + key, fmt::format("{}", value));
+    };
+    add("photons.global", budgets[MapKind::Global]);
+    add("photons.caustic", budgets[MapKind::Caustic]);
+    add("photons.k_global", ps.kGlobal);
+    add("photons.k_caustic", ps.kCaustic);
+    add("photons.passes", ps.passes);
+    add("photons.alpha", ps.alpha);
+    add("photons.radius", ps.radius);
+    if (stats.passes > 1) add("photons.final_global_radius", stats.globalRadius);
+    if (stats.passes > 1) add("photons.final_caustic_radius", stats.causticRadius);
+  }
+};
+
+}  // namespace
+
+const TransportModel& physicalTransport() {
+  static const PhysicalTransport kPhysical;
+  return kPhysical;
+}
+
+}  // namespace penumbra
