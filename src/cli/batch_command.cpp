@@ -68,11 +68,12 @@ int BatchCommand::run() {
     std::filesystem::create_directories(o.out);
     req.jobs = jobsForScenes(o.inputs, o.out, o.overrides, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
   }
+  if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
   const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;
   if (!shardArg.empty()) {
     const auto [index, count] = parseShard(shardArg);
     std::vector<double> costs;
-    for (const BatchJob& j : req.jobs) costs.push_back(jobCost(j));
+    for (const BatchJob& j : req.jobs) costs.push_back(jobCost(j, loadLimits(req.maxMemoryBytes)));
     std::vector<BatchJob> mine;
     for (size_t j : shardJobs(costs, index, count)) mine.push_back(req.jobs[j]);
     if (!o.listShard.empty()) {
@@ -85,7 +86,6 @@ int BatchCommand::run() {
   req.force = o.force;
   req.keepGoing = o.keepGoing;
   req.mapCacheBytes = parseMemorySize(o.mapCache);
-  if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
   req.plan = passOverrides(o.enable, o.disable);
   std::optional<ItemProgress> progress;
   if (!o.quiet) {

@@ -51,8 +51,8 @@ bool upToDate(const PreparedJob& p, const std::vector<std::string>& extra) {
 
 }  // namespace
 
-double jobCost(const BatchJob& job) {
-  const Scene s = loadScene(job.scene, job.overrides);
+double jobCost(const BatchJob& job, const LoadLimits& limits) {
+  const Scene s = loadScene(job.scene, job.overrides, limits);
   const double samples = double(s.camera.width) * s.camera.height * s.camera.spp * job.outputs.size();
   const PhotonSettings& ps = s.photons;
   // A camera sample and a photon cost about the same (plan/cost_model.h).

@@ -5,6 +5,7 @@
 #pragma once
 #include "cli/batch_jobs.h"
 #include "core/progress.h"
+#include "io/load_limits.h"
 #include "plan/render_session.h"
 #include <functional>
 #include <string>
@@ -47,7 +48,7 @@ BatchOutcome runBatch(const BatchRequest& request);
 
 // A job's estimated cost for sharding, in nanoseconds: camera samples of every view
 // plus photons.
-double jobCost(const BatchJob& job);
+double jobCost(const BatchJob& job, const LoadLimits& limits);
 
 // The summary table printed after a batch.
 std::string batchSummary(const BatchOutcome& outcome);

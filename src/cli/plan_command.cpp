@@ -2,6 +2,7 @@
 // built only for the light split of photon passes).
 #include "cli/plan_command.h"
 #include "core/error.h"
+#include "plan/memory_limit.h"
 #include "plan/render_frame.h"
 #include "plan/transport_model.h"
 #include "io/scene_loader.h"
@@ -40,7 +41,7 @@ PlanCommand::PlanCommand(CLI::App& app) {
 }
 
 int PlanCommand::run() {
-  Scene scene = loadScene(scene_, overrides_);
+  Scene scene = loadScene(scene_, overrides_, loadLimits(0));
   const Aov aov = parseAov(aov_.empty() ? scene.render.aov : aov_);
   RenderPlan plan = makePlan(scene, aov, passOverrides(enable_, disable_));
   // The light split needs a few rays per light: build the BVH only when a photon
@@ -62,7 +63,7 @@ CheckCommand::CheckCommand(CLI::App& app) {
 
 int CheckCommand::run() {
   for (const std::string& path : scenes_) {
-    const Scene s = loadScene(path, overrides_);
+    const Scene s = loadScene(path, overrides_, loadLimits(0));
     size_t triangles = 0;
     for (const TriangleMesh& m : s.meshes) triangles += m.triangles.size();
     std::cout << path << ": ok (" << transportOf(s).name() << ", "

@@ -52,7 +52,8 @@ bool SweepCommand::selected() const { return o_->command->parsed(); }
 int SweepCommand::run() {
   Options& o = *o_;
   // The knobs' keys depend on the model: load the scene once with the sweep's --set.
-  const Scene base = loadScene(o.scene, o.overrides);
+  const uint64_t maxMemory = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
+  const Scene base = loadScene(o.scene, o.overrides, loadLimits(maxMemory));
   std::vector<SweepKnob> knobs;
   const std::pair<const char*, const std::string*> named[] = {
       {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
@@ -71,7 +72,7 @@ int SweepCommand::run() {
   req.force = o.force;
   req.compareGate = !o.noGateCompare;
   req.plan = passOverrides(o.enable, o.disable);
-  if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
+  req.maxMemoryBytes = maxMemory;
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
   req.plotScript = std::filesystem::exists(script) ? script.string() : "";
   std::optional<ItemProgress> progress;

@@ -140,6 +140,10 @@ struct PhotonSettings {
 struct Scene {
   std::string name;
   std::string file;  // the scene file it came from, for messages and metadata
+  // Every file loading read, as opened: the scene or model file, a glTF's sidecar JSON,
+  // buffers and images, OBJ meshes and their MTLs, textures. Outputs may overwrite
+  // none of them; batch's up-to-date check and the reuse keys read them all.
+  std::vector<std::string> inputs;
   Camera camera;
   std::vector<Light> lights;
   std::vector<Material> materials;

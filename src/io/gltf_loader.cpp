@@ -191,7 +191,7 @@ void walk(const tinygltf::Model& m, int node, const dmat4& parent, int depth, co
 
 }  // namespace
 
-LoadedModel loadGltfModel(const std::string& path) {
+LoadedModel loadGltfModel(const std::string& path, const LoadLimits&) {
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keepEncodedImage, nullptr);

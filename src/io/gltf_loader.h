@@ -13,6 +13,6 @@ namespace penumbra {
 // Materials map as docs/scene-format.md ("glTF") says; KHR_lights_punctual point
 // and spot lights become point lights (the cone is dropped), directional lights
 // directional; candela and lux are read as W/sr and W/m^2. Throws ModelError.
-LoadedModel loadGltfModel(const std::string& path);
+LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits = {});
 
 }  // namespace penumbra

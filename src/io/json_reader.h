@@ -2,6 +2,7 @@
 // turns every type, range and unknown-key problem into a one-line InputError.
 #pragma once
 #include "core/math.h"
+#include "io/load_limits.h"
 #include <nlohmann/json.hpp>
 #include <cstdint>
 #include <filesystem>
@@ -17,6 +18,7 @@ struct LoadContext {
   std::string file;                    // the scene file as given, for messages
   std::filesystem::path baseDir;       // relative paths in the scene resolve here
   std::vector<std::string> overridden;  // JSON paths set by --set, to say so in errors
+  LoadLimits limits;                    // what the scene's files may cost (io/load_limits.h)
 };
 
 // An inclusive or exclusive numeric interval; the defaults accept any finite number.

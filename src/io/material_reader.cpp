@@ -61,6 +61,7 @@ int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureI
     const std::string problem = builtin ? builtinTextureProblem(file) : textureFileProblem(path);
     if (!problem.empty()) fileNode.fail(problem);
     scene.textures.push_back(Texture{path});
+    if (!builtin) scene.inputs.push_back(path);
   }
   return it->second;
 }

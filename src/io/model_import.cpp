@@ -56,8 +56,10 @@ bool isGltfPath(const std::string& path) {
   return ext == ".gltf" || ext == ".glb";
 }
 
-LoadedModel loadModel(const std::string& path) {
-  return isGltfPath(path) ? loadGltfModel(path) : loadObjModel(path);
+LoadedModel loadModel(const std::string& path, const LoadLimits& limits) {
+  LoadedModel model = isGltfPath(path) ? loadGltfModel(path, limits) : loadObjModel(path, limits);
+  if (model.files.empty() || model.files.front() != path) model.files.insert(model.files.begin(), path);
+  return model;
 }
 
 int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene) {
@@ -69,6 +71,7 @@ int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene)
   const std::string problem = textureFileProblem(path);
   if (!problem.empty()) where.fail(problem);
   scene.textures.push_back(Texture{path});
+  scene.inputs.push_back(path);
   return static_cast<int>(scene.textures.size()) - 1;
 }
 

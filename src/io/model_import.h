@@ -3,6 +3,7 @@
 // by a glTF file loaded as the whole scene.
 #pragma once
 #include "core/scene.h"
+#include "io/load_limits.h"
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -35,11 +36,12 @@ struct LoadedModel {
   double aspect = 0.0;                     // its aspect ratio (width / height), 0 = none
   std::vector<Light> lights;               // glTF: KHR_lights_punctual
   std::string warning;                     // the loader's first warning (a missing MTL file)
+  std::vector<std::string> files;          // every file read: the model, MTLs, buffers, images
 };
 
 // Loads an OBJ (+ MTL) or glTF file by its extension (.obj, .gltf, .glb). Throws
 // ModelError.
-LoadedModel loadModel(const std::string& path);
+LoadedModel loadModel(const std::string& path, const LoadLimits& limits = {});
 bool isGltfPath(const std::string& path);
 
 // Adds the model's meshes to `scene`: each gets `named` when >= 0 (the scene names

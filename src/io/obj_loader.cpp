@@ -225,7 +225,7 @@ TriangleMesh loadObj(const std::string& path) {
   return readObj(path, reader, nullptr);
 }
 
-LoadedModel loadObjModel(const std::string& path) {
+LoadedModel loadObjModel(const std::string& path, const LoadLimits&) {
   tinyobj::ObjReader reader;
   std::vector<int> faceMaterial;
   TriangleMesh all = readObj(path, reader, &faceMaterial);

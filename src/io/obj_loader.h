@@ -28,6 +28,6 @@ TriangleMesh loadObj(const std::string& path);
 // MTL materials mapped onto penumbra's: Kd, Ks, Ns, Ni, d/Tr (glass), Tf (tint),
 // illum 3/5 (mirror), Ke (emission; Ka above 1 without Ke counts as emission),
 // map_Kd (a texture path resolved against the OBJ's folder).
-LoadedModel loadObjModel(const std::string& path);
+LoadedModel loadObjModel(const std::string& path, const LoadLimits& limits = {});
 
 }  // namespace penumbra

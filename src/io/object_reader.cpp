@@ -116,10 +116,11 @@ void readModelObject(const JsonNode& node, const MaterialLookup& materials, Scen
   const Transform transform = readTransform(node);
   LoadedModel model;
   try {
-    model = loadModel(resolvePath(fileNode, file));
+    model = loadModel(resolvePath(fileNode, file), node.context().limits);
   } catch (const ModelError& e) {
     fileNode.fail(e.what());
   }
+  scene.inputs.insert(scene.inputs.end(), model.files.begin(), model.files.end());
   int fallback = -1;
   for (const TriangleMesh& mesh : model.meshes) {
     if (named >= 0 || mesh.material >= 0) continue;

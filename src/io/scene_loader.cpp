@@ -63,7 +63,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   LoadedModel model;
   if (!modelPath.empty()) {
     try {
-      model = loadModel(modelPath);
+      model = loadModel(modelPath, context.limits);
     } catch (const ModelError& e) {
       throwInputError(e.what());
     }
@@ -71,6 +71,9 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   Scene scene;
   if (model.camera) scene.camera = *model.camera;
   scene.file = context.file;
+  // The settings file first (the sidecar of a glTF scene), then the model's files.
+  if (!context.file.empty() && context.file != "<scene>" && context.file != "<stdin>") scene.inputs.push_back(context.file);
+  scene.inputs.insert(scene.inputs.end(), model.files.begin(), model.files.end());
   if (root.has("name")) {
     scene.name = root.child("name").asString();
     if (scene.name.empty()) root.child("name").fail("must not be empty");
@@ -99,6 +102,12 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   addMeshEmitters(scene);
   checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
+  // Each file once, in the order first read (a glTF without sidecar is both).
+  std::vector<std::string> inputs;
+  for (std::string& f : scene.inputs) {
+    if (std::find(inputs.begin(), inputs.end(), f) == inputs.end()) inputs.push_back(std::move(f));
+  }
+  scene.inputs = std::move(inputs);
   return scene;
 }
 
@@ -115,8 +124,10 @@ std::string readText(const std::string& path) {
 
 // `modelPath` non-empty: a glTF scene, `jsonText` its settings ("" = none).
 Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
-                     const std::vector<std::string>& overrides, const std::string& modelPath) {
+                     const std::vector<std::string>& overrides, const std::string& modelPath,
+                     const LoadLimits& limits) {
   LoadContext context;
+  context.limits = limits;
   context.file = fileName.empty() ? "<scene>" : fileName;
   context.baseDir = folderOf(fileName);
   json document = jsonText.empty() && !modelPath.empty() ? json::object()
@@ -135,25 +146,25 @@ Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
 }  // namespace
 
 Scene parseScene(const std::string& jsonText, const std::string& fileName,
-                 const std::vector<std::string>& overrides) {
-  return parseSceneWith(jsonText, fileName, overrides, "");
+                 const std::vector<std::string>& overrides, const LoadLimits& limits) {
+  return parseSceneWith(jsonText, fileName, overrides, "", limits);
 }
 
-Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides, const LoadLimits& limits) {
   // "-": the JSON comes from stdin; relative paths in it resolve against the working folder.
   if (path == "-") {
     std::stringstream text;
     text << std::cin.rdbuf();
-    return parseScene(text.str(), "<stdin>", overrides);
+    return parseScene(text.str(), "<stdin>", overrides, limits);
   }
-  if (!isGltfPath(path)) return parseScene(readText(path), path, overrides);
+  if (!isGltfPath(path)) return parseScene(readText(path), path, overrides, limits);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throwInputError(path + ": cannot open scene file");
   // model.glb renders with model.json's settings when there is one.
   const std::string sidecar = fs::path(path).replace_extension(".json").string();
   const bool hasSidecar = fs::is_regular_file(sidecar, ec);
   Scene scene = parseSceneWith(hasSidecar ? readText(sidecar) : "", hasSidecar ? sidecar : path,
-                               overrides, path);
+                               overrides, path, limits);
   scene.file = path;
   return scene;
 }

@@ -63,6 +63,11 @@ MemoryLimit memoryLimit(uint64_t requested) {
   return {availableMemoryBytes(), "available memory"};
 }
 
+LoadLimits loadLimits(uint64_t requested) {
+  const MemoryLimit limit = memoryLimit(requested);
+  return {limit.bytes, limit.name};
+}
+
 void checkMemory(const ResourceEstimate& estimate, const MemoryLimit& limit,
                  const std::string& sceneFile) {
   if (limit.bytes == 0 || estimate.totalBytes() <= double(limit.bytes)) return;

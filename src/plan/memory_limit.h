@@ -2,6 +2,7 @@
 // and the refusal (exit 2, with the estimate) of a job that would not fit.
 #pragma once
 #include "plan/resource_estimate.h"
+#include "io/load_limits.h"
 #include <cstdint>
 #include <string>
 
@@ -22,6 +23,9 @@ struct MemoryLimit {
 
 // `requested` bytes (--max-memory), or 0 for what the machine has available now.
 MemoryLimit memoryLimit(uint64_t requested);
+
+// The same limit for loading: what a scene's files may make the loader allocate.
+LoadLimits loadLimits(uint64_t requested);
 
 // Throws InputError "<scene>: needs ~X (...) but <limit> is Y" when the estimate
 // exceeds the limit.

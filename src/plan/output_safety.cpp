@@ -4,10 +4,9 @@
 #include "plan/output_safety.h"
 #include "core/error.h"
 #include "io/image_io.h"
-#include <nlohmann/json.hpp>
 #include <unistd.h>
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
 
 namespace penumbra {
 namespace {
@@ -40,22 +39,8 @@ void checkReportPath(const OutputPath& out) {
 }  // namespace
 
 std::vector<std::string> sceneInputs(const Scene& scene, const std::string& scenePath) {
-  std::vector<std::string> inputs{scenePath};
-  for (const Texture& t : scene.textures) {
-    if (t.path.rfind("builtin:", 0) != 0) inputs.push_back(t.path);
-  }
-  // The loader has already validated the file, so a parse failure here cannot be
-  // the user's problem to report twice: keep what we have.
-  std::ifstream in(scenePath, std::ios::binary);
-  nlohmann::json root = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (!root.is_object() || !root.contains("objects") || !root["objects"].is_array()) return inputs;
-  const fs::path base = fs::path(scenePath).parent_path();
-  for (const auto& object : root["objects"]) {
-    if (!object.is_object() || !object.contains("file") || !object["file"].is_string()) continue;
-    fs::path p(object["file"].get<std::string>());
-    if (p.is_relative()) p = base / p;
-    inputs.push_back(p.lexically_normal().string());
-  }
+  std::vector<std::string> inputs = scene.inputs;
+  if (std::find(inputs.begin(), inputs.end(), scenePath) == inputs.end()) inputs.insert(inputs.begin(), scenePath);
   return inputs;
 }
 

@@ -13,8 +13,8 @@ struct OutputPath {
   bool image = false;  // an image: .png or .exr, checked by image_io
 };
 
-// Every file the render reads: the scene file, its OBJ meshes (from the scene's
-// JSON: Scene keeps only their triangles) and its texture files.
+// Every file the render reads: the scene's inputs (Scene::inputs: the scene or model
+// file, its sidecar, buffers, images, meshes, MTLs, textures) and `scenePath` itself.
 std::vector<std::string> sceneInputs(const Scene& scene, const std::string& scenePath);
 
 // Throws InputError naming the option unless every output's directory exists and

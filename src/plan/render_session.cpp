@@ -5,6 +5,7 @@
 #include "plan/transport_model.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
+#include "plan/memory_limit.h"
 #include "plan/output_safety.h"
 #include <fmt/format.h>
 #include <algorithm>
@@ -32,7 +33,7 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
   PlannedJob job;
   job.request = request;
   Stopwatch clock;
-  job.scene = loadScene(request.scenePath, request.overrides);
+  job.scene = loadScene(request.scenePath, request.overrides, loadLimits(options_.maxMemoryBytes));
   job.loadSeconds = clock.seconds();
   if (request.scenePath == "-") {
     // A scene read from stdin can be read once: it shares nothing with another job.
