@@ -100,6 +100,11 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
     const std::vector<std::string> views = node.contains("views") ? stringList(node["views"], path, where + ".views")
                                                                   : std::vector<std::string>{""};
     if (views.empty()) fail(path, where + ".views", "must name at least one view");
+    for (size_t v = 1; v < views.size(); ++v) {
+      if (std::find(views.begin(), views.begin() + v, views[v]) != views.begin() + v) {
+        fail(path, fmt::format("{}.views[{}]", where, v), "'" + views[v] + "' is listed twice");
+      }
+    }
     const std::string output = resolve(node["output"].get<std::string>());
     std::vector<std::string> scenes;
     if (node.contains("scene")) {
@@ -117,10 +122,12 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
         continue;
       }
       const json& o = node["orbit"];
-      if (!o.is_object() || !o.contains("count") || !o["count"].is_number_integer() || o["count"].get<int>() < 1 ||
-          o["count"].get<int>() > 100000) {
-        fail(path, where + ".orbit.count", "must be an integer 1..100000");
-      }
+      // get<int64_t> of an unsigned 4294967301 would wrap: range-check in the JSON's own type.
+      const bool countOk = o.is_object() && o.contains("count") &&
+                           ((o["count"].is_number_unsigned() && o["count"].get<uint64_t>() - 1 < 100000) ||
+                            (o["count"].is_number_integer() && !o["count"].is_number_unsigned() &&
+                             o["count"].get<int64_t>() >= 1 && o["count"].get<int64_t>() <= 100000));
+      if (!countOk) fail(path, where + ".orbit.count", "must be an integer 1..100000");
       auto num = [&](const char* k, double d) {
         if (!o.contains(k)) return d;
         if (!o[k].is_number()) fail(path, where + ".orbit." + k, "must be a number");
@@ -129,9 +136,16 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
       std::vector<double> c = {0, 0, 0};
       if (o.contains("center")) {
         if (!o["center"].is_array() || o["center"].size() != 3) fail(path, where + ".orbit.center", "must be [x, y, z]");
-        for (int i = 0; i < 3; ++i) c[i] = o["center"][i].get<double>();
+        for (int i = 0; i < 3; ++i) {
+          if (!o["center"][i].is_number()) fail(path, fmt::format("{}.orbit.center[{}]", where, i), "must be a number");
+          c[i] = o["center"][i].get<double>();
+        }
       }
-      const int count = o["count"].get<int>();
+      const int count = static_cast<int>(o["count"].get<int64_t>());
+      const std::string pattern = node["output"].get<std::string>();
+      if (count > 1 && pattern.find("{i}") == std::string::npos && pattern.find("{name}") == std::string::npos) {
+        fail(path, where + ".output", fmt::format("an orbit of {} views needs {{i}} or {{name}} in the file name", count));
+      }
       const double radius = num("radius", 5.0), height = num("height", 0.0);
       // Degrees about the vertical through the centre, 0 = on the +z side; the arc
       // [from, to) is cut into `count` equal steps (a full circle by default).

@@ -4,6 +4,7 @@
 #include "cli/batch_run.h"
 #include "cli/progress_line.h"
 #include "plan/cost_model.h"
+#include "plan/output_safety.h"
 #include "plan/render_session.h"
 #include "core/error.h"
 #include "io/image_io.h"
@@ -78,6 +79,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
         if (!seen) outputs.push_back({o.path, "output", true});
       }
       if (p.job->outputs.empty()) throw InputError("the job writes no output");
+      checkOutputs(outputs, req.extraInputs);  // the jobs file
       p.views.push_back(session.plan({p.job->scene, p.job->overrides, p.job->outputs.front().view, outputs, {}}));
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
         p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
@@ -90,6 +92,15 @@ BatchOutcome runBatch(const BatchRequest& req) {
       if (!req.keepGoing) throw InputError("batch job '" + p.job->name + "' (" + p.job->where + "): " + e.what());
     }
   }
+  // No job may write what another writes or reads, whatever their order.
+  std::vector<JobFiles> jobFiles;
+  for (const PreparedJob& p : prepared) {
+    if (!p.error.empty()) continue;
+    JobFiles f{p.job->name, {}, p.inputs};
+    for (const BatchOutput& o : p.job->outputs) f.outputs.push_back(o.path);
+    jobFiles.push_back(std::move(f));
+  }
+  checkJobsApart(jobFiles);
   // Up to date or not is decided once, before any job writes.
   std::vector<bool> current(prepared.size(), false);
   for (size_t j = 0; j < prepared.size(); ++j) {

@@ -4,6 +4,7 @@
 // the same maps.
 #include "cli/sweep_run.h"
 #include "cli/plot_script.h"
+#include "cli/sweep_folder.h"
 #include "cli/progress_line.h"
 #include "plan/render_session.h"
 #include "core/error.h"
@@ -39,9 +40,18 @@ class Sweep {
     fs::create_directories(dir / "runs", ec);
     if (ec) throw InputError(req_.outDir + ": cannot create the sweep folder (" + ec.message() + ")");
     csvPath_ = (dir / "results.csv").string();
+    plan();
     std::map<std::string, SweepRow> finished;
-    if (!req_.force) finished = readFinishedRows(csvPath_, spec_.knobs);
-    plan(finished);
+    const SweepIdentity identity = identityOf();
+    if (!req_.force) {
+      checkSweepFolder(req_.outDir, identity);
+      finished = readFinishedRows(csvPath_, spec_.knobs);
+    }
+    for (PlannedRun& p : runs_) {
+      auto f = finished.find(spec_.runs[p.index].id);
+      p.done = f != finished.end() && fs::exists(dir / f->second.image);
+    }
+    writeSweepFolder(req_.outDir, identity);
     loadReference();
     prepare();
     rows_.resize(spec_.runs.size());
@@ -62,7 +72,7 @@ class Sweep {
 
  private:
   // Plans every run (so a bad one fails before any work).
-  void plan(const std::map<std::string, SweepRow>& finished) {
+  void plan() {
     for (size_t i = 0; i < spec_.runs.size(); ++i) {
       const SweepRun& run = spec_.runs[i];
       PlannedRun p;
@@ -72,11 +82,26 @@ class Sweep {
       } catch (const InputError& e) {
         throw InputError("sweep run '" + run.id + "': " + e.what());
       }
-      auto f = finished.find(run.id);
-      p.done = f != finished.end() && fs::exists(fs::path(req_.outDir) / f->second.image);
       if (i == 0) sceneName_ = p.job.scene.name;
       runs_.push_back(std::move(p));
     }
+  }
+
+  // What changes a row besides its knob values (cli/sweep_folder.h).
+  SweepIdentity identityOf() const {
+    SweepIdentity id;
+    id.scene = req_.scenePath;
+    id.sceneFiles = inputsStamp(runs_.front().job.inputs);
+    std::set<std::string> knobKeys;
+    for (const SweepKnob& k : spec_.knobs) knobKeys.insert(k.keys.begin(), k.keys.end());
+    for (const std::string& o : spec_.runs.front().overrides) {
+      if (!knobKeys.count(o.substr(0, o.find('=')))) id.overrides.push_back(o);
+    }
+    id.view = req_.aov;
+    for (Pass p : req_.plan.enable) id.plan.push_back(std::string("+") + passName(p));
+    for (Pass p : req_.plan.disable) id.plan.push_back(std::string("-") + passName(p));
+    if (!req_.referencePath.empty()) id.reference = inputsStamp({req_.referencePath});
+    return id;
   }
 
   void loadReference() {

@@ -15,6 +15,12 @@ class JsonNode;
 // the geometry, and keeps squared distances (<= ~1.2e31) far inside float range.
 inline constexpr double kMaxCoordinate = 1e15;
 
+// Largest |texture coordinate| of a mesh vertex (OBJ vt, glTF TEXCOORD_0). A texture
+// repeats every unit, so larger values add nothing but lost precision (a float at 1e6
+// resolves 1/16 of a repeat); far beyond, the lookup's wrap and filter arithmetic
+// overflow and the surface turns black.
+inline constexpr double kMaxTexCoord = 1e6;
+
 // Largest colour component, light radiance component, light power and total
 // power of all lights: eight orders of magnitude below FLT_MAX (3.4e38), the
 // headroom that photon budgets, 4 pi / pi A factors and sums over samples and

@@ -3,15 +3,12 @@
 #include "io/obj_loader.h"
 
 #include "io/mesh_normals.h"
+#include "io/obj_scan.h"
 
 #include <tiny_obj_loader.h>
 
-#include <cfloat>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <unordered_map>
 
 namespace penumbra {
@@ -46,40 +43,16 @@ void checkIndex(int index, size_t count, const char* what, const std::string& pa
   }
 }
 
-// tinyobjloader reads "nan", "inf" and other non-numbers in v/vn/vt lines as 0,
-// so a broken file would render as a silently wrong mesh. Scan those lines
-// first and refuse any field that is not a finite float, with its line number.
-void checkVertexNumbers(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  for (size_t lineNumber = 1; std::getline(in, line); ++lineNumber) {
-    line = line.substr(0, line.find('#'));
-    std::istringstream fields(line);
-    std::string tag, field;
-    fields >> tag;
-    const char* what = tag == "v" ? "vertex" : tag == "vn" ? "normal" : tag == "vt" ? "texture coordinate" : nullptr;
-    if (!what) continue;
-    while (fields >> field) {
-      char* end = nullptr;
-      const double value = std::strtod(field.c_str(), &end);
-      const bool number = end != field.c_str() && *end == '\0';
-      if (!number || !std::isfinite(value) || std::fabs(value) > FLT_MAX) {
-        std::string shown = field.size() > 24 ? field.substr(0, 24) + "..." : field;
-        throw ObjError("OBJ file " + path + ":" + std::to_string(lineNumber) + ": " + what +
-                       " field \"" + shown + "\" is not a finite single-precision number");
-      }
-    }
-  }
-}
-
 // Parses `path` into one mesh; faceMaterial (if given) gets each triangle's MTL
 // material id (-1 = none), in triangle order.
-TriangleMesh readObj(const std::string& path, tinyobj::ObjReader& reader, std::vector<int>* faceMaterial) {
+TriangleMesh readObj(const std::string& path, tinyobj::ObjReader& reader, std::vector<int>* faceMaterial,
+                     const LoadLimits& limits, std::vector<std::string>* mtlFiles) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw ObjError("cannot open OBJ file " + path);
   }
-  checkVertexNumbers(path);
+  const ObjScan scan = scanObj(path, limits);
+  if (mtlFiles) *mtlFiles = scan.mtlFiles;
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
@@ -222,14 +195,15 @@ ModelMaterial mapMtl(const tinyobj::material_t& t, const std::filesystem::path& 
 
 TriangleMesh loadObj(const std::string& path) {
   tinyobj::ObjReader reader;
-  return readObj(path, reader, nullptr);
+  return readObj(path, reader, nullptr, {}, nullptr);
 }
 
-LoadedModel loadObjModel(const std::string& path, const LoadLimits&) {
+LoadedModel loadObjModel(const std::string& path, const LoadLimits& limits) {
   tinyobj::ObjReader reader;
   std::vector<int> faceMaterial;
-  TriangleMesh all = readObj(path, reader, &faceMaterial);
   LoadedModel model;
+  TriangleMesh all = readObj(path, reader, &faceMaterial, limits, &model.files);
+  model.files.insert(model.files.begin(), path);
   model.file = path;
   model.warning = firstLine(reader.Warning());
   if (reader.Warning().empty()) model.warning.clear();

@@ -4,7 +4,10 @@
 #include "plan/output_safety.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
+#include <unordered_map>
 #include <algorithm>
 #include <filesystem>
 
@@ -36,12 +39,43 @@ void checkReportPath(const OutputPath& out) {
   if (fs::is_directory(target, ec)) fail("it is a directory");
 }
 
+// What names a file whatever the spelling: its device and inode when it exists (hard
+// and symbolic links alike), else its canonical path.
+std::string fileIdentity(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0) return fmt::format("inode {}:{}", st.st_dev, st.st_ino);
+  std::error_code ec;
+  const fs::path c = fs::weakly_canonical(path, ec);
+  return "path " + (ec ? fs::path(path).lexically_normal() : c).string();
+}
+
 }  // namespace
 
 std::vector<std::string> sceneInputs(const Scene& scene, const std::string& scenePath) {
   std::vector<std::string> inputs = scene.inputs;
   if (std::find(inputs.begin(), inputs.end(), scenePath) == inputs.end()) inputs.insert(inputs.begin(), scenePath);
   return inputs;
+}
+
+void checkJobsApart(const std::vector<JobFiles>& jobs) {
+  std::unordered_map<std::string, std::pair<size_t, std::string>> written;  // identity -> (job, path)
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    for (const std::string& out : jobs[j].outputs) {
+      auto [it, inserted] = written.try_emplace(fileIdentity(out), j, out);
+      if (!inserted && it->second.first != j) {
+        throw InputError(fmt::format("jobs '{}' and '{}' both write {}", jobs[it->second.first].name, jobs[j].name, out));
+      }
+    }
+  }
+  for (size_t j = 0; j < jobs.size(); ++j) {
+    for (const std::string& in : jobs[j].inputs) {
+      auto it = written.find(fileIdentity(in));
+      if (it != written.end() && it->second.first != j) {
+        throw InputError(fmt::format("job '{}' writes {}, which job '{}' reads ({})", jobs[it->second.first].name,
+                                     it->second.second, jobs[j].name, in));
+      }
+    }
+  }
 }
 
 void checkOutputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs) {

@@ -22,4 +22,13 @@ std::vector<std::string> sceneInputs(const Scene& scene, const std::string& scen
 // names an input (compared canonically, and by inode where both exist).
 void checkOutputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
 
+// One job of several (a batch): its name for messages, the files it writes and reads.
+struct JobFiles {
+  std::string name;
+  std::vector<std::string> outputs, inputs;
+};
+// Throws InputError naming both jobs when a job writes a file another job writes or
+// any job reads (checkOutputs has compared each job with itself).
+void checkJobsApart(const std::vector<JobFiles>& jobs);
+
 }  // namespace penumbra

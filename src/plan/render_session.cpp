@@ -43,6 +43,11 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
     job.keys = reuseKeys(request.scenePath, request.overrides);
   }
   job.inputs = sceneInputs(job.scene, request.scenePath);
+  if (request.scenePath != "-") {
+    const std::string files = inputsStamp(job.inputs);
+    job.keys.geometry += "\n" + files;
+    job.keys.photons += "\n" + files;
+  }
   checkOutputs(request.outputs, job.inputs);
   planAndAdmit(job);
   // Equal geometry keys mean equal meshes: every job reads the first one's buffer.

@@ -6,6 +6,7 @@
 #include "io/json_parse.h"
 #include "io/model_import.h"
 #include "io/overrides.h"
+#include <fmt/format.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -21,6 +22,18 @@ const std::vector<std::string>& gatherOnlyPhotonKeys() {
       "k_shadow", "k_indirect", "k_global", "k_caustic",   // gathers
       "max_radius", "radius", "alpha", "gate", "lookup", "lookup_cell"};
   return keys;
+}
+
+std::string inputsStamp(const std::vector<std::string>& inputs) {
+  std::string stamp;
+  for (const std::string& path : inputs) {
+    std::error_code sizeError, timeError;
+    const auto size = fs::file_size(path, sizeError);
+    const auto time = fs::last_write_time(path, timeError);
+    stamp += path;
+    stamp += sizeError || timeError ? " ?\n" : fmt::format(" {} {}\n", size, time.time_since_epoch().count());
+  }
+  return stamp;
 }
 
 ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>& overrides) {

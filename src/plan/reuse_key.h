@@ -20,6 +20,11 @@ struct ReuseKeys {
 // text). Throws InputError as loadScene would for unreadable or malformed files.
 ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>& overrides);
 
+// What the files a scene read are now: each one's path, size and modification time.
+// Part of both keys, so an edited MTL, buffer or texture never shares a stale piece;
+// sweep resume compares it too.
+std::string inputsStamp(const std::vector<std::string>& inputs);
+
 // The settings left out of the photon key: they change how photons are gathered
 // or which are read, never which are emitted.
 const std::vector<std::string>& gatherOnlyPhotonKeys();

@@ -1,0 +1,60 @@
+// sweep.json holds one field per thing that changes a row, so a refusal can say
+// which one differs; the knob values are the rows' own keys in results.csv.
+#include "cli/sweep_folder.h"
+#include "core/error.h"
+#include "io/temp_file.h"
+#include <nlohmann/json.hpp>
+#include <filesystem>
+#include <fstream>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json toJson(const SweepIdentity& id) {
+  return {{"scene", id.scene},         {"scene_files", id.sceneFiles}, {"set", id.overrides},
+          {"view", id.view},           {"plan", id.plan},              {"reference", id.reference}};
+}
+
+// The names a refusal uses for each field, in the order they are compared.
+const std::pair<const char*, const char*> kFields[] = {
+    {"scene", "scene"},          {"scene_files", "scene's files (edited since)"},
+    {"set", "--set values"},     {"view", "view"},
+    {"plan", "--enable/--disable"}, {"reference", "reference image"}};
+
+}  // namespace
+
+void checkSweepFolder(const std::string& dir, const SweepIdentity& identity) {
+  const fs::path file = fs::path(dir) / "sweep.json";
+  std::error_code ec;
+  const bool results = fs::exists(fs::path(dir) / "results.csv", ec);
+  if (!fs::exists(file, ec)) {
+    if (results) {
+      throw InputError(dir + ": has a results.csv but no sweep.json, so its rows cannot be told apart from "
+                             "another sweep's; use another -o folder or --force to start again");
+    }
+    return;
+  }
+  std::ifstream in(file, std::ios::binary);
+  const json saved = json::parse(in, nullptr, /*allow_exceptions=*/false);
+  const json now = toJson(identity);
+  if (!saved.is_object()) {
+    throw InputError(file.string() + ": not a sweep.json penumbra wrote; use another -o folder or --force");
+  }
+  for (const auto& [key, name] : kFields) {
+    if (!saved.contains(key) || saved[key] != now[key]) {
+      const std::string was = saved.contains(key) ? saved[key].dump() : std::string("none");
+      const std::string values = was.size() + now[key].dump().size() < 160 ? " (" + was + ", now " + now[key].dump() + ")" : "";
+      throw InputError(dir + ": holds a sweep with another " + name + values +
+                       "; use another -o folder or --force to start again");
+    }
+  }
+}
+
+void writeSweepFolder(const std::string& dir, const SweepIdentity& identity) {
+  writeTextFileAtomic((fs::path(dir) / "sweep.json").string(), toJson(identity).dump(2) + "\n");
+}
+
+}  // namespace penumbra
