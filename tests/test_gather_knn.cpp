@@ -33,8 +33,8 @@ TEST_P(KnnRandom, MatchesBruteForceOn10kPoints) {
   EXPECT_EQ(photons[s.indices[0]].position, photons[1234].position);
 }
 INSTANTIATE_TEST_SUITE_P(MortonOnOff, KnnRandom, ::testing::Bool(),
-                         [](const ::testing::TestParamInfo<bool>& info) {
-                           return std::string(info.param ? "morton" : "no_morton");
+                         [](const ::testing::TestParamInfo<bool>& tp) {
+                           return std::string(tp.param ? "morton" : "no_morton");
                          });
 
 TEST(Knn, RadiusBoundedReturnsFewerThanK) {

@@ -276,7 +276,7 @@ TEST(SceneLoader, MissingFileAndHostileInputs) {
 
   // Deep nesting and huge arrays where objects are expected: errors, not crashes.
   std::string deep = "{\"render\": " + std::string(100000, '[') + std::string(100000, ']') + "}";
-  EXPECT_EQ(errorOf(deep), "x.json: render: must be an object, got an array of 1");
+  EXPECT_EQ(errorOf(deep), "x.json: render[0][0][0][0][0][0][0][0][0][0][0][...: nested deeper than 64 levels");
   std::string manyLights = "{\"lights\": [";
   for (int i = 0; i < 100000; ++i) manyLights += "1,";
   manyLights += "1]}";

@@ -17,7 +17,8 @@ namespace penumbra {
 
 struct BatchCommand::Options {
   CLI::App* command = nullptr;
-  std::vector<std::string> inputs, overrides, enable, disable;
+  std::vector<std::string> inputs, overrides;
+  PlanArgs plan;
   std::string out, views, format = "png", shard, listShard, mapCache = "4G", maxMemory;
   int threads = 0;
   bool force = false, keepGoing = false, quiet = false;
@@ -40,7 +41,7 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_flag("--force", o.force, "Render every job, even those whose outputs are up to date");
   c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
   c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a job estimated to need more, e.g. 8G (default: the memory available)");
-  addPassOptions(*c, o.enable, o.disable);
+  addPlanOptions(*c, o.plan);
   c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 }
 
@@ -58,10 +59,14 @@ bool isJobsFile(const std::string& path) {
 int BatchCommand::run() {
   Options& o = *o_;
   BatchRequest req;
+  o.plan.passes();  // contradicting options: refused before any scene is read
+  if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
   const bool jobsFile = o.inputs.size() == 1 && isJobsFile(o.inputs[0]);
   if (jobsFile) {
     req.jobs = readJobsFile(o.inputs[0]);
     for (BatchJob& j : req.jobs) j.overrides.insert(j.overrides.begin(), o.overrides.begin(), o.overrides.end());
+    // The command line's gate wins over a job's own photons.gate.
+    if (!o.plan.gateSetting().empty()) for (BatchJob& j : req.jobs) j.overrides.push_back(o.plan.gateSetting());
     req.extraInputs.push_back(o.inputs[0]);
   } else {
     if (o.out.empty()) throw InputError("batch: -o DIR is required when scene files are given directly");
@@ -85,8 +90,8 @@ int BatchCommand::run() {
   req.threads = o.threads;
   req.force = o.force;
   req.keepGoing = o.keepGoing;
-  req.mapCacheBytes = parseMemorySize(o.mapCache);
-  req.plan = passOverrides(o.enable, o.disable);
+  req.mapCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
+  req.plan = o.plan.passes();
   std::optional<ItemProgress> progress;
   if (!o.quiet) {
     progress.emplace();

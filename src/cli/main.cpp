@@ -12,6 +12,7 @@
 #include "io/suggest.h"
 #include "io/temp_file.h"
 #include "io/texture_gen.h"
+#include <algorithm>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <charconv>
@@ -82,6 +83,28 @@ void checkOverrides(const std::vector<std::string>& overrides) {
   }
 }
 
+// An option another command has: say which, so a habit from one command is not a
+// dead end in the next (" (--threads is an option of render, sweep and batch)").
+std::string otherCommandsHint(const CLI::App& app, const CLI::App& current, const std::string& option) {
+  std::vector<std::string> owners;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (sub == &current) continue;
+    for (const CLI::Option* o : sub->get_options()) {
+      const auto& names = o->get_lnames();
+      const auto& shorts = o->get_snames();
+      const bool match = (option.rfind("--", 0) == 0 && std::count(names.begin(), names.end(), option.substr(2))) ||
+                         (option.size() == 2 && std::count(shorts.begin(), shorts.end(), option.substr(1)));
+      if (match) owners.push_back(sub->get_name());
+    }
+  }
+  if (owners.empty()) return "";
+  std::string list;
+  for (size_t i = 0; i < owners.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == owners.size() ? " and " : ", ") + owners[i];
+  }
+  return " (" + option + " is an option of " + list + ", not of " + current.get_name() + ")";
+}
+
 // The pipeline's stats plus the up-front estimate, in one JSON object.
 std::string statsWithEstimate(const RenderResult& result) {
   nlohmann::json stats = nlohmann::json::parse(statsToJson(result.stats));
@@ -94,7 +117,12 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   if (!tracePixelArg.empty()) {
     req.tracePixel = parsePixel(tracePixelArg);
   }
-  if (!statsPath.empty()) req.statsPaths.push_back(statsPath);
+  // "-": the statistics go to stdout, which then carries nothing else.
+  const bool statsToStdout = statsPath == "-";
+  if (statsToStdout && req.tracePixel && (req.outputPath.empty() || req.outputPath == "-")) {
+    throw InputError("--stats - and --trace-pixel both write to stdout: give one of them a file");
+  }
+  if (!statsPath.empty() && !statsToStdout) req.statsPaths.push_back(statsPath);
   // The estimate of a long job, before it starts; --quiet silences it like every note.
   if (!quiet) req.notice = [](const std::string& note) { std::cerr << "note: " << note << "\n"; };
   // Progress goes to stderr: stdout may carry --trace-pixel's JSON.
@@ -111,7 +139,8 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
     if (req.outputPath.empty() || req.outputPath == "-") std::cout << json;
     else writeTextFileAtomic(req.outputPath, json);
   }
-  if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsWithEstimate(result));
+  if (statsToStdout) std::cout << statsWithEstimate(result);
+  else if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsWithEstimate(result));
   if (!quiet) {
     for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
     std::cerr << statsSummary(result.stats);
@@ -130,7 +159,7 @@ int main(int argc, char** argv) {
 
   RenderRequest req;
   std::string statsPath, tracePixelArg;
-  bool quiet = false, noGate = false;
+  bool quiet = false;
   std::string seedArg, maxMemoryArg;
   std::optional<int> spp;
   CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
@@ -149,17 +178,13 @@ int main(int argc, char** argv) {
                      "Override a scene value, e.g. --set render.max_depth=8 -D objects[0].radius=2")
       ->take_all()
       ->allow_extra_args(false);
-  render->add_option("--stats", statsPath, "Write render statistics as JSON to this file");
+  render->add_option("--stats", statsPath, "Write render statistics as JSON to this file (- : stdout)");
   render->add_option("--aov", req.aov, "What to render: beauty, depth, normal, indirect (default: the scene's render.aov, else beauty)");
-  render->add_flag("--no-gate", noGate, "Cast every shadow ray instead of asking the shadow photon map (--gate off)");
-  std::string gateMode;
-  render->add_option("--gate", gateMode, "The shadow gate: on, off or auto (default: the scene's photons.gate, else auto)")
-      ->check(CLI::IsMember({"on", "off", "auto"}));
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-q,--quiet", quiet, "No progress, notes or summary on stderr");
-  std::vector<std::string> enablePasses, disablePasses;
-  addPassOptions(*render, enablePasses, disablePasses);
+  PlanArgs planArgs;
+  addPlanOptions(*render, planArgs);
   std::string toneArg;
   render->add_option("--exposure", req.display.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
       ->check(CLI::Range(-64.0, 64.0));
@@ -193,8 +218,9 @@ int main(int argc, char** argv) {
         for (const CLI::Option* o : sub->get_options()) {
           for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
         }
-        std::cerr << "penumbra " << sub->get_name() << ": unknown option '" << extra << "'"
-                  << didYouMean(extra.substr(0, extra.find('=')), names) << "\n";
+        std::string hint = didYouMean(extra.substr(0, extra.find('=')), names);
+        if (hint.empty()) hint = otherCommandsHint(app, *sub, extra.substr(0, extra.find('=')));
+        std::cerr << "penumbra " << sub->get_name() << ": unknown option '" << extra << "'" << hint << "\n";
         return 2;
       }
     }
@@ -212,13 +238,12 @@ int main(int argc, char** argv) {
         throw InputError("--trace-pixel writes JSON, not an image: give -o a .json path (got '" + req.outputPath + "')");
       }
       checkOverrides(req.overrides);
-      req.plan = passOverrides(enablePasses, disablePasses);
+      req.plan = planArgs.passes();
       if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
       if (!maxMemoryArg.empty()) req.maxMemoryBytes = parseMemorySize(maxMemoryArg);
       if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
-      if (!gateMode.empty()) req.overrides.push_back("photons.gate=" + gateMode);
-      if (noGate) req.overrides.push_back("photons.gate=false");
+      if (!planArgs.gateSetting().empty()) req.overrides.push_back(planArgs.gateSetting());
       return runRenderCommand(req, statsPath, tracePixelArg, quiet);
     }
     if (sweep.selected()) return sweep.run();

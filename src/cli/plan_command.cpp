@@ -6,20 +6,24 @@
 #include "plan/render_frame.h"
 #include "plan/transport_model.h"
 #include "io/scene_loader.h"
+#include <algorithm>
 #include <iostream>
 
 namespace penumbra {
 
-void addPassOptions(CLI::App& command, std::vector<std::string>& enable, std::vector<std::string>& disable) {
-  command.add_option("--enable", enable, "Force a pass on (see penumbra plan): gate, indirect-photons, "
-                                         "global-photons, caustic-photons, shadow-rays, reflection, refraction, "
-                                         "textures, light-samples, packets, precompute")
+void addPlanOptions(CLI::App& command, PlanArgs& args) {
+  command.add_option("--enable", args.enable, "Force a pass on (see penumbra plan): gate, indirect-photons, "
+                                              "global-photons, caustic-photons, shadow-rays, reflection, refraction, "
+                                              "textures, light-samples, packets, precompute")
       ->take_all()->allow_extra_args(false);
-  command.add_option("--disable", disable, "Force a pass off (an override that changes the image is said so)")
+  command.add_option("--disable", args.disable, "Force a pass off (an override that changes the image is said so)")
       ->take_all()->allow_extra_args(false);
+  command.add_option("--gate", args.gate, "The shadow gate: on, off or auto (default: the scene's photons.gate, else auto)")
+      ->check(CLI::IsMember({"on", "off", "auto"}));
+  command.add_flag("--no-gate", args.noGate, "Cast every shadow ray instead of asking the shadow photon map (--gate off)");
 }
 
-PlanOverrides passOverrides(const std::vector<std::string>& enable, const std::vector<std::string>& disable) {
+PlanOverrides PlanArgs::passes() const {
   PlanOverrides o;
   for (const std::string& e : enable) o.enable.push_back(parsePass(e));
   for (const std::string& d : disable) o.disable.push_back(parsePass(d));
@@ -28,7 +32,17 @@ PlanOverrides passOverrides(const std::vector<std::string>& enable, const std::v
       if (e == d) throw InputError(std::string("--enable and --disable both name ") + passName(e));
     }
   }
+  auto names = [&](const std::vector<Pass>& list) { return std::find(list.begin(), list.end(), Pass::Gate) != list.end(); };
+  const std::string mode = noGate ? "off" : gate;
+  if (noGate && !gate.empty() && gate != "off") throw InputError("--no-gate contradicts --gate " + gate);
+  if (names(o.enable) && mode == "off") throw InputError(std::string(noGate ? "--no-gate" : "--gate off") + " contradicts --enable gate");
+  if (names(o.disable) && mode == "on") throw InputError("--gate on contradicts --disable gate");
   return o;
+}
+
+std::string PlanArgs::gateSetting() const {
+  const std::string mode = noGate ? "off" : gate;
+  return mode.empty() ? "" : "photons.gate=" + mode;
 }
 
 PlanCommand::PlanCommand(CLI::App& app) {
@@ -37,13 +51,16 @@ PlanCommand::PlanCommand(CLI::App& app) {
   command_->add_option("--aov", aov_, "View (default: the scene's render.aov)");
   command_->add_option("-D,--set", overrides_, "Override a scene value")->take_all()->allow_extra_args(false);
   command_->add_flag("--json", json_, "Print the plan as JSON (as in --stats)");
-  addPassOptions(*command_, enable_, disable_);
+  addPlanOptions(*command_, planArgs_);
 }
 
 int PlanCommand::run() {
-  Scene scene = loadScene(scene_, overrides_, loadLimits(0));
+  const PlanOverrides passes = planArgs_.passes();
+  std::vector<std::string> overrides = overrides_;
+  if (!planArgs_.gateSetting().empty()) overrides.push_back(planArgs_.gateSetting());
+  Scene scene = loadScene(scene_, overrides, loadLimits(0));
   const Aov aov = parseAov(aov_.empty() ? scene.render.aov : aov_);
-  RenderPlan plan = makePlan(scene, aov, passOverrides(enable_, disable_));
+  RenderPlan plan = makePlan(scene, aov, passes);
   // The light split needs a few rays per light: build the BVH only when a photon
   // pass could be split (no textures, no photons, no render).
   const bool split = plan[Pass::IndirectPhotons].on || plan[Pass::GlobalPhotons].on || plan[Pass::CausticPhotons].on;

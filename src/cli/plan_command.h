@@ -9,10 +9,19 @@
 
 namespace penumbra {
 
-// Adds --enable PASS and --disable PASS (repeatable) to a subcommand.
-void addPassOptions(CLI::App& command, std::vector<std::string>& enable, std::vector<std::string>& disable);
-// The overrides those options name; throws InputError for an unknown pass.
-PlanOverrides passOverrides(const std::vector<std::string>& enable, const std::vector<std::string>& disable);
+// The options every rendering command shares about the plan: --enable PASS and
+// --disable PASS (repeatable), --gate MODE and --no-gate.
+struct PlanArgs {
+  std::vector<std::string> enable, disable;
+  std::string gate;     // on, off, auto; empty: the scene's photons.gate
+  bool noGate = false;  // --no-gate: --gate off
+  // The passes named; throws InputError for an unknown pass, or when two of these
+  // options contradict each other (--no-gate --gate on, --enable gate --no-gate, ...).
+  PlanOverrides passes() const;
+  // The photons.gate override --gate or --no-gate ask for ("photons.gate=off"); empty: none.
+  std::string gateSetting() const;
+};
+void addPlanOptions(CLI::App& command, PlanArgs& args);
 
 class PlanCommand {
  public:
@@ -23,7 +32,8 @@ class PlanCommand {
  private:
   CLI::App* command_ = nullptr;
   std::string scene_, aov_;
-  std::vector<std::string> overrides_, enable_, disable_;
+  std::vector<std::string> overrides_;
+  PlanArgs planArgs_;
   bool json_ = false;
 };
 

@@ -17,7 +17,8 @@ namespace penumbra {
 struct SweepCommand::Options {
   CLI::App* command = nullptr;
   std::string scene, out, reference, aov, photons, k, depth, spp;
-  std::vector<std::string> vary, overrides, enable, disable;
+  std::vector<std::string> vary, overrides;
+  PlanArgs plan;
   std::string maxMemory;
   int threads = 0;
   bool force = false, noGateCompare = false, quiet = false;
@@ -41,7 +42,7 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
   c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
   c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a run estimated to need more, e.g. 8G (default: the memory available)");
-  addPassOptions(*c, o.enable, o.disable);
+  addPlanOptions(*c, o.plan);
   c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 }
 
@@ -53,6 +54,8 @@ int SweepCommand::run() {
   Options& o = *o_;
   // The knobs' keys depend on the model: load the scene once with the sweep's --set.
   const uint64_t maxMemory = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
+  o.plan.passes();  // contradicting options: refused before the scene is read
+  if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
   const Scene base = loadScene(o.scene, o.overrides, loadLimits(maxMemory));
   std::vector<SweepKnob> knobs;
   const std::pair<const char*, const std::string*> named[] = {
@@ -71,7 +74,7 @@ int SweepCommand::run() {
   req.threads = o.threads;
   req.force = o.force;
   req.compareGate = !o.noGateCompare;
-  req.plan = passOverrides(o.enable, o.disable);
+  req.plan = o.plan.passes();
   req.maxMemoryBytes = maxMemory;
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
   req.plotScript = std::filesystem::exists(script) ? script.string() : "";

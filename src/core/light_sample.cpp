@@ -11,7 +11,7 @@ LightSampler prepareLight(const Light& light, const Vec3& p) {
   s.light = &light;
   s.p = p;
   if (light.type == LightType::Quad) {
-    s.normal = glm::normalize(glm::cross(light.edge1, light.edge2));
+    s.normal = unitCross(light.edge1, light.edge2);
     s.area = lightArea(light);
   } else if (light.type == LightType::Mesh) {
     s.area = meshLightArea(light);
@@ -134,7 +134,12 @@ bool unoccludedIrradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, 
 }
 
 float lightArea(const Light& light) {
-  if (light.type == LightType::Quad) return glm::length(glm::cross(light.edge1, light.edge2));
+  if (light.type == LightType::Quad) {
+    const Vec3 c = glm::cross(light.edge1, light.edge2);
+    const float area = glm::length(c);
+    return std::isfinite(area) ? area
+                               : static_cast<float>(glm::length(glm::cross(glm::dvec3(light.edge1), glm::dvec3(light.edge2))));
+  }
   if (light.type == LightType::Sphere) return 4.0f * kPi * light.radius * light.radius;
   if (light.type == LightType::Mesh) return meshLightArea(light);
   return 0.0f;
@@ -163,7 +168,7 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
     Vec3 n;
     if (light.type == LightType::Quad) {
       r.origin = light.position + u1 * light.edge1 + u2 * light.edge2;
-      n = glm::normalize(glm::cross(light.edge1, light.edge2));
+      n = unitCross(light.edge1, light.edge2);
       r.error = quadPointError(light);
     } else {
       n = uniformSphere(u1, u2);

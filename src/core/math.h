@@ -19,6 +19,13 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 inline float maxComponent(const Vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 inline float luminance(const Color& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+// normalize(a x b): in float, or in double where the float cross product's squared
+// length overflows (vectors longer than ~1e9, as a huge quad's edges).
+inline Vec3 unitCross(const Vec3& a, const Vec3& b) {
+  const Vec3 c = glm::cross(a, b);
+  if (std::isfinite(glm::dot(c, c))) return glm::normalize(c);
+  return Vec3(glm::normalize(glm::cross(glm::dvec3(a), glm::dvec3(b))));
+}
 inline bool isFinite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

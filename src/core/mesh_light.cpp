@@ -23,7 +23,7 @@ size_t pickTriangle(const Light& light, float u, float& rest) {
 Vec3 pointOn(const Light& light, size_t i, float u1, float u2, Vec3& normal) {
   const Vec3* t = &light.triangles[3 * i];
   const Vec3 e1 = t[1] - t[0], e2 = t[2] - t[0];
-  normal = glm::normalize(glm::cross(e1, e2));
+  normal = unitCross(e1, e2);
   const float su = std::sqrt(u1);
   return t[0] + (su * (1.0f - u2)) * e1 + (su * u2) * e2;
 }

@@ -65,7 +65,7 @@ void TraceScene::computeFrames(const TriangleMesh& mesh, TriangleFrame* frames) 
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const auto& tri = mesh.triangles[i];
       const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
-      const Vec3 ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+      const Vec3 ng = unitCross(p1 - p0, p2 - p0);
       const Vec3 extent = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
       frames[i] = {ng, std::max(gammaBound(7) * glm::dot(glm::abs(ng), extent), 0x1p-40f * maxComponent(extent)),
                    gammaBound(7) * maxComponent(extent)};

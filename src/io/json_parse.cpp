@@ -4,6 +4,7 @@
 
 #include "io/json_reader.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <unordered_set>
 #include <vector>
@@ -14,17 +15,37 @@ namespace {
 
 using nlohmann::json;
 
-// Thrown from the parse callback; nlohmann lets it through untouched.
+// Thrown from the parse callback; nlohmann lets them through untouched.
 struct DuplicateKey {
   std::string path;
 };
+struct TooDeep {
+  std::string path;
+};
+
+// Deeper nesting than any scene needs: the parser keeps a frame per level, and
+// nlohmann's values are destroyed recursively.
+constexpr int kMaxJsonDepth = 64;
+
+// A parser message quotes the bytes it last read: bytes outside printable ASCII
+// are shown as \xNN, so binary input never reaches the terminal raw.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (unsigned char c : s) {
+    if (c >= 0x20 && c < 0x7f) out += static_cast<char>(c);
+    else out += fmt::format("\\x{:02x}", c);
+    if (out.size() > 200) return out + "...";
+  }
+  return out;
+}
 
 // Follows the parser's events to know where it is, and remembers the keys seen
 // in every open object. Duplicates must be caught here: once parsed, the
 // document holds only the last value.
 class DuplicateKeyGuard {
  public:
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+  bool operator()(int depth, json::parse_event_t event, json& parsed) {
+    if (depth > kMaxJsonDepth) throw TooDeep{path()};
     switch (event) {
       case json::parse_event_t::object_start: frames_.push_back(Frame{false, 0, {}, {}}); break;
       case json::parse_event_t::array_start: frames_.push_back(Frame{true, 0, {}, {}}); break;
@@ -99,11 +120,15 @@ json parseJsonDocument(const std::string& text, const std::string& file) {
     return json::parse(text, DuplicateKeyGuard());
   } catch (const DuplicateKey& d) {
     throwInputError(file + ": " + d.path + ": duplicate key (each key may appear once per object)");
+  } catch (const TooDeep& d) {
+    const std::string where = d.path.size() > 40 ? d.path.substr(0, 40) + "..." : d.path;
+    throwInputError(fmt::format("{}: {}: nested deeper than {} levels", file, where.empty() ? "(root)" : where,
+                                kMaxJsonDepth));
   } catch (const json::parse_error& e) {
     // e.byte is 1-based: the offending character sits at offset byte - 1.
     size_t offset = e.byte > 0 ? e.byte - 1 : 0;
     throwInputError(file + ":" + lineColumn(text, offset) +
-                    ": JSON syntax error: " + parseProblem(e.what()));
+                    ": JSON syntax error: " + printable(parseProblem(e.what())));
   } catch (const json::out_of_range& e) {
     // Raised for numbers beyond double range ("1e400"); nlohmann gives no
     // position, so locate the literal it quotes.
@@ -132,6 +157,8 @@ bool parseJsonValue(const std::string& text, json& out, std::string& duplicate) 
   } catch (const DuplicateKey& d) {
     duplicate = d.path;
     return true;
+  } catch (const TooDeep&) {
+    return false;
   } catch (const json::exception&) {
     return false;  // e.g. a number beyond double range: not JSON we can use
   }

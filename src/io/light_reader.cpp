@@ -34,9 +34,9 @@ void readQuadLight(const JsonNode& item, Light& light) {
   light.edge2 = edge2.asVec3();
   const Vec3 p = light.position, e1 = light.edge1, e2 = light.edge2;
   checkPositions(edge2, {p + e1, p + e2, p + e1 + e2}, "the quad's corners");
-  // The float cross product is what lightArea() and the quad's normal use.
-  const float area = glm::length(glm::cross(light.edge1, light.edge2));
-  if (!(area > 1e-12f) || !std::isfinite(area)) edge2.fail("edge1 and edge2 span no area");
+  // In double: the float cross product's squared length overflows for edges beyond ~1e9.
+  const double area = glm::length(glm::cross(glm::dvec3(light.edge1), glm::dvec3(light.edge2)));
+  if (!(area > 1e-12) || !(area < 1e38)) edge2.fail("edge1 and edge2 span no area (or more than float can hold)");
 }
 
 void readSphereLight(const JsonNode& item, Light& light) {

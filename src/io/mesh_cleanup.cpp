@@ -10,8 +10,9 @@ size_t dropDegenerateTriangles(TriangleMesh& mesh) {
     const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
     Vec3 n = glm::cross(b - a, c - a);
     float len2 = glm::dot(n, n);
-    // The tracer normalises this vector: it must be non-zero and its square finite
-    // and normal-range, or the division yields inf or NaN.
+    // The tracer normalises this vector (unitCross): it must be non-zero with a
+    // normal-range square; a square that overflows float is taken in double.
+    if (std::isinf(len2)) return !isFinite(n) || !(glm::length(glm::cross(glm::dvec3(b - a), glm::dvec3(c - a))) > 0.0);
     return !(len2 >= std::numeric_limits<float>::min()) || !std::isfinite(len2);
   };
   mesh.triangles.erase(std::remove_if(mesh.triangles.begin(), mesh.triangles.end(), degenerate),

@@ -87,10 +87,9 @@ TriangleMesh readQuad(const JsonNode& node) {
   Vec3 edge1 = node.required("edge1", " for a quad").asVec3();
   JsonNode edge2Node = node.required("edge2", " for a quad");
   Vec3 edge2 = edge2Node.asVec3();
-  // makeQuad normalises the float cross product, so that is what must be usable.
-  Vec3 normal = glm::cross(edge1, edge2);
-  float length = glm::length(normal);
-  if (!(length > 0.0f) || !std::isfinite(length)) {
+  // In double: the float cross product's squared length overflows for edges beyond ~1e9.
+  const double length = glm::length(glm::cross(glm::dvec3(edge1), glm::dvec3(edge2)));
+  if (!(length > 0.0) || !(length < 1e38)) {
     edge2Node.fail("edge1 and edge2 must be non-zero and not parallel");
   }
   return makeQuad(corner, edge1, edge2);

@@ -12,8 +12,10 @@
 #include "io/scene_sections.h"
 #include "io/transform.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -111,15 +113,37 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   return scene;
 }
 
+// The largest scene document: a scene's JSON names its meshes and textures in
+// files of their own, so even a big one is a few megabytes of text.
+constexpr size_t kMaxSceneBytes = 64u << 20;
+
+// A scene's text, read in chunks so binary data (a NUL byte) or an endless stream
+// is refused as soon as it shows, not after the whole of it is in memory.
+std::string readSceneText(std::istream& in, const std::string& name) {
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    const size_t n = static_cast<size_t>(in.gcount());
+    if (const void* nul = std::memchr(chunk, '\0', n)) {
+      throwInputError(fmt::format("{}: binary data, not a JSON scene (a NUL byte at offset {})", name,
+                                  text.size() + (static_cast<const char*>(nul) - chunk)));
+    }
+    if (text.size() + n > kMaxSceneBytes) {
+      throwInputError(fmt::format("{}: more than {} MB of JSON, not a scene (meshes and textures belong in "
+                                  "files of their own)", name, kMaxSceneBytes >> 20));
+    }
+    text.append(chunk, n);
+  }
+  if (in.bad()) throwInputError(name + ": cannot read scene file");
+  return text;
+}
+
 std::string readText(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throwInputError(path + ": cannot open scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throwInputError(path + ": cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throwInputError(path + ": cannot read scene file");
-  return text.str();
+  return readSceneText(in, path);
 }
 
 // `modelPath` non-empty: a glTF scene, `jsonText` its settings ("" = none).
@@ -153,9 +177,7 @@ Scene parseScene(const std::string& jsonText, const std::string& fileName,
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides, const LoadLimits& limits) {
   // "-": the JSON comes from stdin; relative paths in it resolve against the working folder.
   if (path == "-") {
-    std::stringstream text;
-    text << std::cin.rdbuf();
-    return parseScene(text.str(), "<stdin>", overrides, limits);
+    return parseScene(readSceneText(std::cin, "<stdin>"), "<stdin>", overrides, limits);
   }
   if (!isGltfPath(path)) return parseScene(readText(path), path, overrides, limits);
   std::error_code ec;

@@ -23,9 +23,9 @@ uint64_t currentRssBytes() {
 
 }  // namespace
 
-uint64_t parseMemorySize(const std::string& text) {
+uint64_t parseMemorySize(const std::string& text, const std::string& option) {
   auto bad = [&]() -> uint64_t {
-    throw InputError("--max-memory: expected a size like 8G, 512M or 1.5GiB, got '" + text + "'");
+    throw InputError(option + ": expected a size like 8G, 512M or 1.5GiB, got '" + text + "'");
   };
   const char* begin = text.c_str();
   char* end = nullptr;

@@ -9,8 +9,8 @@
 namespace penumbra {
 
 // "8G", "512M", "1.5GiB", "2048" (bytes): binary units, case-insensitive. Throws
-// InputError naming --max-memory for anything else or for zero.
-uint64_t parseMemorySize(const std::string& text);
+// InputError naming `option` for anything else or for zero.
+uint64_t parseMemorySize(const std::string& text, const std::string& option = "--max-memory");
 
 // MemAvailable from /proc/meminfo plus what this process already holds (its scene
 // is loaded by the time we ask), else physical pages x page size; 0 if unknown.

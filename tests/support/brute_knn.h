@@ -71,7 +71,7 @@ void expectMatchesBrute(const Map& map, const PhotonArray<IndirectPhoton>& photo
   if (distinct.size() == b.d2.size()) {
     std::set<uint32_t> gotIdx(s.indices.begin(), s.indices.begin() + n);
     std::set<Vec3, bool (*)(const Vec3&, const Vec3&)> gotPos(
-        [](const Vec3& a, const Vec3& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); });
+        [](const Vec3& l, const Vec3& r) { return std::tie(l.x, l.y, l.z) < std::tie(r.x, r.y, r.z); });
     std::set<Vec3, bool (*)(const Vec3&, const Vec3&)> wantPos(gotPos.key_comp());
     for (uint32_t i : gotIdx) gotPos.insert(photons[i].position);
     for (uint32_t i : b.indices) wantPos.insert(photons[i].position);
