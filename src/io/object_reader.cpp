@@ -9,6 +9,8 @@
 #include "io/suggest.h"
 #include "io/transform.h"
 
+#include <fmt/format.h>
+#include <map>
 #include <unordered_map>
 
 #if __has_include("io/teapot.h")
@@ -107,19 +109,39 @@ TriangleMesh readBox(const JsonNode& node) {
 
 // A mesh object: its file's materials (MTL, glTF) unless the object names one; faces
 // without a material take the scene's (or the implicit default).
-void readModelObject(const JsonNode& node, const MaterialLookup& materials, Scene& scene) {
+// What the scene's meshes from index `first` on hold in memory: vertices with their
+// normals and uvs, and triangles.
+uint64_t meshBytes(const Scene& scene, size_t first) {
+  uint64_t bytes = 0;
+  for (size_t i = first; i < scene.meshes.size(); ++i) {
+    const TriangleMesh& m = scene.meshes[i];
+    bytes += m.positions.size() * sizeof(Vec3) + m.normals.size() * sizeof(Vec3) + m.uvs.size() * sizeof(Vec2) +
+             m.triangles.size() * sizeof(m.triangles[0]);
+  }
+  return bytes;
+}
+
+// Model files already read in this scene, by resolved path: a file placed many times
+// is read and checked once.
+using ModelCache = std::map<std::string, LoadedModel>;
+
+void readModelObject(const JsonNode& node, const MaterialLookup& materials, ModelCache& models, Scene& scene) {
   JsonNode fileNode = node.required("file", " for a mesh (an OBJ or glTF path)");
   std::string file = fileNode.asString();
   if (file.empty()) fileNode.fail("must not be empty");
   const int named = node.has("material") ? materials.resolve(node) : -1;
   const Transform transform = readTransform(node);
-  LoadedModel model;
-  try {
-    model = loadModel(resolvePath(fileNode, file), node.context().limits);
-  } catch (const ModelError& e) {
-    fileNode.fail(e.what());
+  const std::string path = resolvePath(fileNode, file);
+  auto cached = models.find(path);
+  if (cached == models.end()) {
+    try {
+      cached = models.emplace(path, loadModel(path, node.context().limits)).first;
+    } catch (const ModelError& e) {
+      fileNode.fail(e.what());
+    }
+    scene.inputs.insert(scene.inputs.end(), cached->second.files.begin(), cached->second.files.end());
   }
-  scene.inputs.insert(scene.inputs.end(), model.files.begin(), model.files.end());
+  LoadedModel model = cached->second;  // placed (moved into the scene) as a copy
   int fallback = -1;
   for (const TriangleMesh& mesh : model.meshes) {
     if (named >= 0 || mesh.material >= 0) continue;
@@ -144,14 +166,14 @@ TriangleMesh readTeapot(const JsonNode& node) {
 #endif
 }
 
-void readObject(const JsonNode& node, const MaterialLookup& materials, Scene& scene) {
+void readObject(const JsonNode& node, const MaterialLookup& materials, ModelCache& models, Scene& scene) {
   node.requireObject();
   auto type = static_cast<ObjectType>(
       node.required("type", " (\"sphere\", \"mesh\", \"quad\", \"box\" or \"teapot\")")
           .asEnum({"sphere", "mesh", "quad", "box", "teapot"}));
   if (type == ObjectType::Mesh) {
     node.allowKeys({"type", "file", "material", "translate", "rotate", "scale"});
-    readModelObject(node, materials, scene);
+    readModelObject(node, materials, models, scene);
     return;
   }
   if (type == ObjectType::Sphere) {
@@ -198,7 +220,20 @@ void readObjects(const JsonNode& root, Scene& scene) {
   MaterialLookup materials(scene, root.has("materials"));
   JsonNode objects = root.child("objects");
   size_t count = objects.arraySize();
-  for (size_t i = 0; i < count; ++i) readObject(objects.element(i), materials, scene);
+  ModelCache models;
+  const LoadLimits& limits = root.context().limits;
+  uint64_t bytes = meshBytes(scene, 0);
+  for (size_t i = 0; i < count; ++i) {
+    const size_t before = scene.meshes.size();
+    readObject(objects.element(i), materials, models, scene);
+    // Instances add up: refuse at the object that takes the meshes past the budget,
+    // before the next one allocates more.
+    bytes += meshBytes(scene, before);
+    if (limits.maxBytes > 0 && bytes > limits.maxBytes) {
+      objects.element(i).fail(fmt::format("the scene's meshes reach ~{:.1f} GB with this object, but {} is {:.1f} GB",
+                                          bytes / 1e9, limits.budgetName, limits.maxBytes / 1e9));
+    }
+  }
 }
 
 }  // namespace penumbra

@@ -8,6 +8,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -73,12 +74,21 @@ class MutedStderr {
 }  // namespace
 
 std::string textureFileProblem(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::file_size(path, ec) > kMaxTextureFileBytes && !ec) {
+    return "texture " + path + " is larger than " + std::to_string(kMaxTextureFileBytes >> 30) + " GB";
+  }
   MutedStderr muted;
   auto in = OIIO::ImageInput::open(path);
   if (!in) return "cannot read texture " + path + ": " + firstLine(OIIO::geterror());
   const OIIO::ImageSpec spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
     return "texture " + path + " has no pixels";
+  }
+  // The header's size, before a pixel is decoded: a small file may claim billions.
+  if (uint64_t(spec.width) * uint64_t(spec.height) > kMaxTexturePixels) {
+    return "texture " + path + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+           " pixels, more than the 16384x16384 penumbra reads";
   }
   // Tiled files are read a row of tiles at a time, scanline files 64 rows at a time.
   const bool tiled = spec.tile_width > 0 && spec.tile_height > 0;
