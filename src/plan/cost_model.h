@@ -17,7 +17,10 @@ constexpr double kLookupNs = 80.0;          // one precomputed query per shading
 constexpr double kExactVoteNs = 3000.0;     // one exact k-nearest gate vote per light
 constexpr double kShadowPhotonNs = 520.0;   // emit + build + cache, per emitted shadow photon
 constexpr double kCameraSampleNs = 500.0;   // batch's shard balance: a camera sample or a photon
-constexpr double kStartupSeconds = 0.2;     // load, BVH, set-up of a small scene
+constexpr double kStartupSeconds = 0.2;     // load, BVH, set-up of a small scene (large BVHs: below)
+constexpr double kBvhBuildNsPerPrimitive = 1200.0;  // Embree's build, per triangle or sphere
+constexpr double kMeshLightSampleNs = 40.0;   // one sample of a mesh light: a point on a triangle
+constexpr double kMeshLightLevelNs = 12.0;    // ... plus per level of its search by area
 
 // Shares.
 constexpr double kAvoidable = 0.85;  // shadow tests a gate answers without a ray (soft_shadows)
@@ -26,6 +29,8 @@ constexpr double kSpillSlowdown = 0.3;  // extra time per doubling of photon dat
 // Bytes.
 constexpr double kIndexBytes = 8.25;               // KD index per photon: a 64-bit slot plus its part's nodes
 constexpr double kBvhBytesPerPrimitive = 70.0;     // Embree's default BVH, triangles or spheres
+constexpr double kBvhBuildBytesPerPrimitive = 32.0;  // Embree's build references, at the peak
+constexpr double kFrameBytesPerTriangle = 20.0;    // the tracer's geometric normal and error bounds
 constexpr double kCacheBytesPerRecord = 70.0;      // a lookup-cache slot, its verdicts and lazy-cell table
 constexpr double kBaseBytes = 140.0 * 1024 * 1024; // the process before any scene data
 constexpr double kTextureCacheBytes = 1024.0 * 1024 * 1024;  // OIIO's cache cap (texture_lookup.cpp)

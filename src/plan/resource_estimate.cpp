@@ -66,6 +66,14 @@ double survivalSeries(double s, int from, int to) {
 
 std::string gib(double bytes) { return formatBytes(bytes); }
 
+// Drawing one sample of a light, before any shadow ray: a mesh light picks its
+// triangle by binary search over the cumulative areas (a cache miss a level once
+// the table outgrows the cache), then a point on it.
+double lightSampleNs(const Light& light) {
+  if (light.type != LightType::Mesh) return 0.0;
+  return kMeshLightSampleNs + kMeshLightLevelNs * std::log2(1.0 + light.areaCdf.size());
+}
+
 // From the file's header only (no pixels are read); a builtin texture from its name.
 double textureBytes(const Scene& scene) {
   double bytes = 0.0;
@@ -138,13 +146,17 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const double pixels = double(scene.camera.width) * scene.camera.height;
   // The frame, a second one to sum progressive passes, and the writer's copy.
   if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * (p.passes > 1 ? 2 : 1) + 12 + 6);
-  double primitives = scene.spheres.size(), meshBytes = 0.0;
+  double primitives = scene.spheres.size(), meshBytes = 0.0, embreeCopyBytes = 0.0;
   for (const TriangleMesh& m : scene.meshes) {
     primitives += m.triangles.size();
     meshBytes += m.positions.size() * 12.0 + m.normals.size() * 12.0 + m.uvs.size() * 8.0 +
                  m.triangles.size() * 12.0;
+    embreeCopyBytes += m.positions.size() * 12.0 + m.triangles.size() * (12.0 + kFrameBytesPerTriangle);
   }
-  e.bvhBytes = primitives * kBvhBytesPerPrimitive;
+  // Embree's BVH and the references its build holds at the peak, its own copies of
+  // the vertex and index buffers, and the tracer's per-triangle frames: every mesh
+  // object counts in full, instances of one file too (each is loaded as a copy).
+  e.bvhBytes = primitives * (kBvhBytesPerPrimitive + kBvhBuildBytesPerPrimitive) + embreeCopyBytes;
   e.sceneBytes = meshBytes + textureBytes(scene);
   e.baseBytes = kBaseBytes;
 
@@ -157,28 +169,39 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const double spill = std::max(1.0, e.photonPeakBytes / kCacheFriendlyBytes);
   e.photonSeconds = photonNs * (1.0 + kSpillSlowdown * std::log2(spill)) * p.passes / e.threads * 1e-9;
   const double samples = options.tracePixel ? 1.0 : pixels * scene.camera.spp;
-  double rays = 1.0, lookupNs = 0.0;
   const bool lit = options.aov != Aov::Depth && options.aov != Aov::Normal;
+  // Mirrors and glass repeat the shading at each level of the recursion, but few
+  // paths go many levels deep, so the factor is capped.
+  const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;
+  const double shadings = samples * depth * p.passes;  // shading points of the whole render
+  double lookupNs = 0.0, samplesPerPoint = 0.0, raysPerPoint = 0.0, sampleNs = 0.0;
+  const bool gated = p.emitted[MapKind::Shadow] > 0;
   if (lit && options.shadows) {
-    double tests = 0.0;
-    for (const Light& l : scene.lights) tests += lightSampleCount(l, options.lightSamples);
-    if (p.emitted[MapKind::Shadow] > 0) {
-      tests *= 1.0 - kAvoidable;
-      lookupNs += options.precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();
+    for (const Light& l : scene.lights) {
+      const double count = lightSampleCount(l, options.lightSamples);
+      samplesPerPoint += count;
+      sampleNs += count * lightSampleNs(l);
+      // The gate answers most tests without a ray, but not a mesh light's: a large
+      // emitter close to what it lights leaves most points mixed, and one without a
+      // closed form (over 64 triangles) still draws every sample on a lit verdict.
+      raysPerPoint += gated && l.type != LightType::Mesh ? count * (1.0 - kAvoidable) : count;
     }
-    rays += tests;
+    if (gated) lookupNs += options.precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();
   }
+  e.lightSamples = shadings * samplesPerPoint;
+  e.shadowRays = shadings * raysPerPoint;
   const auto gather = [&](int k) {
     return options.precomputed ? kLookupNs : k * kGatherNsPerNeighbour;
   };
   if (p.emitted[MapKind::Indirect] > 0) lookupNs += gather(ps.kIndirect);
   if (p.emitted[MapKind::Global] > 0) lookupNs += gather(ps.kGlobal);
   if (p.emitted[MapKind::Caustic] > 0) lookupNs += gather(ps.kCaustic);
-  // Mirrors and glass repeat the shading at each level of the recursion, but few
-  // paths go many levels deep, so the factor is capped.
-  const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;
-  e.renderSeconds = kStartupSeconds +
-                    samples * (rays * kRayNs + lookupNs) * depth * p.passes / e.threads * 1e-9;
+  // Every triangle and sphere of every mesh object, instances of one file included:
+  // Embree builds over all of them.
+  e.primitives = primitives;
+  e.bvhSeconds = primitives * kBvhBuildNsPerPrimitive / e.threads * 1e-9;
+  const double ns = shadings * (kRayNs + lookupNs + sampleNs) + e.shadowRays * kRayNs;
+  e.renderSeconds = kStartupSeconds + e.bvhSeconds + ns / e.threads * 1e-9;
   return e;
 }
 
@@ -210,7 +233,9 @@ std::string estimateToJson(const ResourceEstimate& e) {
   j["store_rates"] = {{"measured", e.rates.measured}};
   for (MapKind k : kAllMaps) j["store_rates"][mapName(k)] = e.rates.perPhoton[k];
   j["seconds"] = {{"total", e.seconds()}, {"photons", e.photonSeconds}, {"render", e.renderSeconds},
-                  {"threads", e.threads}};
+                  {"bvh", e.bvhSeconds}, {"threads", e.threads}};
+  j["counts"] = {{"light_samples", e.lightSamples}, {"shadow_rays", e.shadowRays},
+                 {"primitives", e.primitives}};
   return j.dump();
 }
 

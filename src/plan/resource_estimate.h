@@ -34,8 +34,12 @@ struct ResourceEstimate {
   double totalBytes() const {
     return photonPeakBytes + cacheBytes + imageBytes + bvhBytes + sceneBytes + baseBytes;
   }
-  // Seconds of wall time on `threads` threads.
-  double photonSeconds = 0.0, renderSeconds = 0.0;
+  // What the time rests on, for the whole render (every pass): light samples drawn
+  // and shadow rays cast (after the gate's share), triangles and spheres in the BVH.
+  double lightSamples = 0.0, shadowRays = 0.0, primitives = 0.0;
+  // Seconds of wall time on `threads` threads; renderSeconds includes bvhSeconds,
+  // the acceleration structure's build.
+  double photonSeconds = 0.0, renderSeconds = 0.0, bvhSeconds = 0.0;
   int threads = 1;
   double seconds() const { return photonSeconds + renderSeconds; }
 };

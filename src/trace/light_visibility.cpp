@@ -123,6 +123,22 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
   return v;
 }
 
+Color litClosedForm(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,
+                    const LightSampler& sampler, const Bsdf& bsdf, bool asked,
+                    const CachedAnswer* cached, ThreadState& ts, std::string* note) {
+  // No closed form (a delta light, a sphere cut by the horizon, a large mesh): the
+  // samples, all of which missed, were the estimate, and 0 is its unbiased value.
+  if (isDeltaLight(*sampler.light)) return Color(0.0f);
+  // Without a gate for this light its verdict is mixed: not worth a closed form.
+  if (!asked && !(ctx.choices.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(li))) return Color(0.0f);
+  const Color kd = lambertCoefficient(bsdf);
+  Color E;
+  if (!(maxComponent(kd) > 0.0f) || !unoccludedIrradiance(sampler, s.ns, s.ng, E) || !(maxComponent(E) > 0.0f))
+    return Color(0.0f);
+  if (!asked && gateVerdict(ctx, s, li, cached, ts, note) != GateVerdict::Lit) return Color(0.0f);
+  return kd * E;
+}
+
 Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                 const LightIncidence& in, ThreadState& ts) {
   Color t = shadowTransmittance(ctx, s, lightIndex, in, ts);

@@ -33,6 +33,14 @@ bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray);
 Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                 const LightIncidence& in, ThreadState& ts);
 
+// The closed-form Lambertian light of an area light none of whose samples reached
+// the shading point: k_d E (E clipped to the point's horizon) when the gate says
+// lit (or `asked`: a lit verdict is already known), else 0. Asks the gate only
+// where E > 0, so a light wholly behind the point costs no vote.
+Color litClosedForm(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,
+                    const LightSampler& sampler, const Bsdf& bsdf, bool asked,
+                    const CachedAnswer* cached, ThreadState& ts, std::string* note);
+
 // Direct light from light `li` at a shading point: the mean over its samples (one
 // for a delta light, render.light_samples for an area light, stratified, from the
 // shading point's own random stream) of visibility x f cos x incidence, with f the
@@ -40,7 +48,10 @@ Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t ligh
 // model multiplies in the order its images were made with). The gate is asked once,
 // at the first sample that reaches the surface: shadowed -> nothing; mixed -> one
 // ray per sample; lit -> no ray at all, and the Lambertian part in closed form
-// (unoccludedIrradiance), so only a glossy lobe still takes the samples.
+// (unoccludedIrradiance), so only a glossy lobe still takes the samples. When no
+// sample reaches it (a light mostly below the horizon or facing away: a cube lamp's
+// far faces) but the closed form says some light does, the gate is asked after all
+// (litClosedForm): a lit verdict owes the closed form whatever the samples hit.
 // Whether a light sample reaches the surface's side at all (the geometric and the
 // shading normal both face it): the test before any gate verdict or shadow ray, in
 // directFromLight and in the shadow packets that trace its rays ahead.
@@ -107,6 +118,10 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     const Color t = shadowRay(ctx, s, li, in, ts);
     if (maxComponent(t) > 0.0f) sum += weigh(t, f, in);
   }
+  // No sample reached the surface, so the gate was not asked or its lit verdict
+  // found no sample to attach the closed form to: every sample added nothing.
+  if (!closedTried && (!asked || v == GateVerdict::Lit))
+    return litClosedForm(ctx, s, li, sampler, bsdf, asked, cached, ts, note);
   return closed + (n > 1 ? sum / static_cast<float>(n) : sum);
 }
 
