@@ -27,6 +27,12 @@ bool finite(const std::vector<double>& v) {
   return true;
 }
 
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 std::string bytesText(double b) {
   char buf[32];
   if (b >= 1e9) std::snprintf(buf, sizeof buf, "%.3g GB", b / 1e9);
@@ -168,11 +174,11 @@ void checkPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, cons
 void checkMaterial(const tinygltf::Material& g, const std::string& where, const std::string& path) {
   const double ior = extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5, where, path);
   if (!(ior >= 1.0 && ior <= 100.0)) {
-    gltfFail(path, where + ".extensions.KHR_materials_ior.ior", "must be 1..100 (the spec's minimum is 1), got " + std::to_string(ior));
+    gltfFail(path, where + ".extensions.KHR_materials_ior.ior", "must be 1..100 (the spec's minimum is 1), got " + num(ior));
   }
   const double strength = extensionNumber(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0, where, path);
   if (!(strength >= 0.0 && strength <= 1e30)) {
-    gltfFail(path, where + ".extensions.KHR_materials_emissive_strength.emissiveStrength", "must be 0..1e30, got " + std::to_string(strength));
+    gltfFail(path, where + ".extensions.KHR_materials_emissive_strength.emissiveStrength", "must be 0..1e30, got " + num(strength));
   }
   const double transmission = extensionNumber(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, where, path);
   if (!(transmission >= 0.0 && transmission <= 1.0)) {
@@ -188,12 +194,12 @@ void checkCameraValues(const tinygltf::Camera& c, const std::string& where, cons
   }
   const double yfov = c.perspective.yfov;
   if (!(yfov > 1e-6 && yfov < 3.14159)) {
-    gltfFail(path, where + ".perspective.yfov", "must be between 0 and pi radians (both excluded), got " + std::to_string(yfov));
+    gltfFail(path, where + ".perspective.yfov", "must be between 0 and pi radians (both excluded), got " + num(yfov));
   }
   const double aspect = c.perspective.aspectRatio;
   // Beyond 1:100 one side of the image would be a few pixels wide.
   if (aspect != 0.0 && !(aspect >= 0.01 && aspect <= 100.0)) {
-    gltfFail(path, where + ".perspective.aspectRatio", "must be 0.01..100 (width / height), got " + std::to_string(aspect));
+    gltfFail(path, where + ".perspective.aspectRatio", "must be 0.01..100 (width / height), got " + num(aspect));
   }
 }
 
