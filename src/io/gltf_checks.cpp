@@ -148,6 +148,9 @@ void checkPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, cons
   if (positions.components != 3 || positions.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
     gltfFail(path, at("accessors", pos->second), "POSITION must be a VEC3 of FLOAT");
   }
+  // Without a buffer view every position is zero: nothing but degenerate
+  // triangles, at any cost in memory the count asks for.
+  if (positions.data == nullptr) gltfFail(path, at("accessors", pos->second), "POSITION has no bufferView (all zeros)");
   for (const auto& [name, index] : p.attributes) {
     if (name != "NORMAL" && name != "TEXCOORD_0") continue;
     const AccessorSpan a = accessorSpan(m, index, where + ".attributes." + name, path);

@@ -61,9 +61,10 @@ std::string resolveGltfUri(const std::string& folder, const std::string& uri, co
   }
   const fs::path base = fs::path(folder).lexically_normal();
   const fs::path file = (base / relative).lexically_normal();
-  std::error_code ec;
-  const fs::path real = fs::weakly_canonical(file, ec), realBase = fs::weakly_canonical(base, ec);
-  if (!under(file, base) || ec || !under(real, realBase)) {
+  // Lexically, then through symlinks: a link inside the folder may point out of it.
+  std::error_code ec, baseEc;
+  const fs::path real = fs::weakly_canonical(file, ec), realBase = fs::weakly_canonical(base, baseEc);
+  if (!under(file, base) || ec || baseEc || !under(real, realBase)) {
     gltfFail(path, where, "\"" + uri + "\" lies outside the model's folder (penumbra reads no other files)");
   }
   return file.string();

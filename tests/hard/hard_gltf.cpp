@@ -73,16 +73,19 @@ TEST(HardGltf, DeepJsonIsRefusedBeforeParsing) {
   EXPECT_EQ(refusal(dir.write("model.gltf", j.dump())), "");
 }
 
-// A 1 kB file whose accessors have no buffer view (zeros, as the spec allows) but
-// counts in the billions asked for tens of GB before any check.
+// A file of under 1 MB whose 20,000 primitives each reuse one 10,000-vertex
+// accessor asked for ~22 GB of meshes before any check.
 TEST(HardGltf, MeshBytesAreEstimatedBeforeAllocating) {
   const ScratchDir dir;
   json j = triangle();
-  j["accessors"][0] = {{"componentType", 5126}, {"count", 1000000000}, {"type", "VEC3"}};
-  j["meshes"][0]["primitives"][0]["attributes"] = {{"POSITION", 0}};
-  j["meshes"][0]["primitives"][0].erase("indices");
+  j["buffers"][0] = {{"byteLength", 120000}, {"uri", dataUri(std::string(120000, '\0'))}};
+  j["bufferViews"] = {{{"buffer", 0}, {"byteLength", 120000}}};
+  j["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", 10000}, {"type", "VEC3"}}};
+  j["meshes"][0]["primitives"] = json::array();
+  for (int i = 0; i < 20000; ++i) j["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}});
+  ASSERT_LT(j.dump().size(), 1000000u);
   const auto start = std::chrono::steady_clock::now();
-  expectRefused(dir, j, {"needs ~", "GB for its meshes but --max-memory is 2 GB"}, LoadLimits{2'000'000'000, "--max-memory"});
+  expectRefused(dir, j, {"needs ~22.4 GB for its meshes but --max-memory is 2 GB"}, LoadLimits{2'000'000'000, "--max-memory"});
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
   // Instances count: the triangle under 3 nodes needs three times one.
   j = triangle();
