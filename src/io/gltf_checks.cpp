@@ -142,6 +142,9 @@ void checkPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, cons
     return;
   }
   if (mode > TINYGLTF_MODE_TRIANGLE_FAN) gltfFail(path, where + ".mode", "must be 0..6, got " + std::to_string(mode));
+  if (p.material >= static_cast<int>(m.materials.size())) {
+    gltfFail(path, where + ".material", "material " + std::to_string(p.material) + " does not exist");
+  }
   auto pos = p.attributes.find("POSITION");
   if (pos == p.attributes.end()) gltfFail(path, where + ".attributes", "has no POSITION");
   const AccessorSpan positions = accessorSpan(m, pos->second, where + ".attributes.POSITION", path);

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 namespace penumbra {
 
@@ -225,7 +226,10 @@ void checkGltfDocument(const GltfSource& source, const std::string& path, const 
     integer(accessors[i], "byteOffset", where, path, false, 0, 0, kMaxInteger);
   }
 
+  // tinygltf reads an image file once per image naming it, so a repeated URI would
+  // multiply the bytes read; each file once, all of them within the budget.
   const uint64_t imageCap = limits.maxBytes > 0 ? std::min(kMaxImageBytes, limits.maxBytes) : kMaxImageBytes;
+  std::map<std::string, size_t> imageFiles;
   const json& images = array(root, "images", path);
   for (size_t i = 0; i < images.size(); ++i) {
     const std::string where = at("images", i);
@@ -237,6 +241,14 @@ void checkGltfDocument(const GltfSource& source, const std::string& path, const 
     uint64_t size = 0;
     const std::string file = externalFile(folder, uri->get<std::string>(), where + ".uri", path, size);
     if (size > imageCap) gltfFail(path, where + ".uri", file + " is " + std::to_string(size) + " bytes, more than the " + std::to_string(imageCap) + " an image may have");
+    if (!imageFiles.emplace(file, i).second) {
+      gltfFail(path, where + ".uri", "names the same file as images[" + std::to_string(imageFiles[file]) + "] (share one image between textures instead)");
+    }
+    total += size;
+    if (limits.maxBytes > 0 && total > limits.maxBytes) {
+      gltfFail(path, where + ".uri", "buffers and images add up to " + std::to_string(total) + " bytes but " + limits.budgetName +
+                                         " is " + std::to_string(limits.maxBytes));
+    }
     files.allow(file, 0, imageCap);
   }
 }

@@ -143,20 +143,22 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
   if (!mesh.triangles.empty()) out.meshes.push_back(std::move(mesh));
 }
 
-void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std::string& path, LoadedModel& out) {
-  if (index < 0 || static_cast<size_t>(index) >= m.lights.size()) fail(path, "light " + std::to_string(index) + " does not exist");
+void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std::string& ref, const std::string& path,
+              LoadedModel& out) {
+  if (index < 0 || static_cast<size_t>(index) >= m.lights.size()) gltfFail(path, ref, "light " + std::to_string(index) + " does not exist");
+  const std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
   const tinygltf::Light& g = m.lights[index];
   Light light;
   light.color = g.color.size() >= 3 ? Color(float(g.color[0]), float(g.color[1]), float(g.color[2])) : Color(1.0f);
   light.intensity = static_cast<float>(g.intensity);
   if (!(light.intensity >= 0.0f) || !std::isfinite(light.intensity) || !isFinite(light.color) ||
       std::min({light.color.r, light.color.g, light.color.b}) < 0.0f) {
-    fail(path, "light " + std::to_string(index) + " has a negative or non-finite colour or intensity");
+    gltfFail(path, where, "has a negative or non-finite colour or intensity");
   }
   if (g.type == "directional") {
     light.type = LightType::Directional;
     const glm::dvec3 d = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
-    if (!(glm::length(d) > 0.0)) fail(path, "light " + std::to_string(index) + " has no direction");
+    if (!(glm::length(d) > 0.0)) gltfFail(path, where, "has no direction");
     light.direction = Vec3(glm::normalize(d));
   } else {
     light.type = LightType::Point;  // point, and spot without its cone
@@ -165,9 +167,12 @@ void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std
   out.lights.push_back(light);
 }
 
-void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const std::string& path, LoadedModel& out) {
+void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const std::string& ref, const std::string& path,
+               LoadedModel& out) {
   if (out.camera) return;
-  if (index < 0 || static_cast<size_t>(index) >= m.cameras.size()) fail(path, "camera " + std::to_string(index) + " does not exist");
+  if (index < 0 || static_cast<size_t>(index) >= m.cameras.size()) {
+    gltfFail(path, ref, "camera " + std::to_string(index) + " does not exist");
+  }
   const tinygltf::Camera& g = m.cameras[index];
   if (g.type != "perspective") return;  // penumbra's camera is a pinhole
   Camera c;
@@ -206,10 +211,11 @@ void walk(const tinygltf::Model& m, int node, const dmat4& parent, int depth, co
       addPrimitive(m, mesh.primitives[i], world, name, where, path, out);
     }
   }
-  if (n.camera >= 0) addCamera(m, n.camera, world, path, out);
+  if (n.camera >= 0) addCamera(m, n.camera, world, "nodes[" + std::to_string(node) + "].camera", path, out);
   auto ext = n.extensions.find("KHR_lights_punctual");
   if (ext != n.extensions.end() && ext->second.Has("light")) {
-    addLight(m, ext->second.Get("light").GetNumberAsInt(), world, path, out);
+    addLight(m, ext->second.Get("light").GetNumberAsInt(), world,
+             "nodes[" + std::to_string(node) + "].extensions.KHR_lights_punctual.light", path, out);
   }
   for (int child : n.children) walk(m, child, world, depth + 1, path, out);
 }

@@ -95,6 +95,17 @@ TEST(HardGltfFiles, ExternalFilesAreJudgedBeforeTheyAreRead) {
   EXPECT_NE(what.find("more than the"), std::string::npos) << what;
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
 
+  // One image file named twice would be read twice: refused, as is a total beyond the budget.
+  dir.write("model/small.png", kPngMagic + std::string(5000, '\0'));
+  j["images"] = {{{"uri", "small.png"}}, {{"uri", "small.png"}}};
+  what = refusal(dir.write("model/model.gltf", j.dump()));
+  EXPECT_NE(what.find("images[1].uri: names the same file as images[0]"), std::string::npos) << what;
+  dir.write("model/small2.png", kPngMagic + std::string(5000, '\0'));
+  j["images"] = {{{"uri", "small.png"}}, {{"uri", "small2.png"}}};
+  what = refusal(dir.write("model/model.gltf", j.dump()), LoadLimits{8000, "--max-memory"});
+  EXPECT_NE(what.find("images[1].uri: buffers and images add up to 10116 bytes but --max-memory is 8000"),
+            std::string::npos) << what;
+
   // Not a PNG or JPEG: refused by its magic number, never handed to the decoder.
   dir.write("model/text.png", "this is not an image");
   j["images"] = {{{"uri", "text.png"}}};
