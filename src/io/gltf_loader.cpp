@@ -158,8 +158,9 @@ void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std
   if (g.type == "directional") {
     light.type = LightType::Directional;
     const glm::dvec3 d = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
-    if (!(glm::length(d) > 0.0)) gltfFail(path, where, "has no direction");
+    // Node scales compose: a deep enough tree makes the axis overflow, not vanish.
     light.direction = Vec3(glm::normalize(d));
+    if (!isFinite(light.direction)) gltfFail(path, where, "its node's transform leaves it no finite direction");
   } else {
     light.type = LightType::Point;  // point, and spot without its cone
     light.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
