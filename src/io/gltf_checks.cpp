@@ -75,9 +75,10 @@ void checkNode(const tinygltf::Model& m, size_t i, const std::string& path) {
   const glm::dmat3 linear(nodeMatrix(n));
   const double scale = glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2]);
   const double det = glm::determinant(linear);
-  if (!std::isfinite(det) || !std::isfinite(scale) || !(std::fabs(det) > 1e-9 * scale) || !(scale > 1e-300)) {
-    gltfFail(path, where + (n.matrix.empty() ? std::string() : ".matrix"),
-             "the node's transform is singular (a zero scale, or axes that coincide)");
+  const std::string key = where + (n.matrix.empty() ? std::string() : ".matrix");
+  if (!std::isfinite(det) || !std::isfinite(scale)) gltfFail(path, key, "the node's transform scales beyond double range");
+  if (!(std::fabs(det) > 1e-9 * scale) || !(scale > 1e-300)) {
+    gltfFail(path, key, "the node's transform is singular (a zero scale, or axes that coincide)");
   }
 }
 

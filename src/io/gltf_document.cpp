@@ -4,6 +4,7 @@
 #include "io/gltf_document.h"
 
 #include "io/gltf_checks.h"
+#include "io/json_parse.h"
 #include "io/model_import.h"
 
 #include <nlohmann/json.hpp>
@@ -167,7 +168,7 @@ void checkGltfDocument(const GltfSource& source, const std::string& path, const 
   try {
     root = json::parse(source.json);
   } catch (const json::exception& e) {
-    gltfFail(path, "(JSON)", std::string("not valid JSON: ") + e.what());
+    gltfFail(path, "(JSON)", "not valid JSON: " + parseProblem(e.what()));
   }
   checkHeader(root, path);
 
