@@ -2,9 +2,11 @@
 // binary magic) or a .gltf file that loadScene reads as a whole scene, then the
 // invariants every loaded scene keeps. The parser is Debian's tinygltf (built
 // without coverage), so the fuzzer mostly steers penumbra's mapping of its result
-// onto meshes, materials, cameras and lights.
+// onto meshes, materials, cameras and lights, and the checks penumbra makes before
+// tinygltf sees the bytes (nesting, versions, buffer bounds, URIs).
 #include "core/error.h"
 #include "fuzz_scratch.h"
+#include "io/load_limits.h"
 #include "io/scene_loader.h"
 
 #include <cmath>
@@ -48,7 +50,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
   const std::string path = scratch.write(binary ? "fuzz.glb" : "fuzz.gltf", input);
   try {
-    checkScene(penumbra::loadScene(path));
+    // A budget, as the CLI always has one: the loader's estimate refuses what would
+    // exceed it, so a small input can no longer ask for gigabytes.
+    checkScene(penumbra::loadScene(path, {}, penumbra::LoadLimits{512ull << 20, "the fuzzer's budget"}));
   } catch (const penumbra::InputError&) {
     // The loader's documented rejection; anything else escaping is a finding.
   }

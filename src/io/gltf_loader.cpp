@@ -1,7 +1,12 @@
-// glTF loading: accessors read with their strides and bounds checked, the node tree
-// walked with its transforms, triangle primitives as meshes, the camera and lights.
+// glTF loading: the file checked (gltf_document, gltf_checks) before and after
+// tinygltf parses it, then the node forest walked with its transforms, triangle
+// primitives as meshes, the camera and lights.
 #include "io/gltf_loader.h"
 
+#include "io/camera_checks.h"
+#include "io/gltf_checks.h"
+#include "io/gltf_document.h"
+#include "io/gltf_files.h"
 #include "io/gltf_materials.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 namespace penumbra {
 
@@ -22,103 +28,111 @@ using glm::dmat4;
   throw ModelError("glTF file " + path + ": " + problem);
 }
 
-// Accessor `index` as doubles, `width` components per element (normalised integers
-// scaled to [0, 1]); every byte it names must lie inside its buffer.
-std::vector<double> readAccessor(const tinygltf::Model& m, int index, int width, const std::string& path) {
-  if (index < 0 || static_cast<size_t>(index) >= m.accessors.size()) fail(path, "accessor " + std::to_string(index) + " does not exist");
-  const tinygltf::Accessor& a = m.accessors[index];
-  const std::string what = "accessor " + std::to_string(index);
-  if (a.sparse.isSparse) fail(path, what + " is sparse (not supported)");
-  if (tinygltf::GetNumComponentsInType(a.type) != width) fail(path, what + " has the wrong element type");
-  const int size = tinygltf::GetComponentSizeInBytes(a.componentType);
-  if (size <= 0) fail(path, what + " has an unknown component type");
-  std::vector<double> out(a.count * width, 0.0);
-  if (a.bufferView < 0) return out;  // all zeros, as the spec says
-  if (static_cast<size_t>(a.bufferView) >= m.bufferViews.size()) fail(path, what + ": no such buffer view");
-  const tinygltf::BufferView& view = m.bufferViews[a.bufferView];
-  if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= m.buffers.size()) fail(path, what + ": no such buffer");
-  const std::vector<unsigned char>& data = m.buffers[view.buffer].data;
-  const size_t element = static_cast<size_t>(size) * width;
-  const size_t stride = view.byteStride > 0 ? view.byteStride : element;
-  const size_t start = view.byteOffset + a.byteOffset;
-  if (a.count > 0 && (start + stride * (a.count - 1) + element > view.byteOffset + view.byteLength ||
-                      view.byteOffset + view.byteLength > data.size())) {
-    fail(path, what + " reaches past the end of its buffer");
-  }
-  for (size_t i = 0; i < a.count; ++i) {
-    const unsigned char* p = data.data() + start + i * stride;
-    for (int c = 0; c < width; ++c, p += size) {
+// An accessor's elements as doubles, `span.components` per element (normalised
+// integers scaled to [0, 1]); accessorSpan has proven every byte inside its buffer.
+// Non-finite floats are refused unless `keepNonFinite` (normals: judged later).
+std::vector<double> readAccessor(const AccessorSpan& span, const std::string& where, const std::string& path,
+                                 bool keepNonFinite = false) {
+  std::vector<double> out(span.count * span.components, 0.0);
+  if (span.data == nullptr) return out;  // no buffer view: zeros, as the spec says
+  for (uint64_t i = 0; i < span.count; ++i) {
+    const unsigned char* p = span.data + i * span.stride;
+    for (int c = 0; c < span.components; ++c, p += span.componentSize) {
       double v = 0.0;
-      switch (a.componentType) {
+      switch (span.componentType) {
         case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); v = f; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v = *p / (a.normalized ? 255.0 : 1.0); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t s; std::memcpy(&s, p, 2); v = s / (a.normalized ? 65535.0 : 1.0); break; }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t b; std::memcpy(&b, p, 1); v = span.normalized ? std::max(b / 127.0, -1.0) : b; break; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v = *p / (span.normalized ? 255.0 : 1.0); break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t h; std::memcpy(&h, p, 2); v = span.normalized ? std::max(h / 32767.0, -1.0) : h; break; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t h; std::memcpy(&h, p, 2); v = h / (span.normalized ? 65535.0 : 1.0); break; }
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t u; std::memcpy(&u, p, 4); v = u; break; }
-        default: fail(path, what + " has a component type penumbra does not read");
+        default: fail(path, where + ": a component type penumbra does not read");
       }
-      if (!std::isfinite(v) || std::fabs(v) > 3.4e38) fail(path, what + " holds a value that is not a finite float");
-      out[i * width + c] = v;
+      if (!keepNonFinite && !std::isfinite(v)) fail(path, where + ": holds a value that is not a finite float");
+      out[i * span.components + c] = v;
     }
   }
   return out;
 }
 
-dmat4 localMatrix(const tinygltf::Node& n) {
-  if (n.matrix.size() == 16) {
-    dmat4 m;
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[4 * c + r];  // column-major, as glm
-    return m;
+// Index accessors hold UNSIGNED_BYTE/SHORT/INT (checkGltfModel); each must name a vertex.
+std::vector<uint32_t> readIndices(const tinygltf::Model& m, int index, uint64_t vertices, const std::string& where,
+                                  const std::string& path) {
+  const AccessorSpan span = accessorSpan(m, index, where, path);
+  std::vector<uint32_t> out(span.count);
+  for (uint64_t i = 0; i < span.count; ++i) {
+    const unsigned char* p = span.data + i * span.stride;
+    uint32_t v = 0;
+    if (span.componentSize == 1) v = *p;
+    else if (span.componentSize == 2) { uint16_t h; std::memcpy(&h, p, 2); v = h; }
+    else std::memcpy(&v, p, 4);
+    if (v >= vertices) {
+      gltfFail(path, "accessors[" + std::to_string(index) + "]", "index " + std::to_string(v) + " (element " + std::to_string(i) +
+                                                                     ") names a vertex its mesh does not have (" + std::to_string(vertices) + ")");
+    }
+    out[i] = v;
   }
-  dmat4 m(1.0);
-  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
-  if (n.rotation.size() == 4) m *= glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
-  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
-  return m;
+  return out;
 }
 
-void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, const dmat4& world,
-                  const std::string& name, const std::string& path, LoadedModel& out) {
+// A texture coordinate's largest magnitude: far beyond any tiling, and float's uv
+// step (~1e-1 at 1e6) no longer resolves a texel.
+constexpr double kMaxUv = 1e6;
+
+void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, const dmat4& world, const std::string& name,
+                  const std::string& where, const std::string& path, LoadedModel& out) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) return;
-  auto attr = prim.attributes.find("POSITION");
-  if (attr == prim.attributes.end()) fail(path, "mesh \"" + name + "\" has a primitive without POSITION");
-  const std::vector<double> pos = readAccessor(m, attr->second, 3, path);
+  const int posIndex = prim.attributes.at("POSITION");  // checkGltfModel: present, VEC3 FLOAT
+  const std::vector<double> pos = readAccessor(accessorSpan(m, posIndex, where, path), where + ".attributes.POSITION", path);
   const size_t count = pos.size() / 3;
   TriangleMesh mesh;
   mesh.name = name;
   mesh.material = prim.material;
   const glm::dmat3 linear(world), normalMatrix = glm::transpose(glm::inverse(linear));
+  mesh.positions.reserve(count);
   for (size_t i = 0; i < count; ++i) {
     mesh.positions.push_back(Vec3(world * glm::dvec4(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2], 1.0)));
   }
-  if ((attr = prim.attributes.find("NORMAL")) != prim.attributes.end()) {
-    const std::vector<double> nrm = readAccessor(m, attr->second, 3, path);
-    for (size_t i = 0; i < count && 3 * i + 2 < nrm.size(); ++i) {
-      const glm::dvec3 n = normalMatrix * glm::dvec3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]);
-      const double len = glm::length(n);
-      mesh.normals.push_back(len > 0.0 ? Vec3(n / len) : Vec3(0.0f, 0.0f, 1.0f));
+  auto attr = prim.attributes.find("NORMAL");
+  if (attr != prim.attributes.end()) {
+    const std::vector<double> nrm = readAccessor(accessorSpan(m, attr->second, where, path), where + ".attributes.NORMAL", path, true);
+    mesh.normals.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+      const Vec3 n(glm::normalize(normalMatrix * glm::dvec3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2])));
+      // A normal that cannot be normalised (zero, NaN) leaves the whole primitive
+      // flat-shaded by its geometric normals: a guessed direction would be wrong.
+      if (!isFinite(n) || std::fabs(glm::length(n) - 1.0f) > 1e-3f) {
+        mesh.normals.clear();
+        if (out.warning.empty()) out.warning = where + ".attributes.NORMAL: a normal of zero length or not finite; the primitive is flat-shaded";
+        break;
+      }
+      mesh.normals.push_back(n);
     }
-    if (mesh.normals.size() != count) mesh.normals.clear();
   }
   if ((attr = prim.attributes.find("TEXCOORD_0")) != prim.attributes.end()) {
-    const std::vector<double> uv = readAccessor(m, attr->second, 2, path);
-    for (size_t i = 0; i < count && 2 * i + 1 < uv.size(); ++i) mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
-    if (mesh.uvs.size() != count) mesh.uvs.clear();
+    const std::vector<double> uv = readAccessor(accessorSpan(m, attr->second, where, path), where + ".attributes.TEXCOORD_0", path);
+    mesh.uvs.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+      if (!(std::fabs(uv[2 * i]) <= kMaxUv && std::fabs(uv[2 * i + 1]) <= kMaxUv)) {
+        gltfFail(path, "accessors[" + std::to_string(attr->second) + "]",
+                 "texture coordinate " + std::to_string(i) + " is beyond +-1e6");
+      }
+      mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
+    }
   }
   std::vector<uint32_t> idx;
   if (prim.indices >= 0) {
-    for (double v : readAccessor(m, prim.indices, 1, path)) {
-      if (v >= static_cast<double>(count)) fail(path, "mesh \"" + name + "\" indexes a vertex it does not have");
-      idx.push_back(static_cast<uint32_t>(v));
-    }
+    idx = readIndices(m, prim.indices, count, where + ".indices", path);
   } else {
-    for (size_t i = 0; i < count; ++i) idx.push_back(static_cast<uint32_t>(i));
+    idx.resize(count);
+    for (size_t i = 0; i < count; ++i) idx[i] = static_cast<uint32_t>(i);
   }
   const bool flip = glm::determinant(linear) < 0.0;  // a mirroring node turns faces inside out
   auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
     mesh.triangles.push_back(flip ? std::array<uint32_t, 3>{a, c, b} : std::array<uint32_t, 3>{a, b, c});
   };
+  // Strips and fans become triangles, the strip's odd ones turned to keep the winding.
   for (size_t i = 0; i + 2 < idx.size();) {
     if (mode == TINYGLTF_MODE_TRIANGLES) { add(idx[i], idx[i + 1], idx[i + 2]); i += 3; continue; }
     if (mode == TINYGLTF_MODE_TRIANGLE_FAN) add(idx[0], idx[i + 1], idx[i + 2]);
@@ -129,21 +143,24 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
   if (!mesh.triangles.empty()) out.meshes.push_back(std::move(mesh));
 }
 
-void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std::string& path, LoadedModel& out) {
-  if (index < 0 || static_cast<size_t>(index) >= m.lights.size()) fail(path, "light " + std::to_string(index) + " does not exist");
+void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std::string& ref, const std::string& path,
+              LoadedModel& out) {
+  if (index < 0 || static_cast<size_t>(index) >= m.lights.size()) gltfFail(path, ref, "light " + std::to_string(index) + " does not exist");
+  const std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
   const tinygltf::Light& g = m.lights[index];
   Light light;
   light.color = g.color.size() >= 3 ? Color(float(g.color[0]), float(g.color[1]), float(g.color[2])) : Color(1.0f);
   light.intensity = static_cast<float>(g.intensity);
   if (!(light.intensity >= 0.0f) || !std::isfinite(light.intensity) || !isFinite(light.color) ||
       std::min({light.color.r, light.color.g, light.color.b}) < 0.0f) {
-    fail(path, "light " + std::to_string(index) + " has a negative or non-finite colour or intensity");
+    gltfFail(path, where, "has a negative or non-finite colour or intensity");
   }
   if (g.type == "directional") {
     light.type = LightType::Directional;
     const glm::dvec3 d = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
-    if (!(glm::length(d) > 0.0)) fail(path, "light " + std::to_string(index) + " has no direction");
+    // Node scales compose: a deep enough tree makes the axis overflow, not vanish.
     light.direction = Vec3(glm::normalize(d));
+    if (!isFinite(light.direction)) gltfFail(path, where, "its node's transform leaves it no finite direction");
   } else {
     light.type = LightType::Point;  // point, and spot without its cone
     light.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
@@ -151,72 +168,107 @@ void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std
   out.lights.push_back(light);
 }
 
-void addCamera(const tinygltf::Model& m, int index, const dmat4& world, LoadedModel& out) {
-  if (out.camera || index < 0 || static_cast<size_t>(index) >= m.cameras.size()) return;
+void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const std::string& ref, const std::string& path,
+               LoadedModel& out) {
+  if (out.camera) return;
+  if (index < 0 || static_cast<size_t>(index) >= m.cameras.size()) {
+    gltfFail(path, ref, "camera " + std::to_string(index) + " does not exist");
+  }
   const tinygltf::Camera& g = m.cameras[index];
   if (g.type != "perspective") return;  // penumbra's camera is a pinhole
   Camera c;
   c.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
   // One unit ahead, or more far from the origin, so look_at stays apart in float.
-  const glm::dvec3 eye(c.position), ahead = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+  const glm::dvec3 eye(world * glm::dvec4(0.0, 0.0, 0.0, 1.0)), ahead = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
   const double reach = std::max({1.0, std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)});
   c.lookAt = Vec3(eye + glm::normalize(ahead) * reach);
   c.up = Vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0.0, 1.0, 0.0)));
   c.fovY = static_cast<float>(g.perspective.yfov * 180.0 / 3.14159265358979323846);
-  if (g.perspective.aspectRatio > 0.0) {
+  if (g.perspective.aspectRatio > 0.0) {  // 0.01..100 (checkGltfModel)
     out.aspect = g.perspective.aspectRatio;
     c.height = std::clamp(static_cast<int>(std::lround(c.width / g.perspective.aspectRatio)), 1, 16384);
+  }
+  // The node's transform places the camera: the JSON camera's checks apply here too.
+  const CameraProblem problem = cameraProblem(c);
+  if (!problem.message.empty()) {
+    gltfFail(path, "cameras[" + std::to_string(index) + "] (as placed by its node)", problem.key + ": " + problem.message);
   }
   out.camera = c;
 }
 
 void walk(const tinygltf::Model& m, int node, const dmat4& parent, int depth, const std::string& path, LoadedModel& out) {
-  if (node < 0 || static_cast<size_t>(node) >= m.nodes.size()) fail(path, "node " + std::to_string(node) + " does not exist");
-  if (depth > 256) fail(path, "the node tree is deeper than 256 levels (a cycle?)");
+  // checkGltfModel proved the nodes a forest; the depth bounds the recursion.
+  if (depth > 256) fail(path, "the node tree is deeper than 256 levels");
   const tinygltf::Node& n = m.nodes[node];
-  const dmat4 world = parent * localMatrix(n);
+  const dmat4 world = parent * nodeMatrix(n);
   if (n.mesh >= 0) {
-    if (static_cast<size_t>(n.mesh) >= m.meshes.size()) fail(path, "mesh " + std::to_string(n.mesh) + " does not exist");
+    if (static_cast<size_t>(n.mesh) >= m.meshes.size()) {
+      gltfFail(path, "nodes[" + std::to_string(node) + "].mesh", "mesh " + std::to_string(n.mesh) + " does not exist");
+    }
     const tinygltf::Mesh& mesh = m.meshes[n.mesh];
     const std::string name = mesh.name.empty() ? "mesh " + std::to_string(n.mesh) : mesh.name;
-    for (const tinygltf::Primitive& prim : mesh.primitives) addPrimitive(m, prim, world, name, path, out);
+    for (size_t i = 0; i < mesh.primitives.size(); ++i) {
+      const std::string where = "meshes[" + std::to_string(n.mesh) + "].primitives[" + std::to_string(i) + "]";
+      addPrimitive(m, mesh.primitives[i], world, name, where, path, out);
+    }
   }
-  if (n.camera >= 0) addCamera(m, n.camera, world, out);
+  if (n.camera >= 0) addCamera(m, n.camera, world, "nodes[" + std::to_string(node) + "].camera", path, out);
   auto ext = n.extensions.find("KHR_lights_punctual");
   if (ext != n.extensions.end() && ext->second.Has("light")) {
-    addLight(m, ext->second.Get("light").GetNumberAsInt(), world, path, out);
+    addLight(m, ext->second.Get("light").GetNumberAsInt(), world,
+             "nodes[" + std::to_string(node) + "].extensions.KHR_lights_punctual.light", path, out);
   }
   for (int child : n.children) walk(m, child, world, depth + 1, path, out);
 }
 
+// tinygltf's image callback with a check first: glTF images are PNG or JPEG, and
+// OpenImageIO would otherwise be handed whatever the bytes happen to be.
+bool keepPngOrJpeg(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int width, int height,
+                   const unsigned char* bytes, int size, void* user) {
+  const bool png = size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0;
+  const bool jpeg = size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+  if (!png && !jpeg) {
+    if (err) *err += "images[" + std::to_string(index) + "]: not a PNG or JPEG image\n";
+    return false;
+  }
+  return keepEncodedImage(image, index, err, warn, width, height, bytes, size, user);
+}
+
 }  // namespace
 
-LoadedModel loadGltfModel(const std::string& path, const LoadLimits&) {
+LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits) {
+  namespace fs = std::filesystem;
+  // Everything tinygltf would act on unchecked is settled first: the JSON's depth,
+  // version, required extensions, buffer bounds and which files it may read.
+  const GltfSource source = readGltfSource(path, limits);
+  const std::string folder = fs::absolute(path).parent_path().lexically_normal().string();
+  GltfFiles files;
+  checkGltfDocument(source, path, folder, limits, files);
+
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(keepEncodedImage, nullptr);
+  loader.SetFsCallbacks(files.callbacks());
+  loader.SetImageLoader(keepPngOrJpeg, nullptr);
   std::string err, warn;
-  const bool binary = path.size() >= 4 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 4) == ".GLB");
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const bool ok = source.binary
+                      ? loader.LoadBinaryFromMemory(&model, &err, &warn, source.bytes.data(),
+                                                    static_cast<unsigned int>(source.bytes.size()), folder)
+                      : loader.LoadASCIIFromString(&model, &err, &warn, source.json.data(),
+                                                   static_cast<unsigned int>(source.json.size()), folder);
+  if (!files.problem().empty()) fail(path, files.problem());
   if (!ok) {
     std::string line = err.substr(0, err.find('\n'));
     fail(path, "cannot load: " + (line.empty() ? std::string("unknown error") : line));
   }
   LoadedModel out;
   out.file = path;
-  out.warning = warn.substr(0, warn.find('\n'));
-  out.materials = gltfMaterials(model, path);
-  std::vector<int> roots;
-  if (!model.scenes.empty()) {
-    const int s = model.defaultScene >= 0 && static_cast<size_t>(model.defaultScene) < model.scenes.size() ? model.defaultScene : 0;
-    roots = model.scenes[s].nodes;
-  } else {
-    std::vector<bool> child(model.nodes.size(), false);
-    for (const tinygltf::Node& n : model.nodes)
-      for (int c : n.children) if (c >= 0 && static_cast<size_t>(c) < child.size()) child[c] = true;
-    for (size_t i = 0; i < model.nodes.size(); ++i) if (!child[i]) roots.push_back(static_cast<int>(i));
-  }
+  out.files = files.read();
+  out.files.insert(out.files.begin(), path);
+  std::vector<std::string> warnings;
+  const std::vector<int> roots = checkGltfModel(model, path, warnings);
+  checkGltfBudget(model, roots, path, limits);
+  out.warning = !warnings.empty() ? warnings.front() : warn.substr(0, warn.find('\n'));
+  out.materials = gltfMaterials(model, path, folder);
   for (int r : roots) walk(model, r, dmat4(1.0), 0, path, out);
   for (TriangleMesh& mesh : out.meshes) {
     if (mesh.material >= static_cast<int>(out.materials.size())) fail(path, "a primitive names a material that does not exist");

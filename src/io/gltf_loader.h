@@ -12,7 +12,9 @@ namespace penumbra {
 // TEXCOORD_0 as uvs (glTF's top-left origin is OIIO's), no normals = flat shading.
 // Materials map as docs/scene-format.md ("glTF") says; KHR_lights_punctual point
 // and spot lights become point lights (the cone is dropped), directional lights
-// directional; candela and lux are read as W/sr and W/m^2. Throws ModelError.
+// directional; candela and lux are read as W/sr and W/m^2. Throws ModelError naming
+// the file and JSON path for anything docs/scene-format.md lists as refused, before
+// reading files outside the model's folder or allocating beyond `limits`.
 LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits = {});
 
 }  // namespace penumbra

@@ -2,6 +2,7 @@
 // roughness as a Phong exponent, transmission + ior as glass, emissive as emission.
 #include "io/gltf_materials.h"
 
+#include "io/gltf_files.h"
 #include "io/texture_gen.h"
 
 #include <algorithm>
@@ -24,20 +25,6 @@ double extensionNumber(const tinygltf::ExtensionMap& ext, const char* name, cons
 
 Color colour(const std::vector<double>& c, const Color& fallback) {
   return c.size() >= 3 ? Color(float(c[0]), float(c[1]), float(c[2])) : fallback;
-}
-
-// "%20" and friends: glTF URIs are percent-encoded; tinygltf leaves them so.
-std::string decodeUri(const std::string& uri) {
-  std::string out;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uri[i + 1]) && std::isxdigit(uri[i + 2])) {
-      out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
 }
 
 // An embedded image (data URI or buffer view) as a file OpenImageIO's texture system
@@ -65,7 +52,7 @@ std::string writeEmbedded(const tinygltf::Image& image, const std::string& path)
 }
 
 // The file behind texture `index` ("" without one).
-std::string textureFile(const tinygltf::Model& model, int index, const std::string& path) {
+std::string textureFile(const tinygltf::Model& model, int index, const std::string& path, const std::string& folder) {
   if (index < 0) return "";
   if (static_cast<size_t>(index) >= model.textures.size()) {
     throw ModelError("glTF file " + path + ": texture " + std::to_string(index) + " does not exist");
@@ -76,9 +63,8 @@ std::string textureFile(const tinygltf::Model& model, int index, const std::stri
   }
   const tinygltf::Image& image = model.images[source];
   if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) {
-    fs::path p(decodeUri(image.uri));
-    if (p.is_relative()) p = fs::absolute(path).parent_path() / p;
-    return p.lexically_normal().string();
+    // The file tinygltf read, inside the model's folder (gltf_files.h).
+    return resolveGltfUri(folder, image.uri, "images[" + std::to_string(source) + "].uri", path);
   }
   if (image.image.empty()) throw ModelError("glTF file " + path + ": image " + std::to_string(source) + " is empty");
   return writeEmbedded(image, path);
@@ -92,7 +78,8 @@ bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::stri
   return true;
 }
 
-std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std::string& path) {
+std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std::string& path,
+                                         const std::string& folder) {
   std::vector<ModelMaterial> out;
   for (const tinygltf::Material& g : model.materials) {
     ModelMaterial mm;
@@ -125,7 +112,7 @@ std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std
       const float n = alpha > 0.0f ? 2.0f / (alpha * alpha) - 2.0f : 10000.0f;
       m.shininess = roughness < 0.99f ? std::min(n, 10000.0f) : 0.0f;
       m.specular = Color(m.shininess > 0.0f ? 0.04f : 0.0f);
-      mm.texture = textureFile(model, pbr.baseColorTexture.index, path);
+      mm.texture = textureFile(model, pbr.baseColorTexture.index, path, folder);
     }
     out.push_back(std::move(mm));
   }

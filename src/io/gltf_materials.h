@@ -9,8 +9,10 @@
 namespace penumbra {
 
 // One ModelMaterial per model.materials entry, in order (docs/scene-format.md, "glTF").
-// `path` is the glTF file, for relative image URIs and messages. Throws ModelError.
-std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std::string& path);
+// `path` is the glTF file, for messages; `folder` its folder (absolute), the only
+// place image URIs may name. Throws ModelError.
+std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std::string& path,
+                                         const std::string& folder);
 
 // tinygltf's image callback: keeps the encoded bytes (OpenImageIO decodes them later).
 bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* err, std::string* warn,

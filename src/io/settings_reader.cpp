@@ -1,8 +1,8 @@
 // The scene's settings sections: camera, render and photons.
-#include "core/camera_frame.h"
 #include "core/view.h"
 #include "io/scene_sections.h"
 
+#include "io/camera_checks.h"
 #include "io/float_checks.h"
 
 #include <cmath>
@@ -14,11 +14,6 @@ namespace {
 // Largest photon count accepted: beyond this the photon map alone would need
 // tens of gigabytes, which is a typo rather than a plan.
 constexpr uint64_t kMaxPhotons = 1'000'000'000;
-
-// A normalised float vector that came out as one: not NaN, not a denormal mess.
-bool isUnit(const Vec3& v) {
-  return isFinite(v) && std::fabs(glm::length(v) - 1.0f) < 1e-3f;
-}
 
 // A gather radius: 0 (none given), or one whose square, which the gathers and
 // density estimates divide by, is a normal float and finite: 1e-18..1e15 (the
@@ -46,21 +41,10 @@ void readCamera(const JsonNode& node, Camera& out) {
   out.height = node.intOr("height", out.height, 1, 16384);
   out.spp = node.intOr("spp", out.spp, 1, 4096);
 
-  // Check the frame the tracer will build (core/camera_frame.h), in float: a length
-  // of 1e-30 is fine in double but its square underflows in float: NaN.
-  const JsonNode& at = node.has("look_at") ? node.child("look_at") : node;
-  const CameraFrame frame = cameraFrame(out);
-  const Vec3 forward = frame.forward;
-  if (!isUnit(forward)) {
-    at.fail("look_at equals position, or is too close to it for a view direction in single precision");
-  }
-  const JsonNode& upNode = node.has("up") ? node.child("up") : node;
-  if (!isUnit(glm::normalize(out.up))) {
-    upNode.fail("up has no direction in single precision (zero, or too short or long to normalise)");
-  }
-  const float sine = glm::length(glm::cross(forward, glm::normalize(out.up)));
-  if (!(sine > 1e-6f) || !isUnit(frame.right)) {
-    upNode.fail("up is parallel to the view direction (look_at - position)");
+  // The checks every camera meets (io/camera_checks.h), failing at the key at fault.
+  const CameraProblem problem = cameraProblem(out);
+  if (!problem.message.empty()) {
+    (node.has(problem.key.c_str()) ? node.child(problem.key) : node).fail(problem.message);
   }
 }
 
