@@ -2,6 +2,7 @@
 // tinygltf parses it, then the node forest walked with its transforms, triangle
 // primitives as meshes, the camera and lights.
 #include "io/gltf_loader.h"
+#include "io/float_checks.h"
 
 #include "io/camera_checks.h"
 #include "io/gltf_checks.h"
@@ -75,10 +76,6 @@ std::vector<uint32_t> readIndices(const tinygltf::Model& m, int index, uint64_t 
   return out;
 }
 
-// A texture coordinate's largest magnitude: far beyond any tiling, and float's uv
-// step (~1e-1 at 1e6) no longer resolves a texel.
-constexpr double kMaxUv = 1e6;
-
 void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, const dmat4& world, const std::string& name,
                   const std::string& where, const std::string& path, LoadedModel& out) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -114,7 +111,7 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
     const std::vector<double> uv = readAccessor(accessorSpan(m, attr->second, where, path), where + ".attributes.TEXCOORD_0", path);
     mesh.uvs.reserve(count);
     for (size_t i = 0; i < count; ++i) {
-      if (!(std::fabs(uv[2 * i]) <= kMaxUv && std::fabs(uv[2 * i + 1]) <= kMaxUv)) {
+      if (!(std::fabs(uv[2 * i]) <= kMaxTexCoord && std::fabs(uv[2 * i + 1]) <= kMaxTexCoord)) {
         gltfFail(path, "accessors[" + std::to_string(attr->second) + "]",
                  "texture coordinate " + std::to_string(i) + " is beyond +-1e6");
       }

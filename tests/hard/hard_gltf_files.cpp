@@ -44,7 +44,7 @@ TEST(HardGltfFiles, UrisStayInsideTheModelsFolder) {
   const ScratchDir dir;
   fs::create_directories(dir / "model");
   dir.write("secret.bin", kBin);
-  for (const std::string uri : {std::string("../secret.bin"), std::string("%2e%2e/secret.bin"),
+  for (const std::string& uri : {std::string("../secret.bin"), std::string("%2e%2e/secret.bin"),
                                 std::string("%2E%2E%2Fsecret.bin"), (dir / "secret.bin").string(),
                                 std::string("file:///etc/passwd"), std::string("sub/../../secret.bin")}) {
     const fs::path file = dir.write("model/model.gltf", externalTriangle(uri).dump());
