@@ -2,6 +2,7 @@
 // any accessor: bounds in checked arithmetic, the node forest, transforms, lights,
 // material extensions, cameras, primitive modes, and the memory the meshes need.
 #include "io/gltf_checks.h"
+#include "core/byte_size.h"
 
 #include "io/model_import.h"
 
@@ -30,13 +31,6 @@ bool finite(const std::vector<double>& v) {
 std::string num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-std::string bytesText(double b) {
-  char buf[32];
-  if (b >= 1e9) std::snprintf(buf, sizeof buf, "%.3g GB", b / 1e9);
-  else std::snprintf(buf, sizeof buf, "%.3g MB", b / 1e6);
   return buf;
 }
 
@@ -330,8 +324,8 @@ void checkGltfBudget(const tinygltf::Model& m, const std::vector<int>& roots, co
     }
   }
   if (bytes > static_cast<double>(limits.maxBytes)) {
-    throw ModelError("glTF file " + path + ": needs ~" + bytesText(bytes) + " for its meshes but " + limits.budgetName +
-                     " is " + bytesText(static_cast<double>(limits.maxBytes)));
+    throw ModelError("glTF file " + path + ": needs ~" + formatBytes(bytes) + " for its meshes but " + limits.budgetName +
+                     " is " + formatBytes(static_cast<double>(limits.maxBytes)));
   }
 }
 

@@ -1,6 +1,7 @@
 // The scan reads each line once and keeps nothing but counts, so a file that would
 // not fit is refused before any of it is loaded.
 #include "io/obj_scan.h"
+#include "core/byte_size.h"
 #include "io/float_checks.h"
 #include "io/obj_loader.h"
 #include <fmt/format.h>
@@ -116,9 +117,9 @@ ObjScan scanObj(const std::string& path, const LoadLimits& limits) {
     }
   }
   if (limits.maxBytes > 0 && scan.loadBytes() > limits.maxBytes) {
-    throw ObjError(fmt::format("OBJ file {}: needs ~{:.1f} GB to load ({} vertices, {} faces) but {} is {:.1f} GB",
-                               path, scan.loadBytes() / 1e9, scan.positions, scan.faces, limits.budgetName,
-                               limits.maxBytes / 1e9));
+    throw ObjError(fmt::format("OBJ file {}: needs ~{} to load ({} vertices, {} faces) but {} is {}", path,
+                               formatBytes(double(scan.loadBytes())), scan.positions, scan.faces, limits.budgetName,
+                               formatBytes(double(limits.maxBytes))));
   }
   return scan;
 }

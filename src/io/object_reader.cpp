@@ -1,6 +1,7 @@
 // The "objects" section: spheres stay analytic; meshes (OBJ or glTF, with their
 // own materials), quads, boxes and teapots become transformed TriangleMeshes.
 #include "io/scene_sections.h"
+#include "core/byte_size.h"
 
 #include "io/float_checks.h"
 #include "io/mesh_cleanup.h"
@@ -109,39 +110,49 @@ TriangleMesh readBox(const JsonNode& node) {
 
 // A mesh object: its file's materials (MTL, glTF) unless the object names one; faces
 // without a material take the scene's (or the implicit default).
-// What the scene's meshes from index `first` on hold in memory: vertices with their
-// normals and uvs, and triangles.
+// What a mesh holds in memory: vertices with their normals and uvs, and triangles.
+uint64_t bytesOf(const TriangleMesh& m) {
+  return m.positions.size() * sizeof(Vec3) + m.normals.size() * sizeof(Vec3) + m.uvs.size() * sizeof(Vec2) +
+         m.triangles.size() * sizeof(m.triangles[0]);
+}
+
+// The scene's meshes from index `first` on.
 uint64_t meshBytes(const Scene& scene, size_t first) {
   uint64_t bytes = 0;
-  for (size_t i = first; i < scene.meshes.size(); ++i) {
-    const TriangleMesh& m = scene.meshes[i];
-    bytes += m.positions.size() * sizeof(Vec3) + m.normals.size() * sizeof(Vec3) + m.uvs.size() * sizeof(Vec2) +
-             m.triangles.size() * sizeof(m.triangles[0]);
-  }
+  for (size_t i = first; i < scene.meshes.size(); ++i) bytes += bytesOf(scene.meshes[i]);
   return bytes;
 }
 
-// Model files already read in this scene, by resolved path: a file placed many times
-// is read and checked once.
-using ModelCache = std::map<std::string, LoadedModel>;
+// Meshes already made in this scene: a model file (by resolved path) or a teapot (by
+// subdivisions) placed many times is read or tessellated once, and each placement
+// copies it.
+struct MeshCache {
+  std::map<std::string, LoadedModel> models;
+  std::map<int, TriangleMesh> teapots;
+};
 
-void readModelObject(const JsonNode& node, const MaterialLookup& materials, ModelCache& models, Scene& scene) {
-  JsonNode fileNode = node.required("file", " for a mesh (an OBJ or glTF path)");
-  std::string file = fileNode.asString();
-  if (file.empty()) fileNode.fail("must not be empty");
-  const int named = node.has("material") ? materials.resolve(node) : -1;
-  const Transform transform = readTransform(node);
+// A mesh object's model, loaded (its files becoming scene inputs) on first use.
+const LoadedModel& cachedModel(const JsonNode& fileNode, const std::string& file, MeshCache& cache, Scene& scene) {
   const std::string path = resolvePath(fileNode, file);
-  auto cached = models.find(path);
-  if (cached == models.end()) {
+  auto cached = cache.models.find(path);
+  if (cached == cache.models.end()) {
     try {
-      cached = models.emplace(path, loadModel(path, node.context().limits)).first;
+      cached = cache.models.emplace(path, loadModel(path, fileNode.context().limits)).first;
     } catch (const ModelError& e) {
       fileNode.fail(e.what());
     }
     scene.inputs.insert(scene.inputs.end(), cached->second.files.begin(), cached->second.files.end());
   }
-  LoadedModel model = cached->second;  // placed (moved into the scene) as a copy
+  return cached->second;
+}
+
+void readModelObject(const JsonNode& node, const MaterialLookup& materials, MeshCache& cache, Scene& scene) {
+  JsonNode fileNode = node.required("file", " for a mesh (an OBJ or glTF path)");
+  std::string file = fileNode.asString();
+  if (file.empty()) fileNode.fail("must not be empty");
+  const int named = node.has("material") ? materials.resolve(node) : -1;
+  const Transform transform = readTransform(node);
+  LoadedModel model = cachedModel(fileNode, file, cache, scene);  // moved into the scene: a copy
   int fallback = -1;
   for (const TriangleMesh& mesh : model.meshes) {
     if (named >= 0 || mesh.material >= 0) continue;
@@ -154,10 +165,12 @@ void readModelObject(const JsonNode& node, const MaterialLookup& materials, Mode
   addModelMeshes(fileNode, model, named, fallback, transform, scene);
 }
 
-TriangleMesh readTeapot(const JsonNode& node) {
+TriangleMesh readTeapot(const JsonNode& node, MeshCache& cache) {
   int subdivisions = node.intOr("subdivisions", 8, 1, 128);
 #if PENUMBRA_HAS_TEAPOT
-  TriangleMesh mesh = makeTeapot(subdivisions);
+  auto cached = cache.teapots.find(subdivisions);
+  if (cached == cache.teapots.end()) cached = cache.teapots.emplace(subdivisions, makeTeapot(subdivisions)).first;
+  TriangleMesh mesh = cached->second;
   if (mesh.name.empty()) mesh.name = "teapot";
   return mesh;
 #else
@@ -166,14 +179,38 @@ TriangleMesh readTeapot(const JsonNode& node) {
 #endif
 }
 
-void readObject(const JsonNode& node, const MaterialLookup& materials, ModelCache& models, Scene& scene) {
+// What a mesh or teapot object will add to the scene's meshes, before it is built:
+// its model's bytes (loading the file into the cache) or the teapot's grid; 0 for
+// small primitives and for an object readObject will refuse anyway.
+uint64_t predictedBytes(const JsonNode& node, MeshCache& cache, Scene& scene) {
+  const nlohmann::json& v = node.value();
+  if (!v.is_object() || !v.contains("type") || !v["type"].is_string()) return 0;
+  const std::string type = v["type"].get<std::string>();
+  if (type == "teapot") {
+    const int64_t n = v.contains("subdivisions") && v["subdivisions"].is_number_integer()
+                          ? v["subdivisions"].get<int64_t>() : v.contains("subdivisions") ? 0 : 8;
+    if (n < 1 || n > 128) return 0;
+    const uint64_t grid = uint64_t(n + 1) * uint64_t(n + 1);
+    return 32 * (grid * (sizeof(Vec3) * 2 + sizeof(Vec2)) + uint64_t(2 * n * n) * 12);  // 32 patches
+  }
+  if (type == "mesh" && v.contains("file") && v["file"].is_string() && !v["file"].get<std::string>().empty()) {
+    uint64_t total = 0;
+    for (const TriangleMesh& m : cachedModel(node.child("file"), v["file"].get<std::string>(), cache, scene).meshes) {
+      total += bytesOf(m);
+    }
+    return total;
+  }
+  return 0;
+}
+
+void readObject(const JsonNode& node, const MaterialLookup& materials, MeshCache& cache, Scene& scene) {
   node.requireObject();
   auto type = static_cast<ObjectType>(
       node.required("type", " (\"sphere\", \"mesh\", \"quad\", \"box\" or \"teapot\")")
           .asEnum({"sphere", "mesh", "quad", "box", "teapot"}));
   if (type == ObjectType::Mesh) {
     node.allowKeys({"type", "file", "material", "translate", "rotate", "scale"});
-    readModelObject(node, materials, models, scene);
+    readModelObject(node, materials, cache, scene);
     return;
   }
   if (type == ObjectType::Sphere) {
@@ -201,7 +238,7 @@ void readObject(const JsonNode& node, const MaterialLookup& materials, ModelCach
   Transform transform = readTransform(node);
   TriangleMesh mesh = type == ObjectType::Quad ? readQuad(node)
                       : type == ObjectType::Box  ? readBox(node)
-                                                 : readTeapot(node);
+                                                 : readTeapot(node, cache);
   applyTransform(transform, mesh);
   checkPositions(node, mesh.positions, "transformed positions");
   // Triangles whose normal cannot be computed in float (zero area, or a scale so
@@ -220,19 +257,21 @@ void readObjects(const JsonNode& root, Scene& scene) {
   MaterialLookup materials(scene, root.has("materials"));
   JsonNode objects = root.child("objects");
   size_t count = objects.arraySize();
-  ModelCache models;
+  MeshCache cache;
   const LoadLimits& limits = root.context().limits;
   uint64_t bytes = meshBytes(scene, 0);
   for (size_t i = 0; i < count; ++i) {
-    const size_t before = scene.meshes.size();
-    readObject(objects.element(i), materials, models, scene);
-    // Instances add up: refuse at the object that takes the meshes past the budget,
-    // before the next one allocates more.
-    bytes += meshBytes(scene, before);
-    if (limits.maxBytes > 0 && bytes > limits.maxBytes) {
-      objects.element(i).fail(fmt::format("the scene's meshes reach ~{:.1f} GB with this object, but {} is {:.1f} GB",
-                                          bytes / 1e9, limits.budgetName, limits.maxBytes / 1e9));
+    // Instances add up: refuse at the object that would take the meshes past the
+    // budget, judged before it is built (the bytes its cached model or tessellation takes).
+    const JsonNode object = objects.element(i);
+    const uint64_t adds = predictedBytes(object, cache, scene);
+    if (limits.maxBytes > 0 && bytes + adds > limits.maxBytes) {
+      object.fail(fmt::format("the scene's meshes would reach ~{} with this object, but {} is {}",
+                              formatBytes(double(bytes + adds)), limits.budgetName, formatBytes(double(limits.maxBytes))));
     }
+    const size_t before = scene.meshes.size();
+    readObject(object, materials, cache, scene);
+    bytes += meshBytes(scene, before);
   }
 }
 

@@ -205,12 +205,6 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   return e;
 }
 
-std::string formatBytes(double bytes) {
-  if (bytes >= 1024.0 * 1024 * 1024) return fmt::format("{:.1f} GiB", bytes / (1024.0 * 1024 * 1024));
-  if (bytes >= 1024.0 * 1024) return fmt::format("{:.1f} MiB", bytes / (1024.0 * 1024));
-  return fmt::format("{:.1f} KiB", bytes / 1024.0);
-}
-
 std::string formatDuration(double s) {
   if (s >= 2 * 3600.0) return fmt::format("{:.0f} h", s / 3600.0);
   if (s >= 120.0) return fmt::format("{:.0f} min", s / 60.0);

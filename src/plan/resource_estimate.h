@@ -2,6 +2,7 @@
 // buffers, BVH, lookup cache and wall time, from the scene alone (plus an optional
 // pilot emission's measured store rates). Plain data; the limit check is memory_limit.h.
 #pragma once
+#include "core/byte_size.h"
 #include "core/map_kind.h"
 #include "core/scene.h"
 #include "core/view.h"
@@ -61,8 +62,7 @@ StoreRates analyticStoreRates(const Scene& scene);
 ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& options,
                                    const StoreRates& rates);
 
-// "~37.2 GiB (photons 36.0 GiB, image 1.1 GiB, ...)" and "~64 h": for messages.
-std::string formatBytes(double bytes);
+// "~64 h": for messages (bytes: core/byte_size.h).
 std::string formatDuration(double seconds);
 std::string describeMemory(const ResourceEstimate& e);
 // The `estimate` object of the --stats JSON.

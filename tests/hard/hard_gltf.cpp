@@ -85,7 +85,7 @@ TEST(HardGltf, MeshBytesAreEstimatedBeforeAllocating) {
   for (int i = 0; i < 20000; ++i) j["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}});
   ASSERT_LT(j.dump().size(), 1000000u);
   const auto start = std::chrono::steady_clock::now();
-  expectRefused(dir, j, {"needs ~22.4 GB for its meshes but --max-memory is 2 GB"}, LoadLimits{2'000'000'000, "--max-memory"});
+  expectRefused(dir, j, {"needs ~20.9 GiB for its meshes but --max-memory is 2.0 GiB"}, LoadLimits{2ull << 30, "--max-memory"});
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2.0);
   // Instances count: the triangle under 3 nodes needs three times one.
   j = triangle();

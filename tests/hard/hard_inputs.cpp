@@ -1,24 +1,14 @@
 // No input is ever overwritten or read stale: outputs against every file a render
 // reads (OBJ's MTL, textures), batch jobs against each other, the up-to-date check
 // against side files, and sweep resume against a folder of another sweep.
-#include "support/cli_run.h"
+#include "hard/hard_cli.h"
 #include <gtest/gtest.h>
 #include <chrono>
 
 namespace penumbra {
 namespace {
 
-using testing::CliResult;
-using testing::quote;
-using testing::runCli;
-using testing::ScratchDir;
-namespace fs = std::filesystem;
-
-// A small classic scene: a floor quad under a point light, seen from above.
-const char* kFloorScene = R"({"camera": {"position": [0, 3, 3], "look_at": [0, 0, 0], "width": 16, "height": 12},
-  "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 5}],
-  "objects": [{"type": "quad", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2]}],
-  "photons": {"shadow": 2000, "indirect": 2000}})";
+using namespace hard;
 
 // The same floor as an OBJ whose MTL gives its colour.
 void writeObjScene(const ScratchDir& dir) {

@@ -1,7 +1,7 @@
 // Loading stays inside the memory budget and seconds: instances of a big mesh are
 // refused at the object that passes the budget, a texture whose header claims
 // billions of pixels is refused before one is decoded.
-#include "support/cli_run.h"
+#include "hard/hard_cli.h"
 #include <gtest/gtest.h>
 #include <array>
 #include <chrono>
@@ -9,10 +9,7 @@
 namespace penumbra {
 namespace {
 
-using testing::CliResult;
-using testing::quote;
-using testing::runCli;
-using testing::ScratchDir;
+using namespace hard;
 
 TEST(HardLoadBudget, InstancesAreRefusedAtTheObjectThatPassesTheBudget) {
   ScratchDir dir;
@@ -39,8 +36,25 @@ TEST(HardLoadBudget, InstancesAreRefusedAtTheObjectThatPassesTheBudget) {
                                          .string());
   const CliResult r = runCli("render " + scene + " -q -o " + quote((dir / "a.png").string()) + " --max-memory 64M");
   EXPECT_EQ(r.exitCode, 2) << r.err;
-  EXPECT_NE(r.err.find("the scene's meshes reach"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the scene's meshes would reach"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--max-memory"), std::string::npos) << r.err;
+}
+
+TEST(HardLoadBudget, TeapotsAreJudgedByTheirGridBeforeTessellation) {
+  ScratchDir dir;
+  // 64 teapots of ~1M triangles (subdivisions 128), ~2 GB of mesh against 256 MB.
+  std::string objects;
+  for (int i = 0; i < 64; ++i) {
+    objects += std::string(i ? "," : "") + R"({"type": "teapot", "subdivisions": 128, "translate": [)" +
+               std::to_string(i * 4) + ", 0, 0]}";
+  }
+  const std::string scene = quote(dir.write("s.json", R"({"camera": {"position": [0, 3, 8], "look_at": [0, 0, 0],
+    "width": 16, "height": 12}, "lights": [{"type": "point", "position": [0, 5, 0], "intensity": 5}],
+    "objects": [)" + objects + "]}").string());
+  const CliResult small = runCli("render " + scene + " -q -o " + quote((dir / "a.png").string()) +
+                                 " --max-memory 256M");
+  EXPECT_EQ(small.exitCode, 2) << small.err;
+  EXPECT_NE(small.err.find("]: the scene's meshes would reach"), std::string::npos) << small.err;
 }
 
 // CRC-32 (PNG's chunk checksum), bit by bit: a test writes a handful of bytes.

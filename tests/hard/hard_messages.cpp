@@ -1,7 +1,7 @@
 // Bad input is one clear line and exit 2, never an internal error: contradicting
 // flags, options named in their own errors, binary or endless stdin, hostile OBJ and
 // MTL numbers, side files too big to be what they claim, and huge quads.
-#include "support/cli_run.h"
+#include "hard/hard_cli.h"
 #include "io/image_io.h"
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -10,16 +10,7 @@
 namespace penumbra {
 namespace {
 
-using testing::CliResult;
-using testing::quote;
-using testing::runCli;
-using testing::ScratchDir;
-namespace fs = std::filesystem;
-
-const char* kScene = R"({"camera": {"position": [0, 3, 3], "look_at": [0, 0, 0], "width": 16, "height": 12},
-  "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 5}],
-  "objects": [{"type": "quad", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2]}],
-  "photons": {"shadow": 2000, "indirect": 2000}})";
+using namespace hard;
 
 // Runs a shell line (stdin piped in by the line itself) and returns exit code and stderr.
 CliResult runShell(const std::string& line) {
@@ -42,7 +33,7 @@ void expectBadInput(const CliResult& r, const std::string& says, const std::stri
 
 TEST(HardMessages, ContradictingGateFlagsAreRefusedByEveryCommand) {
   ScratchDir dir;
-  const std::string scene = quote(dir.write("s.json", kScene).string());
+  const std::string scene = quote(dir.write("s.json", kFloorScene).string());
   const std::string out = quote((dir / "o").string());
   const std::pair<std::string, std::string> flags[] = {{"--no-gate --gate on", "--no-gate contradicts --gate on"},
                                                        {"--enable gate --no-gate", "contradicts --enable gate"},
@@ -60,7 +51,7 @@ TEST(HardMessages, ContradictingGateFlagsAreRefusedByEveryCommand) {
 
 TEST(HardMessages, EachOptionsErrorNamesThatOption) {
   ScratchDir dir;
-  const std::string scene = quote(dir.write("s.json", kScene).string());
+  const std::string scene = quote(dir.write("s.json", kFloorScene).string());
   expectBadInput(runCli("batch " + scene + " -q -o " + quote((dir / "o").string()) + " --map-cache abc"),
                  "--map-cache: expected a size", "--map-cache abc");
   // An option of another command says whose it is.
@@ -70,7 +61,7 @@ TEST(HardMessages, EachOptionsErrorNamesThatOption) {
 
 TEST(HardMessages, StatsDashGoesToStdout) {
   ScratchDir dir;
-  const std::string scene = quote(dir.write("s.json", kScene).string());
+  const std::string scene = quote(dir.write("s.json", kFloorScene).string());
   const fs::path cwd = fs::current_path();
   fs::current_path(dir.path());
   const CliResult r = runCli("render " + scene + " -q -o " + quote((dir / "a.png").string()) + " --stats -");
