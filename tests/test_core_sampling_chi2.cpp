@@ -109,6 +109,15 @@ Bsdf classic(float pR, float pT, HemisphereSampling bounce) {
   return makeBsdf(m, ShadingModel::Classic, bounce);
 }
 
+Bsdf metalRough(const Color& base, float metallic, float alpha) {
+  Bsdf b;
+  b.type = BsdfType::MetalRough;
+  b.diffuse = base;
+  b.metallic = metallic;
+  b.roughness = alpha;
+  return b;
+}
+
 std::vector<BsdfCase> bsdfCases() {
   const Bsdf lambert = physical(opaque(Color(0.8f)));
   const Bsdf plastic = physical(opaque(Color(0.5f, 0.4f, 0.3f), Color(0.4f), 20.0f));
@@ -130,6 +139,13 @@ std::vector<BsdfCase> bsdfCases() {
       // against the bounce the report documents: p_r x uniform or cosine.
       {"classic_uniform_40", classic(0.6f, 0.0f, HemisphereSampling::Uniform), 40.0, true},
       {"classic_cosine_40", classic(0.5f, 0.3f, HemisphereSampling::Cosine), 40.0, true},
+      // GGX metallic-roughness at alpha 0.1, 0.5 and 1: metals and dielectrics.
+      {"metal_a0.1_30", metalRough(Color(0.9f, 0.6f, 0.3f), 1.0f, 0.1f), 30.0},
+      {"metal_a0.5_60", metalRough(Color(0.9f, 0.6f, 0.3f), 1.0f, 0.5f), 60.0},
+      {"metal_a1_0", metalRough(Color(0.9f, 0.6f, 0.3f), 1.0f, 1.0f), 0.0},
+      {"plastic_a0.1_45", metalRough(Color(0.2f, 0.5f, 0.8f), 0.0f, 0.1f), 45.0},
+      {"plastic_a0.5_80", metalRough(Color(0.2f, 0.5f, 0.8f), 0.0f, 0.5f), 80.0},
+      {"half_metal_a1_20", metalRough(Color(0.7f), 0.5f, 1.0f), 20.0},
   };
 }
 

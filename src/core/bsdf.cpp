@@ -2,6 +2,7 @@
 // Willems' normalised Phong; the classic one is the report's Phong, term for term.
 #include "core/bsdf.h"
 #include "core/color.h"
+#include "core/microfacet.h"
 #include "core/optics.h"
 #include "core/sampling.h"
 
@@ -182,6 +183,8 @@ uint8_t bsdfFlags(const Bsdf& b) {
              (l.mirror > 0.0f ? kBsdfSpecular : 0);
     }
     case BsdfType::Dielectric: return kBsdfSpecular | kBsdfTransmission;
+    case BsdfType::MetalRough:
+      return kBsdfGlossy | (b.metallic < 1.0f && maxComponent(b.diffuse) > 0.0f ? kBsdfDiffuse : 0);
   }
   return kBsdfNone;
 }
@@ -192,13 +195,15 @@ Color evaluateBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3
     case BsdfType::ClassicPhong: return evaluateClassic(b, f, wo, wi);
     case BsdfType::Opaque: return evaluateOpaque(b, f, wo, wi);
     case BsdfType::Dielectric: return Color(0.0f);  // only delta lobes
+    case BsdfType::MetalRough: return evaluateMetalRough(b, f, wo, wi);
   }
   return Color(0.0f);
 }
 
 float pdfBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi) {
-  if (b.type != BsdfType::Opaque || glm::dot(f.ng, wi) <= 0.0f) return 0.0f;
-  return pdfOpaque(b, f, wo, wi);
+  if (glm::dot(f.ng, wi) <= 0.0f) return 0.0f;
+  if (b.type == BsdfType::MetalRough) return pdfMetalRough(b, f, wo, wi);
+  return b.type == BsdfType::Opaque ? pdfOpaque(b, f, wo, wi) : 0.0f;
 }
 
 BsdfSample sampleBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, float uLobe, float u1,
@@ -207,6 +212,7 @@ BsdfSample sampleBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, float u
     case BsdfType::ClassicPhong: return sampleClassic(b, f, wo, uLobe, u1, u2);
     case BsdfType::Opaque: return sampleOpaque(b, f, wo, uLobe, u1, u2);
     case BsdfType::Dielectric: return sampleDielectric(b, f, wo, uLobe);
+    case BsdfType::MetalRough: return sampleMetalRough(b, f, wo, uLobe, u1, u2);
   }
   return {};
 }
@@ -225,6 +231,11 @@ Color albedoBsdf(const Bsdf& b) {
       float f0 = fresnelDielectric(1.0f, 1.0f, b.ior);
       return Color(f0) + (1.0f - f0) * b.tint;
     }
+    case BsdfType::MetalRough: {
+      // At normal incidence, before the microfacets' shadowing loss: an upper bound.
+      const float f0 = dielectricF0(b.ior);
+      return b.metallic * b.diffuse + (1.0f - b.metallic) * (Color(f0) + (1.0f - f0) * b.diffuse);
+    }
   }
   return Color(0.0f);
 }
@@ -234,13 +245,14 @@ Color lambertCoefficient(const Bsdf& b) {
     case BsdfType::ClassicPhong: return b.diffuse;
     case BsdfType::Opaque: return (1.0f - b.kr) * b.diffuse * kInvPi;
     case BsdfType::Dielectric: return Color(0.0f);
+    case BsdfType::MetalRough: return Color(0.0f);  // its base is Fresnel-weighted: all of it is sampled
   }
   return Color(0.0f);
 }
 
 Bsdf glossyPart(const Bsdf& b) {
   Bsdf g = b;
-  g.diffuse = Color(0.0f);
+  if (b.type != BsdfType::MetalRough) g.diffuse = Color(0.0f);
   return g;
 }
 

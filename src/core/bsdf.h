@@ -19,6 +19,7 @@ enum class BsdfType : uint8_t {
   ClassicPhong,  // the report's: k_d (N.L) + k_s (R.V)^n; photons by p_r / p_t roulette
   Opaque,        // physical: (1 - kr) (Lambert rho + normalised Phong) + kr mirror
   Dielectric,    // physical: smooth glass, Fresnel reflect / refract, tint on entering
+  MetalRough,    // physical: glTF metallic-roughness over GGX microfacets (core/microfacet.h)
 };
 
 // A material resolved for one model: plain data, a few dozen bytes, built per hit.
@@ -32,6 +33,8 @@ struct Bsdf {
   Color tint{1.0f};      // transmittance filter on entering glass
   float pR = 0.0f, pT = 0.0f;  // ClassicPhong photon roulette
   bool uniformBounce = true;   // ClassicPhong photon bounce: uniform (report) or cosine
+  float metallic = 0.0f;       // MetalRough: 1 a conductor, 0 a dielectric; `diffuse` is the base colour
+  float roughness = 0.5f;      // MetalRough: GGX alpha (glTF's roughness squared), > 0
 };
 
 // The local frame of a hit: unit normals facing the side the light or ray arrives
@@ -68,8 +71,8 @@ inline bool hasDeltaLobe(const Bsdf& b) { return bsdfFlags(b) & kBsdfSpecular; }
 // the light, both unit. Zero when wi is below the geometric surface.
 Color evaluateBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi);
 
-// Solid-angle density with which sampleBsdf picks wi through an Opaque BSDF's
-// non-delta lobes. 0 for ClassicPhong (the report's photon roulette bounces by p_r
+// Solid-angle density with which sampleBsdf picks wi through an Opaque or MetalRough
+// BSDF's non-delta lobes. 0 for ClassicPhong (the report's photon roulette bounces by p_r
 // and p_t, not by importance-sampling f) and for Dielectric (delta lobes only).
 float pdfBsdf(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi);
 
