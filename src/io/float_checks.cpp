@@ -134,6 +134,23 @@ void checkLights(const JsonNode& root, const Scene& scene) {
   }
 }
 
+void checkTriangleEdges(const JsonNode& root, const Scene& scene) {
+  // Meshes carry their names, not their JSON paths: the message names the mesh.
+  const JsonNode where = root.has("objects") ? root.child("objects") : root;
+  for (const TriangleMesh& mesh : scene.meshes) {
+    for (const auto& t : mesh.triangles) {
+      for (int k = 0; k < 3; ++k) {
+        const glm::dvec3 e = glm::dvec3(mesh.positions[t[(k + 1) % 3]]) - glm::dvec3(mesh.positions[t[k]]);
+        const double length = glm::length(e);
+        if (length > kMaxTriangleEdge) {
+          where.fail("mesh '" + mesh.name + "' has a triangle edge " + number(length) + " long, beyond 1e+13 " +
+                    "(Embree's single-precision test misses hits on longer ones): split it or scale the scene down");
+        }
+      }
+    }
+  }
+}
+
 void checkSpheres(const JsonNode& root, const Scene& scene) {
   // Scene::spheres holds the objects' spheres in "objects" order, then (from
   // addEmitters) the sphere lights': walk both lists to name the JSON path.
@@ -181,6 +198,7 @@ void checkPositions(const JsonNode& node, const std::vector<Vec3>& points, const
 void checkSceneNumbers(const JsonNode& root, const Scene& scene) {
   checkSpheres(root, scene);
   checkLights(root, scene);
+  checkTriangleEdges(root, scene);
 }
 
 }  // namespace penumbra

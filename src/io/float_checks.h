@@ -15,6 +15,12 @@ class JsonNode;
 // the geometry, and keeps squared distances (<= ~1.2e31) far inside float range.
 inline constexpr double kMaxCoordinate = 1e15;
 
+// Longest triangle edge. Embree's single-precision triangle test starts to miss hits
+// on triangles between 3e13 and 4e13 long (a floor quad seen from above: all camera
+// rays hit at 2.8e13, 1 in 16 at 4e13, wherever the triangle lies within
+// kMaxCoordinate); 1e13 keeps a margin of three.
+inline constexpr double kMaxTriangleEdge = 1e13;
+
 // Largest |texture coordinate| of a mesh vertex (OBJ vt, glTF TEXCOORD_0). A texture
 // repeats every unit, so larger values add nothing but lost precision (a float at 1e6
 // resolves 1/16 of a repeat); far beyond, the lookup's wrap and filter arithmetic
@@ -50,7 +56,8 @@ void checkPositions(const JsonNode& node, const std::vector<Vec3>& points, const
 
 // The checks that need the whole scene, computed in float as the renderer does:
 // every sphere's radius against the scene's extent, each light's radiance and
-// power, and the sum of all lights' power. Runs after addEmitters.
+// power, the sum of all lights' power, and every triangle's edges. Runs after
+// addEmitters.
 void checkSceneNumbers(const JsonNode& root, const Scene& scene);
 
 }  // namespace penumbra

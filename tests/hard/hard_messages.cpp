@@ -158,6 +158,10 @@ TEST(HardMessages, AQuadLightOfHugeEdgesRendersAsItsSmallCopy) {
   }
   EXPECT_GT(mean[0], 0.01);
   EXPECT_NEAR(mean[1], mean[0], 1e-4 * mean[0]);
+  // At 1e11 the floor's triangles are 4e13 long: Embree would miss most hits, so the
+  // scene is refused rather than rendered black.
+  const std::string larger = quote(dir.write("s.json", scaledQuadScene(1e11)).string());
+  expectBadInput(runCli("check " + larger), "beyond 1e+13", "4e13 triangles");
 }
 
 }  // namespace
