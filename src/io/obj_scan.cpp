@@ -83,14 +83,19 @@ ObjScan scanObj(const std::string& path, const LoadLimits& limits) {
     std::string tag, field;
     fields >> tag;
     if (tag == "mtllib") {
-      // tinyobjloader opens each name beside the OBJ; those it finds are inputs.
+      // tinyobjloader opens each name beside the OBJ. One it cannot find would leave
+      // the model grey and unlit without a word: refused, saying where it looked.
       while (fields >> field) {
         const fs::path p = fs::path(field).is_relative() ? dir / field : fs::path(field);
         std::error_code ec;
-        if (fs::is_regular_file(p, ec)) {
-          checkMtl(p.string());
-          scan.mtlFiles.push_back(p.lexically_normal().string());
+        if (!fs::is_regular_file(p, ec)) {
+          const fs::path folder = fs::absolute(dir.empty() ? fs::path(".") : dir, ec).lexically_normal();
+          throw ObjError(fmt::format("OBJ file {}:{}: mtllib '{}' not found (looked for {}; names resolve "
+                                     "against the OBJ's folder {})", path, number, field,
+                                     p.lexically_normal().string(), folder.string()));
         }
+        checkMtl(p.string());
+        scan.mtlFiles.push_back(p.lexically_normal().string());
       }
       continue;
     }

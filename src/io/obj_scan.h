@@ -18,8 +18,8 @@ struct ObjScan {
 };
 
 // Throws ObjError with the file and line for a v, vn or vt field that is not a finite
-// float (or a texture coordinate beyond kMaxTexCoord), an MTL file too large to be
-// one, an MTL value out of its range, or a file whose load would exceed `limits`.
+// float (or a texture coordinate beyond kMaxTexCoord), an mtllib not found, an MTL
+// file too large to be one, an MTL value out of its range, or a file whose load would exceed `limits`.
 ObjScan scanObj(const std::string& path, const LoadLimits& limits);
 
 // The largest MTL file read: material libraries are text of a few kilobytes.

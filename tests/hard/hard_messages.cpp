@@ -117,13 +117,20 @@ TEST(HardMessages, MtlAndObjNumbersOutOfRangeAreRefusedWithTheirLine) {
                  "texture coordinate 3e38 is beyond", "vt 3e38");
 }
 
+TEST(HardMessages, AnMtllibNotFoundIsRefusedSayingWhereItLooked) {
+  ScratchDir dir;
+  const std::string scene = objScene(dir, "");  // names m.mtl, which is not there
+  expectBadInput(runCli("check " + scene), "mtllib 'm.mtl' not found (looked for " + (dir / "m.mtl").string(),
+                 "missing MTL");
+}
+
 TEST(HardMessages, SideFilesTooBigForWhatTheyClaimAreRefusedBeforeReading) {
   ScratchDir dir;
   const std::string scene = objScene(dir, "", "newmtl a\nKd 1 1 1\n");
   // A 6 GB sparse MTL: its size alone refuses it.
   ASSERT_EQ(::truncate((dir / "m.mtl").c_str(), 6ll << 30), 0);
   expectBadInput(runCli("check " + scene), "is not a material library", "6 GB MTL");
-  fs::remove(dir / "m.mtl");
+  dir.write("m.mtl", "newmtl a\nKd 1 1 1\n");
   // 40k faces against a 1 MB budget: refused with the load estimate.
   std::string faces;
   for (int i = 0; i < 40000; ++i) faces += "f 1 2 3\n";
