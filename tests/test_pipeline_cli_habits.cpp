@@ -53,6 +53,7 @@ TEST(CliHabits, CheckValidatesWithoutRendering) {
   const auto ok = runCli("check " + quote(kScenes + "showcase.json") + " " + quote(kScenes + "soft_shadows.json"));
   EXPECT_EQ(ok.exitCode, 0) << ok.err;
   EXPECT_NE(ok.out.find("showcase.json: ok (classic, 3 meshes with 16260 triangles"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("  bounds [-6, 0, -9] .. [6, 3.2, 5] (size 12 x 3.2 x 14)"), std::string::npos) << ok.out;
   const auto bad = runCli("check " + quote(kScenes + "showcase.json") + " -D render.max_depth=-1");
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("render.max_depth"), std::string::npos) << bad.err;

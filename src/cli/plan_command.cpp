@@ -6,7 +6,9 @@
 #include "plan/render_frame.h"
 #include "plan/transport_model.h"
 #include "io/scene_loader.h"
+#include <fmt/format.h>
 #include <algorithm>
+#include <limits>
 #include <iostream>
 
 namespace penumbra {
@@ -86,6 +88,16 @@ int CheckCommand::run() {
     std::cout << path << ": ok (" << transportOf(s).name() << ", "
               << s.meshes.size() << " meshes with " << triangles << " triangles, " << s.spheres.size()
               << " spheres, " << s.lights.size() << " lights, " << s.materials.size() << " materials)\n";
+    // Where the geometry is: what a camera must frame (a model's units are its own).
+    Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const TriangleMesh& m : s.meshes) {
+      for (const Vec3& p : m.positions) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+    }
+    for (const Sphere& sp : s.spheres) { lo = glm::min(lo, sp.center - sp.radius); hi = glm::max(hi, sp.center + sp.radius); }
+    if (lo.x <= hi.x) {
+      std::cout << "  bounds " << fmt::format("[{:g}, {:g}, {:g}] .. [{:g}, {:g}, {:g}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z)
+                << " (size " << fmt::format("{:g} x {:g} x {:g}", hi.x - lo.x, hi.y - lo.y, hi.z - lo.z) << ")\n";
+    }
   }
   return 0;
 }
