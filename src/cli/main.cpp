@@ -52,37 +52,6 @@ uint64_t parseSeed(const std::string& arg) {
   return seed;
 }
 
-// Well-formed UTF-8 (no overlongs, surrogates or code points past U+10FFFF): the
-// stats and image metadata are JSON and UTF-8, so a bad byte would fail the write
-// after the render. Returns the offset of the first bad byte, or npos.
-size_t firstBadUtf8(const std::string& s) {
-  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
-  for (size_t i = 0; i < s.size();) {
-    const unsigned c = p[i];
-    const size_t n = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : 4;
-    if (n == 4 || i + n >= s.size()) return i;  // a stray continuation byte, or cut short
-    unsigned cp = n == 0 ? c : n == 1 ? (c & 0x1F) : n == 2 ? (c & 0x0F) : (c & 0x07);
-    for (size_t k = 1; k <= n; ++k) {
-      if ((p[i + k] & 0xC0) != 0x80) return i;
-      cp = (cp << 6) | (p[i + k] & 0x3F);
-    }
-    const unsigned minimum[] = {0, 0x80, 0x800, 0x10000};
-    if (cp < minimum[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return i;
-    i += n + 1;
-  }
-  return std::string::npos;
-}
-
-void checkOverrides(const std::vector<std::string>& overrides) {
-  for (const std::string& o : overrides) {
-    const size_t bad = firstBadUtf8(o);
-    if (bad != std::string::npos) {
-      throw InputError("--set: argument is not valid UTF-8 (byte " + std::to_string(bad) + " of '" +
-                       o.substr(0, bad) + "...')");
-    }
-  }
-}
-
 // An option another command has: say which, so a habit from one command is not a
 // dead end in the next (" (--threads is an option of render, sweep and batch)").
 std::string otherCommandsHint(const CLI::App& app, const CLI::App& current, const std::string& option) {
@@ -237,7 +206,6 @@ int main(int argc, char** argv) {
       if (!tracePixelArg.empty() && (ext == ".png" || ext == ".exr")) {
         throw InputError("--trace-pixel writes JSON, not an image: give -o a .json path (got '" + req.outputPath + "')");
       }
-      checkOverrides(req.overrides);
       req.plan = planArgs.passes();
       if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
       if (!maxMemoryArg.empty()) req.maxMemoryBytes = parseMemorySize(maxMemoryArg);

@@ -49,6 +49,17 @@ TEST(HardMessages, ContradictingGateFlagsAreRefusedByEveryCommand) {
   EXPECT_NE(plan.out.find("photons.gate is off"), std::string::npos) << plan.out;
 }
 
+TEST(HardMessages, EveryCommandRefusesASetValueThatIsNotUtf8) {
+  ScratchDir dir;
+  const std::string scene = quote(dir.write("s.json", kFloorScene).string());
+  const std::string out = quote((dir / "o").string());
+  const std::string latin1 = " --set 'name=\"caf\xe9\"'";  // Latin-1, not UTF-8
+  for (const std::string& cmd : {"render " + scene + " -q -o " + out + ".png", "plan " + scene, "check " + scene,
+                                 "sweep " + scene + " --spp 1 -q -o " + out, "batch " + scene + " -q -o " + out}) {
+    expectBadInput(runCli(cmd + latin1), "not valid UTF-8", cmd);
+  }
+}
+
 TEST(HardMessages, EachOptionsErrorNamesThatOption) {
   ScratchDir dir;
   const std::string scene = quote(dir.write("s.json", kFloorScene).string());
