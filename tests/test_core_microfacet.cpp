@@ -11,15 +11,6 @@
 namespace penumbra {
 namespace {
 
-Bsdf metalRough(const Color& base, float metallic, float alpha) {
-  Bsdf b;
-  b.type = BsdfType::MetalRough;
-  b.diffuse = base;
-  b.metallic = metallic;
-  b.roughness = alpha;
-  return b;
-}
-
 // Integral over the hemisphere of g(direction) d omega, midpoint rule in (theta, phi).
 template <class G>
 double hemisphere(G&& g, int thetaSteps = 2000, int phiSteps = 400) {

@@ -109,15 +109,6 @@ Bsdf classic(float pR, float pT, HemisphereSampling bounce) {
   return makeBsdf(m, ShadingModel::Classic, bounce);
 }
 
-Bsdf metalRough(const Color& base, float metallic, float alpha) {
-  Bsdf b;
-  b.type = BsdfType::MetalRough;
-  b.diffuse = base;
-  b.metallic = metallic;
-  b.roughness = alpha;
-  return b;
-}
-
 std::vector<BsdfCase> bsdfCases() {
   const Bsdf lambert = physical(opaque(Color(0.8f)));
   const Bsdf plastic = physical(opaque(Color(0.5f, 0.4f, 0.3f), Color(0.4f), 20.0f));

@@ -59,7 +59,7 @@ bool isJobsFile(const std::string& path) {
 int BatchCommand::run() {
   Options& o = *o_;
   BatchRequest req;
-  o.plan.passes();  // contradicting options: refused before any scene is read
+  const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before any scene is read
   if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
   const bool jobsFile = o.inputs.size() == 1 && isJobsFile(o.inputs[0]);
   if (jobsFile) {
@@ -91,7 +91,7 @@ int BatchCommand::run() {
   req.force = o.force;
   req.keepGoing = o.keepGoing;
   req.mapCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
-  req.plan = o.plan.passes();
+  req.plan = passes;
   std::optional<ItemProgress> progress;
   if (!o.quiet) {
     progress.emplace();

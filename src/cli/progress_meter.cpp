@@ -9,6 +9,10 @@
 
 namespace penumbra {
 
+// How often the ticker looks at the counters: often enough that a line follows a
+// phase as it moves, rarely enough to cost nothing.
+constexpr std::chrono::milliseconds kTickInterval{100};
+
 // Where and when progress shows: PENUMBRA_PROGRESS_AFTER overrides the 0.5 s a
 // phase runs before it shows (tests set 0 to see every phase of a small render).
 ProgressDisplay progressDisplay() {
@@ -124,7 +128,7 @@ void ProgressMeter::startTicker() {
   ticker_ = std::thread([this] {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!stop_) {
-      wake_.wait_for(lock, std::chrono::milliseconds(100));
+      wake_.wait_for(lock, kTickInterval);
       if (stop_) break;
       lock.unlock();
       poll();

@@ -48,7 +48,7 @@ class ProgressMeter final : public ProgressPhases {
   void setContext(std::string context);
   void poll();    // draws the current phase if it is old enough (and, in a log, due)
   void finish();  // ends the phase and the terminal's line
-  // Polls every 100 ms on a thread of its own until finish() or destruction.
+  // Polls on a thread of its own (kTickInterval) until finish() or destruction.
   void startTicker();
 
   // Every phase ended so far and its counter then, shown or not (tests: the

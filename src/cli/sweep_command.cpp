@@ -54,7 +54,7 @@ int SweepCommand::run() {
   Options& o = *o_;
   // The knobs' keys depend on the model: load the scene once with the sweep's --set.
   const uint64_t maxMemory = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
-  o.plan.passes();  // contradicting options: refused before the scene is read
+  const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before the scene is read
   if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
   const Scene base = loadScene(o.scene, o.overrides, loadLimits(maxMemory));
   std::vector<SweepKnob> knobs;
@@ -74,7 +74,7 @@ int SweepCommand::run() {
   req.threads = o.threads;
   req.force = o.force;
   req.compareGate = !o.noGateCompare;
-  req.plan = o.plan.passes();
+  req.plan = passes;
   req.maxMemoryBytes = maxMemory;
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
   req.plotScript = std::filesystem::exists(script) ? script.string() : "";

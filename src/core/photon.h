@@ -99,8 +99,8 @@ struct ShadowPhoton {
 // the estimators average >= 50 photons, so the <= 0.4% rounding of each photon's
 // power is far below their noise (~1/sqrt(k), 14% at k = 50). The bound is relative
 // to the photon's largest channel, and photons of one colour round alike, so a weak
-// channel beside a strong one can be biased by up to 2^-8 of the strong one (the red
-// box's green: +3% of itself, 1e-5 of its red). Read the power once per photon with
+// channel beside a strong one can be biased by up to 2^-8 of the strong one, which is
+// large relative to the weak channel but small in the pixel. Read the power once per photon with
 // power.color(); emitters compute in float and pack only at the store.
 struct IndirectPhoton {
   Vec3 position;

@@ -17,11 +17,11 @@ enum class ReachRule : uint8_t {
   Specular,    // physical caustic map: stored after a specular bounce (delta lobe)
 };
 
-// Pilot photons per light: 1,024 rays each. A light none of whose pilots reaches
-// gets no photons; then the share of its photons that could have been stored is
-// below 3/1024 (0.3%) with 95% confidence (the rule of three): the flux dropped is
-// below 0.3% of that light's emitted power (of the map's flux it can be more, when
-// that light is the map's only source).
+// Pilot photons per light. A light none of whose pilots reaches gets no photons;
+// by the rule of three the share of its photons that could have been stored is then
+// below 3 / kReachPilots with 95% confidence, so the flux dropped is at most that
+// share of the light's emitted power (of the map's flux it can be more, when that
+// light is the map's only source).
 constexpr uint32_t kReachPilots = 1024;
 
 // Per light, the fraction of `pilots` photons (their own random stream, seeded by the

@@ -34,6 +34,16 @@ inline Material glass(float ior, Color tint = Color(1.0f)) {
   return m;
 }
 
+// glTF's metallic-roughness BSDF with GGX width `alpha` (core/microfacet.h).
+inline Bsdf metalRough(const Color& base, float metallic, float alpha) {
+  Bsdf b;
+  b.type = BsdfType::MetalRough;
+  b.diffuse = base;
+  b.metallic = metallic;
+  b.roughness = alpha;
+  return b;
+}
+
 inline Bsdf physical(const Material& m) { return makeBsdf(m, ShadingModel::Physical, HemisphereSampling::Cosine); }
 
 // A tilted frame, so a bug that assumes n = +z shows up.
