@@ -3,7 +3,7 @@
 // build, layered EXRs hold every view, reruns skip up-to-date jobs, a failing job
 // does not stop the batch, and shards split jobs stably.
 #include "cli/batch_jobs.h"
-#include "cli/batch_run.h"
+#include "plan/batch_run.h"
 #include "plan/pipeline.h"
 #include "core/error.h"
 #include "io/image_compare.h"

@@ -4,7 +4,7 @@
 // (0 ok, 2 bad input with one line on stderr).
 #include "plan/pipeline.h"
 #include "cli/batch_jobs.h"
-#include "cli/batch_run.h"
+#include "plan/batch_run.h"
 #include "cli/progress_meter.h"
 #include "cli/sweep_run.h"
 #include "core/error.h"
@@ -210,7 +210,7 @@ TEST(Determinism, BatchWithProgressOnTwoThreads) {
   req.jobs = jobsForScenes({scene.string()}, dir.path().string(), {}, {"beauty", "depth"}, ".exr");
   req.threads = 2;
   req.force = true;
-  req.progress = [&](const std::string& line) { progress.meter->setContext(line); };
+  req.progress = [&](const BatchProgress& p) { progress.meter->setContext(p.job + " " + p.phase); };
   req.phases = &*progress.meter;
   const BatchOutcome out = runBatch(req);
   progress.meter->finish();

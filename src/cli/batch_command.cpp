@@ -1,11 +1,16 @@
 // Options of `penumbra batch`, the shard selection, the progress line and the summary.
 #include "cli/batch_command.h"
-#include "cli/batch_run.h"
+#include "cli/batch_jobs.h"
+#include "cli/progress_line.h"
+#include "plan/batch_run.h"
 #include "cli/plan_command.h"
 #include "cli/progress_meter.h"
 #include "plan/memory_limit.h"
+#include "plan/resource_estimate.h"
+#include "io/scene_loader.h"
 #include "cli/sweep_spec.h"
 #include "core/error.h"
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 #include <filesystem>
@@ -49,6 +54,22 @@ BatchCommand::~BatchCommand() = default;
 bool BatchCommand::selected() const { return o_->command->parsed(); }
 
 namespace {
+
+// The table printed after a batch: one line per job and the totals.
+std::string batchSummary(const BatchOutcome& o) {
+  std::string s = fmt::format("{:<24} {:>8}  {:<14} {:<12} {}\n", "job", "time", "reused", "status", "output");
+  for (const BatchJobResult& j : o.jobs) {
+    const std::string status = j.status.size() > 60 ? j.status.substr(0, 57) + "..." : j.status;
+    s += fmt::format("{:<24} {:>7.2f}s  {:<14} {:<12} {}\n", j.name, j.seconds, j.reused.empty() ? "-" : j.reused,
+                     status, j.outputs.empty() ? "" : j.outputs.front());
+  }
+  s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s; scenes built {}, photon maps built {} "
+                   "(reused {} times, {} evicted, cache peak {:.1f} MB)\n",
+                   o.jobs.size(), o.rendered, o.upToDate, o.failed, o.seconds, o.sceneBuilds, o.photonBuilds,
+                   o.photonReuses, o.evictions, o.peakCacheBytes / 1e6);
+  return s;
+}
+
 bool isJobsFile(const std::string& path) {
   std::ifstream in(path);
   const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
@@ -78,7 +99,9 @@ int BatchCommand::run() {
   if (!shardArg.empty()) {
     const auto [index, count] = parseShard(shardArg);
     std::vector<double> costs;
-    for (const BatchJob& j : req.jobs) costs.push_back(jobCost(j, loadLimits(req.maxMemoryBytes)));
+    for (const BatchJob& j : req.jobs) {
+      costs.push_back(shardCostNs(loadScene(j.scene, j.overrides, loadLimits(req.maxMemoryBytes)), j.outputs.size()));
+    }
     std::vector<BatchJob> mine;
     for (size_t j : shardJobs(costs, index, count)) mine.push_back(req.jobs[j]);
     if (!o.listShard.empty()) {
@@ -96,7 +119,9 @@ int BatchCommand::run() {
   if (!o.quiet) {
     progress.emplace();
     req.phases = progress->phases();
-    req.progress = [&](const std::string& line) { progress->line(line); };
+    req.progress = [&](const BatchProgress& p) {
+      progress->line(progressLine("batch", p.done, p.total, p.job, p.phase, p.seconds, p.done, p.total - p.done));
+    };
   }
   const BatchOutcome out = runBatch(req);
   if (progress) progress->finish();

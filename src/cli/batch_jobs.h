@@ -1,25 +1,12 @@
 // penumbra batch's jobs: a jobs file (or a list of scenes) expanded into plain
-// jobs, each a scene, its --set overrides, its views and where each view goes,
-// and the deterministic split of a batch into shards.
+// jobs (plan/batch_run.h), and the deterministic split of a batch into shards.
 #pragma once
+#include "plan/batch_run.h"
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace penumbra {
-
-struct BatchOutput {
-  std::string view;  // "beauty", "depth", ...; "" = the scene's render.aov
-  std::string path;  // an image file; several views may share one layered .exr
-};
-
-struct BatchJob {
-  std::string name;                    // "orbit_3", "fig03_shadows": unique in the batch
-  std::string scene;                   // resolved path
-  std::vector<std::string> overrides;  // the batch's "set", then the job's, then the orbit's
-  std::vector<BatchOutput> outputs;    // one per view
-  std::string where;                   // "jobs[2] (orbit 3)": names the job in messages
-};
 
 // A jobs file:
 //   {"set": [...], "jobs": [{"scene": "a.json", "set": [...], "views": ["beauty", "depth"],

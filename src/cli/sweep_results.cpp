@@ -5,20 +5,32 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <string_view>
+#include <type_traits>
+#include <variant>
 
 namespace penumbra {
 namespace {
 
-// Columns after the run id and the knobs, in order; csvLine and parseRow agree on it.
-const std::vector<std::string>& fixedColumns() {
-  static const std::vector<std::string> cols = {
-      "reference", "load_s", "bvh_s", "emit_s", "maps_s", "precompute_s", "render_s", "total_s",
-      "spent_s", "camera_rays", "shadow_rays", "reflection_rays", "refraction_rays", "gate_queries",
-      "shadow_rays_avoided", "gather_queries", "photons_emitted", "photons_stored", "rmse", "rel_mse",
-      "psnr", "worst1pct_rmse", "gate", "ungated_render_s", "ungated_shadow_rays", "gate_rmse",
-      "reused", "image"};
-  return cols;
-}
+// Every column after the run id and the knobs, once: its name and the row's field,
+// which csvLine writes and parseRow reads; times are "_s" columns in seconds.
+using Field = std::variant<bool SweepRow::*, double SweepRow::*, uint64_t SweepRow::*, std::string SweepRow::*>;
+struct Column {
+  const char* name;
+  Field field;
+};
+const Column kColumns[] = {
+    {"reference", &SweepRow::reference}, {"load_s", &SweepRow::load}, {"bvh_s", &SweepRow::bvh},
+    {"emit_s", &SweepRow::emit}, {"maps_s", &SweepRow::maps}, {"precompute_s", &SweepRow::precompute},
+    {"render_s", &SweepRow::render}, {"total_s", &SweepRow::total}, {"spent_s", &SweepRow::spent},
+    {"camera_rays", &SweepRow::cameraRays}, {"shadow_rays", &SweepRow::shadowRays},
+    {"reflection_rays", &SweepRow::reflectionRays}, {"refraction_rays", &SweepRow::refractionRays},
+    {"gate_queries", &SweepRow::gateQueries}, {"shadow_rays_avoided", &SweepRow::shadowRaysAvoided},
+    {"gather_queries", &SweepRow::gatherQueries}, {"photons_emitted", &SweepRow::photonsEmitted},
+    {"photons_stored", &SweepRow::photonsStored}, {"rmse", &SweepRow::rmse}, {"rel_mse", &SweepRow::relMse},
+    {"psnr", &SweepRow::psnr}, {"worst1pct_rmse", &SweepRow::worstRmse}, {"gate", &SweepRow::gate},
+    {"ungated_render_s", &SweepRow::ungatedRender}, {"ungated_shadow_rays", &SweepRow::ungatedShadowRays},
+    {"gate_rmse", &SweepRow::gateRmse}, {"reused", &SweepRow::reused}, {"image", &SweepRow::image}};
 
 std::vector<std::string> splitCsv(const std::string& line) {
   std::vector<std::string> out;
@@ -35,27 +47,39 @@ std::string joinCsv(const std::vector<std::string>& cells) {
   return line;
 }
 
-std::string secs(double s) { return fmt::format("{:.4f}", s); }
-std::string sci(double v) { return fmt::format("{:.6g}", v); }
+std::string cellOf(const SweepRow& r, const Column& c) {
+  const std::string_view name(c.name);
+  const bool seconds = name.size() > 2 && name.substr(name.size() - 2) == "_s";
+  return std::visit(
+      [&](auto field) -> std::string {
+        const auto& v = r.*field;
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, bool>) return v ? "1" : "0";
+        else if constexpr (std::is_same_v<T, double>) return fmt::format(seconds ? "{:.4f}" : "{:.6g}", v);
+        else if constexpr (std::is_same_v<T, uint64_t>) return std::to_string(v);
+        else return v;
+      },
+      c.field);
+}
 
-SweepRow parseRow(const std::vector<std::string>& c, size_t knobs) {
+void readCell(SweepRow& r, const Column& c, const std::string& cell) {
+  std::visit(
+      [&](auto field) {
+        auto& v = r.*field;
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, bool>) v = cell == "1";
+        else if constexpr (std::is_same_v<T, double>) v = std::stod(cell);
+        else if constexpr (std::is_same_v<T, uint64_t>) v = std::stoull(cell);
+        else v = cell;
+      },
+      c.field);
+}
+
+SweepRow parseRow(const std::vector<std::string>& cells, size_t knobs) {
   SweepRow r;
-  size_t i = 0;
-  r.id = c[i++];
-  for (size_t k = 0; k < knobs; ++k) r.values.push_back(c[i++]);
-  auto d = [&] { return std::stod(c[i++]); };
-  auto u = [&] { return static_cast<uint64_t>(std::stoull(c[i++])); };
-  r.reference = c[i++] == "1";
-  r.load = d(); r.bvh = d(); r.emit = d(); r.maps = d(); r.precompute = d(); r.render = d();
-  r.total = d(); r.spent = d();
-  r.cameraRays = u(); r.shadowRays = u(); r.reflectionRays = u(); r.refractionRays = u();
-  r.gateQueries = u(); r.shadowRaysAvoided = u(); r.gatherQueries = u();
-  r.photonsEmitted = u(); r.photonsStored = u();
-  r.rmse = d(); r.relMse = d(); r.psnr = d(); r.worstRmse = d();
-  r.gate = c[i++] == "1";
-  r.ungatedRender = d(); r.ungatedShadowRays = u(); r.gateRmse = d();
-  r.reused = c[i++];
-  r.image = c[i++];
+  r.id = cells[0];
+  r.values.assign(cells.begin() + 1, cells.begin() + 1 + long(knobs));
+  for (size_t i = 0; i < std::size(kColumns); ++i) readCell(r, kColumns[i], cells[1 + knobs + i]);
   return r;
 }
 
@@ -92,26 +116,14 @@ void fillCounts(SweepRow& row, const RenderStats& st) {
 std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs) {
   std::vector<std::string> h = {"run"};
   for (const SweepKnob& k : knobs) h.push_back(k.name);
-  for (const std::string& c : fixedColumns()) h.push_back(c);
+  for (const Column& c : kColumns) h.push_back(c.name);
   return h;
 }
 
 std::string csvLine(const SweepRow& r) {
   std::vector<std::string> c = {r.id};
-  for (const std::string& v : r.values) c.push_back(v);
-  for (std::string v : {r.reference ? "1" : "0"}) c.push_back(v);
-  for (double t : {r.load, r.bvh, r.emit, r.maps, r.precompute, r.render, r.total, r.spent}) c.push_back(secs(t));
-  for (uint64_t n : {r.cameraRays, r.shadowRays, r.reflectionRays, r.refractionRays, r.gateQueries,
-                     r.shadowRaysAvoided, r.gatherQueries, r.photonsEmitted, r.photonsStored}) {
-    c.push_back(std::to_string(n));
-  }
-  for (double e : {r.rmse, r.relMse, r.psnr, r.worstRmse}) c.push_back(sci(e));
-  c.push_back(r.gate ? "1" : "0");
-  c.push_back(secs(r.ungatedRender));
-  c.push_back(std::to_string(r.ungatedShadowRays));
-  c.push_back(sci(r.gateRmse));
-  c.push_back(r.reused);
-  c.push_back(r.image);
+  c.insert(c.end(), r.values.begin(), r.values.end());
+  for (const Column& col : kColumns) c.push_back(cellOf(r, col));
   return joinCsv(c);
 }
 

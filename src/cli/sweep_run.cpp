@@ -60,6 +60,10 @@ class Sweep {
     }
     writeCsv();
     for (const std::vector<size_t>& group : photonGroups()) renderGroup(group);
+    totals_.emissions = session_.emissions();
+    totals_.prefixCuts = session_.prefixCuts();
+    totals_.mapBuilds = session_.photonBuilds();
+    totals_.bvhBuilds = session_.sceneBuilds();
     totals_.wallSeconds = clock_.seconds();
     SweepOutcome out;
     out.rows = rows_;
@@ -143,74 +147,31 @@ class Sweep {
   // all before the first photon.
   void prepare() {
     for (PlannedRun& p : runs_) {
-      if (p.done) continue;
-      const size_t builds = session_.sceneBuilds();
-      session_.prepare(p.job);
-      if (session_.sceneBuilds() > builds) {
-        ++totals_.bvhBuilds;
-        bvhSeconds_[p.job.keys.geometry] = session_.assets(p.job).bvhSeconds;
-      }
+      if (!p.done) session_.prepare(p.job);
     }
   }
 
-  void renderGroup(const std::vector<size_t>& group) {
-    const PlannedJob& lead = runs_[group[0]].job;
-    const double bvh = bvhSeconds_[lead.keys.geometry];
-    // One emission at each map's largest budget, of every map any run reads.
-    MapCounts top;
-    std::vector<uint64_t> smaller;
-    std::vector<MapCounts> budgets;
-    PhotonNeeds needs;
-    for (size_t i : group) {
-      const MapCounts b = planBudgets(runs_[i].job.plan);
-      needs |= photonNeeds(runs_[i].job.plan);
-      top.maxWith(b);
-      for (uint64_t n : b.values) smaller.push_back(n);
-      if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
-    }
+  // The group's budgets from the largest, the reference's run first within its own.
+  void renderGroup(std::vector<size_t> group) {
+    std::stable_partition(group.begin(), group.end(), [&](size_t i) { return i == referenceRun_; });
+    std::vector<const PlannedJob*> jobs;
+    for (size_t i : group) jobs.push_back(&runs_[i].job);
+    const double bvh = session_.assets(*jobs.front()).bvhSeconds;
     status_ = "photons";
     showProgress();
-    const Scene& scene = lead.scene;
-    const TraceScene& tracer = *session_.assets(lead).tracer;
-    Emission emission = [&] {
-      const PhaseGuard phase(req_.phases);
-      return emitPhotonsFor(scene, tracer, needs, top, 0, smaller, beginPhase(req_.phases, "photons"));
-    }();
-    ++totals_.emissions;
-    // The reference's budget first, then the largest to the smallest.
-    std::sort(budgets.begin(), budgets.end(),
-              [](const MapCounts& a, const MapCounts& b) { return a.total() > b.total(); });
-    bool emissionCharged = false;
-    for (const MapCounts& b : budgets) {
-      PhotonStage stage;
-      status_ = "maps";
-      showProgress();
-      Stopwatch build;
-      const PhaseGuard phase(req_.phases);
-      if (!buildStage(emission, b, false, stage, beginPhase(req_.phases, "maps"))) {
-        // Not a prefix of this emission (a light split that does not nest): emit it alone.
-        Emission own = emitPhotonsFor(lead.scene, tracer, needs, b, 0);
-        ++totals_.emissions;
-        buildStage(own, own.budgets, true, stage);
-      } else if (stage.fromPrefix) {
-        ++totals_.prefixCuts;
-      }
-      ++totals_.mapBuilds;
-      totals_.photonSeconds += stage.emitSeconds + stage.buildSeconds;
-      double firstSpent = build.seconds() + (emissionCharged ? 0.0 : emission.seconds);
-      emissionCharged = true;
-      std::vector<size_t> order;
-      for (size_t i : group) if (planBudgets(runs_[i].job.plan) == b) order.push_back(i);
-      std::stable_partition(order.begin(), order.end(), [&](size_t i) { return i == referenceRun_; });
-      for (size_t i : order) {
+    session_.photonsByBudget(jobs, [&](BudgetStage& b) {
+      totals_.photonSeconds += b.stage.emitSeconds + b.stage.buildSeconds;
+      double spent = b.seconds;
+      for (const PlannedJob* j : b.jobs) {
+        const PlannedRun& run = *std::find_if(runs_.begin(), runs_.end(), [&](const PlannedRun& r) { return &r.job == j; });
         Reuse reuse;
-        reuse.bvh = !usedGeometry_.insert(runs_[i].job.keys.geometry).second;
-        reuse.maps = firstSpent == 0.0;
-        reuse.prefixOf = stage.fromPrefix ? emission.budgets.total() : 0;
-        renderRun(runs_[i], stage, bvh, firstSpent, reuse);
-        firstSpent = 0.0;
+        reuse.bvh = !usedGeometry_.insert(run.job.keys.geometry).second;
+        reuse.maps = j != b.jobs.front();
+        reuse.prefixOf = b.prefixOf;
+        renderRun(run, b.stage, bvh, spent, reuse);
+        spent = 0.0;
       }
-    }
+    });
   }
 
   // The run's frame, or with gate = false the same run with every shadow ray cast.
@@ -304,7 +265,6 @@ class Sweep {
   const SweepSpec& spec_;
   RenderSession& session_;
   std::vector<PlannedRun> runs_;
-  std::map<std::string, double> bvhSeconds_;
   std::set<std::string> usedGeometry_;  // geometry keys an earlier run rendered with
   std::vector<SweepRow> rows_;
   SweepTotals totals_;

@@ -140,6 +140,7 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
   const PhaseGuard phases(options_.progress);
   Emission e = emitPhotonsFor(scene, *a.tracer, needs, key.budgets, 0, {}, beginPhase(options_.progress, "photons"));
   buildStage(e, e.budgets, true, *stage, beginPhase(options_.progress, "maps"));
+  ++emissions_;
   ++photonBuilds_;
   stages_.push_front({key, std::move(stage)});
   // Counted afresh: a stage grows after it is cached (its frames add lookup caches).
@@ -153,6 +154,55 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
   }
   peakStageBytes_ = std::max(peakStageBytes_, cached);
   return *stages_.front().stage;
+}
+
+void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
+                                    const std::function<void(BudgetStage&)>& visit) {
+  const PlannedJob& lead = *jobs.front();
+  PhotonNeeds needs;
+  MapCounts top;
+  std::vector<uint64_t> smaller;
+  std::vector<MapCounts> budgets;
+  for (const PlannedJob* j : jobs) {
+    if (!j->prepared) throw std::logic_error("photons of a job not prepared");
+    if (!(j->keys == lead.keys)) throw std::logic_error("one emission for jobs that differ");
+    const MapCounts b = planBudgets(j->plan);
+    needs |= photonNeeds(j->plan);
+    top.maxWith(b);
+    for (uint64_t n : b.values) smaller.push_back(n);
+    if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
+  }
+  const TraceScene& tracer = *assets(lead).tracer;
+  Emission emission = [&] {
+    const PhaseGuard phase(options_.progress);
+    return emitPhotonsFor(lead.scene, tracer, needs, top, 0, smaller, beginPhase(options_.progress, "photons"));
+  }();
+  ++emissions_;
+  std::stable_sort(budgets.begin(), budgets.end(),
+                   [](const MapCounts& a, const MapCounts& b) { return a.total() > b.total(); });
+  double shared = emission.seconds;
+  for (const MapCounts& b : budgets) {
+    BudgetStage s;
+    Stopwatch build;
+    {
+      const PhaseGuard phase(options_.progress);
+      if (!buildStage(emission, b, false, s.stage, beginPhase(options_.progress, "maps"))) {
+        Emission own = emitPhotonsFor(lead.scene, tracer, needs, b, 0);
+        ++emissions_;
+        buildStage(own, own.budgets, true, s.stage);
+      } else if (s.stage.fromPrefix) {
+        ++prefixCuts_;
+      }
+    }
+    ++photonBuilds_;
+    s.seconds = build.seconds() + shared;
+    shared = 0.0;
+    s.prefixOf = s.stage.fromPrefix ? emission.budgets.total() : 0;
+    for (const PlannedJob* j : jobs) {
+      if (planBudgets(j->plan) == b) s.jobs.push_back(j);
+    }
+    visit(s);
+  }
 }
 
 RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {

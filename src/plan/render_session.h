@@ -62,6 +62,16 @@ struct PlannedJob {
   bool prepared = false;  // split by reach and confirmed (RenderSession::prepare)
 };
 
+// One photon budget's maps and the jobs that read them (RenderSession::photonsByBudget).
+struct BudgetStage {
+  PhotonStage stage;
+  std::vector<const PlannedJob*> jobs;  // in the order they were given
+  // What the maps cost before the first frame: their build, and for the first
+  // budget also the emission they share.
+  double seconds = 0.0;
+  uint64_t prefixOf = 0;  // > 0: cut out of an emission of this many photons
+};
+
 class RenderSession {
  public:
   explicit RenderSession(SessionOptions options);
@@ -88,12 +98,19 @@ class RenderSession {
   PhotonStage& photons(const std::vector<const PlannedJob*>& jobs, bool* reused = nullptr);
   PhotonStage& photons(const PlannedJob& job, bool* reused = nullptr) { return photons({&job}, reused); }
 
+  // The maps of jobs with equal keys that differ only in photon budgets (a sweep's
+  // runs): one emission at each map's largest budget, then each budget's maps cut
+  // from it as a prefix, the largest first; a budget that does not nest (a light
+  // split that differs) is emitted alone. `visit` gets each budget on this thread.
+  void photonsByBudget(const std::vector<const PlannedJob*>& jobs, const std::function<void(BudgetStage&)>& visit);
+
   // Every pass of one frame from `stage`, into an image (or the pixel's ray tree).
   RenderResult frame(const PlannedJob& job, PhotonStage& stage);
 
-
   size_t sceneBuilds() const { return sceneBuilds_; }
   size_t photonBuilds() const { return photonBuilds_; }
+  size_t emissions() const { return emissions_; }
+  size_t prefixCuts() const { return prefixCuts_; }
   size_t evictions() const { return evictions_; }
   uint64_t peakStageBytes() const { return peakStageBytes_; }
   const SessionOptions& options() const { return options_; }
@@ -117,7 +134,7 @@ class RenderSession {
   std::map<std::string, std::unique_ptr<Geometry>> geometry_;
   std::list<CachedStage> stages_;  // most recently used first
   uint64_t peakStageBytes_ = 0;
-  size_t sceneBuilds_ = 0, photonBuilds_ = 0, evictions_ = 0;
+  size_t sceneBuilds_ = 0, photonBuilds_ = 0, evictions_ = 0, emissions_ = 0, prefixCuts_ = 0;
   size_t stdinJobs_ = 0;
 };
 

@@ -1,14 +1,11 @@
 // The batch loop: plan and admit every job, then render each through the render
 // session, which shares scenes and photon stages between jobs; a job's views are
 // rendered from the same maps.
-#include "cli/batch_run.h"
-#include "cli/progress_line.h"
-#include "plan/cost_model.h"
+#include "plan/batch_run.h"
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
 #include "core/error.h"
 #include "io/image_io.h"
-#include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <filesystem>
 #include <map>
@@ -22,44 +19,12 @@ struct PreparedJob {
   const BatchJob* job = nullptr;
   std::vector<PlannedJob> views;  // one per output, planned and admitted
   std::vector<std::string> inputs;
+  std::vector<std::string> outputs;  // each file once (views may share a layered EXR)
   std::string stamp;  // written into every output: a changed job makes them stale
   std::string error;  // validation failure (keepGoing)
 };
 
-std::string stampOf(const BatchJob& job) {
-  std::string s = job.scene;
-  for (const std::string& o : job.overrides) s += "\n" + o;
-  for (const BatchOutput& o : job.outputs) s += "\n" + o.view + ">" + o.path;
-  return fmt::format("{:016x}", std::hash<std::string>{}(s));
-}
-
-// Up to date: every output exists, carries this job's stamp and is newer than every input.
-bool upToDate(const PreparedJob& p, const std::vector<std::string>& extra) {
-  std::error_code ec;
-  for (const BatchOutput& o : p.job->outputs) {
-    if (!fs::exists(o.path, ec) || readImageAttribute(o.path, "penumbra:job") != p.stamp) return false;
-    const auto written = fs::last_write_time(o.path, ec);
-    for (const std::string& in : p.inputs) {
-      if (fs::exists(in, ec) && fs::last_write_time(in, ec) >= written) return false;
-    }
-    for (const std::string& in : extra) {
-      if (fs::exists(in, ec) && fs::last_write_time(in, ec) >= written) return false;
-    }
-  }
-  return true;
-}
-
-
 }  // namespace
-
-double jobCost(const BatchJob& job, const LoadLimits& limits) {
-  const Scene s = loadScene(job.scene, job.overrides, limits);
-  const double samples = double(s.camera.width) * s.camera.height * s.camera.spp * job.outputs.size();
-  const PhotonSettings& ps = s.photons;
-  // A camera sample and a photon cost about the same (plan/cost_model.h).
-  const double photons = double(ps.indirectPhotons + ps.globalPhotons + ps.causticPhotons + (ps.gate ? ps.shadowPhotons : 0));
-  return (samples + photons) * cost::kCameraSampleNs;
-}
 
 BatchOutcome runBatch(const BatchRequest& req) {
   Stopwatch clock;
@@ -73,10 +38,12 @@ BatchOutcome runBatch(const BatchRequest& req) {
     p.job = &req.jobs[j];
     try {
       std::vector<OutputPath> outputs;
+      std::vector<std::pair<std::string, std::string>> viewFiles;
       for (const BatchOutput& o : p.job->outputs) {
-        bool seen = false;
-        for (const OutputPath& q : outputs) seen = seen || q.path == o.path;
-        if (!seen) outputs.push_back({o.path, "output", true});
+        viewFiles.push_back({o.view, o.path});
+        if (std::find(p.outputs.begin(), p.outputs.end(), o.path) != p.outputs.end()) continue;
+        p.outputs.push_back(o.path);
+        outputs.push_back({o.path, "output", true});
       }
       if (p.job->outputs.empty()) throw InputError("the job writes no output");
       checkOutputs(outputs, req.extraInputs);  // the jobs file
@@ -85,7 +52,8 @@ BatchOutcome runBatch(const BatchRequest& req) {
         p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
       }
       p.inputs = p.views.front().inputs;
-      p.stamp = stampOf(*p.job);
+      p.inputs.insert(p.inputs.end(), req.extraInputs.begin(), req.extraInputs.end());
+      p.stamp = jobStamp(p.job->scene, p.job->overrides, viewFiles);
     } catch (const InputError& e) {
       p.error = e.what();
       p.views.clear();
@@ -96,15 +64,13 @@ BatchOutcome runBatch(const BatchRequest& req) {
   std::vector<JobFiles> jobFiles;
   for (const PreparedJob& p : prepared) {
     if (!p.error.empty()) continue;
-    JobFiles f{p.job->name, {}, p.inputs};
-    for (const BatchOutput& o : p.job->outputs) f.outputs.push_back(o.path);
-    jobFiles.push_back(std::move(f));
+    jobFiles.push_back({p.job->name, p.outputs, p.views.front().inputs});
   }
   checkJobsApart(jobFiles);
   // Up to date or not is decided once, before any job writes.
   std::vector<bool> current(prepared.size(), false);
   for (size_t j = 0; j < prepared.size(); ++j) {
-    current[j] = prepared[j].error.empty() && !req.force && upToDate(prepared[j], req.extraInputs);
+    current[j] = prepared[j].error.empty() && !req.force && outputsUpToDate(prepared[j].outputs, prepared[j].stamp, prepared[j].inputs);
   }
   std::vector<bool> builtScene(prepared.size(), false);  // this job's prepare built its BVH
   // 2. The jobs to render prepared (BVH, light split, the photon estimate against the
@@ -132,10 +98,9 @@ BatchOutcome runBatch(const BatchRequest& req) {
     r.name = p.job->name;
     for (const BatchOutput& o : p.job->outputs) r.outputs.push_back(o.path);
     Stopwatch jobClock;
-    auto report = [&](const std::string& phase) {
+    auto report = [&](const char* phase) {
       if (!req.progress) return;
-      req.progress(progressLine("batch", done, prepared.size(), p.job->name, phase, clock.seconds(), done,
-                                prepared.size() - done));
+      req.progress({done, prepared.size(), p.job->name, phase, clock.seconds()});
     };
     if (!p.error.empty()) {
       r.status = "failed: " + p.error;
@@ -184,20 +149,6 @@ BatchOutcome runBatch(const BatchRequest& req) {
   out.peakCacheBytes = session.peakStageBytes();
   out.seconds = clock.seconds();
   return out;
-}
-
-std::string batchSummary(const BatchOutcome& o) {
-  std::string s = fmt::format("{:<24} {:>8}  {:<14} {:<12} {}\n", "job", "time", "reused", "status", "output");
-  for (const BatchJobResult& j : o.jobs) {
-    const std::string status = j.status.size() > 60 ? j.status.substr(0, 57) + "..." : j.status;
-    s += fmt::format("{:<24} {:>7.2f}s  {:<14} {:<12} {}\n", j.name, j.seconds, j.reused.empty() ? "-" : j.reused,
-                     status, j.outputs.empty() ? "" : j.outputs.front());
-  }
-  s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s; scenes built {}, photon maps built {} "
-                   "(reused {} times, {} evicted, cache peak {:.1f} MB)\n",
-                   o.jobs.size(), o.rendered, o.upToDate, o.failed, o.seconds, o.sceneBuilds, o.photonBuilds,
-                   o.photonReuses, o.evictions, o.peakCacheBytes / 1e6);
-  return s;
 }
 
 }  // namespace penumbra

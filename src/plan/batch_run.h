@@ -1,17 +1,36 @@
-// penumbra batch: renders many jobs in one process, sharing the loaded scene,
+// A batch: renders many jobs in one process, sharing the loaded scene,
 // BVH and textures between jobs of the same geometry and the photon maps between
 // jobs whose photon inputs are equal (plan/reuse_key.h), in an LRU cache with a
 // byte cap; skips jobs whose outputs are up to date; reports every job.
 #pragma once
-#include "cli/batch_jobs.h"
 #include "core/progress.h"
-#include "io/load_limits.h"
 #include "plan/render_session.h"
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace penumbra {
+
+struct BatchOutput {
+  std::string view;  // "beauty", "depth", ...; "" = the scene's render.aov
+  std::string path;  // an image file; several views may share one layered .exr
+};
+
+struct BatchJob {
+  std::string name;                    // "orbit_3", "fig03_shadows": unique in the batch
+  std::string scene;                   // resolved path
+  std::vector<std::string> overrides;  // the batch's "set", then the job's, then the orbit's
+  std::vector<BatchOutput> outputs;    // one per view
+  std::string where;                   // "jobs[2] (orbit 3)": names the job in messages
+};
+
+// Where a batch is: `done` of `total` jobs finished after `seconds`; `job` in `phase`.
+struct BatchProgress {
+  size_t done = 0, total = 0;
+  std::string job;
+  const char* phase = "";
+  double seconds = 0.0;
+};
 
 struct BatchRequest {
   std::vector<BatchJob> jobs;
@@ -22,8 +41,8 @@ struct BatchRequest {
   uint64_t mapCacheBytes = kStageCacheBytes;  // photon maps kept for later jobs (LRU)
   uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available
   PlanOverrides plan;           // --enable / --disable, for every job
-  // Called on the batch's own thread with one line per job and phase.
-  std::function<void(const std::string& line)> progress;
+  // Told on the batch's own thread as each job starts ("render") and ends ("done").
+  std::function<void(const BatchProgress&)> progress;
   ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
 };
 
@@ -45,12 +64,5 @@ struct BatchOutcome {
 
 // Validates every job (InputError naming the job unless keepGoing), then renders.
 BatchOutcome runBatch(const BatchRequest& request);
-
-// A job's estimated cost for sharding, in nanoseconds: camera samples of every view
-// plus photons.
-double jobCost(const BatchJob& job, const LoadLimits& limits);
-
-// The summary table printed after a batch.
-std::string batchSummary(const BatchOutcome& outcome);
 
 }  // namespace penumbra
