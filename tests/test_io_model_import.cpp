@@ -1,6 +1,7 @@
 // OBJ + MTL and glTF 2.0 files into scenes: each test writes its own small files
 // (OBJ/MTL as text, glTF built with tinygltf's own writer) into a scratch folder and
 // checks geometry, materials, camera and lights against the values it wrote.
+#include "core/bsdf.h"
 #include "core/error.h"
 #include "core/light_sample.h"
 #include "io/image_io.h"
@@ -246,11 +247,20 @@ TEST(Gltf, AWholeGlbSceneBringsMeshesMaterialsCameraAndLights) {
   expectNear(floor.normals[0], Vec3(0, 1, 0), 1e-5f, "floor normal");
   const Material& paint = s.materials[floor.material];
   EXPECT_EQ(paint.name, "model.glb:paint");
+  // glTF's metallic-roughness as given: a rough dielectric paint and a smooth metal,
+  // whose physical BSDF is the delta mirror reflecting its white base colour whole.
   EXPECT_FLOAT_EQ(paint.diffuse.g, 0.4f);
-  EXPECT_EQ(paint.kr, 0.0f);
-  EXPECT_EQ(paint.shininess, 0.0f);  // roughness 1: no highlight
+  EXPECT_TRUE(paint.metalRough);
+  EXPECT_EQ(paint.metallic, 0.0f);
+  EXPECT_EQ(paint.roughness, 1.0f);
   const Material& chrome = s.materials[s.meshes[1].material];
-  EXPECT_FLOAT_EQ(chrome.kr, 1.0f);
+  EXPECT_TRUE(chrome.metalRough);
+  EXPECT_EQ(chrome.metallic, 1.0f);
+  EXPECT_EQ(chrome.roughness, 0.0f);
+  const Bsdf mirror = makeBsdf(chrome, ShadingModel::Physical, HemisphereSampling::Cosine);
+  EXPECT_EQ(bsdfFlags(mirror), kBsdfSpecular);
+  const BsdfFrame up{Vec3(0, 0, 1), Vec3(0, 0, 1), true};
+  expectNear(mirrorReflectance(mirror, up, glm::normalize(Vec3(1, 0, 1))), Color(1.0f), 1e-6f, "chrome");
   const Material& glass = s.materials[s.meshes[2].material];
   EXPECT_TRUE(glass.transparent);
   EXPECT_FLOAT_EQ(glass.ior, 1.33f);
@@ -276,6 +286,48 @@ TEST(Gltf, AWholeGlbSceneBringsMeshesMaterialsCameraAndLights) {
   const Vec3 n = glm::cross(lamp.triangles[1] - lamp.triangles[0], lamp.triangles[2] - lamp.triangles[0]);
   expectNear(glm::normalize(n), Vec3(0, -1, 0), 1e-5f, "lamp faces down");
   EXPECT_EQ(s.render.model, ShadingModel::Physical);
+}
+
+TEST(Gltf, MetallicRoughnessTextureIsReadAsDataBesideTheBaseColour) {
+  // The chrome quad gets one PNG as base colour and as metallic-roughness map: two
+  // textures, the second marked as data (test_trace_texture reads it undecoded).
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
+  Image mr(2, 2);
+  mr.pixels.assign(4, Color(0.0f, 128.0f / 255.0f, 1.0f));
+  writeImage((dir / "mr.png").string(), mr);
+  tinygltf::Model m = makeGltf();
+  tinygltf::Image image;
+  image.uri = "mr.png";
+  m.images.push_back(image);
+  tinygltf::Texture texture;
+  texture.source = 0;
+  m.textures.push_back(texture);
+  m.materials[1].pbrMetallicRoughness.baseColorTexture.index = 0;
+  m.materials[1].pbrMetallicRoughness.metallicRoughnessTexture.index = 0;
+  m.materials[1].pbrMetallicRoughness.roughnessFactor = 0.8;
+  writeGltf(m, dir / "model.gltf", false);
+  const Scene s = loadScene((dir / "model.gltf").string());
+  const Material& chrome = s.materials[s.meshes[1].material];
+  ASSERT_GE(chrome.texture, 0);
+  ASSERT_GE(chrome.metalRoughTexture, 0);
+  EXPECT_NE(chrome.texture, chrome.metalRoughTexture);
+  EXPECT_FALSE(s.textures[chrome.texture].data);
+  EXPECT_TRUE(s.textures[chrome.metalRoughTexture].data);
+}
+
+TEST(ObjMaterials, PbrExtensionPmAndPrMakeTheMetallicRoughnessMaterial) {
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
+  write(dir / "m.mtl", "newmtl gold\nKd 1 0.78 0.34\nPm 1\nPr 0.25\n");
+  write(dir / "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl gold\nf 1 2 3\n");
+  write(dir / "scene.json", R"({"render": {"model": "physical"}, "objects": [{"type": "mesh", "file": "m.obj"}]})");
+  const Scene s = loadScene((dir / "scene.json").string());
+  const Material& gold = s.materials[s.meshes[0].material];
+  EXPECT_TRUE(gold.metalRough);
+  EXPECT_EQ(gold.metallic, 1.0f);
+  EXPECT_EQ(gold.roughness, 0.25f);
+  EXPECT_FLOAT_EQ(gold.diffuse.g, 0.78f);
 }
 
 TEST(Gltf, AsAMeshObjectInAJsonScene) {

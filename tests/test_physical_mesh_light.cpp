@@ -126,9 +126,9 @@ TEST(MeshLight, PhotonsLeaveUniformPointsInCosineDirections) {
 TEST(MeshLight, CameraSeesTheRadianceOnTheEmittingSideOnly) {
   const Scene scene = planeUnder(true);
   Rig rig(scene);
-  const Color below = trace(rig, makeRay(Vec3(0.1f, 0.5f, 0.1f), Vec3(0, 1, 0)), kTermDirect);
+  const Color below = trace(rig, makeRay(Vec3(0.1f, 0.5f, 0.1f), Vec3(0, 1, 0)), kTermDirect | kTermEmitters);
   expectColorNear(below, kColour * kL, 1e-5f, "from below");
-  const Color above = trace(rig, makeRay(Vec3(0.1f, 3.0f, 0.1f), Vec3(0, -1, 0)), kTermDirect);
+  const Color above = trace(rig, makeRay(Vec3(0.1f, 3.0f, 0.1f), Vec3(0, -1, 0)), kTermDirect | kTermEmitters);
   EXPECT_EQ(maxComponent(above), 0.0f) << "its back is black, and it shadows the plane";
 }
 

@@ -190,6 +190,33 @@ TEST(TextureFormats, SixteenBitAndGreyAlphaAreLinearisedGrey) {
   }
 }
 
+// A metallic-roughness map is data: the same 8-bit PNG read as a colour is sRGB-
+// decoded (0.5 -> 0.214), read as data it is not (0.5), and metalRoughAt scales the
+// material's factors by its B and G. Tolerance 3e-3 (8-bit quantisation).
+TEST(TextureFormats, DataTexturesAreNotDecodedAndScaleMetallicAndRoughness) {
+  testing::ScratchDir scratch;
+  OIIO::ImageBuf buf(OIIO::ImageSpec(8, 4, 3, OIIO::TypeDesc::UINT8));
+  std::vector<float> values(8 * 4 * 3, 0.5f);
+  for (size_t i = 2; i < values.size(); i += 3) values[i] = 1.0f;  // blue: metallic 1
+  buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, values.data());
+  const std::string path = (scratch.path() / "mr.png").string();
+  ASSERT_TRUE(buf.write(path, OIIO::TypeDesc::UINT8)) << buf.geterror();
+  const TextureLookup lookup({path, path}, {false, true});
+  SurfaceRecord s;
+  s.uv = {0.5f, 0.5f};
+  s.uvPerWorld = Vec2(1e-3f);
+  EXPECT_NEAR(lookup.lookup(0, s, 1e-3f).g, static_cast<float>(srgbDecode(0.5)), 3e-3f);
+  EXPECT_NEAR(lookup.lookup(1, s, 1e-3f).g, 0.5f, 3e-3f);
+  Material m;
+  m.metalRough = true;
+  m.metallic = 0.8f;
+  m.roughness = 0.6f;
+  m.metalRoughTexture = 1;
+  const MetalRough mr = metalRoughAt(m, lookup, s, 1e-3f);
+  EXPECT_NEAR(mr.metallic, 0.8f, 3e-3f);
+  EXPECT_NEAR(mr.roughness, 0.3f, 3e-3f);
+}
+
 // uv_scale repeats the texture: scaled by (2, 3), the cell at uv is the unscaled
 // cell at (2u mod 1, 3v mod 1), and v wraps instead of clamping at the pole.
 TEST_F(TextureLookupTest, UvScaleRepeatsTheTexture) {

@@ -151,6 +151,25 @@ BsdfSample sampleDielectric(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, f
 
 }  // namespace
 
+void setMetalRough(Bsdf& b, ShadingModel model, const Color& base, float metallic, float roughness) {
+  b.diffuse = base;
+  b.metallic = std::clamp(metallic, 0.0f, 1.0f);
+  const float alpha = std::clamp(roughness, 0.0f, 1.0f) * std::clamp(roughness, 0.0f, 1.0f);
+  if (model == ShadingModel::Physical) {
+    b.type = BsdfType::MetalRough;
+    b.roughness = alpha;
+    return;
+  }
+  // Classic Phong terms: the base under (1 - metallic), a highlight of the metal's
+  // colour (0.04 for a dielectric) with the Beckmann-Phong exponent 2 / alpha^2 - 2,
+  // and a mirror only as the metal gets smooth, so rough metals are never mirrors.
+  b.diffuse = (1.0f - b.metallic) * base;
+  b.specular = b.metallic * base + Color((1.0f - b.metallic) * 0.04f);
+  b.shininess = alpha > 0.01f ? std::min(2.0f / (alpha * alpha) - 2.0f, 10000.0f) : 10000.0f;
+  const float smooth = std::clamp(1.0f - roughness, 0.0f, 1.0f);
+  b.kr = b.metallic * (smooth * smooth) * (smooth * smooth);
+}
+
 Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce) {
   Bsdf b;
   b.diffuse = m.diffuse;
@@ -164,6 +183,7 @@ Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce) 
   b.uniformBounce = bounce == HemisphereSampling::Uniform;
   if (model == ShadingModel::Classic) b.type = BsdfType::ClassicPhong;
   else b.type = m.transparent ? BsdfType::Dielectric : BsdfType::Opaque;
+  if (m.metalRough && !m.transparent) setMetalRough(b, model, m.diffuse, m.metallic, m.roughness);
   return b;
 }
 
@@ -183,8 +203,11 @@ uint8_t bsdfFlags(const Bsdf& b) {
              (l.mirror > 0.0f ? kBsdfSpecular : 0);
     }
     case BsdfType::Dielectric: return kBsdfSpecular | kBsdfTransmission;
-    case BsdfType::MetalRough:
-      return kBsdfGlossy | (b.metallic < 1.0f && maxComponent(b.diffuse) > 0.0f ? kBsdfDiffuse : 0);
+    case BsdfType::MetalRough: {
+      const uint8_t base = b.metallic < 1.0f && maxComponent(b.diffuse) > 0.0f ? kBsdfDiffuse : 0;
+      if (b.roughness < kDeltaAlpha) return kBsdfSpecular | base;
+      return kBsdfGlossy | (b.roughness < kNarrowAlpha ? kBsdfNarrow : 0) | base;
+    }
   }
   return kBsdfNone;
 }
@@ -248,6 +271,20 @@ Color lambertCoefficient(const Bsdf& b) {
     case BsdfType::MetalRough: return Color(0.0f);  // its base is Fresnel-weighted: all of it is sampled
   }
   return Color(0.0f);
+}
+
+Bsdf gatheredPart(const Bsdf& b) {
+  Bsdf g = b;
+  g.lobes = static_cast<uint8_t>(g.lobes & ~kBsdfNarrow);
+  return g;
+}
+
+Color mirrorReflectance(const Bsdf& b, const BsdfFrame& f, const Vec3& wo) {
+  return b.type == BsdfType::MetalRough ? metalRoughMirror(b, f, wo) : Color(b.kr);
+}
+
+BsdfSample sampleNarrowLobe(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, float u1, float u2) {
+  return b.type == BsdfType::MetalRough ? sampleMetalRoughSpecular(b, f, wo, u1, u2) : BsdfSample{};
 }
 
 Bsdf glossyPart(const Bsdf& b) {

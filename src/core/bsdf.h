@@ -13,7 +13,15 @@ enum BsdfFlags : uint8_t {
   kBsdfGlossy = 1 << 1,        // a finite glossy lobe
   kBsdfSpecular = 1 << 2,      // a delta lobe: mirror, or smooth glass (reflect or refract)
   kBsdfTransmission = 1 << 3,  // light crosses the surface
+  // A glossy lobe narrow enough that camera paths follow it by sampled rays, as they
+  // follow delta lobes: photon maps would blur it. Photons count it as specular.
+  kBsdfNarrow = 1 << 4,
 };
+
+// MetalRough widths (GGX alpha): below kDeltaAlpha the specular lobe is a perfect
+// mirror; below kNarrowAlpha it is narrow (kBsdfNarrow), traced rather than gathered.
+constexpr float kDeltaAlpha = 1e-3f;
+constexpr float kNarrowAlpha = 0.1f;
 
 enum class BsdfType : uint8_t {
   ClassicPhong,  // the report's: k_d (N.L) + k_s (R.V)^n; photons by p_r / p_t roulette
@@ -34,7 +42,9 @@ struct Bsdf {
   float pR = 0.0f, pT = 0.0f;  // ClassicPhong photon roulette
   bool uniformBounce = true;   // ClassicPhong photon bounce: uniform (report) or cosine
   float metallic = 0.0f;       // MetalRough: 1 a conductor, 0 a dielectric; `diffuse` is the base colour
-  float roughness = 0.5f;      // MetalRough: GGX alpha (glTF's roughness squared), > 0
+  float roughness = 0.5f;      // MetalRough: GGX alpha (glTF's roughness squared), >= 0
+  // The lobes evaluateBsdf and pdfBsdf count (a photon gather leaves out traced ones).
+  uint8_t lobes = kBsdfDiffuse | kBsdfGlossy | kBsdfSpecular | kBsdfTransmission | kBsdfNarrow;
 };
 
 // The local frame of a hit: unit normals facing the side the light or ray arrives
@@ -55,6 +65,10 @@ struct BsdfSample {
 };
 
 Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce);
+// Makes `b` glTF's metallic-roughness at one hit's values: MetalRough in the physical
+// model, its Phong terms in the classic one. makeBsdf calls it with the material's
+// factors; a hit with textures calls it again with the texels applied.
+void setMetalRough(Bsdf& b, ShadingModel model, const Color& base, float metallic, float roughness);
 
 // The Lambertian part of evaluateBsdf is lambertCoefficient(b) x max(0, ns . wi)
 // (classic k_d; physical (1 - kr) rho / pi); glossyPart(b) evaluates to the rest.
@@ -66,6 +80,23 @@ Bsdf glossyPart(const Bsdf& b);
 uint8_t bsdfFlags(const Bsdf& b);
 inline bool hasSmoothLobe(const Bsdf& b) { return bsdfFlags(b) & (kBsdfDiffuse | kBsdfGlossy); }
 inline bool hasDeltaLobe(const Bsdf& b) { return bsdfFlags(b) & kBsdfSpecular; }
+// Lobes a camera path follows by rays (delta or narrow), and lobes it reads from the
+// photon maps (the rest of the smooth ones): where photons are stored and gathered.
+inline bool hasTracedLobe(const Bsdf& b) { return bsdfFlags(b) & (kBsdfSpecular | kBsdfNarrow); }
+inline bool hasGatheredLobe(const Bsdf& b) {
+  const uint8_t f = bsdfFlags(b);
+  return (f & kBsdfDiffuse) || ((f & kBsdfGlossy) && !(f & kBsdfNarrow));
+}
+// The BSDF with only its gathered lobes, for a photon estimate.
+Bsdf gatheredPart(const Bsdf& b);
+
+// The colour a delta mirror lobe reflects towards wo (Opaque: kr; MetalRough below
+// kDeltaAlpha: its Fresnel at the angle of wo).
+Color mirrorReflectance(const Bsdf& b, const BsdfFrame& f, const Vec3& wo);
+
+// One sample of a MetalRough BSDF's narrow specular lobe alone: the direction a
+// camera path follows and f cos / pdf of that lobe (its Fresnel times G2 / G1).
+BsdfSample sampleNarrowLobe(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, float u1, float u2);
 
 // f(wo, wi) |cos theta_i| of the non-delta lobes; wo points to the viewer, wi to
 // the light, both unit. Zero when wi is below the geometric surface.

@@ -32,6 +32,22 @@ float specularShare(const Bsdf& b, float cosO) {
   return b.metallic + (1.0f - b.metallic) * dielectric;
 }
 
+// The specular layer's Fresnel at cosine `c` between the view and the microfacet:
+// the conductor's (F0 the base colour) and the dielectric's, blended by metallic.
+Color fresnel(const Bsdf& b, float c) {
+  const float m = std::clamp(1.0f - c, 0.0f, 1.0f);
+  const float m5 = (m * m) * (m * m) * m;
+  const Color metal = b.diffuse + (Color(1.0f) - b.diffuse) * m5;
+  return b.metallic * metal + Color((1.0f - b.metallic) * schlick(dielectricF0(b.ior), c));
+}
+
+// Whether evaluate and pdf count the GGX lobe: not a delta one, and not one the
+// caller leaves out (a narrow lobe in a photon gather).
+bool specularCounted(const Bsdf& b) {
+  if (b.roughness < kDeltaAlpha || !(b.lobes & kBsdfGlossy)) return false;
+  return b.roughness >= kNarrowAlpha || (b.lobes & kBsdfNarrow);
+}
+
 }  // namespace
 
 float ggxD(const Vec3& h, float alpha) {
@@ -73,16 +89,13 @@ Color evaluateMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& woW, con
   if (wo.z <= 0.0f || wi.z <= 0.0f) return Color(0.0f);
   const Vec3 h = glm::normalize(wo + wi);
   const float voh = std::max(0.0f, glm::dot(wo, h));
-  const float specular = ggxD(h, b.roughness) * ggxG2(wo, wi, b.roughness) / (4.0f * wo.z * wi.z);
-  const float m5 = std::pow(1.0f - voh, 5.0f);
+  const float specular = specularCounted(b) ? ggxD(h, b.roughness) * ggxG2(wo, wi, b.roughness) / (4.0f * wo.z * wi.z) : 0.0f;
   // Conductor: Schlick with the base colour as F0. Dielectric: the specular layer
   // with Fresnel at the microfacet over a Lambertian base that gets what the layer
   // transmits at wo. glTF appendix B's fresnel_mix weighs the base by 1 - F(v.h)
   // instead, which returns up to 1.3 of the light at grazing angles (the furnace test).
-  const Color metal = (b.diffuse + (Color(1.0f) - b.diffuse) * m5) * specular;
-  const float f0 = dielectricF0(b.ior);
-  const Color dielectric = (1.0f - schlick(f0, wo.z)) * b.diffuse * kInvPi + Color(schlick(f0, voh) * specular);
-  return (b.metallic * metal + (1.0f - b.metallic) * dielectric) * wi.z;
+  const float diffuse = (b.lobes & kBsdfDiffuse) ? (1.0f - schlick(dielectricF0(b.ior), wo.z)) * kInvPi : 0.0f;
+  return (fresnel(b, voh) * specular + (1.0f - b.metallic) * diffuse * b.diffuse) * wi.z;
 }
 
 float pdfMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& woW, const Vec3& wiW) {
@@ -91,9 +104,10 @@ float pdfMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& woW, const Ve
   if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
   const Vec3 h = glm::normalize(wo + wi);
   const float voh = glm::dot(wo, h);
-  const float specular = voh > 0.0f ? ggxVisiblePdf(wo, h, b.roughness) / (4.0f * voh) : 0.0f;
+  const bool counted = specularCounted(b) && voh > 0.0f;
+  const float specular = counted ? ggxVisiblePdf(wo, h, b.roughness) / (4.0f * voh) : 0.0f;
   const float ps = specularShare(b, wo.z);
-  return ps * specular + (1.0f - ps) * wi.z * kInvPi;
+  return ps * specular + ((b.lobes & kBsdfDiffuse) ? (1.0f - ps) * wi.z * kInvPi : 0.0f);
 }
 
 BsdfSample sampleMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& woW, float uLobe, float u1, float u2) {
@@ -101,10 +115,19 @@ BsdfSample sampleMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& woW, 
   const Local frame(f.ns);
   const Vec3 wo = frame.in(woW);
   if (wo.z <= 0.0f) return s;
+  const float ps = specularShare(b, wo.z);
   Vec3 wi;
-  if (uLobe < specularShare(b, wo.z)) {
+  if (uLobe < ps && b.roughness < kDeltaAlpha) {
+    // The mirror limit: a delta lobe, its Fresnel over the probability of picking it.
+    s.wi = frame.out(Vec3(-wo.x, -wo.y, wo.z));
+    s.weight = fresnel(b, wo.z) / ps;
+    s.flags = kBsdfSpecular;
+    s.valid = glm::dot(s.wi, f.ng) > 0.0f && maxComponent(s.weight) > 0.0f;
+    return s;
+  }
+  if (uLobe < ps) {
     wi = reflect(-wo, sampleGgxVisibleNormal(wo, b.roughness, u1, u2));
-    s.flags = kBsdfGlossy;
+    s.flags = b.roughness < kNarrowAlpha ? kBsdfGlossy | kBsdfNarrow : kBsdfGlossy;
   } else {
     wi = cosineHemisphere(u1, u2);
     s.flags = kBsdfDiffuse;
@@ -116,6 +139,27 @@ BsdfSample sampleMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& woW, 
   // The one-sample estimate over both lobes: f cos over the mixture's density.
   s.weight = evaluateMetalRough(b, f, woW, s.wi) / pdf;
   s.valid = true;
+  return s;
+}
+
+Color metalRoughMirror(const Bsdf& b, const BsdfFrame& f, const Vec3& wo) {
+  return fresnel(b, std::max(0.0f, glm::dot(f.ns, wo)));
+}
+
+BsdfSample sampleMetalRoughSpecular(const Bsdf& b, const BsdfFrame& f, const Vec3& woW, float u1, float u2) {
+  BsdfSample s;
+  const Local frame(f.ns);
+  const Vec3 wo = frame.in(woW);
+  if (wo.z <= 0.0f) return s;
+  const Vec3 h = sampleGgxVisibleNormal(wo, b.roughness, u1, u2);
+  const Vec3 wi = reflect(-wo, h);
+  if (wi.z <= 0.0f) return s;
+  s.wi = frame.out(wi);
+  if (glm::dot(s.wi, f.ng) <= 0.0f) return s;
+  // f cos / pdf of the lobe alone: D and the visible normals' density cancel.
+  s.weight = fresnel(b, std::max(0.0f, glm::dot(wo, h))) * (ggxG2(wo, wi, b.roughness) / ggxG1(wo, b.roughness));
+  s.flags = b.roughness < kNarrowAlpha ? kBsdfGlossy | kBsdfNarrow : kBsdfGlossy;
+  s.valid = maxComponent(s.weight) > 0.0f;
   return s;
 }
 

@@ -32,5 +32,8 @@ inline float dielectricF0(float ior) {
 Color evaluateMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi);
 float pdfMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, const Vec3& wi);
 BsdfSample sampleMetalRough(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, float uLobe, float u1, float u2);
+// bsdf.h's mirrorReflectance and sampleNarrowLobe for MetalRough.
+Color metalRoughMirror(const Bsdf& b, const BsdfFrame& f, const Vec3& wo);
+BsdfSample sampleMetalRoughSpecular(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, float u1, float u2);
 
 }  // namespace penumbra

@@ -67,6 +67,12 @@ struct Material {
   Color emission{0.0f};
   bool twoSidedEmission = false;  // a sphere emits all round, a quad on one side
   int light = -1;                 // the area light this surface belongs to, -1 = none
+  // glTF's metallic-roughness model (the physical model's MetalRough BSDF, the classic
+  // model's Phong terms); `diffuse` is its base colour and `texture` the base map.
+  bool metalRough = false;
+  float metallic = 0.0f;
+  float roughness = 1.0f;          // perceptual, as glTF gives it: GGX alpha = roughness^2
+  int metalRoughTexture = -1;      // B scales metallic, G scales roughness (linear data)
 };
 
 struct Sphere {
@@ -86,6 +92,8 @@ struct TriangleMesh {
 
 struct Texture {
   std::string path;  // absolute, resolved against the scene file's folder
+  bool data = false;  // values, not colours: never decoded from sRGB (metallic-roughness)
+  bool operator==(const Texture& o) const { return path == o.path && data == o.data; }
 };
 
 // classic: the report's Whitted + Phong model with its ambient term and photon

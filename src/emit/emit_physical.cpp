@@ -123,7 +123,7 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray
     }
     SurfaceRecord s = tracer.surface(ray, hit, kSurfaceShadingNormal);
     Bsdf bsdf = makeBsdf(scene.materials[s.material], ShadingModel::Physical, ps.sampling);
-    if (hasSmoothLobe(bsdf)) {
+    if (hasGatheredLobe(bsdf)) {  // where a camera path reads the maps
       bool store = pass == MapKind::Global ? diffuseBounces > 0 : specularBounces > 0;
       if (store) {
         out.push_back({s.position, power, encodeOctahedral(ray.dir), encodeOctahedral(s.ng)});
@@ -132,7 +132,8 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray
     }
     float uLobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), uRr = rng.uniform();
     BsdfSample bs = sampleBsdf(bsdf, {s.ns, s.ng, s.frontFace}, -ray.dir, uLobe, u1, u2);
-    bool delta = bs.flags & kBsdfSpecular;
+    // A narrow glossy bounce is specular here, as camera paths trace it like a mirror.
+    bool delta = bs.flags & (kBsdfSpecular | kBsdfNarrow);
     // The caustic pass ends at the first non-specular bounce: what follows is the
     // global map's (and a direct hit, the shadow rays').
     if (!bs.valid || (pass == MapKind::Caustic && !delta)) {
@@ -215,7 +216,7 @@ PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& trac
 
 std::vector<SceneSphere> specularTargets(const Scene& scene) {
   auto specular = [&](int material) {
-    return hasDeltaLobe(makeBsdf(scene.materials[material], ShadingModel::Physical,
+    return hasTracedLobe(makeBsdf(scene.materials[material], ShadingModel::Physical,
                                  scene.photons.sampling));
   };
   std::vector<SceneSphere> out;

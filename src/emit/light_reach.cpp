@@ -17,7 +17,7 @@ bool reaches(const Scene& scene, int material, ReachRule rule) {
     case ReachRule::Scattering:
       return maxComponent(albedoBsdf(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling))) > 0.0f;
     case ReachRule::Specular:
-      return hasDeltaLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
+      return hasTracedLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
   }
   return false;
 }

@@ -1,5 +1,5 @@
-// glTF materials: base colour (and its texture), metallic as a mirror weight,
-// roughness as a Phong exponent, transmission + ior as glass, emissive as emission.
+// glTF materials: metallic-roughness (base colour, metallic, roughness and their
+// textures, KHR_materials_ior), transmission + ior as glass, emissive as emission.
 #include "io/gltf_materials.h"
 
 #include "io/gltf_files.h"
@@ -103,16 +103,17 @@ std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std
       m.diffuse = m.specular = Color(0.0f);
       m.shininess = 0.0f;
     } else {
-      // Lambert under the base colour, a mirror weighted by metallic (uncoloured), and
-      // the dielectric highlight (F0 = 0.04) as a Phong lobe: n = 2 / alpha^2 - 2 with
-      // alpha = roughness^2 (the Beckmann-Phong correspondence), none when rough.
+      // glTF's own model: the base colour, metallic and roughness (factor times the
+      // texture's B and G), and KHR_materials_ior's index for the dielectric's F0.
+      m.metalRough = true;
       m.diffuse = base;
-      m.kr = metallic;
-      const float alpha = roughness * roughness;
-      const float n = alpha > 0.0f ? 2.0f / (alpha * alpha) - 2.0f : 10000.0f;
-      m.shininess = roughness < 0.99f ? std::min(n, 10000.0f) : 0.0f;
-      m.specular = Color(m.shininess > 0.0f ? 0.04f : 0.0f);
+      m.specular = Color(0.0f);
+      m.shininess = 0.0f;
+      m.metallic = metallic;
+      m.roughness = roughness;
+      m.ior = float(extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5));
       mm.texture = textureFile(model, pbr.baseColorTexture.index, path, folder);
+      mm.metalRoughTexture = textureFile(model, pbr.metallicRoughnessTexture.index, path, folder);
     }
     out.push_back(std::move(mm));
   }

@@ -7,7 +7,7 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <unordered_map>
+#include <map>
 
 namespace penumbra {
 
@@ -20,8 +20,12 @@ namespace fs = std::filesystem;
 // here, and the pipeline generates (or reuses) the image from its cache.
 constexpr const char* kBuiltinPrefix = "builtin:";
 
-// Texture path -> index into Scene::textures, so materials sharing a file share it.
-using TextureIndex = std::unordered_map<std::string, int>;
+// (path, data) -> index into Scene::textures, so materials sharing a file share it;
+// the same file read as colours and as data is two textures.
+using TextureIndex = std::map<std::pair<std::string, bool>, int>;
+
+// A texture file (or "builtin:NAME") by path: its Scene::textures index, decoded once.
+int textureIndex(const JsonNode& fileNode, bool data, Scene& scene, TextureIndex& index);
 
 int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureIndex& index) {
   node.allowKeys({"file", "blend", "uv_scale"});
@@ -38,7 +42,12 @@ int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureI
     }
     if (material.uvScale.x > 1e6f || material.uvScale.y > 1e6f) scale.fail("must be <= 1e6");
   }
-  JsonNode fileNode = node.required("file", " (an image path or \"builtin:NAME\")");
+  size_t blend = node.enumOr("blend", 0, {"multiply", "add"});
+  material.textureBlend = blend == 0 ? TextureBlend::Multiply : TextureBlend::Add;
+  return textureIndex(node.required("file", " (an image path or \"builtin:NAME\")"), false, scene, index);
+}
+
+int textureIndex(const JsonNode& fileNode, bool data, Scene& scene, TextureIndex& index) {
   std::string file = fileNode.asString();
   if (file.empty()) fileNode.fail("must not be empty");
   std::string path;
@@ -53,14 +62,12 @@ int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureI
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) fileNode.fail("texture file not found: " + path);
   }
-  size_t blend = node.enumOr("blend", 0, {"multiply", "add"});
-  material.textureBlend = blend == 0 ? TextureBlend::Multiply : TextureBlend::Add;
-  auto [it, inserted] = index.try_emplace(path, static_cast<int>(scene.textures.size()));
+  auto [it, inserted] = index.try_emplace({path, data}, static_cast<int>(scene.textures.size()));
   if (inserted) {
     // Decoded now, once per file: a truncated image must fail here, not render black.
     const std::string problem = builtin ? builtinTextureProblem(file) : textureFileProblem(path);
     if (!problem.empty()) fileNode.fail(problem);
-    scene.textures.push_back(Texture{path});
+    scene.textures.push_back(Texture{path, data});
     if (!builtin) scene.inputs.push_back(path);
   }
   return it->second;
@@ -69,7 +76,7 @@ int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureI
 Material readMaterial(const JsonNode& node, const std::string& name, Scene& scene,
                       TextureIndex& textures) {
   node.allowKeys({"ambient", "diffuse", "specular", "shininess", "reflective", "transparent",
-                  "p_r", "p_t", "texture", "emission"});
+                  "p_r", "p_t", "texture", "emission", "metallic", "roughness", "metallic_roughness_texture"});
   Material m;
   m.name = name;
   m.ambient = node.colorOr("ambient", m.ambient);
@@ -90,6 +97,19 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
     m.transparent = true;
     m.ior = transparent.floatOr("ior", m.ior, Range::between(kMinIor, kMaxIor));
     m.tint = transparent.colorOr("tint", m.tint);
+  }
+  // glTF's metallic-roughness: `diffuse` is the base colour. A mirror is roughness 0.
+  m.metalRough = node.has("metallic") || node.has("roughness") || node.has("metallic_roughness_texture");
+  if (m.metalRough) {
+    for (const char* key : {"reflective", "specular", "shininess"}) {
+      if (node.has(key)) {
+        node.child(key).fail("is a Phong term; a metallic-roughness material (metallic, roughness) has none");
+      }
+    }
+    m.metallic = node.floatOr("metallic", 0.0f, unit);
+    m.roughness = node.floatOr("roughness", 0.5f, unit);
+    m.specular = Color(0.0f);
+    m.shininess = 0.0f;
   }
   // Photon probabilities default to what the shading does: reflect as often as
   // the mirror weight, transmit the remainder filtered by the tint's mean.
@@ -127,6 +147,9 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
     }
   }
   if (node.has("texture")) m.texture = readTexture(node.child("texture"), m, scene, textures);
+  if (node.has("metallic_roughness_texture")) {
+    m.metalRoughTexture = textureIndex(node.child("metallic_roughness_texture"), true, scene, textures);
+  }
   return m;
 }
 

@@ -38,6 +38,8 @@ Material fitToModel(Material m, ShadingModel model) {
   }
   m.shininess = bounded(m.shininess, 0.0f, 1e30f);
   m.kr = bounded(m.kr, 0.0f, 1.0f);
+  m.metallic = bounded(m.metallic, 0.0f, 1.0f);
+  m.roughness = bounded(m.roughness, 0.0f, 1.0f);
   m.ior = std::isnan(m.ior) ? 1.5f : std::clamp(m.ior, 0.01f, 100.0f);
   if (model == ShadingModel::Physical) {
     m.diffuse = glm::min(m.diffuse, Color(1.0f));
@@ -62,15 +64,15 @@ LoadedModel loadModel(const std::string& path, const LoadLimits& limits) {
   return model;
 }
 
-int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene) {
+int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene, bool data) {
   for (size_t i = 0; i < scene.textures.size(); ++i) {
-    if (scene.textures[i].path == path) return static_cast<int>(i);
+    if (scene.textures[i] == Texture{path, data}) return static_cast<int>(i);
   }
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) where.fail("texture file not found: " + path);
   const std::string problem = textureFileProblem(path);
   if (!problem.empty()) where.fail(problem);
-  scene.textures.push_back(Texture{path});
+  scene.textures.push_back(Texture{path, data});
   scene.inputs.push_back(path);
   return static_cast<int>(scene.textures.size()) - 1;
 }
@@ -86,6 +88,7 @@ void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fa
     Material m = fitToModel(mm.material, scene.render.model);
     m.name = stem + ":" + mm.material.name;
     if (!mm.texture.empty()) m.texture = addTextureFile(where, mm.texture, scene);
+    if (!mm.metalRoughTexture.empty()) m.metalRoughTexture = addTextureFile(where, mm.metalRoughTexture, scene, true);
     index[mesh.material] = static_cast<int>(scene.materials.size());
     scene.materials.push_back(std::move(m));
   }

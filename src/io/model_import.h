@@ -22,10 +22,12 @@ class ModelError : public std::runtime_error {
 };
 
 // A material from the file, mapped onto penumbra's (docs/scene-format.md says what
-// is approximated); `texture` is the absolute path of its diffuse map, "" = none.
+// is approximated); `texture` is the absolute path of its diffuse (base colour) map,
+// "" = none.
 struct ModelMaterial {
   Material material;
   std::string texture;
+  std::string metalRoughTexture;  // glTF's metallicRoughnessTexture, "" = none
 };
 
 struct LoadedModel {
@@ -55,6 +57,6 @@ void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fa
 
 // Scene::textures' index for an image file (shared when already there), decoded
 // once now; fails at `where` naming the problem.
-int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene);
+int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene, bool data = false);
 
 }  // namespace penumbra

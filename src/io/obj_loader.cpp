@@ -179,6 +179,15 @@ ModelMaterial mapMtl(const tinyobj::material_t& t, const std::filesystem::path& 
     m.kr = std::min(1.0f, maxComponent(m.specular));  // a mirror: penumbra's is uncoloured
     m.specular = Color(0.0f);
   }
+  if (t.metallic > 0.0f || t.roughness > 0.0f) {
+    // The PBR extension's Pm / Pr: glTF's metallic-roughness over the Kd base colour.
+    m.metalRough = true;
+    m.metallic = std::clamp(float(t.metallic), 0.0f, 1.0f);
+    m.roughness = std::clamp(float(t.roughness), 0.0f, 1.0f);
+    m.specular = Color(0.0f);
+    m.shininess = 0.0f;
+    m.kr = 0.0f;
+  }
   if (t.dissolve < 1.0f) {  // d < 1 or Tr > 0: glass (penumbra has no partial opacity)
     m.transparent = true;
     m.ior = t.ior > 0.0f && t.ior != 1.0f ? float(t.ior) : 1.5f;  // Ni 1 is MTL's default

@@ -2,6 +2,7 @@
 // the indirect map in place of the ambient term; one frame, no progressive passes.
 #include "plan/photon_stage.h"
 #include "plan/transport_model.h"
+#include "core/bsdf.h"
 #include <fmt/format.h>
 
 namespace penumbra {
@@ -28,7 +29,9 @@ class ClassicTransport final : public TransportModel {
     }
     return "no surface can bounce a photon: every p_r and p_t is 0";
   }
-  bool reflects(const Material& m, const PhotonSettings&) const override { return m.transparent || m.kr > 0.0f; }
+  bool reflects(const Material& m, const PhotonSettings& ps) const override {
+    return m.transparent || makeBsdf(m, ShadingModel::Classic, ps.sampling).kr > 0.0f;
+  }
 
   PerMap<bool> emittedMaps(const PerMap<bool>& wanted, uint32_t) const override {
     PerMap<bool> maps;

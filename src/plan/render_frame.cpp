@@ -91,11 +91,13 @@ std::string phaseName(const char* phase, int pass, int passes) {
 std::unique_ptr<TextureLookup> loadTextures(const Scene& scene) {
   if (scene.textures.empty()) return nullptr;
   std::vector<std::string> paths;
+  std::vector<bool> data;
   for (const Texture& t : scene.textures) {
     // Procedural textures are generated once into the cache, then read like files.
     paths.push_back(t.path.rfind("builtin:", 0) == 0 ? builtinTexturePath(t.path) : t.path);
+    data.push_back(t.data);
   }
-  return std::make_unique<TextureLookup>(paths);
+  return std::make_unique<TextureLookup>(paths, data);
 }
 
 SceneAssets prepareAssets(const Scene& scene, bool textures) {

@@ -20,7 +20,7 @@ constexpr int kMaxHitsPerLine = 64;  // EmitOptions::maxHitsPerLine
 
 bool hasSpecular(const Scene& scene) {
   for (const Material& m : scene.materials) {
-    if (m.kr > 0.0f || m.transparent) return true;
+    if (transportOf(scene).reflects(m, scene.photons)) return true;
   }
   return false;
 }

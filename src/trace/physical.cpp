@@ -6,6 +6,7 @@
 #include "core/bsdf.h"
 #include "core/light_sample.h"
 #include "core/optics.h"
+#include "core/rng.h"
 #include "gather/radiance_estimate.h"
 #include "trace/glass_split.h"
 #include "trace/light_visibility.h"
@@ -13,6 +14,8 @@
 
 namespace penumbra {
 namespace {
+
+enum : uint64_t { kNarrowStream = 0x6e6172726f77ull };  // "narrow": apart from the light samples'
 
 Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf& bsdf,
                   const BsdfFrame& frame, const Vec3& wo, const CachedAnswer* cached,
@@ -33,7 +36,7 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
 Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k, float radius,
                  const SurfaceRecord& s, const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo,
                  const CachedAnswer* cached, ThreadState& ts) {
-  if (!map || map->empty()) return Color(0.0f);
+  if (!map || map->empty() || !hasGatheredLobe(bsdf)) return Color(0.0f);
   // The cache holds irradiance / pi: it answers a Lambertian BSDF exactly; a glossy
   // lobe needs the photons' directions, so it gathers.
   if (cached && ctx.lookup->indirectKind() == CachedIndirect::Irradiance &&
@@ -43,7 +46,7 @@ Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k,
     return (1.0f - bsdf.kr) * bsdf.diffuse * ctx.lookup->lazyIndirect(*map, s.position, s.ng, *ts.scratch);
   }
   ++ts.counts.gatherQueries;
-  RadianceEstimate e = photonRadiance(*map, bsdf, frame, s.position, wo, k, radius, *ts.scratch);
+  RadianceEstimate e = photonRadiance(*map, gatheredPart(bsdf), frame, s.position, wo, k, radius, *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
   return e.value;
 }
@@ -72,22 +75,31 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   }
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
-  SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
+  const bool textured = m.texture >= 0 || m.metalRoughTexture >= 0;
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, textured ? kSurfaceAll : kSurfaceShadingNormal);
   if (maxComponent(m.emission) > 0.0f) {
     // An area light seen by the camera or through mirrors and glass (diffuse
     // surfaces sample it directly instead): part of the direct term.
-    Color glow = (terms & kTermDirect) && (s.frontFace || m.twoSidedEmission) ? m.emission : Color(0.0f);
+    Color glow = (terms & kTermEmitters) && (s.frontFace || m.twoSidedEmission) ? m.emission : Color(0.0f);
     if (recIndex >= 0) endRecord(ts, recIndex, hit, s, m, throughput * glow, "emitter");
     return glow;
   }
   ++ts.shadingPoint;
   Bsdf bsdf = makeBsdf(m, ShadingModel::Physical, ctx.scene.photons.sampling);
-  if (m.texture >= 0 && ctx.textures) {
-    // A texture is the diffuse albedo's map: multiplied in, or added and kept <= 1.
-    Color texel = ctx.textures->lookup(m.texture, s, hit.t * ctx.pixelSpread, m.uvScale);
-    bsdf.diffuse = m.textureBlend == TextureBlend::Multiply
-                       ? bsdf.diffuse * texel
-                       : glm::min(bsdf.diffuse + texel, Color(1.0f) - bsdf.specular);
+  if (textured && ctx.textures) {
+    // A texture is the diffuse albedo's (base colour's) map: multiplied in, or added
+    // and kept <= 1; a metallic-roughness map scales those factors.
+    const float footprint = hit.t * ctx.pixelSpread;
+    if (m.texture >= 0) {
+      Color texel = ctx.textures->lookup(m.texture, s, footprint, m.uvScale);
+      bsdf.diffuse = m.textureBlend == TextureBlend::Multiply
+                         ? bsdf.diffuse * texel
+                         : glm::min(bsdf.diffuse + texel, Color(1.0f) - bsdf.specular);
+    }
+    if (m.metalRoughTexture >= 0) {
+      const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);
+      setMetalRough(bsdf, ShadingModel::Physical, bsdf.diffuse, mr.metallic, mr.roughness);
+    }
   }
   const BsdfFrame frame{s.ns, s.ng, s.frontFace};
   const Vec3 wo = -ray.dir;
@@ -110,14 +122,22 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   }
 
   const RenderSettings& rs = ctx.scene.render;
+  auto follow = [&](const Vec3& dir, const Color& w, RayKind k, uint8_t rayTerms) {
+    Color next = throughput * w;
+    if (!(k == RayKind::Reflection ? ctx.choices.reflection : ctx.choices.refraction)) return;  // the plan skips it
+    if (maxComponent(next) <= rs.minWeight || ts.raysLeft <= 0) return;
+    Ray r{spawnOrigin(s, dir), dir};
+    color += w * tracePhysical(ctx, r, depth + 1, next, k, rayTerms, recIndex, ts);
+  };
+  if (depth < rs.maxDepth && (bsdfFlags(bsdf) & kBsdfNarrow)) {
+    // One sampled ray of the narrow lobe carries its indirect light; the lights it
+    // would see are already in the direct term, so it leaves emitters out.
+    Rng rng(hashKey(ts.sampleKey ^ kNarrowStream, ts.shadingPoint));
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    const BsdfSample bs = sampleNarrowLobe(bsdf, frame, wo, u1, u2);
+    if (bs.valid) follow(bs.wi, bs.weight, RayKind::Reflection, terms & ~kTermEmitters);
+  }
   if (depth < rs.maxDepth && hasDeltaLobe(bsdf)) {
-    auto follow = [&](const Vec3& dir, const Color& w, RayKind k) {
-      Color next = throughput * w;
-      if (!(k == RayKind::Reflection ? ctx.choices.reflection : ctx.choices.refraction)) return;  // the plan skips it
-      if (maxComponent(next) <= rs.minWeight || ts.raysLeft <= 0) return;
-      Ray r{spawnOrigin(s, dir), dir};
-      color += w * tracePhysical(ctx, r, depth + 1, next, k, terms, recIndex, ts);
-    };
     if (bsdf.type == BsdfType::Dielectric) {
       const GlassSplit glass = splitAtGlass(ray, s, bsdf.ior, bsdf.tint);
       const float fr = glass.kr;
@@ -125,14 +145,14 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
       if (!glass.transmits && recIndex >= 0) note = "total internal reflection";
       // The stronger branch first: a tree that hits the ray budget loses the weaker.
       if (fr >= maxComponent(kt)) {
-        follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection);
-        if (glass.transmits) follow(glass.refracted, kt, RayKind::Refraction);
+        follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection, terms);
+        if (glass.transmits) follow(glass.refracted, kt, RayKind::Refraction, terms);
       } else {
-        follow(glass.refracted, kt, RayKind::Refraction);
-        follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection);
+        follow(glass.refracted, kt, RayKind::Refraction, terms);
+        follow(mirrorDirection(ray.dir, s), Color(fr), RayKind::Reflection, terms);
       }
     } else {
-      follow(mirrorDirection(ray.dir, s), Color(bsdf.kr), RayKind::Reflection);
+      follow(mirrorDirection(ray.dir, s), mirrorReflectance(bsdf, frame, wo), RayKind::Reflection, terms);
     }
   }
   if (recIndex >= 0) endRecord(ts, recIndex, hit, s, m, throughput * color, note);
@@ -143,7 +163,7 @@ namespace {
 
 uint8_t physicalTerms(Aov aov) {
   switch (aov) {
-    case Aov::Direct: return kTermDirect;
+    case Aov::Direct: return kTermDirect | kTermEmitters;
     case Aov::Caustic: return kTermCaustic;
     case Aov::Indirect: return kTermGlobal;
     default: return kTermAll;
@@ -161,7 +181,7 @@ void physicalTree(const ShadingContext& ctx, const Ray& ray, ThreadState& ts) {
 // Direct light lands on smooth lobes only; a mirror or glass has none, unless a
 // texture adds a diffuse albedo at the hit.
 bool physicalShadesDirect(const Scene& scene, const Material& m) {
-  return m.texture >= 0 || hasSmoothLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
+  return m.texture >= 0 || m.metalRoughTexture >= 0 || hasSmoothLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
 }
 
 }  // namespace

@@ -11,7 +11,8 @@ enum PhysicalTerms : uint8_t {
   kTermCaustic = 1 << 1,  // the caustic map: L S+ D
   kTermGlobal = 1 << 2,   // the global map: light after >= 1 diffuse bounce
   kTermMissed = 1 << 3,   // the background seen by rays that leave the scene
-  kTermAll = kTermDirect | kTermCaustic | kTermGlobal | kTermMissed,
+  kTermEmitters = 1 << 4,  // area lights seen by the ray (not by a narrow lobe's: sampled as direct)
+  kTermAll = kTermDirect | kTermCaustic | kTermGlobal | kTermMissed | kTermEmitters,
 };
 
 // Radiance along `ray` in W/(sr m^2). `throughput` is the product of the delta

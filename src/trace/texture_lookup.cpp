@@ -26,12 +26,14 @@ std::string oneLine(std::string s) {
 }
 }  // namespace
 
-TextureLookup::TextureLookup(const std::vector<std::string>& paths) : impl_(std::make_unique<Impl>()) {
+TextureLookup::TextureLookup(const std::vector<std::string>& paths, const std::vector<bool>& data)
+    : impl_(std::make_unique<Impl>()) {
   impl_->system = OIIO::TextureSystem::create(false);
   // Files written without MIP levels still get them, built once in the cache.
   impl_->system->attribute("automip", 1);
   impl_->system->attribute("max_memory_MB", 1024.0f);
-  for (const std::string& path : paths) {
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const std::string& path = paths[i];
     OIIO::ImageSpec spec;
     if (!impl_->system->get_imagespec(OIIO::ustring(path), 0, spec)) {
       std::string err = oneLine(impl_->system->geterror());
@@ -43,7 +45,8 @@ TextureLookup::TextureLookup(const std::vector<std::string>& paths) : impl_(std:
                    spec.format.basetype != OIIO::TypeDesc::DOUBLE;
     impl_->entries.push_back({impl_->system->get_texture_handle(OIIO::ustring(path)),
                               spec.nchannels >= 3 ? 3 : 1,
-                              isSrgbEncoded(spec.get_string_attribute("oiio:ColorSpace"), integer)});
+                              !(i < data.size() && data[i]) &&
+                                  isSrgbEncoded(spec.get_string_attribute("oiio:ColorSpace"), integer)});
   }
 }
 

@@ -14,12 +14,11 @@ namespace {
 // Phong through the BSDF and light interfaces: ambient (or the indirect estimate)
 // plus, per visible light, the classic BSDF (k_d N.L + k_s (R.V)^n) times the
 // light's incident term (I / d^2 for point lights).
-Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
+Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m, const Bsdf& bsdf,
                    const Vec3& toEye, const Color& texel, ThreadState& ts, RayRecord* rec) {
   CachedAnswer storage;
   const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);
   Color lit = ambientTerm(ctx, s, m, cached, ts);
-  const Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
   const BsdfFrame frame{s.ns, s.ng, s.frontFace};
   const auto& lights = ctx.scene.lights;
   ++ts.shadingPoint;
@@ -68,7 +67,8 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   if (!found) return finish(ctx.scene.render.background, [](RayRecord&) {});
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
-  SurfaceRecord s = ctx.tracer.surface(ray, hit, m.texture >= 0 ? kSurfaceAll : kSurfaceShadingNormal);
+  const bool textured = m.texture >= 0 || m.metalRoughTexture >= 0;
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, textured ? kSurfaceAll : kSurfaceShadingNormal);
   auto recordHit = [&](RayRecord& r) {
     r.hit = true;
     r.t = hit.t;
@@ -84,12 +84,17 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
 
   Color texel(1.0f);
   if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvScale);
+  Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
+  if (m.metalRoughTexture >= 0 && ctx.textures) {
+    const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);
+    setMetalRough(bsdf, ShadingModel::Classic, m.diffuse, mr.metallic, mr.roughness);
+  }
 
   // Local shading records its gate notes into this ray's record; fetch the
   // pointer after children may have grown the vector, never hold it across.
   RayRecord scratchRec;
   ts.currentRecord = recIndex;
-  Color color = localShading(ctx, s, m, toEye, texel, ts, recIndex >= 0 ? &scratchRec : nullptr);
+  Color color = localShading(ctx, s, m, bsdf, toEye, texel, ts, recIndex >= 0 ? &scratchRec : nullptr);
 
   const RenderSettings& rs = ctx.scene.render;
   bool deeper = depth < rs.maxDepth;
@@ -123,11 +128,11 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
       refractBranch();
       reflectBranch();
     }
-  } else if (deeper && ctx.choices.reflection && m.kr > 0.0f && maxComponent(weight) * m.kr > rs.minWeight &&
+  } else if (deeper && ctx.choices.reflection && bsdf.kr > 0.0f && maxComponent(weight) * bsdf.kr > rs.minWeight &&
              ts.raysLeft > 0) {
     Vec3 rdir = mirrorDirection(ray.dir, s);
     Ray r{spawnOrigin(s, rdir), rdir};
-    color += m.kr * traceRay(ctx, r, depth + 1, weight * m.kr, footprint, RayKind::Reflection, recIndex, ts);
+    color += bsdf.kr * traceRay(ctx, r, depth + 1, weight * bsdf.kr, footprint, RayKind::Reflection, recIndex, ts);
   }
 
   return finish(color, [&](RayRecord& r) {

@@ -14,11 +14,11 @@
 #include <cmath>
 #include <string>
 #include <vector>
+#include "support/bsdf_sampling.h"
 #include "support/render_fixtures.h"
 
 namespace penumbra {
 
-inline constexpr double kPiD = 3.14159265358979323846;
 
 inline Material lambert(const std::string& name, Color rho) {
   Material m = makeMaterial(name, Color(0.0f), rho);
