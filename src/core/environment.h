@@ -17,7 +17,7 @@ namespace penumbra {
 struct EnvironmentMap {
   int width = 0, height = 0;
   std::vector<Color> texels;  // row-major, linear radiance before Light::radiance()
-  float rotation = 0.0f;      // radians about +y, turning the map (counter-clockwise from above)
+  float rotation = 0.0f;      // radians about +y, right-handed: the map's +z turns towards +x
   // Rows drawn by luminance x sin(theta) summed over the row, then a column by
   // luminance within it: marginal has height + 1 entries, conditional height x (width + 1),
   // each a normalised CDF (0 .. 1); a row of zero weight keeps a uniform CDF.
