@@ -1,5 +1,6 @@
 // Point, directional, quad, sphere and mesh lights behind the light interface.
 #include "core/light_sample.h"
+#include "core/environment.h"
 #include "core/mesh_light.h"
 #include "core/sampling.h"
 #include <algorithm>
@@ -103,6 +104,15 @@ LightIncidence sampleLight(const LightSampler& s, float u1, float u2) {
     case LightType::Quad: return sampleQuad(s, u1, u2);
     case LightType::Sphere: return sampleSphere(s, u1, u2);
     case LightType::Mesh: return sampleMeshLight(s, u1, u2);
+    case LightType::Environment: {
+      // Without a normal: the map by luminance, a constant sky uniformly (the tracer
+      // samples it about the normal instead, trace/environment_light.h).
+      const EnvironmentSample e = sampleEnvironmentSphere(light, u1, u2);
+      in.wi = e.wi;
+      in.radiance = e.valid ? e.radiance / e.pdf : Color(0.0f);
+      in.valid = e.valid;
+      return in;
+    }
   }
   in.valid = true;
   return in;
@@ -148,6 +158,7 @@ float lightArea(const Light& light) {
 Color lightPower(const Light& light, const SceneSphere& bounds) {
   if (light.type == LightType::Point) return light.radiance() * (4.0f * kPi);
   if (light.type == LightType::Directional) return light.radiance() * (kPi * bounds.radius * bounds.radius);
+  if (light.type == LightType::Environment) return environmentPower(light, bounds);
   return light.radiance() * (kPi * lightArea(light));  // a Lambertian emitter: pi A L
 }
 
@@ -164,6 +175,7 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
     return r;
   }
   if (light.type == LightType::Mesh) return meshLightPhoton(light, u1, u2, u3, u4);
+  if (light.type == LightType::Environment) return environmentPhoton(light, bounds, u1, u2, u3, u4);
   if (light.type == LightType::Quad || light.type == LightType::Sphere) {
     Vec3 n;
     if (light.type == LightType::Quad) {
@@ -192,7 +204,7 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
 
 float classicPhotonWeight(const Light& light) {
   if (light.type == LightType::Point) return luminance(light.radiance());
-  if (light.type == LightType::Directional) return 0.0f;
+  if (light.type == LightType::Directional || light.type == LightType::Environment) return 0.0f;
   return luminance(light.radiance()) * lightArea(light) * 0.25f;
 }
 

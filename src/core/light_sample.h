@@ -1,7 +1,8 @@
 // The light interface: incident light at a point (one sample of an area light),
 // emitted photons, total power, delta-ness; dispatched on Light::type. Units: a
 // point light's colour x intensity is its radiant intensity (W/sr), a directional
-// light's its irradiance (W/m^2), a quad, sphere or mesh light's its radiance (W/(sr m^2)).
+// light's its irradiance (W/m^2), a quad, sphere, mesh or environment light's its radiance
+// (W/(sr m^2)).
 #pragma once
 #include "core/scene.h"
 
@@ -60,12 +61,12 @@ bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, const Vec3
 float lightArea(const Light& light);
 // Area lights in a scene get this many samples per shading point, delta lights one.
 inline int lightSampleCount(const Light& light, int areaSamples) {
-  return light.type == LightType::Quad || light.type == LightType::Sphere || light.type == LightType::Mesh
-             ? areaSamples : 1;
+  return light.type == LightType::Point || light.type == LightType::Directional ? 1 : areaSamples;
 }
 
 // Total emitted flux, per channel: 4 pi I for a point light, E pi R^2 for a
-// directional light over the scene's bounding disc, pi A L for an area light.
+// directional light over the scene's bounding disc, pi A L for an area light, pi R^2
+// x the integral of L over all directions for an environment.
 Color lightPower(const Light& light, const SceneSphere& bounds);
 
 bool isDeltaLight(const Light& light);
@@ -79,11 +80,14 @@ struct PhotonRay {
   Vec3 dir{0.0f, 0.0f, -1.0f};
   Vec3 normal{0.0f};  // an area light's surface normal at the origin (0 for delta lights)
   float error = 0.0f;  // an area light's origin: its rounding error along normal
+  // Per channel, on the light's power / count: 1 but for an environment map's photons,
+  // whose power follows the map's colour at the drawn direction (core/environment.h).
+  Color weight{1.0f};
 };
 
 // A light's share of the classic photon budget, in the units of a point light's
-// intensity (flux / 4 pi): area lights pi A L / (4 pi); directional lights emit no
-// classic photons.
+// intensity (flux / 4 pi): area lights pi A L / (4 pi); directional and environment
+// lights emit no classic photons (the classic model lights by them through shadow rays).
 float classicPhotonWeight(const Light& light);
 PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                             float u3, float u4);

@@ -5,6 +5,7 @@
 #include "core/shared_list.h"
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,8 +23,12 @@ struct Camera {
 
 // Point and directional lights are deltas; quad, sphere and mesh lights are area
 // emitters, sampled light_samples times per shading point and visible to rays. A mesh
-// light is the triangles of every mesh whose material has an emission.
-enum class LightType { Point, Directional, Quad, Sphere, Mesh };
+// light is the triangles of every mesh whose material has an emission. An environment
+// (at most one, always the last light) lights from every direction at infinity and is
+// what rays leaving the scene see (core/environment.h).
+enum class LightType { Point, Directional, Quad, Sphere, Mesh, Environment };
+
+struct EnvironmentMap;  // core/environment.h
 
 struct Light {
   LightType type = LightType::Point;
@@ -33,7 +38,8 @@ struct Light {
   float radius = 0.0f;              // sphere
   Color color{1.0f};
   // Point: radiant intensity (W/sr); directional: irradiance (W/m^2); quad and
-  // sphere: emitted radiance (W/(sr m^2)), uniform over the surface.
+  // sphere: emitted radiance (W/(sr m^2)), uniform over the surface; environment: its
+  // radiance, times the map's texel when there is one.
   float intensity = 1.0f;
   // Mesh: the emitting triangles in world space, 3 corners each, emitting on the side
   // of (b - a) x (c - a); their cumulative areas (sampling by area, back() = total);
@@ -42,6 +48,9 @@ struct Light {
   std::vector<float> areaCdf;
   float pointError = 0.0f;
   int material = -1;
+  // Environment: the lat-long map and its sampling tables, shared by the copies of a
+  // scene a sweep or batch makes (null: a constant sky).
+  std::shared_ptr<const EnvironmentMap> environment;
   Color radiance() const { return color * intensity; }
 };
 

@@ -77,6 +77,7 @@ std::string powerFormula(const Light& light) {
   switch (light.type) {
     case LightType::Point: return "4 pi x color x intensity";
     case LightType::Directional: return "pi R^2 x color x intensity over the scene's bounding disc";
+    case LightType::Environment: return "pi R^2 x the integral of color x intensity (x map) over all directions";
     default: return "pi x area x color x radiance";
   }
 }
@@ -85,6 +86,10 @@ std::string powerFormula(const Light& light) {
 // or from emitting materials (mesh lights): name the material, or the light's index.
 [[noreturn]] void failOther(const JsonNode& root, const Scene& scene, size_t i, const std::string& problem) {
   const Light& light = scene.lights[i];
+  if (light.type == LightType::Environment && root.has("environment")) {
+    const JsonNode env = root.child("environment");
+    (env.has("intensity") ? env.child("intensity") : env).fail(problem);
+  }
   if (light.type == LightType::Mesh && light.material >= 0) {
     const std::string& name = scene.materials[light.material].name;
     if (root.has("materials") && root.child("materials").has(name.c_str())) {

@@ -61,7 +61,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   if (!document.is_object()) {
     root.fail("a scene must be a JSON object, got " + describeJson(document));
   }
-  root.allowKeys({"name", "camera", "lights", "materials", "objects", "render", "photons"});
+  root.allowKeys({"name", "camera", "lights", "materials", "objects", "render", "photons", "environment"});
   LoadedModel model;
   if (!modelPath.empty()) {
     try {
@@ -102,6 +102,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   if (scene.lights.size() > 65535) root.fail("at most 65535 lights, the model's included");
   addEmitters(scene);
   addMeshEmitters(scene);
+  if (root.has("environment")) readEnvironment(root.child("environment"), scene);
   checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
   // Each file once, in the order first read (a glTF without sidecar is both).

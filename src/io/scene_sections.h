@@ -29,6 +29,10 @@ void addEmitters(Scene& scene);
 // addEmitters. Throws InputError past 65535 lights in all.
 void addMeshEmitters(Scene& scene);
 
+// "environment": a constant sky or an HDR lat-long map, appended as the last light
+// (core/environment.h); after addMeshEmitters, so every other light keeps its index.
+void readEnvironment(const JsonNode& environment, Scene& scene);
+
 // A path from the scene file made absolute against the scene's folder.
 std::string resolvePath(const JsonNode& where, const std::string& file);
 

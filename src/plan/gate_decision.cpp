@@ -12,11 +12,13 @@ GateDecision decideGate(const Scene& scene) {
   GateDecision d;
   const PhotonSettings& ps = scene.photons;
   // Shadow tests per shading point: one per delta light, light_samples per area
-  // light; directional lights emit no shadow photons, so the gate never answers them.
+  // light; directional and environment lights emit no shadow photons, so the gate
+  // never answers them.
   double testsPerPoint = 0.0;
   int gatedLights = 0;
   for (const Light& l : scene.lights) {
-    if (l.type == LightType::Directional || maxComponent(l.radiance()) <= 0.0f) continue;
+    if (l.type == LightType::Directional || l.type == LightType::Environment || maxComponent(l.radiance()) <= 0.0f)
+      continue;
     testsPerPoint += lightSampleCount(l, scene.render.lightSamples);
     ++gatedLights;
   }

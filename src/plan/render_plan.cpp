@@ -25,7 +25,9 @@ PassDecision on(std::string reason, uint64_t budget = 0) { return {true, std::mo
 PassDecision off(std::string reason) { return {false, std::move(reason), 0, {}, {}}; }
 
 struct SceneFacts {
-  bool photonLight = false, areaLight = false, anyLight = false;
+  // photonLight: one that emits shadow and classic photons (neither directional nor
+  // environment); environment: a sky, which emits the physical model's photons only.
+  bool photonLight = false, environment = false, areaLight = false, anyLight = false;
   bool reflective = false, transparent = false;
   int areaLights = 0;
 };
@@ -35,7 +37,8 @@ SceneFacts factsOf(const Scene& scene, const TransportModel& model) {
   for (const Light& l : scene.lights) {
     if (maxComponent(l.radiance()) <= 0.0f) continue;
     f.anyLight = true;
-    f.photonLight = f.photonLight || l.type != LightType::Directional;
+    f.photonLight = f.photonLight || (l.type != LightType::Directional && l.type != LightType::Environment);
+    f.environment = f.environment || l.type == LightType::Environment;
     if (lightSampleCount(l, 2) > 1) { f.areaLight = true; ++f.areaLights; }
   }
   for (const Material& m : scene.materials) {
@@ -68,7 +71,7 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
     gate = d.gate ? on(d.reason, ps.shadowPhotons) : off(d.reason);
   } else {
     gate = ps.gate ? on("photons.gate is on", ps.shadowPhotons) : off("photons.gate is off");
-    if (gate.on && !f.photonLight) gate = off("only directional lights: they emit no shadow photons");
+    if (gate.on && !f.photonLight) gate = off("only directional or environment lights: they emit no shadow photons");
   }
   if (gate.on) gate.perLight = splitBudget(scene, gate.budget);
 
@@ -84,8 +87,8 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
       d = off(light ? "this view does not read it" : view);
     } else if (budgets[k] == 0) {
       d = off(fmt::format("photons.{} is 0", mapName(k)));
-    } else if (!f.photonLight) {
-      d = off("only directional lights: no photons");
+    } else if (!f.photonLight && !(f.environment && k != MapKind::Indirect)) {
+      d = off(f.environment ? "only directional or environment lights: no classic photons" : "only directional lights: no photons");
     } else if (const char* cannot = model.cannotStore(k, scene)) {
       d = off(cannot);
     } else {

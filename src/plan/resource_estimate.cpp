@@ -184,7 +184,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
       // The gate answers most tests without a ray, but not a mesh light's: a large
       // emitter close to what it lights leaves most points mixed, and one without a
       // closed form (over 64 triangles) still draws every sample on a lit verdict.
-      raysPerPoint += gated && l.type != LightType::Mesh ? count * (1.0 - kAvoidable) : count;
+      // An environment is never gated, and the physical model adds a BSDF sample to
+      // each of its light samples (trace/environment_light.h): count both.
+      if (l.type == LightType::Environment) raysPerPoint += 2.0 * count;
+      else raysPerPoint += gated && l.type != LightType::Mesh ? count * (1.0 - kAvoidable) : count;
     }
     if (gated) lookupNs += options.precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();
   }

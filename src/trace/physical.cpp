@@ -4,10 +4,12 @@
 // reflectance and Fresnel (both branches of glass, as the Whitted tracer does).
 #include "trace/physical.h"
 #include "core/bsdf.h"
+#include "core/environment.h"
 #include "core/light_sample.h"
 #include "core/optics.h"
 #include "core/rng.h"
 #include "gather/radiance_estimate.h"
+#include "trace/environment_light.h"
 #include "trace/glass_split.h"
 #include "trace/light_visibility.h"
 #include "trace/texture_lookup.h"
@@ -25,9 +27,13 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
   for (uint32_t li = 0; li < lights.size(); ++li) {
     if (maxComponent(lights[li].radiance()) <= 0.0f) continue;
     std::string one;
-    sum += directFromLight(
+    if (lights[li].type == LightType::Environment) {
+      sum += directFromEnvironment(ctx, s, li, bsdf, frame, wo, ts, note ? &one : nullptr);
+    } else {
+      sum += directFromLight(
         ctx, s, li, cached, ts, note ? &one : nullptr, bsdf, frame, wo,
         [](const Color& t, const Color& f, const LightIncidence& in) { return t * f * in.radiance; });
+    }
     if (note && !one.empty()) *note += (note->empty() ? "" : "; ") + one;
   }
   return sum;
@@ -69,7 +75,10 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, throughput, parentRecord) : -1;
 
   if (!found) {
-    Color c = (terms & kTermMissed) ? ctx.scene.render.background : Color(0.0f);
+    // The environment is a light seen directly (the direct term, as an emitter's
+    // glow); without one, the background.
+    const bool env = environmentOf(ctx.scene) != nullptr;
+    Color c = (terms & (env ? kTermDirect : kTermMissed)) ? missRadiance(ctx.scene, ray.dir) : Color(0.0f);
     if (recIndex >= 0) (*ts.recorder)[recIndex].contribution = throughput * c;
     return c;
   }

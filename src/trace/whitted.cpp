@@ -4,6 +4,7 @@
 #include "core/bsdf.h"
 #include "core/light_sample.h"
 #include "core/optics.h"
+#include "trace/environment_light.h"
 #include "trace/glass_split.h"
 #include "trace/light_visibility.h"
 #include "trace/texture_lookup.h"
@@ -25,9 +26,13 @@ Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Mate
   for (uint32_t li = 0; li < lights.size(); ++li) {
     if (maxComponent(lights[li].radiance()) <= 0.0f) continue;  // nothing to add: skip the shadow test
     std::string note;
-    lit += directFromLight(
-        ctx, s, li, cached, ts, rec ? &note : nullptr, bsdf, frame, toEye,
-        [](const Color& t, const Color& f, const LightIncidence& in) { return t * in.radiance * f; });
+    if (lights[li].type == LightType::Environment) {
+      lit += directFromEnvironment(ctx, s, li, bsdf, frame, toEye, ts, rec ? &note : nullptr);
+    } else {
+      lit += directFromLight(
+          ctx, s, li, cached, ts, rec ? &note : nullptr, bsdf, frame, toEye,
+          [](const Color& t, const Color& f, const LightIncidence& in) { return t * in.radiance * f; });
+    }
     if (rec && !note.empty()) rec->note += (rec->note.empty() ? "" : "; ") + note;
   }
   if (m.texture >= 0) lit = m.textureBlend == TextureBlend::Multiply ? lit * texel : lit + texel;
@@ -64,7 +69,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
     return c;
   };
 
-  if (!found) return finish(ctx.scene.render.background, [](RayRecord&) {});
+  if (!found) return finish(missRadiance(ctx.scene, ray.dir), [](RayRecord&) {});
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   const bool textured = m.texture >= 0 || m.metalRoughTexture >= 0;
