@@ -75,10 +75,10 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, throughput, parentRecord) : -1;
 
   if (!found) {
-    // The environment is a light seen directly (the direct term, as an emitter's
-    // glow); without one, the background.
+    // The environment is a light seen directly (as an emitter's glow, so a narrow
+    // lobe's ray, whose lights are sampled, leaves it out); without one, the background.
     const bool env = environmentOf(ctx.scene) != nullptr;
-    Color c = (terms & (env ? kTermDirect : kTermMissed)) ? missRadiance(ctx.scene, ray.dir) : Color(0.0f);
+    Color c = (terms & (env ? kTermEmitters : kTermMissed)) ? missRadiance(ctx.scene, ray.dir) : Color(0.0f);
     if (recIndex >= 0) (*ts.recorder)[recIndex].contribution = throughput * c;
     return c;
   }
