@@ -330,6 +330,31 @@ TEST(ObjMaterials, PbrExtensionPmAndPrMakeTheMetallicRoughnessMaterial) {
   EXPECT_FLOAT_EQ(gold.diffuse.g, 0.78f);
 }
 
+TEST(Gltf, ASpotKeepsItsConeAndShinesAlongItsNodesMinusZ) {
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
+  tinygltf::Model m = makeGltf();
+  m.lights[0].type = "spot";
+  m.lights[0].spot.innerConeAngle = 0.2;
+  m.lights[0].spot.outerConeAngle = 0.5;
+  writeGltf(m, dir / "spot.glb", true);
+  const Scene s = loadScene((dir / "spot.glb").string());
+  const Light* spot = nullptr;
+  for (const Light& l : s.lights) if (l.isSpot()) spot = &l;
+  ASSERT_NE(spot, nullptr);
+  EXPECT_NEAR(spot->spotCosInner, std::cos(0.2), 1e-6);
+  EXPECT_NEAR(spot->spotCosOuter, std::cos(0.5), 1e-6);
+  expectNear(spot->direction, Vec3(0, 0, -1), 1e-6f, "spot direction");
+  m.lights[0].spot.innerConeAngle = 0.6;  // beyond the outer cone
+  writeGltf(m, dir / "bad.glb", true);
+  try {
+    loadScene((dir / "bad.glb").string());
+    FAIL() << "an inner cone beyond the outer one must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("innerConeAngle"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Gltf, AsAMeshObjectInAJsonScene) {
   const testing::ScratchDir scratch;
   const fs::path& dir = scratch.path();

@@ -33,7 +33,7 @@ struct EnvironmentMap;  // core/environment.h
 struct Light {
   LightType type = LightType::Point;
   Vec3 position{0.0f};              // point light; quad corner; sphere centre
-  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional: the way the light travels (unit)
+  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional, spot: the way the light travels (unit)
   Vec3 edge1{0.0f}, edge2{0.0f};    // quad: it emits on the side of edge1 x edge2
   float radius = 0.0f;              // sphere
   Color color{1.0f};
@@ -48,6 +48,10 @@ struct Light {
   std::vector<float> areaCdf;
   float pointError = 0.0f;
   int material = -1;
+  // A point light with a cone is a spot: full intensity within `spotCosInner` of
+  // `direction`, falling to 0 at `spotCosOuter` (glTF's cone angles, as cosines).
+  float spotCosInner = -1.0f, spotCosOuter = -1.0f;
+  bool isSpot() const { return type == LightType::Point && spotCosOuter > -1.0f; }
   // Environment: the lat-long map and its sampling tables, shared by the copies of a
   // scene a sweep or batch makes (null: a constant sky).
   std::shared_ptr<const EnvironmentMap> environment;

@@ -9,6 +9,7 @@
 #include "io/gltf_document.h"
 #include "io/gltf_files.h"
 #include "io/gltf_materials.h"
+#include "core/light_sample.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -159,8 +160,18 @@ void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std
     light.direction = Vec3(glm::normalize(d));
     if (!isFinite(light.direction)) gltfFail(path, where, "its node's transform leaves it no finite direction");
   } else {
-    light.type = LightType::Point;  // point, and spot without its cone
+    light.type = LightType::Point;
     light.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    if (g.type == "spot") {
+      const glm::dvec3 d = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+      light.direction = Vec3(glm::normalize(d));
+      if (!isFinite(light.direction)) gltfFail(path, where, "its node's transform leaves it no finite direction");
+      const double outer = g.spot.outerConeAngle, inner = g.spot.innerConeAngle;
+      if (!(inner >= 0.0 && inner < outer && outer <= 0.5 * M_PI)) {
+        gltfFail(path, where, "spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+      }
+      setSpotCone(light, float(inner), float(outer));
+    }
   }
   out.lights.push_back(light);
 }
