@@ -316,6 +316,47 @@ TEST(Gltf, MetallicRoughnessTextureIsReadAsDataBesideTheBaseColour) {
   EXPECT_TRUE(s.textures[chrome.metalRoughTexture].data);
 }
 
+TEST(Gltf, TextureTransformAndVolumeAttenuationReachTheMaterial) {
+  // KHR_texture_transform on the base colour places every map of the material;
+  // KHR_materials_volume tints glass by attenuationColor^(thickness / distance).
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
+  Image img(2, 2);
+  img.pixels.assign(4, Color(0.5f));
+  writeImage((dir / "base.png").string(), img);
+  tinygltf::Model m = makeGltf();
+  tinygltf::Image image;
+  image.uri = "base.png";
+  m.images.push_back(image);
+  tinygltf::Texture texture;
+  texture.source = 0;
+  m.textures.push_back(texture);
+  tinygltf::TextureInfo& info = m.materials[1].pbrMetallicRoughness.baseColorTexture;
+  info.index = 0;
+  info.extensions["KHR_texture_transform"] = tinygltf::Value(tinygltf::Value::Object{
+      {"offset", tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.25), tinygltf::Value(0.5)})},
+      {"rotation", tinygltf::Value(0.3)},
+      {"scale", tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(2.0), tinygltf::Value(-1.0)})}});
+  m.materials[2].extensions["KHR_materials_volume"] = tinygltf::Value(tinygltf::Value::Object{
+      {"thicknessFactor", tinygltf::Value(0.5)},
+      {"attenuationDistance", tinygltf::Value(2.0)},
+      {"attenuationColor",
+       tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.5), tinygltf::Value(1.0), tinygltf::Value(0.0625)})}});
+  m.extensionsUsed.push_back("KHR_texture_transform");
+  m.extensionsUsed.push_back("KHR_materials_volume");
+  writeGltf(m, dir / "model.gltf", false);
+  const Scene s = loadScene((dir / "model.gltf").string());
+  const Material& chrome = s.materials[s.meshes[1].material];
+  EXPECT_EQ(chrome.uvScale, Vec2(2.0f, -1.0f));
+  EXPECT_EQ(chrome.uvOffset, Vec2(0.25f, 0.5f));
+  EXPECT_FLOAT_EQ(chrome.uvRotation, 0.3f);
+  const Material& glass = s.materials[s.meshes[2].material];
+  // base (0.9, 0.95, 1) x (0.5, 1, 0.0625)^(1/4) = (0.9 x 0.8409, 0.95, 0.5). Tolerance 1e-5.
+  EXPECT_NEAR(glass.tint.r, 0.9f * std::pow(0.5f, 0.25f), 1e-5f);
+  EXPECT_NEAR(glass.tint.g, 0.95f, 1e-5f);
+  EXPECT_NEAR(glass.tint.b, 0.5f, 1e-5f);
+}
+
 TEST(ObjMaterials, PbrExtensionPmAndPrMakeTheMetallicRoughnessMaterial) {
   const testing::ScratchDir scratch;
   const fs::path& dir = scratch.path();

@@ -60,6 +60,23 @@ struct Light {
 
 enum class TextureBlend { Multiply, Add };
 
+// Where a hit's uv lands in a texture: scaled, then rotated (radians, counter-
+// clockwise in uv), then offset, as glTF's KHR_texture_transform orders them.
+struct UvTransform {
+  Vec2 scale{1.0f};
+  Vec2 offset{0.0f};
+  float rotation = 0.0f;
+  UvTransform() = default;
+  UvTransform(Vec2 s) : scale(s) {}  // NOLINT: a plain repeat converts implicitly
+  UvTransform(Vec2 s, Vec2 o, float r) : scale(s), offset(o), rotation(r) {}
+  bool scalesOnly() const { return offset == Vec2(0.0f) && rotation == 0.0f; }
+  Vec2 apply(Vec2 uv) const {
+    const Vec2 s = uv * scale;
+    const float c = std::cos(rotation), n = std::sin(rotation);
+    return Vec2(c * s.x + n * s.y, -n * s.x + c * s.y) + offset;
+  }
+};
+
 struct Material {
   std::string name;
   Color ambient{0.1f};
@@ -74,6 +91,9 @@ struct Material {
   float pT = 0.0f;   // transmit with pT, absorb otherwise
   int texture = -1;  // index into Scene::textures, -1 = none
   Vec2 uvScale{1.0f};  // texture repeats in (u, v); v wraps too when it is not 1
+  Vec2 uvOffset{0.0f};    // glTF's KHR_texture_transform, with uvScale
+  float uvRotation = 0.0f;
+  UvTransform uvTransform() const { return {uvScale, uvOffset, uvRotation}; }
   TextureBlend textureBlend = TextureBlend::Multiply;
   // An area light's own surface: the radiance camera and specular rays see on its
   // emitting side (the light's sampling accounts for it everywhere else).

@@ -100,7 +100,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
     // and kept <= 1; a metallic-roughness map scales those factors.
     const float footprint = hit.t * ctx.pixelSpread;
     if (m.texture >= 0) {
-      Color texel = ctx.textures->lookup(m.texture, s, footprint, m.uvScale);
+      Color texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
       bsdf.diffuse = m.textureBlend == TextureBlend::Multiply
                          ? bsdf.diffuse * texel
                          : glm::min(bsdf.diffuse + texel, Color(1.0f) - bsdf.specular);

@@ -88,7 +88,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   float footprint = cone + hit.t * ctx.pixelSpread;
 
   Color texel(1.0f);
-  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvScale);
+  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
   Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
   if (m.metalRoughTexture >= 0 && ctx.textures) {
     const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);
