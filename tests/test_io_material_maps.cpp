@@ -4,6 +4,7 @@
 // decoded into a mask), MTL norm / map_Bump, and the JSON material keys.
 #include "core/error.h"
 #include "io/scene_loader.h"
+#include "support/gltf_writer.h"
 #include "support/scratch_dir.h"
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -27,24 +28,6 @@ void writePng(const fs::path& file, int channels, const std::vector<uint8_t>& by
   out->close();
 }
 
-int addAccessor(tinygltf::Model& m, const void* data, size_t bytes, int type, size_t count, int componentType) {
-  tinygltf::Buffer& buffer = m.buffers[0];
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.data.size();
-  view.byteLength = bytes;
-  const auto* p = static_cast<const unsigned char*>(data);
-  buffer.data.insert(buffer.data.end(), p, p + bytes);
-  m.bufferViews.push_back(view);
-  tinygltf::Accessor a;
-  a.bufferView = static_cast<int>(m.bufferViews.size()) - 1;
-  a.componentType = componentType;
-  a.type = type;
-  a.count = count;
-  m.accessors.push_back(a);
-  return static_cast<int>(m.accessors.size()) - 1;
-}
-
 // Per material one unit quad in z = 0 facing +z, with glTF uvs (v down: the image's
 // up is +y), under its own node; material 0 also carries TANGENT (0, 1, 0, -1).
 tinygltf::Model quads(const std::vector<tinygltf::Material>& materials, const std::vector<double>& firstScale = {}) {
@@ -56,11 +39,11 @@ tinygltf::Model quads(const std::vector<tinygltf::Material>& materials, const st
   const float uv[] = {0, 1, 1, 1, 1, 0, 0, 0};
   const float tan[] = {0, 1, 0, -1, 0, 1, 0, -1, 0, 1, 0, -1, 0, 1, 0, -1};
   const uint16_t idx[] = {0, 1, 2, 0, 2, 3};
-  const int p = addAccessor(m, pos, sizeof pos, TINYGLTF_TYPE_VEC3, 4, TINYGLTF_COMPONENT_TYPE_FLOAT);
-  const int n = addAccessor(m, nrm, sizeof nrm, TINYGLTF_TYPE_VEC3, 4, TINYGLTF_COMPONENT_TYPE_FLOAT);
-  const int t = addAccessor(m, uv, sizeof uv, TINYGLTF_TYPE_VEC2, 4, TINYGLTF_COMPONENT_TYPE_FLOAT);
-  const int g = addAccessor(m, tan, sizeof tan, TINYGLTF_TYPE_VEC4, 4, TINYGLTF_COMPONENT_TYPE_FLOAT);
-  const int i = addAccessor(m, idx, sizeof idx, TINYGLTF_TYPE_SCALAR, 6, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  const int p = addAccessor(m, pos, sizeof pos, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 4);
+  const int n = addAccessor(m, nrm, sizeof nrm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 4);
+  const int t = addAccessor(m, uv, sizeof uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, 4);
+  const int g = addAccessor(m, tan, sizeof tan, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, 4);
+  const int i = addAccessor(m, idx, sizeof idx, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 6);
   tinygltf::Scene scene;
   for (size_t k = 0; k < materials.size(); ++k) {
     m.materials.push_back(materials[k]);
