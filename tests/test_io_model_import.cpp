@@ -6,6 +6,7 @@
 #include "core/light_sample.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
+#include "support/gltf_writer.h"
 #include "support/scratch_dir.h"
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
@@ -113,24 +114,6 @@ TEST(ObjMaterials, AnObjWithoutMaterialsStillNeedsOne) {
 }
 
 // ---- glTF, built with tinygltf's writer.
-
-void addAccessor(tinygltf::Model& m, const void* data, size_t bytes, int componentType, int type, size_t count) {
-  tinygltf::Buffer& buffer = m.buffers[0];
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.data.size();
-  view.byteLength = bytes;
-  const auto* p = static_cast<const unsigned char*>(data);
-  buffer.data.insert(buffer.data.end(), p, p + bytes);
-  while (buffer.data.size() % 4) buffer.data.push_back(0);
-  m.bufferViews.push_back(view);
-  tinygltf::Accessor a;
-  a.bufferView = static_cast<int>(m.bufferViews.size()) - 1;
-  a.componentType = componentType;
-  a.type = type;
-  a.count = count;
-  m.accessors.push_back(a);
-}
 
 // One quad primitive (two triangles in z = 0, facing +z) per material, under nodes.
 tinygltf::Model makeGltf() {

@@ -1,6 +1,7 @@
 // The scene as plain data: what io fills in and every stage reads. No behaviour
 // lives here; quads, boxes, OBJ files and teapots all arrive as TriangleMesh.
 #pragma once
+#include "core/alpha_mask.h"
 #include "core/math.h"
 #include "core/shared_list.h"
 #include <array>
@@ -106,6 +107,17 @@ struct Material {
   float metallic = 0.0f;
   float roughness = 1.0f;          // perceptual, as glTF gives it: GGX alpha = roughness^2
   int metalRoughTexture = -1;      // B scales metallic, G scales roughness (linear data)
+  // A tangent-space normal map (linear data, 2 x texel - 1 = (T, B, N) components) and
+  // its glTF `scale` on the T and B components; meshes using it carry tangents.
+  int normalTexture = -1;
+  float normalScale = 1.0f;
+  // Cut-outs (glTF alphaMode): coverage = alpha x the mask's texel at uv (1 without a
+  // mask). Mask keeps a hit where coverage >= alphaCutoff; Blend keeps it with
+  // probability coverage. Cut out for every ray, photons included (the Embree filter).
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alpha = 1.0f;         // the base colour factor's alpha
+  float alphaCutoff = 0.5f;
+  int alphaMask = -1;         // index into Scene::alphaMasks, -1 = none
 };
 
 struct Sphere {
@@ -119,6 +131,9 @@ struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // per vertex, empty = flat shading
   std::vector<Vec2> uvs;      // per vertex, empty = spherical mapping
+  // Per vertex, only for a normal-mapped material (else empty): xyz the unit tangent
+  // along +u, w = +-1 with the bitangent cross(n, t) x w pointing up the image (-v).
+  std::vector<glm::vec4> tangents;
   std::vector<std::array<uint32_t, 3>> triangles;
   int material = 0;
 };
@@ -191,6 +206,7 @@ struct Scene {
   std::vector<Sphere> spheres;
   SharedList<TriangleMesh> meshes;  // shared by copies: the heavy part of a scene
   std::vector<Texture> textures;
+  SharedList<AlphaMask> alphaMasks;  // decoded at load; the geometry's cut-out filter reads them
   RenderSettings render;
   PhotonSettings photons;
 };

@@ -77,6 +77,33 @@ std::vector<uint32_t> readIndices(const tinygltf::Model& m, int index, uint64_t 
   return out;
 }
 
+// TANGENT (VEC4 FLOAT: xyz along +u, w the bitangent's sign), read only for a
+// normal-mapped primitive. The node's linear map carries xyz; a mirroring one turns w.
+// A tangent that cannot be normalised leaves the primitive to computed tangents.
+void addTangents(const tinygltf::Model& m, int accessor, const glm::dmat3& linear, const std::string& where,
+                 const std::string& path, TriangleMesh& mesh, LoadedModel& out) {
+  const AccessorSpan span = accessorSpan(m, accessor, where + ".attributes.TANGENT", path);
+  if (span.components != 4 || span.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+    gltfFail(path, "accessors[" + std::to_string(accessor) + "]", "TANGENT must be a VEC4 of FLOAT");
+  }
+  if (span.count != mesh.positions.size()) {
+    gltfFail(path, where + ".attributes.TANGENT", "has " + std::to_string(span.count) + " elements but POSITION has " +
+                                                      std::to_string(mesh.positions.size()) + " (the spec wants equal counts)");
+  }
+  const std::vector<double> t = readAccessor(span, where + ".attributes.TANGENT", path, true);
+  const double handedness = glm::determinant(linear) < 0.0 ? -1.0 : 1.0;
+  mesh.tangents.reserve(span.count);
+  for (size_t i = 0; i < span.count; ++i) {
+    const Vec3 d(glm::normalize(linear * glm::dvec3(t[4 * i], t[4 * i + 1], t[4 * i + 2])));
+    if (!isFinite(d) || std::fabs(glm::length(d) - 1.0f) > 1e-3f || !std::isfinite(t[4 * i + 3])) {
+      mesh.tangents.clear();
+      if (out.warning.empty()) out.warning = where + ".attributes.TANGENT: a tangent of zero length or not finite; tangents are computed from the uvs";
+      return;
+    }
+    mesh.tangents.emplace_back(d, t[4 * i + 3] * handedness < 0.0 ? -1.0f : 1.0f);
+  }
+}
+
 void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, const dmat4& world, const std::string& name,
                   const std::string& where, const std::string& path, LoadedModel& out) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -118,6 +145,11 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
       }
       mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
     }
+  }
+  const bool normalMapped = prim.material >= 0 && static_cast<size_t>(prim.material) < m.materials.size() &&
+                            m.materials[prim.material].normalTexture.index >= 0;
+  if (normalMapped && (attr = prim.attributes.find("TANGENT")) != prim.attributes.end()) {
+    addTangents(m, attr->second, linear, where, path, mesh, out);
   }
   std::vector<uint32_t> idx;
   if (prim.indices >= 0) {

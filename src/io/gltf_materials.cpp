@@ -1,5 +1,6 @@
 // glTF materials: metallic-roughness (base colour, metallic, roughness and their
-// textures, KHR_materials_ior), transmission + ior as glass, emissive as emission.
+// textures, KHR_materials_ior), transmission + ior as glass, emissive as emission,
+// the normal map and alphaMode.
 #include "io/gltf_materials.h"
 
 #include "io/gltf_files.h"
@@ -150,6 +151,14 @@ std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std
       readTextureTransform(pbr.baseColorTexture.index >= 0 ? pbr.baseColorTexture : pbr.metallicRoughnessTexture, m);
       mm.metalRoughTexture = textureFile(model, pbr.metallicRoughnessTexture.index, path, folder);
     }
+    // The tangent-space normal map and the cut-out: alphaMode reads the base colour's
+    // alpha (factor times the base texture's alpha channel, decoded at load).
+    mm.normalTexture = textureFile(model, g.normalTexture.index, path, folder);
+    m.normalScale = float(g.normalTexture.scale);
+    m.alphaMode = g.alphaMode == "MASK" ? AlphaMode::Mask : g.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+    m.alpha = pbr.baseColorFactor.size() >= 4 ? float(pbr.baseColorFactor[3]) : 1.0f;
+    m.alphaCutoff = float(g.alphaCutoff);
+    if (m.alphaMode != AlphaMode::Opaque) mm.alphaTexture = textureFile(model, pbr.baseColorTexture.index, path, folder);
     out.push_back(std::move(mm));
   }
   return out;
