@@ -13,19 +13,19 @@ uint32_t bits(float f) {
   return b;
 }
 
-// The hit's texture coordinates, as meshSurface computes them (its uvs times the
-// material's uv_scale, or the spherical mapping about the mesh's centre).
+// The hit's texture coordinates, as meshSurface computes them (its uvs, or the
+// spherical mapping about the mesh's centre), placed as the material's textures are.
 Vec2 hitUv(const AlphaCut& cut, uint32_t prim, float u, float v) {
   const TriangleMesh& mesh = *cut.mesh;
   const auto& tri = mesh.triangles[prim];
   const float w = 1.0f - u - v;
   if (!mesh.uvs.empty()) {
-    return (w * mesh.uvs[tri[0]] + u * mesh.uvs[tri[1]] + v * mesh.uvs[tri[2]]) * cut.uvScale;
+    return cut.uv.apply(w * mesh.uvs[tri[0]] + u * mesh.uvs[tri[1]] + v * mesh.uvs[tri[2]]);
   }
   const Vec3 p = w * mesh.positions[tri[0]] + u * mesh.positions[tri[1]] + v * mesh.positions[tri[2]];
   const Vec3 d = p - cut.centre;
   const float len = glm::length(d);
-  return sphericalUv(len > 0.0f ? d / len : Vec3(0.0f, 1.0f, 0.0f)) * cut.uvScale;
+  return cut.uv.apply(sphericalUv(len > 0.0f ? d / len : Vec3(0.0f, 1.0f, 0.0f)));
 }
 
 // One lane: whether the candidate hit stays. A blended surface keys its coin by the

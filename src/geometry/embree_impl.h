@@ -19,7 +19,7 @@ struct AlphaCut {
   const AlphaMask* mask = nullptr;  // null: the material's alpha alone
   AlphaMode mode = AlphaMode::Opaque;
   float alpha = 1.0f, cutoff = 0.5f;
-  Vec2 uvScale{1.0f};
+  UvTransform uv;     // the material's texture placement
   Vec3 centre{0.0f};  // spherical uvs on a mesh without its own
   uint32_t geomId = 0;
 };

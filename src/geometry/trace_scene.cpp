@@ -144,7 +144,7 @@ const AlphaCut* TraceScene::alphaCutOf(const Scene& scene, size_t meshIndex, con
   cut.mode = m.alphaMode;
   cut.alpha = m.alpha;
   cut.cutoff = m.alphaCutoff;
-  cut.uvScale = m.uvScale;
+  cut.uv = m.uvTransform();
   cut.centre = centre;
   impl_->cuts.push_back(cut);
   return &impl_->cuts.back();

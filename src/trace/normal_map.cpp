@@ -8,7 +8,7 @@ namespace penumbra {
 void applyNormalMap(const Material& m, const TextureLookup& textures, float footprint, const Vec3& rayDir,
                     SurfaceRecord& s) {
   if (m.normalTexture < 0 || s.tangent.w == 0.0f) return;
-  const Color texel = textures.lookup(m.normalTexture, s, footprint, m.uvScale);
+  const Color texel = textures.lookup(m.normalTexture, s, footprint, m.uvTransform());
   // glTF: normalize((2 texel - 1) * (scale, scale, 1)).
   const Vec3 local((2.0f * texel.r - 1.0f) * m.normalScale, (2.0f * texel.g - 1.0f) * m.normalScale,
                    2.0f * texel.b - 1.0f);
