@@ -379,6 +379,23 @@ TEST(Gltf, ASpotKeepsItsConeAndShinesAlongItsNodesMinusZ) {
   }
 }
 
+TEST(Gltf, AnOrthographicCameraKeepsItsHeightAndAspect) {
+  // ymag is half the view's height; xmag / ymag its aspect, which sets the image height.
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
+  tinygltf::Model m = makeGltf();
+  m.cameras[0].type = "orthographic";
+  m.cameras[0].orthographic.xmag = 3.0;
+  m.cameras[0].orthographic.ymag = 1.5;
+  m.cameras[0].orthographic.znear = 0.1;
+  m.cameras[0].orthographic.zfar = 100.0;
+  writeGltf(m, dir / "ortho.glb", true);
+  write(dir / "ortho.json", R"({"camera": {"width": 320}})");
+  const Scene s = loadScene((dir / "ortho.glb").string());
+  EXPECT_EQ(s.camera.orthoHeight, 3.0f);
+  EXPECT_EQ(s.camera.height, 160);
+}
+
 TEST(Gltf, AsAMeshObjectInAJsonScene) {
   const testing::ScratchDir scratch;
   const fs::path& dir = scratch.path();

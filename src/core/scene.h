@@ -17,6 +17,9 @@ struct Camera {
   Vec3 lookAt{0.0f};
   Vec3 up{0.0f, 1.0f, 0.0f};
   float fovY = 45.0f;  // vertical field of view, degrees
+  // > 0: an orthographic camera whose view is this tall in scene units (fovY unused);
+  // 0: the pinhole.
+  float orthoHeight = 0.0f;
   int width = 640;
   int height = 480;
   int spp = 1;  // samples per pixel; 1 = pixel centre, >1 = stratified jitter

@@ -43,6 +43,9 @@ CameraProblem cameraProblem(const Camera& c) {
   if (!(c.fovY > 0.0f && c.fovY < 180.0f)) {
     return {"fov", "the vertical field of view must be between 0 and 180 degrees (both excluded), got " + shown(c.fovY)};
   }
+  if (!(c.orthoHeight >= 0.0f && c.orthoHeight <= 1e15f)) {
+    return {"ortho_height", "must be 0 (a pinhole) or a height up to 1e15 scene units, got " + shown(c.orthoHeight)};
+  }
   if (c.width < 1 || c.width > 16384) return {"width", "must be 1..16384 pixels, got " + std::to_string(c.width)};
   if (c.height < 1 || c.height > 16384) return {"height", "must be 1..16384 pixels, got " + std::to_string(c.height)};
   if (c.spp < 1 || c.spp > 4096) return {"spp", "must be 1..4096, got " + std::to_string(c.spp)};

@@ -215,7 +215,7 @@ void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const st
     gltfFail(path, ref, "camera " + std::to_string(index) + " does not exist");
   }
   const tinygltf::Camera& g = m.cameras[index];
-  if (g.type != "perspective") return;  // penumbra's camera is a pinhole
+  if (g.type != "perspective" && g.type != "orthographic") return;
   Camera c;
   c.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
   // One unit ahead, or more far from the origin, so look_at stays apart in float.
@@ -223,10 +223,23 @@ void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const st
   const double reach = std::max({1.0, std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)});
   c.lookAt = Vec3(eye + glm::normalize(ahead) * reach);
   c.up = Vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0.0, 1.0, 0.0)));
-  c.fovY = static_cast<float>(g.perspective.yfov * 180.0 / 3.14159265358979323846);
-  if (g.perspective.aspectRatio > 0.0) {  // 0.01..100 (checkGltfModel)
-    out.aspect = g.perspective.aspectRatio;
-    c.height = std::clamp(static_cast<int>(std::lround(c.width / g.perspective.aspectRatio)), 1, 16384);
+  double aspect = 0.0;
+  if (g.type == "orthographic") {
+    // xmag and ymag are half the view's width and height.
+    if (!(g.orthographic.xmag > 0.0 && g.orthographic.ymag > 0.0) ||
+        !(g.orthographic.xmag / g.orthographic.ymag >= 0.01 && g.orthographic.xmag / g.orthographic.ymag <= 100.0)) {
+      gltfFail(path, "cameras[" + std::to_string(index) + "].orthographic",
+               "xmag and ymag must be positive, their ratio 0.01..100");
+    }
+    c.orthoHeight = static_cast<float>(2.0 * g.orthographic.ymag);
+    aspect = g.orthographic.xmag / g.orthographic.ymag;
+  } else {
+    c.fovY = static_cast<float>(g.perspective.yfov * 180.0 / 3.14159265358979323846);
+    aspect = g.perspective.aspectRatio;  // 0.01..100 (checkGltfModel), 0 = none
+  }
+  if (aspect > 0.0) {
+    out.aspect = aspect;
+    c.height = std::clamp(static_cast<int>(std::lround(c.width / aspect)), 1, 16384);
   }
   // The node's transform places the camera: the JSON camera's checks apply here too.
   const CameraProblem problem = cameraProblem(c);

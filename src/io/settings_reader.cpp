@@ -32,7 +32,7 @@ float gatherRadius(const JsonNode& node, const char* key, float fallback) {
 }  // namespace
 
 void readCamera(const JsonNode& node, Camera& out) {
-  node.allowKeys({"position", "look_at", "up", "fov", "width", "height", "spp"});
+  node.allowKeys({"position", "look_at", "up", "fov", "width", "height", "spp", "ortho_height"});
   if (node.has("position")) out.position = readPosition(node.child("position"));
   if (node.has("look_at")) out.lookAt = readPosition(node.child("look_at"));
   out.up = node.vec3Or("up", out.up);
@@ -40,6 +40,8 @@ void readCamera(const JsonNode& node, Camera& out) {
   out.width = node.intOr("width", out.width, 1, 16384);
   out.height = node.intOr("height", out.height, 1, 16384);
   out.spp = node.intOr("spp", out.spp, 1, 4096);
+  // An orthographic camera: the view's height in scene units.
+  out.orthoHeight = node.floatOr("ortho_height", out.orthoHeight, Range::atLeast(0.0));
 
   // The checks every camera meets (io/camera_checks.h), failing at the key at fault.
   const CameraProblem problem = cameraProblem(out);
