@@ -86,7 +86,10 @@ class Sweep {
       } catch (const InputError& e) {
         throw InputError("sweep run '" + run.id + "': " + e.what());
       }
-      if (i == 0) sceneName_ = p.job.scene.name;
+      if (i == 0) {
+        sceneName_ = p.job.scene.name;
+        notes_ = p.job.scene.load.notes;  // every run loads the same files
+      }
       runs_.push_back(std::move(p));
     }
   }
@@ -280,7 +283,8 @@ class Sweep {
 }  // namespace
 
 SweepOutcome runSweep(const SweepRequest& request) {
-  RenderSession session({request.maxMemoryBytes, request.plan, request.threads, request.phases, {}, kStageCacheBytes});
+  RenderSession session(
+      {request.maxMemoryBytes, request.plan, request.threads, request.phases, {}, kStageCacheBytes, request.load});
   Sweep sweep(request, session);
   return sweep.run();
 }

@@ -7,6 +7,7 @@
 #include "io/camera_checks.h"
 #include "io/gltf_checks.h"
 #include "io/gltf_document.h"
+#include "io/gltf_extensions.h"
 #include "io/gltf_files.h"
 #include "io/gltf_materials.h"
 
@@ -265,6 +266,7 @@ LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits) {
   const std::vector<int> roots = checkGltfModel(model, path, warnings);
   checkGltfBudget(model, roots, path, limits);
   out.warning = !warnings.empty() ? warnings.front() : warn.substr(0, warn.find('\n'));
+  out.ignoredExtensions = ignoredGltfExtensions(model.extensionsUsed);
   out.materials = gltfMaterials(model, path, folder);
   for (int r : roots) walk(model, r, dmat4(1.0), 0, path, out);
   for (TriangleMesh& mesh : out.meshes) {
