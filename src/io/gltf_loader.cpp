@@ -238,7 +238,7 @@ LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits) {
   namespace fs = std::filesystem;
   // Everything tinygltf would act on unchecked is settled first: the JSON's depth,
   // version, required extensions, buffer bounds and which files it may read.
-  const GltfSource source = readGltfSource(path, limits);
+  GltfSource source = readGltfSource(path, limits);
   const std::string folder = fs::absolute(path).parent_path().lexically_normal().string();
   GltfFiles files;
   checkGltfDocument(source, path, folder, limits, files);
@@ -258,6 +258,7 @@ LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits) {
     std::string line = err.substr(0, err.find('\n'));
     fail(path, "cannot load: " + (line.empty() ? std::string("unknown error") : line));
   }
+  source = GltfSource{};  // tinygltf copied the buffers: the file's bytes would only add to the peak
   LoadedModel out;
   out.file = path;
   out.files = files.read();
