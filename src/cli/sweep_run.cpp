@@ -107,6 +107,7 @@ class Sweep {
     id.view = req_.aov;
     for (Pass p : req_.plan.enable) id.plan.push_back(std::string("+") + passName(p));
     for (Pass p : req_.plan.disable) id.plan.push_back(std::string("-") + passName(p));
+    if (!req_.load.defaults) id.plan.push_back("--no-defaults");  // another picture of a glTF scene
     if (!req_.referencePath.empty()) id.reference = inputsStamp({req_.referencePath});
     return id;
   }

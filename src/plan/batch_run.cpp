@@ -57,7 +57,10 @@ BatchOutcome runBatch(const BatchRequest& req) {
       }
       p.inputs = p.views.front().inputs;
       p.inputs.insert(p.inputs.end(), req.extraInputs.begin(), req.extraInputs.end());
-      p.stamp = jobStamp(p.job->scene, p.job->overrides, viewFiles);
+      // --no-defaults changes the picture of a glTF scene: outputs of the other choice are stale.
+      std::vector<std::string> stamped = p.job->overrides;
+      if (!req.load.defaults) stamped.push_back("--no-defaults");
+      p.stamp = jobStamp(p.job->scene, stamped, viewFiles);
     } catch (const InputError& e) {
       p.error = e.what();
       p.views.clear();
