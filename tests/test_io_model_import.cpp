@@ -6,6 +6,7 @@
 #include "core/light_sample.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
+#include "support/gltf_writer.h"
 #include "support/scratch_dir.h"
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
@@ -113,24 +114,6 @@ TEST(ObjMaterials, AnObjWithoutMaterialsStillNeedsOne) {
 }
 
 // ---- glTF, built with tinygltf's writer.
-
-void addAccessor(tinygltf::Model& m, const void* data, size_t bytes, int componentType, int type, size_t count) {
-  tinygltf::Buffer& buffer = m.buffers[0];
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.data.size();
-  view.byteLength = bytes;
-  const auto* p = static_cast<const unsigned char*>(data);
-  buffer.data.insert(buffer.data.end(), p, p + bytes);
-  while (buffer.data.size() % 4) buffer.data.push_back(0);
-  m.bufferViews.push_back(view);
-  tinygltf::Accessor a;
-  a.bufferView = static_cast<int>(m.bufferViews.size()) - 1;
-  a.componentType = componentType;
-  a.type = type;
-  a.count = count;
-  m.accessors.push_back(a);
-}
 
 // One quad primitive (two triangles in z = 0, facing +z) per material, under nodes.
 tinygltf::Model makeGltf() {
@@ -316,6 +299,47 @@ TEST(Gltf, MetallicRoughnessTextureIsReadAsDataBesideTheBaseColour) {
   EXPECT_TRUE(s.textures[chrome.metalRoughTexture].data);
 }
 
+TEST(Gltf, TextureTransformAndVolumeAttenuationReachTheMaterial) {
+  // KHR_texture_transform on the base colour places every map of the material;
+  // KHR_materials_volume tints glass by attenuationColor^(thickness / distance).
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
+  Image img(2, 2);
+  img.pixels.assign(4, Color(0.5f));
+  writeImage((dir / "base.png").string(), img);
+  tinygltf::Model m = makeGltf();
+  tinygltf::Image image;
+  image.uri = "base.png";
+  m.images.push_back(image);
+  tinygltf::Texture texture;
+  texture.source = 0;
+  m.textures.push_back(texture);
+  tinygltf::TextureInfo& info = m.materials[1].pbrMetallicRoughness.baseColorTexture;
+  info.index = 0;
+  info.extensions["KHR_texture_transform"] = tinygltf::Value(tinygltf::Value::Object{
+      {"offset", tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.25), tinygltf::Value(0.5)})},
+      {"rotation", tinygltf::Value(0.3)},
+      {"scale", tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(2.0), tinygltf::Value(-1.0)})}});
+  m.materials[2].extensions["KHR_materials_volume"] = tinygltf::Value(tinygltf::Value::Object{
+      {"thicknessFactor", tinygltf::Value(0.5)},
+      {"attenuationDistance", tinygltf::Value(2.0)},
+      {"attenuationColor",
+       tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(0.5), tinygltf::Value(1.0), tinygltf::Value(0.0625)})}});
+  m.extensionsUsed.push_back("KHR_texture_transform");
+  m.extensionsUsed.push_back("KHR_materials_volume");
+  writeGltf(m, dir / "model.gltf", false);
+  const Scene s = loadScene((dir / "model.gltf").string());
+  const Material& chrome = s.materials[s.meshes[1].material];
+  EXPECT_EQ(chrome.uvScale, Vec2(2.0f, -1.0f));
+  EXPECT_EQ(chrome.uvOffset, Vec2(0.25f, 0.5f));
+  EXPECT_FLOAT_EQ(chrome.uvRotation, 0.3f);
+  const Material& glass = s.materials[s.meshes[2].material];
+  // base (0.9, 0.95, 1) x (0.5, 1, 0.0625)^(1/4) = (0.9 x 0.8409, 0.95, 0.5). Tolerance 1e-5.
+  EXPECT_NEAR(glass.tint.r, 0.9f * std::pow(0.5f, 0.25f), 1e-5f);
+  EXPECT_NEAR(glass.tint.g, 0.95f, 1e-5f);
+  EXPECT_NEAR(glass.tint.b, 0.5f, 1e-5f);
+}
+
 TEST(ObjMaterials, PbrExtensionPmAndPrMakeTheMetallicRoughnessMaterial) {
   const testing::ScratchDir scratch;
   const fs::path& dir = scratch.path();
@@ -328,6 +352,31 @@ TEST(ObjMaterials, PbrExtensionPmAndPrMakeTheMetallicRoughnessMaterial) {
   EXPECT_EQ(gold.metallic, 1.0f);
   EXPECT_EQ(gold.roughness, 0.25f);
   EXPECT_FLOAT_EQ(gold.diffuse.g, 0.78f);
+}
+
+TEST(Gltf, ASpotKeepsItsConeAndShinesAlongItsNodesMinusZ) {
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
+  tinygltf::Model m = makeGltf();
+  m.lights[0].type = "spot";
+  m.lights[0].spot.innerConeAngle = 0.2;
+  m.lights[0].spot.outerConeAngle = 0.5;
+  writeGltf(m, dir / "spot.glb", true);
+  const Scene s = loadScene((dir / "spot.glb").string());
+  const Light* spot = nullptr;
+  for (const Light& l : s.lights) if (l.isSpot()) spot = &l;
+  ASSERT_NE(spot, nullptr);
+  EXPECT_NEAR(spot->spotCosInner, std::cos(0.2), 1e-6);
+  EXPECT_NEAR(spot->spotCosOuter, std::cos(0.5), 1e-6);
+  expectNear(spot->direction, Vec3(0, 0, -1), 1e-6f, "spot direction");
+  m.lights[0].spot.innerConeAngle = 0.6;  // beyond the outer cone
+  writeGltf(m, dir / "bad.glb", true);
+  try {
+    loadScene((dir / "bad.glb").string());
+    FAIL() << "an inner cone beyond the outer one must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("innerConeAngle"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Gltf, AsAMeshObjectInAJsonScene) {

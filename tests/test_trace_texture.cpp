@@ -5,6 +5,7 @@
 #include "io/image_io.h"
 #include "io/texture_gen.h"
 #include "support/render_fixtures.h"
+#include "support/scene_fixtures.h"
 #include "support/scratch_dir.h"
 #include "geometry/sphere_geometry.h"
 #include "trace/texture_lookup.h"
@@ -215,6 +216,22 @@ TEST(TextureFormats, DataTexturesAreNotDecodedAndScaleMetallicAndRoughness) {
   const MetalRough mr = metalRoughAt(m, lookup, s, 1e-3f);
   EXPECT_NEAR(mr.metallic, 0.8f, 3e-3f);
   EXPECT_NEAR(mr.roughness, 0.3f, 3e-3f);
+}
+
+// A texture transform (scale, then rotation, then offset) reads the texel an
+// untransformed lookup reads at the transformed uv. Tolerance 1e-5.
+TEST_F(TextureLookupTest, TransformReadsTheTexelAtTheTransformedUv) {
+  const UvTransform t(Vec2(2.0f, 3.0f), Vec2(0.1f, 0.2f), 0.4f);
+  for (Vec2 uv : {Vec2(0.13f, 0.27f), Vec2(0.61f, 0.45f), Vec2(0.82f, 0.09f)}) {
+    SurfaceRecord s;
+    s.uv = uv;
+    SurfaceRecord moved;
+    Vec2 w = t.apply(uv);
+    moved.uv = w - glm::floor(w);
+    const Color a = lookup_->lookup(0, s, 0.0f, t);
+    const Color b = lookup_->lookup(0, moved, 0.0f, UvTransform(Vec2(1.0f, 1.000001f)));
+    expectColorNear(a, b, 1e-5f, "uv " + std::to_string(uv.x) + "," + std::to_string(uv.y));
+  }
 }
 
 // uv_scale repeats the texture: scaled by (2, 3), the cell at uv is the unscaled

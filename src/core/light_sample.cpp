@@ -93,6 +93,7 @@ LightIncidence sampleLight(const LightSampler& s, float u1, float u2) {
       in.distance = std::sqrt(d2);
       in.wi = d / in.distance;
       in.radiance = light.radiance() * (1.0f / d2);  // as the Whitted tracer always did: bit-identical images
+      if (light.isSpot()) in.radiance *= spotFalloff(light, -in.wi);
       in.point = light.position;
       in.margin = in.distance * kShadowRayShortening;
       break;
@@ -156,10 +157,32 @@ float lightArea(const Light& light) {
 }
 
 Color lightPower(const Light& light, const SceneSphere& bounds) {
+  if (light.isSpot()) return light.radiance() * spotSolidAngle(light);
   if (light.type == LightType::Point) return light.radiance() * (4.0f * kPi);
   if (light.type == LightType::Directional) return light.radiance() * (kPi * bounds.radius * bounds.radius);
   if (light.type == LightType::Environment) return environmentPower(light, bounds);
   return light.radiance() * (kPi * lightArea(light));  // a Lambertian emitter: pi A L
+}
+
+float spotFalloff(const Light& light, const Vec3& dir) {
+  if (!light.isSpot()) return 1.0f;
+  const float c = glm::dot(dir, light.direction);
+  if (c >= light.spotCosInner) return 1.0f;
+  if (c <= light.spotCosOuter) return 0.0f;
+  const float t = (c - light.spotCosOuter) / (light.spotCosInner - light.spotCosOuter);
+  return t * t;
+}
+
+void setSpotCone(Light& light, float innerAngle, float outerAngle) {
+  light.spotCosOuter = std::cos(outerAngle);
+  // A cone with no ramp (inner = outer) would divide by zero in the falloff.
+  light.spotCosInner = std::max(std::cos(innerAngle), light.spotCosOuter + 1e-6f);
+}
+
+float spotSolidAngle(const Light& light) {
+  if (!light.isSpot()) return 4.0f * kPi;
+  // 2 pi [ (1 - cos_i) + the ramp's t^2 integrated over cos from cos_o to cos_i ].
+  return 2.0f * kPi * ((1.0f - light.spotCosInner) + (light.spotCosInner - light.spotCosOuter) / 3.0f);
 }
 
 bool isDeltaLight(const Light& light) {
@@ -169,6 +192,15 @@ bool isDeltaLight(const Light& light) {
 PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                             float u3, float u4) {
   PhotonRay r;
+  if (light.isSpot()) {
+    // Uniform within the outer cone, weighted by the falloff over its mean there.
+    const float cosT = 1.0f - u1 * (1.0f - light.spotCosOuter);
+    const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT)), phi = 2.0f * kPi * u2;
+    r.origin = light.position;
+    r.dir = toWorld(Vec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT), light.direction);
+    r.weight = Color(spotFalloff(light, r.dir) * (2.0f * kPi * (1.0f - light.spotCosOuter)) / spotSolidAngle(light));
+    return r;
+  }
   if (light.type == LightType::Point) {
     r.origin = light.position;
     r.dir = uniformSphere(u1, u2);
@@ -203,6 +235,7 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
 }
 
 float classicPhotonWeight(const Light& light) {
+  if (light.isSpot()) return luminance(light.radiance()) * spotSolidAngle(light) / (4.0f * kPi);
   if (light.type == LightType::Point) return luminance(light.radiance());
   if (light.type == LightType::Directional || light.type == LightType::Environment) return 0.0f;
   return luminance(light.radiance()) * lightArea(light) * 0.25f;

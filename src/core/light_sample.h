@@ -71,6 +71,15 @@ Color lightPower(const Light& light, const SceneSphere& bounds);
 
 bool isDeltaLight(const Light& light);
 
+// A spot's share of its intensity towards `dir` (the way light leaves it): glTF's
+// falloff, the square of a linear ramp between the outer and inner cone; 1 for
+// every other light.
+float spotFalloff(const Light& light, const Vec3& dir);
+// Makes a point light a spot with glTF's cone angles (radians, 0 <= inner < outer <= pi/2).
+void setSpotCone(Light& light, float innerAngle, float outerAngle);
+// The falloff integrated over directions: a spot's power is this times its intensity.
+float spotSolidAngle(const Light& light);
+
 // Where and which way one emitted photon starts, from two (point) or four
 // (directional, area) uniform numbers; every photon of a light carries power /
 // count. An area light's photons start uniformly over its surface, cosine-weighted

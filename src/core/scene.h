@@ -1,6 +1,7 @@
 // The scene as plain data: what io fills in and every stage reads. No behaviour
 // lives here; quads, boxes, OBJ files and teapots all arrive as TriangleMesh.
 #pragma once
+#include "core/alpha_mask.h"
 #include "core/math.h"
 #include "core/shared_list.h"
 #include <array>
@@ -33,7 +34,7 @@ struct EnvironmentMap;  // core/environment.h
 struct Light {
   LightType type = LightType::Point;
   Vec3 position{0.0f};              // point light; quad corner; sphere centre
-  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional: the way the light travels (unit)
+  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional, spot: the way the light travels (unit)
   Vec3 edge1{0.0f}, edge2{0.0f};    // quad: it emits on the side of edge1 x edge2
   float radius = 0.0f;              // sphere
   Color color{1.0f};
@@ -48,6 +49,10 @@ struct Light {
   std::vector<float> areaCdf;
   float pointError = 0.0f;
   int material = -1;
+  // A point light with a cone is a spot: full intensity within `spotCosInner` of
+  // `direction`, falling to 0 at `spotCosOuter` (glTF's cone angles, as cosines).
+  float spotCosInner = -1.0f, spotCosOuter = -1.0f;
+  bool isSpot() const { return type == LightType::Point && spotCosOuter > -1.0f; }
   // Environment: the lat-long map and its sampling tables, shared by the copies of a
   // scene a sweep or batch makes (null: a constant sky).
   std::shared_ptr<const EnvironmentMap> environment;
@@ -55,6 +60,23 @@ struct Light {
 };
 
 enum class TextureBlend { Multiply, Add };
+
+// Where a hit's uv lands in a texture: scaled, then rotated (radians, counter-
+// clockwise in uv), then offset, as glTF's KHR_texture_transform orders them.
+struct UvTransform {
+  Vec2 scale{1.0f};
+  Vec2 offset{0.0f};
+  float rotation = 0.0f;
+  UvTransform() = default;
+  UvTransform(Vec2 s) : scale(s) {}  // NOLINT: a plain repeat converts implicitly
+  UvTransform(Vec2 s, Vec2 o, float r) : scale(s), offset(o), rotation(r) {}
+  bool scalesOnly() const { return offset == Vec2(0.0f) && rotation == 0.0f; }
+  Vec2 apply(Vec2 uv) const {
+    const Vec2 s = uv * scale;
+    const float c = std::cos(rotation), n = std::sin(rotation);
+    return Vec2(c * s.x + n * s.y, -n * s.x + c * s.y) + offset;
+  }
+};
 
 struct Material {
   std::string name;
@@ -70,6 +92,9 @@ struct Material {
   float pT = 0.0f;   // transmit with pT, absorb otherwise
   int texture = -1;  // index into Scene::textures, -1 = none
   Vec2 uvScale{1.0f};  // texture repeats in (u, v); v wraps too when it is not 1
+  Vec2 uvOffset{0.0f};    // glTF's KHR_texture_transform, with uvScale
+  float uvRotation = 0.0f;
+  UvTransform uvTransform() const { return {uvScale, uvOffset, uvRotation}; }
   TextureBlend textureBlend = TextureBlend::Multiply;
   // An area light's own surface: the radiance camera and specular rays see on its
   // emitting side (the light's sampling accounts for it everywhere else).
@@ -82,6 +107,17 @@ struct Material {
   float metallic = 0.0f;
   float roughness = 1.0f;          // perceptual, as glTF gives it: GGX alpha = roughness^2
   int metalRoughTexture = -1;      // B scales metallic, G scales roughness (linear data)
+  // A tangent-space normal map (linear data, 2 x texel - 1 = (T, B, N) components) and
+  // its glTF `scale` on the T and B components; meshes using it carry tangents.
+  int normalTexture = -1;
+  float normalScale = 1.0f;
+  // Cut-outs (glTF alphaMode): coverage = alpha x the mask's texel at uv (1 without a
+  // mask). Mask keeps a hit where coverage >= alphaCutoff; Blend keeps it with
+  // probability coverage. Cut out for every ray, photons included (the Embree filter).
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alpha = 1.0f;         // the base colour factor's alpha
+  float alphaCutoff = 0.5f;
+  int alphaMask = -1;         // index into Scene::alphaMasks, -1 = none
 };
 
 struct Sphere {
@@ -95,6 +131,9 @@ struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // per vertex, empty = flat shading
   std::vector<Vec2> uvs;      // per vertex, empty = spherical mapping
+  // Per vertex, only for a normal-mapped material (else empty): xyz the unit tangent
+  // along +u, w = +-1 with the bitangent cross(n, t) x w pointing up the image (-v).
+  std::vector<glm::vec4> tangents;
   std::vector<std::array<uint32_t, 3>> triangles;
   int material = 0;
 };
@@ -176,6 +215,7 @@ struct Scene {
   std::vector<Sphere> spheres;
   SharedList<TriangleMesh> meshes;  // shared by copies: the heavy part of a scene
   std::vector<Texture> textures;
+  SharedList<AlphaMask> alphaMasks;  // decoded at load; the geometry's cut-out filter reads them
   RenderSettings render;
   PhotonSettings photons;
   LoadReport load;

@@ -68,7 +68,7 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
 PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
   PhotonRay r;
   const float u1 = rng.uniform(), u2 = rng.uniform();
-  if (light.type == LightType::Point) {
+  if (light.type == LightType::Point && !light.isSpot()) {
     r.dir = uniformSphere(u1, u2);
     r.origin = pointLightOrigin(light, r.dir, bounds);
     return r;
@@ -137,13 +137,14 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
         const Light& light = scene.lights[batch.light];
         // Each photon carries an equal share of the light's flux (4 pi I for a point light).
         const float count = static_cast<float>(indirectCounts[batch.light]);
-        const Color power = light.type == LightType::Point ? light.radiance() * (4.0f * kPi / count)
-                                                           : lightPower(light, bounds) * (1.0f / count);
+        const Color power = light.type == LightType::Point && !light.isSpot()
+                                ? light.radiance() * (4.0f * kPi / count)
+                                : lightPower(light, bounds) * (1.0f / count);
         return [&scene, &tracer, &light, &bounds, power, storeFirstHit,
                 rng = Rng(hashKey(seed, kIndirectStream, batchStreamKey(batch)))](
                    BatchAppender<IndirectPhoton>& out) mutable {
           const PhotonRay r = startPhoton(light, bounds, rng);
-          traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power, rng, storeFirstHit, out);
+          traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power * r.weight, rng, storeFirstHit, out);
         };
       });
 

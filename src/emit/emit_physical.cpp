@@ -24,6 +24,10 @@ namespace {
 
 enum : uint64_t { kGlobalStream = 3, kCausticStream = 4 };
 
+// Point and directional lights aim their caustic photons; a spot's cone would cut
+// the aim, so it emits unaimed like an area light.
+bool isAimed(const Light& light) { return isDeltaLight(light) && !light.isSpot(); }
+
 // The caustic pass samples directions (point lights) or disc points (directional
 // lights) only towards the targets, from the mixture of one cone or disc per
 // target; a photon's power divides by the mixture density, so overlapping
@@ -159,7 +163,7 @@ std::vector<double> photonWeights(const Scene& scene, const SceneSphere& bounds,
   for (size_t l = 0; l < scene.lights.size(); ++l) {
     const Light& light = scene.lights[l];
     double w = luminance(lightPower(light, bounds));
-    if (caustic && isDeltaLight(light)) {  // area lights emit unaimed
+    if (caustic && isAimed(light)) {  // area lights and spots emit unaimed
       float full = light.type == LightType::Point ? 4.0f * kPi : kPi * bounds.radius * bounds.radius;
       w *= std::min(1.0, double(aims[l].total) / full);
     } else if (reach.size() == scene.lights.size()) {
@@ -189,7 +193,7 @@ PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& trac
       weights, counts, options, &cuts, emitted, [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
-        const bool aimed = kind == MapKind::Caustic && isDeltaLight(light);
+        const bool aimed = kind == MapKind::Caustic && isAimed(light);
         return [&, &light = light, share, aimed, aim = aims[batch.light], &t = tallies.local(),
                 rng = Rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch)))](
                    BatchAppender<IndirectPhoton>& out) mutable {

@@ -2,6 +2,7 @@
 // files include this header (and with it <embree3/rtcore.h>); the rest of the
 // renderer sees TraceScene through trace_scene.h without any Embree type.
 #pragma once
+#include "core/alpha_mask.h"
 #include "core/scene.h"
 #include "geometry/trace_scene.h"
 #include <embree3/rtcore.h>
@@ -10,12 +11,26 @@
 
 namespace penumbra {
 
+// What a cut-out mesh's filter reads at each candidate hit (geometry/alpha_filter.cpp):
+// the mesh's uvs (or its spherical mapping's centre), the material's alpha rule and
+// its mask. It lives in TraceScene::Impl, at a fixed address while the scene exists.
+struct AlphaCut {
+  const TriangleMesh* mesh = nullptr;
+  const AlphaMask* mask = nullptr;  // null: the material's alpha alone
+  AlphaMode mode = AlphaMode::Opaque;
+  float alpha = 1.0f, cutoff = 0.5f;
+  Vec2 uvScale{1.0f};
+  Vec3 centre{0.0f};  // spherical uvs on a mesh without its own
+  uint32_t geomId = 0;
+};
+
 // The device and scene a TraceScene queries. It owns both handles: destroying it
 // releases the scene, then the device (also when the constructor throws part way).
 struct TraceScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   std::string embreeError;  // first error Embree reported, if any (its error callback writes here)
+  std::vector<AlphaCut> cuts;  // one per cut-out mesh, reserved up front (filters hold pointers)
 
   Impl() = default;
   Impl(const Impl&) = delete;
@@ -29,5 +44,9 @@ struct TraceScene::Impl {
 // Creates the user geometry for all scene spheres (primID = sphere index). The
 // spheres vector must outlive the Embree scene. (geometry/sphere_geometry.cpp)
 RTCGeometry createSphereGeometry(RTCDevice device, const std::vector<Sphere>& spheres);
+
+// Makes `geom` drop the hits `cut` cuts out, for intersection and occlusion queries
+// alike, single rays and packets. (geometry/alpha_filter.cpp)
+void attachAlphaFilter(RTCGeometry geom, const AlphaCut* cut);
 
 }  // namespace penumbra

@@ -19,7 +19,7 @@ void onEmbreeError(void* userPtr, RTCError code, const char* message) {
   if (first->empty()) first->assign(std::string("Embree error ") + std::to_string(code) + ": " + (message ? message : ""));
 }
 
-RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
+RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh, const AlphaCut* cut) {
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
@@ -33,6 +33,7 @@ RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh) {
   for (size_t i = 0; i < mesh.triangles.size(); ++i) {
     for (int k = 0; k < 3; ++k) indices[3 * i + k] = mesh.triangles[i][k];
   }
+  if (cut) attachAlphaFilter(geom, cut);
   rtcCommitGeometry(geom);
   return geom;
 }
@@ -88,6 +89,9 @@ TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene), impl_(s
 
   size_t triangles = 0;
   for (const TriangleMesh& mesh : scene.meshes) triangles += mesh.triangles.size();
+  // Cut-out meshes get a filter reading their AlphaCut; the vector never grows past
+  // this, so the pointers Embree holds stay valid.
+  impl_->cuts.reserve(scene.meshes.size());
   frames_.resize(triangles);
   size_t frameOffset = 0;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -98,8 +102,10 @@ TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene), impl_(s
     meshCentres_.push_back(mesh.positions.empty() ? Vec3(0.0f) : 0.5f * (lo + hi));
     meshRadii_.push_back(mesh.positions.empty() ? 1.0f : std::max(1e-6f, 0.5f * glm::length(hi - lo)));
     if (mesh.triangles.empty()) continue;
-    RTCGeometry geom = createMeshGeometry(device, mesh);
+    const AlphaCut* cut = alphaCutOf(scene, m, meshCentres_.back());
+    RTCGeometry geom = createMeshGeometry(device, mesh, cut);
     unsigned id = rtcAttachGeometry(rtcScene, geom);
+    if (cut) impl_->cuts.back().geomId = id;
     rtcReleaseGeometry(geom);
     if (geometries_.size() <= id) geometries_.resize(id + 1);
     geometries_[id] = {false, static_cast<uint32_t>(m), frameOffset};
@@ -121,6 +127,27 @@ TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene), impl_(s
     bounds_.radius = std::max(0.5f * glm::length(hi - lo), 1e-6f);
   }
   if (!impl_->embreeError.empty()) throw std::runtime_error(impl_->embreeError);  // impl_ releases scene and device
+}
+
+const AlphaCut* TraceScene::alphaCutOf(const Scene& scene, size_t meshIndex, const Vec3& centre) {
+  const TriangleMesh& mesh = scene.meshes[meshIndex];
+  if (mesh.material < 0 || static_cast<size_t>(mesh.material) >= scene.materials.size()) return nullptr;
+  const Material& m = scene.materials[mesh.material];
+  if (m.alphaMode == AlphaMode::Opaque) return nullptr;
+  if (!rtcGetDeviceProperty(impl_->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED)) {
+    throw std::runtime_error("material " + m.name + " cuts out by alpha, and this Embree library was built without filter functions");
+  }
+  AlphaCut cut;
+  cut.mesh = &mesh;
+  cut.mask = m.alphaMask >= 0 && static_cast<size_t>(m.alphaMask) < scene.alphaMasks.size()
+                 ? &scene.alphaMasks[m.alphaMask] : nullptr;
+  cut.mode = m.alphaMode;
+  cut.alpha = m.alpha;
+  cut.cutoff = m.alphaCutoff;
+  cut.uvScale = m.uvScale;
+  cut.centre = centre;
+  impl_->cuts.push_back(cut);
+  return &impl_->cuts.back();
 }
 
 TraceScene::~TraceScene() = default;  // here, where Impl is complete
@@ -220,6 +247,10 @@ SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit, uint8_t fi
     Vec3 n = w * mesh.normals[tri[0]] + hit.u * mesh.normals[tri[1]] + hit.v * mesh.normals[tri[2]];
     float len = glm::length(n);
     if (len > 1e-12f) ns = n / len;
+  }
+  if ((fields & kSurfaceTangent) && !mesh.tangents.empty()) {
+    const glm::vec4 &t0 = mesh.tangents[tri[0]], &t1 = mesh.tangents[tri[1]], &t2 = mesh.tangents[tri[2]];
+    rec.tangent = glm::vec4(Vec3(w * t0 + hit.u * t1 + hit.v * t2), t0.w < 0.0f ? -1.0f : 1.0f);
   }
   const float radius = meshRadii_[geometries_[hit.geomId].index];
   if (!(fields & kSurfaceUv)) {

@@ -12,6 +12,8 @@
 
 namespace penumbra {
 
+struct AlphaCut;  // a cut-out mesh's filter data (geometry/embree_impl.h)
+
 // Which SurfaceRecord fields a caller needs. Position, geometric normal, side and
 // material are always filled (every caller needs them, and they cost a few flops);
 // interpolated normals and texture coordinates only on request, so photon and
@@ -21,6 +23,7 @@ enum SurfaceFields : uint8_t {
   kSurfaceShadingNormal = 1 << 0,  // ns interpolated from vertex normals (else ns = ng)
   kSurfaceUv = 1 << 1,             // uv and uvPerWorld
   kSurfaceAll = kSurfaceShadingNormal | kSurfaceUv,
+  kSurfaceTangent = 1 << 2,        // tangent interpolated from the mesh's (normal maps only)
 };
 
 // Everything shading needs about a hit. Normals are unit length and face the
@@ -32,6 +35,9 @@ struct SurfaceRecord {
   Vec3 ns{0.0f, 0.0f, 1.0f};  // shading normal, facing the incoming ray
   Vec2 uv{0.0f};
   Vec2 uvPerWorld{1.0f};  // uv change per unit of world distance (u, v): texture filter widths
+  // With kSurfaceTangent on a mesh with tangents: xyz along +u (not unit, not yet
+  // orthogonal to ns, never flipped with it), w the bitangent's sign; else all 0.
+  glm::vec4 tangent{0.0f};
   float error = 0.0f;  // bound on position's distance from the true surface along ng
   float spread = 0.0f; // bound on its error in any direction (along the surface too)
   int material = 0;
@@ -97,6 +103,8 @@ class TraceScene {
     float spread;  // in any direction
   };
   static void computeFrames(const TriangleMesh& mesh, TriangleFrame* frames);
+  // The cut-out rule of mesh `meshIndex` kept in impl_ (null for an opaque material).
+  const AlphaCut* alphaCutOf(const Scene& scene, size_t meshIndex, const Vec3& centre);
   SurfaceRecord sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
   SurfaceRecord meshSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
 

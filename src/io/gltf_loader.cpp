@@ -10,6 +10,7 @@
 #include "io/gltf_extensions.h"
 #include "io/gltf_files.h"
 #include "io/gltf_materials.h"
+#include "core/light_sample.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -77,6 +78,33 @@ std::vector<uint32_t> readIndices(const tinygltf::Model& m, int index, uint64_t 
   return out;
 }
 
+// TANGENT (VEC4 FLOAT: xyz along +u, w the bitangent's sign), read only for a
+// normal-mapped primitive. The node's linear map carries xyz; a mirroring one turns w.
+// A tangent that cannot be normalised leaves the primitive to computed tangents.
+void addTangents(const tinygltf::Model& m, int accessor, const glm::dmat3& linear, const std::string& where,
+                 const std::string& path, TriangleMesh& mesh, LoadedModel& out) {
+  const AccessorSpan span = accessorSpan(m, accessor, where + ".attributes.TANGENT", path);
+  if (span.components != 4 || span.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
+    gltfFail(path, "accessors[" + std::to_string(accessor) + "]", "TANGENT must be a VEC4 of FLOAT");
+  }
+  if (span.count != mesh.positions.size()) {
+    gltfFail(path, where + ".attributes.TANGENT", "has " + std::to_string(span.count) + " elements but POSITION has " +
+                                                      std::to_string(mesh.positions.size()) + " (the spec wants equal counts)");
+  }
+  const std::vector<double> t = readAccessor(span, where + ".attributes.TANGENT", path, true);
+  const double handedness = glm::determinant(linear) < 0.0 ? -1.0 : 1.0;
+  mesh.tangents.reserve(span.count);
+  for (size_t i = 0; i < span.count; ++i) {
+    const Vec3 d(glm::normalize(linear * glm::dvec3(t[4 * i], t[4 * i + 1], t[4 * i + 2])));
+    if (!isFinite(d) || std::fabs(glm::length(d) - 1.0f) > 1e-3f || !std::isfinite(t[4 * i + 3])) {
+      mesh.tangents.clear();
+      if (out.warning.empty()) out.warning = where + ".attributes.TANGENT: a tangent of zero length or not finite; tangents are computed from the uvs";
+      return;
+    }
+    mesh.tangents.emplace_back(d, t[4 * i + 3] * handedness < 0.0 ? -1.0f : 1.0f);
+  }
+}
+
 void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, const dmat4& world, const std::string& name,
                   const std::string& where, const std::string& path, LoadedModel& out) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -119,6 +147,11 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
       mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
     }
   }
+  const bool normalMapped = prim.material >= 0 && static_cast<size_t>(prim.material) < m.materials.size() &&
+                            m.materials[prim.material].normalTexture.index >= 0;
+  if (normalMapped && (attr = prim.attributes.find("TANGENT")) != prim.attributes.end()) {
+    addTangents(m, attr->second, linear, where, path, mesh, out);
+  }
   std::vector<uint32_t> idx;
   if (prim.indices >= 0) {
     idx = readIndices(m, prim.indices, count, where + ".indices", path);
@@ -160,8 +193,18 @@ void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std
     light.direction = Vec3(glm::normalize(d));
     if (!isFinite(light.direction)) gltfFail(path, where, "its node's transform leaves it no finite direction");
   } else {
-    light.type = LightType::Point;  // point, and spot without its cone
+    light.type = LightType::Point;
     light.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    if (g.type == "spot") {
+      const glm::dvec3 d = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+      light.direction = Vec3(glm::normalize(d));
+      if (!isFinite(light.direction)) gltfFail(path, where, "its node's transform leaves it no finite direction");
+      const double outer = g.spot.outerConeAngle, inner = g.spot.innerConeAngle;
+      if (!(inner >= 0.0 && inner < outer && outer <= 0.5 * M_PI)) {
+        gltfFail(path, where, "spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+      }
+      setSpotCone(light, float(inner), float(outer));
+    }
   }
   out.lights.push_back(light);
 }

@@ -1,5 +1,6 @@
 // glTF materials: metallic-roughness (base colour, metallic, roughness and their
-// textures, KHR_materials_ior), transmission + ior as glass, emissive as emission.
+// textures, KHR_materials_ior), transmission + ior as glass, emissive as emission,
+// the normal map and alphaMode.
 #include "io/gltf_materials.h"
 
 #include "io/gltf_files.h"
@@ -21,6 +22,31 @@ double extensionNumber(const tinygltf::ExtensionMap& ext, const char* name, cons
   if (it == ext.end() || !it->second.Has(key)) return fallback;
   const tinygltf::Value& v = it->second.Get(key);
   return v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : fallback;
+}
+
+// A number list from an extension object (`fallback` when absent or malformed).
+std::vector<double> extensionNumbers(const tinygltf::ExtensionMap& ext, const char* name, const char* key,
+                                     std::vector<double> fallback) {
+  auto it = ext.find(name);
+  if (it == ext.end() || !it->second.Has(key) || !it->second.Get(key).IsArray()) return fallback;
+  const tinygltf::Value& v = it->second.Get(key);
+  std::vector<double> out;
+  for (size_t i = 0; i < v.ArrayLen(); ++i) {
+    if (!v.Get(int(i)).IsNumber() && !v.Get(int(i)).IsInt()) return fallback;
+    out.push_back(v.Get(int(i)).GetNumberAsDouble());
+  }
+  return out.size() == fallback.size() ? out : fallback;
+}
+
+// KHR_texture_transform of the base colour's texture: every map of the material
+// follows it (penumbra keeps one placement per material).
+void readTextureTransform(const tinygltf::TextureInfo& info, Material& m) {
+  const char* ext = "KHR_texture_transform";
+  const std::vector<double> scale = extensionNumbers(info.extensions, ext, "scale", {1.0, 1.0});
+  const std::vector<double> offset = extensionNumbers(info.extensions, ext, "offset", {0.0, 0.0});
+  m.uvScale = Vec2(float(scale[0]), float(scale[1]));
+  m.uvOffset = Vec2(float(offset[0]), float(offset[1]));
+  m.uvRotation = float(extensionNumber(info.extensions, ext, "rotation", 0.0));
 }
 
 Color colour(const std::vector<double>& c, const Color& fallback) {
@@ -99,7 +125,16 @@ std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std
       // Glass: smooth, the base colour as its transmission filter.
       m.transparent = true;
       m.ior = float(extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5));
-      m.tint = base;
+      // KHR_materials_volume: Beer-Lambert through its thickness, as one filter.
+      const double thickness = extensionNumber(g.extensions, "KHR_materials_volume", "thicknessFactor", 0.0);
+      const double distance = extensionNumber(g.extensions, "KHR_materials_volume", "attenuationDistance", 0.0);
+      const std::vector<double> attenuation =
+          extensionNumbers(g.extensions, "KHR_materials_volume", "attenuationColor", {1.0, 1.0, 1.0});
+      Color volume(1.0f);
+      if (thickness > 0.0 && distance > 0.0 && std::isfinite(distance)) {
+        for (int c = 0; c < 3; ++c) volume[c] = float(std::pow(std::clamp(attenuation[c], 0.0, 1.0), thickness / distance));
+      }
+      m.tint = base * volume;
       m.diffuse = m.specular = Color(0.0f);
       m.shininess = 0.0f;
     } else {
@@ -113,8 +148,17 @@ std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std
       m.roughness = roughness;
       m.ior = float(extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5));
       mm.texture = textureFile(model, pbr.baseColorTexture.index, path, folder);
+      readTextureTransform(pbr.baseColorTexture.index >= 0 ? pbr.baseColorTexture : pbr.metallicRoughnessTexture, m);
       mm.metalRoughTexture = textureFile(model, pbr.metallicRoughnessTexture.index, path, folder);
     }
+    // The tangent-space normal map and the cut-out: alphaMode reads the base colour's
+    // alpha (factor times the base texture's alpha channel, decoded at load).
+    mm.normalTexture = textureFile(model, g.normalTexture.index, path, folder);
+    m.normalScale = float(g.normalTexture.scale);
+    m.alphaMode = g.alphaMode == "MASK" ? AlphaMode::Mask : g.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+    m.alpha = pbr.baseColorFactor.size() >= 4 ? float(pbr.baseColorFactor[3]) : 1.0f;
+    m.alphaCutoff = float(g.alphaCutoff);
+    if (m.alphaMode != AlphaMode::Opaque) mm.alphaTexture = textureFile(model, pbr.baseColorTexture.index, path, folder);
     out.push_back(std::move(mm));
   }
   return out;

@@ -39,6 +39,22 @@ void readQuadLight(const JsonNode& item, Light& light) {
   if (!(area > 1e-12) || !(area < 1e38)) edge2.fail("edge1 and edge2 span no area (or more than float can hold)");
 }
 
+// A spot: a point light aimed along `direction` with glTF's cone angles in degrees.
+void readSpotLight(const JsonNode& item, Light& light) {
+  item.allowKeys({"type", "position", "direction", "inner_angle", "outer_angle", "color", "intensity"});
+  light.position = readPosition(item.required("position", " for a spot light"));
+  JsonNode dir = item.required("direction", " for a spot light (the way it shines)");
+  const glm::dvec3 d(dir.asVec3());
+  const double length = glm::length(d);
+  if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
+  light.direction = Vec3(d / length);
+  const float outer = item.floatOr("outer_angle", 45.0f, Range::between(0.0, 90.0));
+  if (!(outer > 0.0f)) item.child("outer_angle").fail("must be above 0 degrees");
+  const float inner = item.floatOr("inner_angle", 0.0f, Range::between(0.0, 90.0));
+  if (inner >= outer) item.child("inner_angle").fail("must be below outer_angle");
+  setSpotCone(light, inner * kPi / 180.0f, outer * kPi / 180.0f);
+}
+
 void readSphereLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "center", "radius", "color", "radiance", "power"});
   light.position = readPosition(item.required("center", " for a sphere light"));
@@ -62,10 +78,12 @@ void readLights(const JsonNode& node, std::vector<Light>& out) {
     JsonNode item = node.element(i);
     item.requireObject();
     Light light;
-    size_t type = item.required("type", " (\"point\", \"directional\", \"quad\" or \"sphere\")")
-                      .asEnum({"point", "directional", "quad", "sphere"});
-    light.type = static_cast<LightType>(type);
-    if (light.type == LightType::Point) {
+    size_t type = item.required("type", " (\"point\", \"directional\", \"quad\", \"sphere\" or \"spot\")")
+                      .asEnum({"point", "directional", "quad", "sphere", "spot"});
+    light.type = type == 4 ? LightType::Point : static_cast<LightType>(type);
+    if (type == 4) {
+      readSpotLight(item, light);
+    } else if (light.type == LightType::Point) {
       item.allowKeys({"type", "position", "color", "intensity"});
       light.position = readPosition(item.required("position", " for a point light"));
     } else if (light.type == LightType::Directional) {

@@ -1,7 +1,9 @@
 // The "materials" section: Phong terms, mirror and glass parameters, photon
-// Russian-roulette probabilities, and the textures materials reference.
+// Russian-roulette probabilities, the textures materials reference, normal maps and
+// alpha cut-outs.
 #include "io/scene_sections.h"
 #include "core/color.h"
+#include "io/alpha_mask_reader.h"
 #include "io/float_checks.h"
 #include "io/texture_check.h"
 
@@ -73,10 +75,32 @@ int textureIndex(const JsonNode& fileNode, bool data, Scene& scene, TextureIndex
   return it->second;
 }
 
+// A tangent-space normal map (data, with glTF's scale) and the cut-out: alpha_mode
+// "mask" (the default with alpha_texture) keeps alpha >= alpha_cutoff, "blend" keeps
+// a hit with probability alpha; alpha_texture's alpha channel (or its grey) times alpha.
+void readNormalAndAlpha(const JsonNode& node, Material& m, Scene& scene, TextureIndex& textures) {
+  if (node.has("normal_texture")) m.normalTexture = textureIndex(node.child("normal_texture"), true, scene, textures);
+  m.normalScale = node.floatOr("normal_scale", m.normalScale, Range::between(-1e3, 1e3));
+  const Range unit = Range::between(0.0, 1.0);
+  m.alpha = node.floatOr("alpha", m.alpha, unit);
+  m.alphaCutoff = node.floatOr("alpha_cutoff", m.alphaCutoff, unit);
+  const size_t fallback = node.has("alpha_texture") || node.has("alpha_cutoff") ? 1 : node.has("alpha") ? 2 : 0;
+  m.alphaMode = static_cast<AlphaMode>(node.enumOr("alpha_mode", fallback, {"opaque", "mask", "blend"}));
+  if (node.has("alpha_texture")) {
+    const JsonNode file = node.child("alpha_texture");
+    if (file.asString().empty()) file.fail("must not be empty");
+    const std::string path = resolvePath(file, file.asString());
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) file.fail("texture file not found: " + path);
+    m.alphaMask = addAlphaMask(file, path, scene, true);
+  }
+}
+
 Material readMaterial(const JsonNode& node, const std::string& name, Scene& scene,
                       TextureIndex& textures) {
   node.allowKeys({"ambient", "diffuse", "specular", "shininess", "reflective", "transparent",
-                  "p_r", "p_t", "texture", "emission", "metallic", "roughness", "metallic_roughness_texture"});
+                  "p_r", "p_t", "texture", "emission", "metallic", "roughness", "metallic_roughness_texture",
+                  "normal_texture", "normal_scale", "alpha", "alpha_mode", "alpha_cutoff", "alpha_texture"});
   Material m;
   m.name = name;
   m.ambient = node.colorOr("ambient", m.ambient);
@@ -150,6 +174,7 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
   if (node.has("metallic_roughness_texture")) {
     m.metalRoughTexture = textureIndex(node.child("metallic_roughness_texture"), true, scene, textures);
   }
+  readNormalAndAlpha(node, m, scene, textures);
   return m;
 }
 

@@ -3,6 +3,7 @@
 #include "io/model_import.h"
 
 #include "core/color.h"
+#include "io/alpha_mask_reader.h"
 #include "io/float_checks.h"
 #include "io/gltf_loader.h"
 #include "io/json_reader.h"
@@ -41,6 +42,9 @@ Material fitToModel(Material m, ShadingModel model) {
   m.metallic = bounded(m.metallic, 0.0f, 1.0f);
   m.roughness = bounded(m.roughness, 0.0f, 1.0f);
   m.ior = std::isnan(m.ior) ? 1.5f : std::clamp(m.ior, 0.01f, 100.0f);
+  m.alpha = bounded(m.alpha, 0.0f, 1.0f);
+  m.alphaCutoff = bounded(m.alphaCutoff, 0.0f, 1.0f);
+  m.normalScale = std::isfinite(m.normalScale) ? std::clamp(m.normalScale, -1e3f, 1e3f) : 1.0f;
   if (model == ShadingModel::Physical) {
     m.diffuse = glm::min(m.diffuse, Color(1.0f));
     if (m.shininess > 0.0f) m.specular = glm::min(m.specular, Color(1.0f) - m.diffuse);
@@ -89,6 +93,8 @@ void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fa
     m.name = stem + ":" + mm.material.name;
     if (!mm.texture.empty()) m.texture = addTextureFile(where, mm.texture, scene);
     if (!mm.metalRoughTexture.empty()) m.metalRoughTexture = addTextureFile(where, mm.metalRoughTexture, scene, true);
+    if (!mm.normalTexture.empty()) m.normalTexture = addTextureFile(where, mm.normalTexture, scene, true);
+    if (!mm.alphaTexture.empty()) m.alphaMask = addAlphaMask(where, mm.alphaTexture, scene, false);
     index[mesh.material] = static_cast<int>(scene.materials.size());
     scene.materials.push_back(std::move(m));
   }

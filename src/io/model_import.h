@@ -28,6 +28,8 @@ struct ModelMaterial {
   Material material;
   std::string texture;
   std::string metalRoughTexture;  // glTF's metallicRoughnessTexture, "" = none
+  std::string normalTexture;      // tangent-space normal map (glTF normalTexture, MTL norm/bump)
+  std::string alphaTexture;       // the image whose alpha channel cuts out (glTF: the base colour's)
 };
 
 struct LoadedModel {

@@ -193,9 +193,18 @@ ModelMaterial mapMtl(const tinyobj::material_t& t, const std::filesystem::path& 
     m.ior = t.ior > 0.0f && t.ior != 1.0f ? float(t.ior) : 1.5f;  // Ni 1 is MTL's default
     m.tint = maxComponent(tf) > 0.0f ? tf : Color(1.0f);
   }
-  if (!t.diffuse_texname.empty()) {
-    std::filesystem::path tex(t.diffuse_texname);
-    out.texture = (tex.is_relative() ? dir / tex : tex).lexically_normal().string();
+  auto file = [&](const std::string& name) {
+    const std::filesystem::path tex(name);
+    return (tex.is_relative() ? dir / tex : tex).lexically_normal().string();
+  };
+  if (!t.diffuse_texname.empty()) out.texture = file(t.diffuse_texname);
+  // norm, else map_Bump / bump: read as a tangent-space normal map (what exporters
+  // write there today), -bm its scale.
+  const std::string& normal = t.normal_texname.empty() ? t.bump_texname : t.normal_texname;
+  if (!normal.empty()) {
+    out.normalTexture = file(normal);
+    const tinyobj::texture_option_t& opt = t.normal_texname.empty() ? t.bump_texopt : t.normal_texopt;
+    out.material.normalScale = std::isfinite(opt.bump_multiplier) ? float(opt.bump_multiplier) : 1.0f;
   }
   return out;
 }

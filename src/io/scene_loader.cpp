@@ -7,6 +7,7 @@
 #include "io/float_checks.h"
 #include "io/json_parse.h"
 #include "io/json_reader.h"
+#include "io/mesh_tangents.h"
 #include "io/model_import.h"
 #include "io/overrides.h"
 #include "io/scene_defaults.h"
@@ -101,6 +102,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   readMaterials(root, scene);
   readObjects(root, scene);
   if (!modelPath.empty()) addSceneModel(root, model, scene);
+  addMissingTangents(scene);  // normal-mapped meshes only
   if (scene.lights.size() > 65535) root.fail("at most 65535 lights, the model's included");
   addEmitters(scene);
   addMeshEmitters(scene);

@@ -69,6 +69,14 @@ void applyTransform(const Transform& transform, TriangleMesh& mesh) {
       n = len > 0.0f ? t / len : n;
     }
   }
+  // Tangents are directions in the surface: they follow the linear map; a mirror
+  // turns the bitangent's handedness with the winding.
+  const float handedness = glm::determinant(m) < 0.0f ? -1.0f : 1.0f;
+  for (glm::vec4& t : mesh.tangents) {
+    const Vec3 d = m * Vec3(t);
+    const float len = glm::length(d);
+    t = glm::vec4(len > 0.0f ? d / len : Vec3(t), t.w * handedness);
+  }
   if (glm::determinant(m) < 0.0f) {
     for (auto& tri : mesh.triangles) std::swap(tri[1], tri[2]);
   }

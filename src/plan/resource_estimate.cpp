@@ -150,14 +150,17 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   for (const TriangleMesh& m : scene.meshes) {
     primitives += m.triangles.size();
     meshBytes += m.positions.size() * 12.0 + m.normals.size() * 12.0 + m.uvs.size() * 8.0 +
-                 m.triangles.size() * 12.0;
+                 m.tangents.size() * 16.0 + m.triangles.size() * 12.0;
     embreeCopyBytes += m.positions.size() * 12.0 + m.triangles.size() * (12.0 + kFrameBytesPerTriangle);
   }
   // Embree's BVH and the references its build holds at the peak, its own copies of
   // the vertex and index buffers, and the tracer's per-triangle frames: every mesh
   // object counts in full, instances of one file too (each is loaded as a copy).
   e.bvhBytes = primitives * (kBvhBytesPerPrimitive + kBvhBuildBytesPerPrimitive) + embreeCopyBytes;
-  e.sceneBytes = meshBytes + textureBytes(scene);
+  // Alpha masks are decoded bytes the scene holds (one per texel), beside the cache.
+  double maskBytes = 0.0;
+  for (const AlphaMask& mask : scene.alphaMasks) maskBytes += double(mask.bytes());
+  e.sceneBytes = meshBytes + textureBytes(scene) + maskBytes;
   e.baseBytes = kBaseBytes;
 
   // Time: each stored photon is one traced segment, plus the one that escapes.

@@ -52,17 +52,20 @@ TextureLookup::TextureLookup(const std::vector<std::string>& paths, const std::v
 
 TextureLookup::~TextureLookup() { OIIO::TextureSystem::destroy(impl_->system); }
 
-Color TextureLookup::lookup(int index, const SurfaceRecord& s, float footprint, Vec2 uvScale) const {
+Color TextureLookup::lookup(int index, const SurfaceRecord& s, float footprint, const UvTransform& uv) const {
   const Impl::Entry& e = impl_->entries[index];
   OIIO::TextureOpt opt;
   opt.swrap = OIIO::TextureOpt::WrapPeriodic;  // longitude wraps across the seam
   // Latitude stops at the poles, unless the texture repeats in v.
-  opt.twrap = uvScale.y == 1.0f ? OIIO::TextureOpt::WrapClamp : OIIO::TextureOpt::WrapPeriodic;
-  float du = footprint * s.uvPerWorld.x * uvScale.x;
-  float dv = footprint * s.uvPerWorld.y * uvScale.y;
+  const bool clampV = uv.scale.y == 1.0f && uv.scalesOnly();
+  opt.twrap = clampV ? OIIO::TextureOpt::WrapClamp : OIIO::TextureOpt::WrapPeriodic;
+  // The footprint scales with the transform; a rotation only turns it.
+  const float du = footprint * s.uvPerWorld.x * std::abs(uv.scale.x);
+  const float dv = footprint * s.uvPerWorld.y * std::abs(uv.scale.y);
+  const Vec2 at = uv.scalesOnly() ? s.uv * uv.scale : uv.apply(s.uv);
   float v[3] = {1.0f, 0.0f, 1.0f};
   auto* perthread = impl_->system->get_perthread_info();
-  impl_->system->texture(e.handle, perthread, opt, s.uv.x * uvScale.x, s.uv.y * uvScale.y, du, 0.0f, 0.0f, dv,
+  impl_->system->texture(e.handle, perthread, opt, at.x, at.y, du, 0.0f, 0.0f, dv,
                          e.channels, v);
   Color c = e.channels == 3 ? Color(v[0], v[1], v[2]) : Color(v[0]);
   // Filtering happens on the stored (encoded) values; decoding afterwards is the

@@ -16,9 +16,9 @@ class TextureLookup {
   ~TextureLookup();
   // Linear RGB of texture `index` at the surface's uv; `footprint` is the world
   // width the pixel covers there, turned into a filter width in uv.
-  // `uvScale` repeats the texture (material uv_scale); v wraps instead of clamping
-  // when it is not 1.
-  Color lookup(int index, const SurfaceRecord& s, float footprint, Vec2 uvScale = Vec2(1.0f)) const;
+  // `uv` places the texture (material uv_scale, glTF's texture transform); v wraps
+  // instead of clamping when it is more than a scale of 1.
+  Color lookup(int index, const SurfaceRecord& s, float footprint, const UvTransform& uv = {}) const;
 
  private:
   struct Impl;
@@ -33,7 +33,7 @@ struct MetalRough {
 inline MetalRough metalRoughAt(const Material& m, const TextureLookup& textures, const SurfaceRecord& s,
                                float footprint) {
   if (m.metalRoughTexture < 0) return {m.metallic, m.roughness};
-  const Color t = textures.lookup(m.metalRoughTexture, s, footprint, m.uvScale);
+  const Color t = textures.lookup(m.metalRoughTexture, s, footprint, m.uvTransform());
   return {m.metallic * t.b, m.roughness * t.g};
 }
 

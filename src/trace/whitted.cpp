@@ -7,6 +7,7 @@
 #include "trace/environment_light.h"
 #include "trace/glass_split.h"
 #include "trace/light_visibility.h"
+#include "trace/normal_map.h"
 #include "trace/texture_lookup.h"
 
 namespace penumbra {
@@ -72,8 +73,8 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   if (!found) return finish(missRadiance(ctx.scene, ray.dir), [](RayRecord&) {});
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
-  const bool textured = m.texture >= 0 || m.metalRoughTexture >= 0;
-  SurfaceRecord s = ctx.tracer.surface(ray, hit, textured ? kSurfaceAll : kSurfaceShadingNormal);
+  const bool textured = m.texture >= 0 || m.metalRoughTexture >= 0 || m.normalTexture >= 0;
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, (textured ? kSurfaceAll : kSurfaceShadingNormal) | normalMapFields(m));
   auto recordHit = [&](RayRecord& r) {
     r.hit = true;
     r.t = hit.t;
@@ -87,8 +88,9 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   Vec3 toEye = -ray.dir;
   float footprint = cone + hit.t * ctx.pixelSpread;
 
+  if (ctx.textures) applyNormalMap(m, *ctx.textures, footprint, ray.dir, s);
   Color texel(1.0f);
-  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvScale);
+  if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
   Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
   if (m.metalRoughTexture >= 0 && ctx.textures) {
     const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);

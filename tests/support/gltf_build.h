@@ -1,7 +1,8 @@
 // glTF models built in memory with tinygltf and written by its own writer, for the
-// tests of glTF scenes and the load benchmark: accessors appended to one buffer,
-// triangle meshes, boxes, nodes of scene 0.
+// tests of glTF scenes and the load benchmark: triangle meshes, boxes, cameras and
+// nodes of scene 0, over support/gltf_writer.h's accessors.
 #pragma once
+#include "gltf_writer.h"  // beside this file: found from tests and bench alike
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -21,24 +22,12 @@ inline tinygltf::Model emptyGltf() {
   return m;
 }
 
-// Appends `values` to buffer 0 as one view and one accessor of `count` elements;
-// returns the accessor. Positions get the min / max glTF asks for.
+// Appends `values` to buffer 0 as one view and one accessor of `count` elements
+// (support/gltf_writer.h); returns the accessor. Positions get the min / max glTF asks for.
 template <typename T>
 int appendAccessor(tinygltf::Model& m, const std::vector<T>& values, int componentType, int type, size_t count) {
-  tinygltf::Buffer& buffer = m.buffers[0];
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.data.size();
-  view.byteLength = values.size() * sizeof(T);
-  const auto* p = reinterpret_cast<const unsigned char*>(values.data());
-  buffer.data.insert(buffer.data.end(), p, p + view.byteLength);
-  while (buffer.data.size() % 4) buffer.data.push_back(0);
-  m.bufferViews.push_back(view);
-  tinygltf::Accessor a;
-  a.bufferView = static_cast<int>(m.bufferViews.size()) - 1;
-  a.componentType = componentType;
-  a.type = type;
-  a.count = count;
+  const int index = addAccessor(m, values.data(), values.size() * sizeof(T), componentType, type, count);
+  tinygltf::Accessor& a = m.accessors[index];
   if (type == TINYGLTF_TYPE_VEC3 && componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && count > 0) {
     a.minValues = a.maxValues = {double(values[0]), double(values[1]), double(values[2])};
     for (size_t i = 0; i < count; ++i) {
@@ -48,8 +37,7 @@ int appendAccessor(tinygltf::Model& m, const std::vector<T>& values, int compone
       }
     }
   }
-  m.accessors.push_back(a);
-  return static_cast<int>(m.accessors.size()) - 1;
+  return index;
 }
 
 // A mesh of one triangle primitive: float xyz positions, optional normals and uvs,

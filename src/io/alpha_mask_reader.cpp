@@ -1,0 +1,56 @@
+// Alpha masks decoded at load through OpenImageIO: the one channel that cuts out,
+// as bytes (OIIO's float-to-byte conversion rounds and clamps to 0..255), so the
+// geometry layer reads plain memory and never an image library.
+#include "io/alpha_mask_reader.h"
+
+#include "io/json_reader.h"
+#include "io/texture_check.h"
+
+#include <OpenImageIO/imageio.h>
+
+namespace penumbra {
+
+namespace {
+
+// The channel holding alpha: the one the file names, else the last of a grey+alpha
+// or RGBA image; -1 when it has none.
+int alphaChannel(const OIIO::ImageSpec& spec) {
+  if (spec.alpha_channel >= 0 && spec.alpha_channel < spec.nchannels) return spec.alpha_channel;
+  if (spec.nchannels == 2 || spec.nchannels == 4) return spec.nchannels - 1;
+  return -1;
+}
+
+}  // namespace
+
+int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, bool greyIsAlpha) {
+  for (size_t i = 0; i < scene.alphaMasks.size(); ++i) {
+    if (scene.alphaMasks[i].source == path) return static_cast<int>(i);
+  }
+  // A texture already in the scene was decoded whole when it joined (texture_check);
+  // any other file is judged the same way first.
+  bool checked = false;
+  for (const Texture& t : scene.textures) checked = checked || t.path == path;
+  if (!checked) {
+    const std::string problem = textureFileProblem(path);
+    if (!problem.empty()) where.fail(problem);
+    scene.inputs.push_back(path);
+  }
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) where.fail("cannot read alpha of " + path + ": " + OIIO::geterror());
+  const OIIO::ImageSpec spec = in->spec();
+  int channel = alphaChannel(spec);
+  if (channel < 0 && !greyIsAlpha) return -1;  // no alpha: every texel is opaque
+  if (channel < 0) channel = 0;
+  AlphaMask mask;
+  mask.source = path;
+  mask.width = spec.width;
+  mask.height = spec.height;
+  mask.alpha.resize(size_t(spec.width) * size_t(spec.height));
+  if (!in->read_image(0, 0, channel, channel + 1, OIIO::TypeDesc::UINT8, mask.alpha.data())) {
+    where.fail("cannot read alpha of " + path + ": " + in->geterror());
+  }
+  scene.alphaMasks.push_back(std::move(mask));
+  return static_cast<int>(scene.alphaMasks.size()) - 1;
+}
+
+}  // namespace penumbra
