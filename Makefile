@@ -72,6 +72,7 @@ bench: build
 	$(call run_bench,bench_photons,)
 	$(call run_bench,bench_gather,--benchmark_filter='$(GATHER_FILTER)')
 	$(call run_bench,bench_render,--benchmark_filter='BM_(Scene|Control)')
+	$(call run_bench,bench_load,)
 	@scripts/bench_table.py bench $(RESULTS)
 
 # Per scene and stage (stats.time.* through runRender), 1 and 2 threads, and the speed-up.

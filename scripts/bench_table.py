@@ -11,7 +11,9 @@ import sys
 SCENES = [("GlassBox", "glass box (fig07, Whitted)"), ("Showcase", "showcase (precomputed)"),
           ("CornellPhysical", "cornell_physical, 1 spp (exact gathers)")]
 RAY_SCENES = [("glass_box", "glass box"), ("showcase", "showcase"), ("cornell_physical", "cornell_physical")]
-# (figure, name regex with {T} for the thread count, value, unit, higher is better, target)
+# (figure, name regex with {T} for the thread count, value, unit, scale, target): value is
+# "rate" (items/s), "time" (s) or "counter:NAME"; target a 2T/1T speed-up, or ("max", v)
+# for a bound every thread count must stay within.
 FIGURES = (
     [(f"Embree {kind} rays, {label}", rf"^Rays/{key}/{kind}/threads:{{T}}/", "rate", "Mrays/s", 1e-6, None)
      for key, label in RAY_SCENES for kind in ("camera", "shadow", "incoherent")]
@@ -24,7 +26,12 @@ FIGURES = (
         "kqueries/s", 1e-3, None)]
     + [(f"Render {label}", rf"^BM_Scene{key}/threads:{{T}}/", "time", "s", 1.0, 1.9) for key, label in SCENES]
     + [("Control: compute only (the machine's ceiling)", r"^BM_ControlCompute/threads:{T}/", "time", "s", 1.0,
-        None)])
+        None)]
+    + [("glTF load, 1M triangles (loadScene + BVH)", r"^BM_LoadGltf1M/threads:{T}/", "time", "s", 1.0, ("max", 2.0)),
+       ("glTF load, peak memory per triangle (BVH included)", r"^BM_LoadGltf1M/threads:{T}/",
+        "counter:peak_B_per_tri", "B", 1.0, ("max", 100.0)),
+       ("glTF load, memory held per triangle (scene + BVH)", r"^BM_LoadGltf1M/threads:{T}/",
+        "counter:held_B_per_tri", "B", 1.0, None)])
 STAGES = [("load_s", "load + BVH"), ("emit_s", "photon emission"), ("maps_s", "map build"),
           ("precompute_s", "lookup precompute"), ("render_s", "render (tiles)"), ("total_s", "total")]
 
@@ -76,15 +83,20 @@ def bench_table(runs):
                 vals.append(None)
             elif kind == "rate":
                 vals.append(r.get("items_per_second", 0.0) * scale)
+            elif kind.startswith("counter:"):
+                vals.append(r.get(kind[len("counter:"):], 0.0) * scale)
             else:
                 vals.append(seconds(r) * scale)
         if vals == [None, None]:
             continue
         speedup = None
-        if None not in vals and min(vals) > 0:
+        if None not in vals and min(vals) > 0 and not kind.startswith("counter:"):
             speedup = vals[1] / vals[0] if kind == "rate" else vals[0] / vals[1]
         verdict = ""
-        if target is not None:
+        if isinstance(target, tuple):
+            worst = max(v for v in vals if v is not None)
+            verdict = f"<= {target[1]:g} {unit}: " + ("met" if worst <= target[1] else "**not met**")
+        elif target is not None:
             verdict = f">= {target}: " + ("-" if speedup is None else "met" if speedup >= target else "**not met**")
         out.append(f"| {figure} | {unit} | {fmt(vals[0])} | {fmt(vals[1])} | "
                    f"{'-' if speedup is None else f'{speedup:.2f}'} | {verdict} | {share(found[0])} / {share(found[1])} |")

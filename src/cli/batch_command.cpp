@@ -100,7 +100,8 @@ int BatchCommand::run() {
     const auto [index, count] = parseShard(shardArg);
     std::vector<double> costs;
     for (const BatchJob& j : req.jobs) {
-      costs.push_back(shardCostNs(loadScene(j.scene, j.overrides, loadLimits(req.maxMemoryBytes)), j.outputs.size()));
+      costs.push_back(shardCostNs(loadScene(j.scene, j.overrides, loadLimits(req.maxMemoryBytes), o.plan.load()),
+                                  j.outputs.size()));
     }
     std::vector<BatchJob> mine;
     for (size_t j : shardJobs(costs, index, count)) mine.push_back(req.jobs[j]);
@@ -115,6 +116,7 @@ int BatchCommand::run() {
   req.keepGoing = o.keepGoing;
   req.mapCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
   req.plan = passes;
+  req.load = o.plan.load();
   std::optional<ItemProgress> progress;
   if (!o.quiet) {
     progress.emplace();
@@ -126,6 +128,7 @@ int BatchCommand::run() {
   const BatchOutcome out = runBatch(req);
   if (progress) progress->finish();
   if (!o.quiet) {
+    for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     std::cerr << batchSummary(out);
   }
   return out.failed > 0 ? 1 : 0;

@@ -4,6 +4,7 @@
 #include "io/json_parse.h"
 #include <fmt/format.h>
 #include <fnmatch.h>
+#include <glm/glm.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -66,6 +67,23 @@ std::vector<std::string> globScenes(const fs::path& pattern, const std::string& 
 }
 
 std::string vec3(double x, double y, double z) { return fmt::format("[{:.9g},{:.9g},{:.9g}]", x, y, z); }
+
+// The orbit's axes: `up` made unit, `front` (angle 0) the direction of +z in the plane
+// across `up` (of +x when up lies along z), `side` (90 degrees) = up x front, which is
+// +x for the default up +y and front +z.
+struct OrbitFrame {
+  glm::dvec3 up, front, side;
+};
+
+OrbitFrame orbitFrame(const glm::dvec3& up) {
+  OrbitFrame f;
+  f.up = glm::normalize(up);
+  glm::dvec3 front = glm::dvec3(0.0, 0.0, 1.0) - f.up.z * f.up;
+  if (glm::length(front) < 1e-6) front = glm::dvec3(1.0, 0.0, 0.0) - f.up.x * f.up;
+  f.front = glm::normalize(front);
+  f.side = glm::cross(f.up, f.front);
+  return f;
+}
 
 }  // namespace
 
@@ -133,13 +151,19 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
         if (!o[k].is_number()) fail(path, where + ".orbit." + k, "must be a number");
         return o[k].get<double>();
       };
-      std::vector<double> c = {0, 0, 0};
-      if (o.contains("center")) {
-        if (!o["center"].is_array() || o["center"].size() != 3) fail(path, where + ".orbit.center", "must be [x, y, z]");
+      auto triple = [&](const char* k, glm::dvec3 d) {
+        if (!o.contains(k)) return d;
+        if (!o[k].is_array() || o[k].size() != 3) fail(path, where + ".orbit." + k, "must be [x, y, z]");
         for (int i = 0; i < 3; ++i) {
-          if (!o["center"][i].is_number()) fail(path, fmt::format("{}.orbit.center[{}]", where, i), "must be a number");
-          c[i] = o["center"][i].get<double>();
+          if (!o[k][i].is_number()) fail(path, fmt::format("{}.orbit.{}[{}]", where, k, i), "must be a number");
+          d[i] = o[k][i].get<double>();
         }
+        return d;
+      };
+      const glm::dvec3 c = triple("center", glm::dvec3(0.0));
+      const glm::dvec3 up = triple("up", glm::dvec3(0.0, 1.0, 0.0));
+      if (!(glm::length(up) > 1e-12) || !std::isfinite(glm::length(up))) {
+        fail(path, where + ".orbit.up", "must be a direction (not zero, finite)");
       }
       const int count = static_cast<int>(o["count"].get<int64_t>());
       const std::string pattern = node["output"].get<std::string>();
@@ -147,17 +171,21 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
         fail(path, where + ".output", fmt::format("an orbit of {} views needs {{i}} or {{name}} in the file name", count));
       }
       const double radius = num("radius", 5.0), height = num("height", 0.0);
-      // Degrees about the vertical through the centre, 0 = on the +z side; the arc
-      // [from, to) is cut into `count` equal steps (a full circle by default).
+      // Degrees about `up` through the centre, 0 = on the +z side; the arc [from, to)
+      // is cut into `count` equal steps (a full circle by default).
       const double from = num("from", 0.0), to = num("to", 360.0);
+      const OrbitFrame frame = orbitFrame(up);
       for (int i = 0; i < count; ++i) {
         const double a = (from + (to - from) * i / count) * M_PI / 180.0;
         BatchJob job;
         job.name = fmt::format("{}_{}", stem, i);
         job.scene = scene;
         job.overrides = overrides;
-        job.overrides.push_back("camera.position=" + vec3(c[0] + radius * std::sin(a), c[1] + height, c[2] + radius * std::cos(a)));
-        job.overrides.push_back("camera.look_at=" + vec3(c[0], c[1], c[2]));
+        const glm::dvec3 eye = c + radius * (std::sin(a) * frame.side + std::cos(a) * frame.front) + height * frame.up;
+        job.overrides.push_back("camera.position=" + vec3(eye.x, eye.y, eye.z));
+        job.overrides.push_back("camera.look_at=" + vec3(c.x, c.y, c.z));
+        // The file camera's roll is dropped: every frame's horizon is level about `up`.
+        job.overrides.push_back("camera.up=" + vec3(frame.up.x, frame.up.y, frame.up.z));
         job.outputs = outputsFor(replaceAll(output, "{i}", std::to_string(i)), job.name, views, path, where);
         job.where = fmt::format("{} (orbit {})", where, i);
         jobs.push_back(std::move(job));

@@ -11,8 +11,11 @@ namespace penumbra {
 // A jobs file:
 //   {"set": [...], "jobs": [{"scene": "a.json", "set": [...], "views": ["beauty", "depth"],
 //     "output": "out/{name}_{view}.png", "orbit": {"count": 16, "center": [0, 1, 0],
-//     "radius": 5, "height": 1, "from": -60, "to": 60}}, {"scenes": "scenes/fig0*.json", "output": "out/{name}.png"}]}
-// Paths are relative to the jobs file. Throws InputError naming the file and JSON path.
+//     "radius": 5, "height": 1, "from": -60, "to": 60, "up": [0, 1, 0]}}, {"scenes": "scenes/fig0*.json",
+//     "output": "out/{name}.png"}]}
+// An orbit turns about `up` through its centre (default +y) and sets camera.up to it,
+// so every frame's horizon is level. Paths are relative to the jobs file. Throws
+// InputError naming the file and JSON path.
 std::vector<BatchJob> readJobsFile(const std::string& path);
 
 // One job per scene, every view into DIR/<scene stem>[_<view>].<ext>.

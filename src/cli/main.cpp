@@ -78,6 +78,7 @@ std::string otherCommandsHint(const CLI::App& app, const CLI::App& current, cons
 std::string statsWithEstimate(const RenderResult& result) {
   nlohmann::json stats = nlohmann::json::parse(statsToJson(result.stats));
   stats["estimate"] = nlohmann::json::parse(estimateToJson(result.estimate));
+  stats["notes"] = result.notes;
   return stats.dump(2) + "\n";
 }
 
@@ -207,6 +208,7 @@ int main(int argc, char** argv) {
         throw InputError("--trace-pixel writes JSON, not an image: give -o a .json path (got '" + req.outputPath + "')");
       }
       req.plan = planArgs.passes();
+      req.load = planArgs.load();
       if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
       if (!maxMemoryArg.empty()) req.maxMemoryBytes = parseMemorySize(maxMemoryArg);
       if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));

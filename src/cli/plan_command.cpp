@@ -5,13 +5,30 @@
 #include "plan/memory_limit.h"
 #include "plan/render_frame.h"
 #include "plan/transport_model.h"
+#include "io/scene_defaults.h"
 #include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <algorithm>
-#include <limits>
 #include <iostream>
 
 namespace penumbra {
+
+namespace {
+
+// What loading adds to a glTF scene, or would add without --no-defaults; "" when the
+// scene lacks nothing (or is not a glTF file).
+std::string defaultsLine(const LoadReport& load) {
+  if (!load.noCamera && !load.noLight) return "";
+  std::vector<std::string> parts;
+  if (load.noCamera) parts.push_back("a camera framing the bounds (the file has none)");
+  if (load.noLight) parts.push_back("a neutral sky (the file has no light)");
+  const bool added = load.framedCamera || load.defaultSky;
+  std::string line = added ? "  adds " : "  would add ";
+  for (size_t i = 0; i < parts.size(); ++i) line += (i ? " and " : "") + parts[i];
+  return line + (added ? "; --no-defaults keeps the file as it is\n" : " without --no-defaults\n");
+}
+
+}  // namespace
 
 void addPlanOptions(CLI::App& command, PlanArgs& args) {
   command.add_option("--enable", args.enable, "Force a pass on (see penumbra plan): gate, indirect-photons, "
@@ -23,6 +40,13 @@ void addPlanOptions(CLI::App& command, PlanArgs& args) {
   command.add_option("--gate", args.gate, "The shadow gate: on, off or auto (default: the scene's photons.gate, else auto)")
       ->check(CLI::IsMember({"on", "off", "auto"}));
   command.add_flag("--no-gate", args.noGate, "Cast every shadow ray instead of asking the shadow photon map (--gate off)");
+  addDefaultsOption(command, args.noDefaults);
+}
+
+void addDefaultsOption(CLI::App& command, bool& noDefaults) {
+  command.add_flag("--no-defaults", noDefaults,
+                   "Load a .gltf/.glb scene as it is: no camera framing a model that has none, no neutral sky "
+                   "for a model without lights");
 }
 
 PlanOverrides PlanArgs::passes() const {
@@ -60,7 +84,7 @@ int PlanCommand::run() {
   const PlanOverrides passes = planArgs_.passes();
   std::vector<std::string> overrides = overrides_;
   if (!planArgs_.gateSetting().empty()) overrides.push_back(planArgs_.gateSetting());
-  Scene scene = loadScene(scene_, overrides, loadLimits(0));
+  Scene scene = loadScene(scene_, overrides, loadLimits(0), planArgs_.load());
   const Aov aov = parseAov(aov_.empty() ? scene.render.aov : aov_);
   RenderPlan plan = makePlan(scene, aov, passes);
   // The light split needs a few rays per light: build the BVH only when a photon
@@ -78,26 +102,29 @@ CheckCommand::CheckCommand(CLI::App& app) {
   command_ = app.add_subcommand("check", "Validate scene files (every value, mesh and texture) without rendering");
   command_->add_option("scenes", scenes_, "Scene files")->required();
   command_->add_option("-D,--set", overrides_, "Override a scene value")->take_all()->allow_extra_args(false);
+  addDefaultsOption(*command_, noDefaults_);
 }
 
 int CheckCommand::run() {
   for (const std::string& path : scenes_) {
-    const Scene s = loadScene(path, overrides_, loadLimits(0));
+    const Scene s = loadScene(path, overrides_, loadLimits(0), LoadOptions{!noDefaults_});
+    const LoadReport& load = s.load;
     size_t triangles = 0;
     for (const TriangleMesh& m : s.meshes) triangles += m.triangles.size();
+    // The file's own lights: the default sky is reported below as an addition.
+    const size_t lights = s.lights.size() - (load.defaultSky ? 1 : 0);
     std::cout << path << ": ok (" << transportOf(s).name() << ", "
               << s.meshes.size() << " meshes with " << triangles << " triangles, " << s.spheres.size()
-              << " spheres, " << s.lights.size() << " lights, " << s.materials.size() << " materials)\n";
+              << " spheres, " << lights << " lights, " << s.materials.size() << " materials)\n";
     // Where the geometry is: what a camera must frame (a model's units are its own).
-    Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (const TriangleMesh& m : s.meshes) {
-      for (const Vec3& p : m.positions) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
-    }
-    for (const Sphere& sp : s.spheres) { lo = glm::min(lo, sp.center - sp.radius); hi = glm::max(hi, sp.center + sp.radius); }
-    if (lo.x <= hi.x) {
+    const SceneBounds b = sceneBounds(s);
+    if (!b.empty()) {
+      const Vec3 lo = b.lo, hi = b.hi;
       std::cout << "  bounds " << fmt::format("[{:g}, {:g}, {:g}] .. [{:g}, {:g}, {:g}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z)
                 << " (size " << fmt::format("{:g} x {:g} x {:g}", hi.x - lo.x, hi.y - lo.y, hi.z - lo.z) << ")\n";
     }
+    std::cout << defaultsLine(load);
+    for (const std::string& note : load.notes) std::cerr << "note: " << note << "\n";
   }
   return 0;
 }

@@ -2,6 +2,7 @@
 // without rendering; and the
 // --enable / --disable PASS options that render and plan share.
 #pragma once
+#include "io/scene_loader.h"
 #include "plan/render_plan.h"
 #include <CLI/CLI.hpp>
 #include <string>
@@ -10,11 +11,14 @@
 namespace penumbra {
 
 // The options every rendering command shares about the plan: --enable PASS and
-// --disable PASS (repeatable), --gate MODE and --no-gate.
+// --disable PASS (repeatable), --gate MODE and --no-gate; and about loading:
+// --no-defaults.
 struct PlanArgs {
   std::vector<std::string> enable, disable;
   std::string gate;     // on, off, auto; empty: the scene's photons.gate
   bool noGate = false;  // --no-gate: --gate off
+  bool noDefaults = false;  // --no-defaults: a glTF scene gets no framed camera or default sky
+  LoadOptions load() const { return LoadOptions{!noDefaults}; }
   // The passes named; throws InputError for an unknown pass, or when two of these
   // options contradict each other (--no-gate --gate on, --enable gate --no-gate, ...).
   PlanOverrides passes() const;
@@ -22,6 +26,8 @@ struct PlanArgs {
   std::string gateSetting() const;
 };
 void addPlanOptions(CLI::App& command, PlanArgs& args);
+// --no-defaults alone (check has no plan options).
+void addDefaultsOption(CLI::App& command, bool& noDefaults);
 
 class PlanCommand {
  public:
@@ -48,6 +54,7 @@ class CheckCommand {
  private:
   CLI::App* command_ = nullptr;
   std::vector<std::string> scenes_, overrides_;
+  bool noDefaults_ = false;
 };
 
 }  // namespace penumbra

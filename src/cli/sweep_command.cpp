@@ -56,7 +56,7 @@ int SweepCommand::run() {
   const uint64_t maxMemory = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
   const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before the scene is read
   if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
-  const Scene base = loadScene(o.scene, o.overrides, loadLimits(maxMemory));
+  const Scene base = loadScene(o.scene, o.overrides, loadLimits(maxMemory), o.plan.load());
   std::vector<SweepKnob> knobs;
   const std::pair<const char*, const std::string*> named[] = {
       {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
@@ -75,6 +75,7 @@ int SweepCommand::run() {
   req.force = o.force;
   req.compareGate = !o.noGateCompare;
   req.plan = passes;
+  req.load = o.plan.load();
   req.maxMemoryBytes = maxMemory;
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
   req.plotScript = std::filesystem::exists(script) ? script.string() : "";

@@ -86,7 +86,10 @@ class Sweep {
       } catch (const InputError& e) {
         throw InputError("sweep run '" + run.id + "': " + e.what());
       }
-      if (i == 0) sceneName_ = p.job.scene.name;
+      if (i == 0) {
+        sceneName_ = p.job.scene.name;
+        notes_ = p.job.scene.load.notes;  // every run loads the same files
+      }
       runs_.push_back(std::move(p));
     }
   }
@@ -104,6 +107,7 @@ class Sweep {
     id.view = req_.aov;
     for (Pass p : req_.plan.enable) id.plan.push_back(std::string("+") + passName(p));
     for (Pass p : req_.plan.disable) id.plan.push_back(std::string("-") + passName(p));
+    if (!req_.load.defaults) id.plan.push_back("--no-defaults");  // another picture of a glTF scene
     if (!req_.referencePath.empty()) id.reference = inputsStamp({req_.referencePath});
     return id;
   }
@@ -280,7 +284,8 @@ class Sweep {
 }  // namespace
 
 SweepOutcome runSweep(const SweepRequest& request) {
-  RenderSession session({request.maxMemoryBytes, request.plan, request.threads, request.phases, {}, kStageCacheBytes});
+  RenderSession session(
+      {request.maxMemoryBytes, request.plan, request.threads, request.phases, {}, kStageCacheBytes, request.load});
   Sweep sweep(request, session);
   return sweep.run();
 }

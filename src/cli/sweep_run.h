@@ -6,6 +6,7 @@
 #include "cli/sweep_results.h"
 #include "cli/sweep_spec.h"
 #include "core/progress.h"
+#include "io/scene_loader.h"
 #include "plan/render_plan.h"
 #include <functional>
 #include <string>
@@ -29,12 +30,13 @@ struct SweepRequest {
   // called on the sweep's own thread.
   std::function<void(const std::string& line)> progress;
   ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
+  LoadOptions load;                  // --no-defaults, for every run
 };
 
 struct SweepOutcome {
   std::vector<SweepRow> rows;  // in grid order
   SweepTotals totals;
-  std::vector<std::string> notes;  // e.g. the plot could not be drawn
+  std::vector<std::string> notes;  // the scene's load notes; e.g. the plot could not be drawn
 };
 
 // Every run is loaded and checked (InputError, naming the run) before the first renders.

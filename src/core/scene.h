@@ -196,6 +196,15 @@ struct PhotonSettings {
   float lookupCell = 1.0f;  // precomputed: cell size in units of the typical gather radius
 };
 
+// What loading found missing, added or left unread, for the notes and --stats; no
+// stage reads it (io/scene_defaults.h, io/gltf_extensions.h).
+struct LoadReport {
+  std::vector<std::string> notes;              // one line each, shown as "note: ..."
+  std::vector<std::string> ignoredExtensions;  // optional glTF extensions penumbra does not read
+  bool noCamera = false, noLight = false;      // a glTF scene whose files place no camera, give no light
+  bool framedCamera = false, defaultSky = false;  // ... and what loading added for them
+};
+
 struct Scene {
   std::string name;
   std::string file;  // the scene file it came from, for messages and metadata
@@ -212,6 +221,7 @@ struct Scene {
   SharedList<AlphaMask> alphaMasks;  // decoded at load; the geometry's cut-out filter reads them
   RenderSettings render;
   PhotonSettings photons;
+  LoadReport load;
 };
 
 }  // namespace penumbra

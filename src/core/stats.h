@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace penumbra {
 
@@ -57,6 +58,8 @@ struct RenderStats {
   float cacheCell = 0.0f;            // precomputed: cell size (last pass)
   uint64_t cacheBytes = 0;
   uint64_t peakRssBytes = 0;
+  std::vector<std::string> ignoredExtensions;  // a glTF scene's optional extensions left unread
+  std::vector<std::string> defaultsAdded;      // what loading added to a glTF scene: "camera", "sky"
 };
 
 // Wall-clock stopwatch in seconds.

@@ -4,9 +4,11 @@
 #include "io/gltf_document.h"
 
 #include "io/gltf_checks.h"
+#include "io/gltf_extensions.h"
 #include "io/json_parse.h"
 #include "io/model_import.h"
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <cstring>
@@ -26,11 +28,6 @@ constexpr uint64_t kMaxJsonBytes = 256ull << 20;           // the JSON part of a
 constexpr uint64_t kMaxImageBytes = 256ull << 20;          // one encoded image file
 constexpr uint64_t kBufferSlack = 1ull << 20;              // a .bin beyond its byteLength
 constexpr uint64_t kMaxInteger = 1ull << 53;               // exact in a double
-
-// Extensions penumbra reads (or may ignore safely); a file that requires any other
-// cannot be shown as its author meant.
-const char* const kSupported[] = {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-                                  "KHR_materials_emissive_strength"};
 
 std::string at(const char* array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
@@ -112,10 +109,29 @@ void checkHeader(const json& root, const std::string& path) {
   const json& required = array(root, "extensionsRequired", path);
   for (size_t i = 0; i < required.size(); ++i) {
     const std::string name = required[i].is_string() ? required[i].get<std::string>() : required[i].dump();
-    bool known = false;
-    for (const char* s : kSupported) known = known || name == s;
-    if (!known) gltfFail(path, at("extensionsRequired", i), "requires " + name + ", which penumbra does not support");
+    if (readsGltfExtension(name)) continue;
+    const std::string hint = unsupportedExtensionHint(name);
+    gltfFail(path, at("extensionsRequired", i),
+             "requires " + name + (hint.empty() ? "" : " (" + hint + ")") +
+                 ", which penumbra does not support; it reads " + supportedGltfExtensions());
   }
+}
+
+// Why a file that is not a GLB is not JSON either ("starts with '<!DOCTYPE h'...",
+// "starts with '\x89PNG'...", "is empty"), or "" when its first character after a
+// byte-order mark and blanks opens a JSON object.
+std::string notJsonStart(const std::vector<unsigned char>& bytes) {
+  size_t i = bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF ? 3 : 0;
+  while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\n' || bytes[i] == '\r')) ++i;
+  if (i == bytes.size()) return "is empty";
+  if (bytes[i] == '{') return "";
+  std::string shown;
+  const size_t end = std::min(bytes.size(), i + 12);
+  for (size_t k = i; k < end && bytes[k] != '\n' && bytes[k] != '\r'; ++k) {
+    const unsigned char c = bytes[k];
+    shown += c >= 0x20 && c < 0x7F && c != '\'' ? std::string(1, char(c)) : fmt::format("\\x{:02X}", c);
+  }
+  return "starts with '" + shown + "'" + (end < bytes.size() ? "..." : "");
 }
 
 }  // namespace
@@ -137,6 +153,10 @@ GltfSource readGltfSource(const std::string& path, const LoadLimits& limits) {
   }
   s.binary = size >= 4 && std::memcmp(s.bytes.data(), "glTF", 4) == 0;
   if (!s.binary) {
+    const std::string problem = notJsonStart(s.bytes);
+    if (!problem.empty()) {
+      throw ModelError(path + ": not a glTF file: " + problem + " (a .glb starts with 'glTF', a .gltf with '{')");
+    }
     if (size > kMaxJsonBytes) gltfFail(path, "(file)", "its JSON is larger than 256 MB (keep the data in .bin files)");
     s.json.assign(s.bytes.begin(), s.bytes.end());
     return s;

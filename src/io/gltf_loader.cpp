@@ -7,6 +7,7 @@
 #include "io/camera_checks.h"
 #include "io/gltf_checks.h"
 #include "io/gltf_document.h"
+#include "io/gltf_extensions.h"
 #include "io/gltf_files.h"
 #include "io/gltf_materials.h"
 #include "core/light_sample.h"
@@ -293,7 +294,7 @@ LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits) {
   namespace fs = std::filesystem;
   // Everything tinygltf would act on unchecked is settled first: the JSON's depth,
   // version, required extensions, buffer bounds and which files it may read.
-  const GltfSource source = readGltfSource(path, limits);
+  GltfSource source = readGltfSource(path, limits);
   const std::string folder = fs::absolute(path).parent_path().lexically_normal().string();
   GltfFiles files;
   checkGltfDocument(source, path, folder, limits, files);
@@ -313,6 +314,7 @@ LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits) {
     std::string line = err.substr(0, err.find('\n'));
     fail(path, "cannot load: " + (line.empty() ? std::string("unknown error") : line));
   }
+  source = GltfSource{};  // tinygltf copied the buffers: the file's bytes would only add to the peak
   LoadedModel out;
   out.file = path;
   out.files = files.read();
@@ -321,6 +323,7 @@ LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits) {
   const std::vector<int> roots = checkGltfModel(model, path, warnings);
   checkGltfBudget(model, roots, path, limits);
   out.warning = !warnings.empty() ? warnings.front() : warn.substr(0, warn.find('\n'));
+  out.ignoredExtensions = ignoredGltfExtensions(model.extensionsUsed);
   out.materials = gltfMaterials(model, path, folder);
   for (int r : roots) walk(model, r, dmat4(1.0), 0, path, out);
   for (TriangleMesh& mesh : out.meshes) {

@@ -111,6 +111,20 @@ void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fa
   }
   if (added == 0) {
     where.fail("every triangle of " + model.file + " has zero area after the transform (is the scale too small?)");
+  }  // Said once per file, however many objects use it.
+  auto note = [&](const std::string& line) {
+    std::vector<std::string>& notes = scene.load.notes;
+    if (std::find(notes.begin(), notes.end(), line) == notes.end()) notes.push_back(line);
+  };
+  if (!model.warning.empty()) note(model.file + ": " + model.warning);
+  if (!model.ignoredExtensions.empty()) {
+    std::string names;
+    for (const std::string& e : model.ignoredExtensions) {
+      names += (names.empty() ? "" : ", ") + e;
+      std::vector<std::string>& all = scene.load.ignoredExtensions;
+      if (std::find(all.begin(), all.end(), e) == all.end()) all.push_back(e);
+    }
+    note(model.file + ": ignores " + names + " (optional)");
   }
 }
 

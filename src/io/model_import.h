@@ -40,6 +40,7 @@ struct LoadedModel {
   double aspect = 0.0;                     // its aspect ratio (width / height), 0 = none
   std::vector<Light> lights;               // glTF: KHR_lights_punctual
   std::string warning;                     // the loader's first warning (a missing MTL file)
+  std::vector<std::string> ignoredExtensions;  // glTF: optional extensions penumbra does not read
   std::vector<std::string> files;          // every file read: the model, MTLs, buffers, images
 };
 
@@ -53,7 +54,8 @@ bool isGltfPath(const std::string& path);
 // "file:name", checked for the shading model: the physical model's energy limits,
 // textures decoded at load) or `fallback` for faces without one. `transform` applies
 // on top of the file's own (glTF node) transforms; positions are checked and
-// degenerate triangles dropped. Fails at `where` when nothing is left.
+// degenerate triangles dropped. Fails at `where` when nothing is left. The model's
+// warning and the extensions it leaves unread become notes in scene.load (each once).
 void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fallback,
                     const Transform& transform, Scene& scene);
 

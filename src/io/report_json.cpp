@@ -47,6 +47,8 @@ std::string statsToJson(const RenderStats& s) {
   j["memory"] = {{"photon_maps_bytes", s.photonMapBytes}, {"lookup_cache_bytes", s.cacheBytes}};
   j["numeric"] = {{"nonfinite_samples", r.nonfiniteSamples}};
   j["peak_rss_bytes"] = s.peakRssBytes;
+  // What loading left unread or added (a glTF scene; empty lists for a JSON one).
+  j["load"] = {{"ignored_extensions", s.ignoredExtensions}, {"defaults_added", s.defaultsAdded}};
   return j.dump(2) + "\n";
 }
 

@@ -10,6 +10,7 @@
 #include "io/mesh_tangents.h"
 #include "io/model_import.h"
 #include "io/overrides.h"
+#include "io/scene_defaults.h"
 #include "io/scene_sections.h"
 #include "io/transform.h"
 
@@ -57,7 +58,8 @@ void addSceneModel(const JsonNode& root, LoadedModel& model, Scene& scene) {
   }
 }
 
-Scene buildScene(const json& document, const LoadContext& context, const std::string& modelPath) {
+Scene buildScene(const json& document, const LoadContext& context, const std::string& modelPath,
+                 const LoadOptions& options) {
   JsonNode root(document, "", context);
   if (!document.is_object()) {
     root.fail("a scene must be a JSON object, got " + describeJson(document));
@@ -105,6 +107,12 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   addEmitters(scene);
   addMeshEmitters(scene);
   if (root.has("environment")) readEnvironment(root.child("environment"), scene);
+  if (!modelPath.empty()) {
+    // A camera the user placed (the model's, or position / look_at beside it) is kept.
+    const bool placed = model.camera || (root.has("camera") && (root.child("camera").has("position") ||
+                                                                root.child("camera").has("look_at")));
+    addSceneDefaults(modelPath, !placed, options.defaults, scene);
+  }
   checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
   // Each file once, in the order first read (a glTF without sidecar is both).
@@ -152,7 +160,7 @@ std::string readText(const std::string& path) {
 // `modelPath` non-empty: a glTF scene, `jsonText` its settings ("" = none).
 Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
                      const std::vector<std::string>& overrides, const std::string& modelPath,
-                     const LoadLimits& limits) {
+                     const LoadLimits& limits, const LoadOptions& options = {}) {
   LoadContext context;
   context.limits = limits;
   context.file = fileName.empty() ? "<scene>" : fileName;
@@ -161,7 +169,7 @@ Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
                                                           : parseJsonDocument(jsonText, context.file);
   context.overridden = applyOverrides(document, overrides);
   try {
-    Scene scene = buildScene(document, context, modelPath);
+    Scene scene = buildScene(document, context, modelPath, options);
     scene.file = fileName;
     return scene;
   } catch (const json::exception& e) {
@@ -177,7 +185,8 @@ Scene parseScene(const std::string& jsonText, const std::string& fileName,
   return parseSceneWith(jsonText, fileName, overrides, "", limits);
 }
 
-Scene loadScene(const std::string& path, const std::vector<std::string>& overrides, const LoadLimits& limits) {
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides, const LoadLimits& limits,
+                const LoadOptions& options) {
   // "-": the JSON comes from stdin; relative paths in it resolve against the working folder.
   if (path == "-") {
     return parseScene(readSceneText(std::cin, "<stdin>"), "<stdin>", overrides, limits);
@@ -189,7 +198,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   const std::string sidecar = fs::path(path).replace_extension(".json").string();
   const bool hasSidecar = fs::is_regular_file(sidecar, ec);
   Scene scene = parseSceneWith(hasSidecar ? readText(sidecar) : "", hasSidecar ? sidecar : path,
-                               overrides, path, limits);
+                               overrides, path, limits, options);
   scene.file = path;
   return scene;
 }

@@ -7,12 +7,19 @@
 
 namespace penumbra {
 
+// What loading may add to a file: decided once per command (--no-defaults).
+struct LoadOptions {
+  // A .gltf/.glb scene without a camera gets one framing it, without a light a
+  // neutral sky (io/scene_defaults.h); false keeps the file as it is.
+  bool defaults = true;
+};
+
 // Loads `path`, applying `overrides` ("render.max_depth=8", JSON-typed values)
 // before validation. Throws InputError with a one-line message naming the file,
 // the JSON path (objects[3].radius) and the problem. A file that would make loading
 // allocate more than `limits` allows is refused before it is read whole.
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {},
-                const LoadLimits& limits = {});
+                const LoadLimits& limits = {}, const LoadOptions& options = {});
 
 // Same, from JSON text; `fileName` is used for messages and to resolve relative paths.
 Scene parseScene(const std::string& jsonText, const std::string& fileName,

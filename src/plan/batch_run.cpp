@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include <fmt/format.h>
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
@@ -29,7 +30,7 @@ struct PreparedJob {
 BatchOutcome runBatch(const BatchRequest& req) {
   Stopwatch clock;
   BatchOutcome out;
-  RenderSession session({req.maxMemoryBytes, req.plan, req.threads, req.phases, {}, req.mapCacheBytes});
+  RenderSession session({req.maxMemoryBytes, req.plan, req.threads, req.phases, {}, req.mapCacheBytes, req.load});
 
   // 1. Every job loaded, planned and admitted, its outputs checked, before the first render.
   std::vector<PreparedJob> prepared(req.jobs.size());
@@ -51,9 +52,15 @@ BatchOutcome runBatch(const BatchRequest& req) {
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
         p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
       }
+      for (const std::string& n : p.views.front().notes) {
+        if (std::find(out.notes.begin(), out.notes.end(), n) == out.notes.end()) out.notes.push_back(n);
+      }
       p.inputs = p.views.front().inputs;
       p.inputs.insert(p.inputs.end(), req.extraInputs.begin(), req.extraInputs.end());
-      p.stamp = jobStamp(p.job->scene, p.job->overrides, viewFiles);
+      // --no-defaults changes the picture of a glTF scene: outputs of the other choice are stale.
+      std::vector<std::string> stamped = p.job->overrides;
+      if (!req.load.defaults) stamped.push_back("--no-defaults");
+      p.stamp = jobStamp(p.job->scene, stamped, viewFiles);
     } catch (const InputError& e) {
       p.error = e.what();
       p.views.clear();

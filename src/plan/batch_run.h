@@ -44,6 +44,7 @@ struct BatchRequest {
   // Told on the batch's own thread as each job starts ("render") and ends ("done").
   std::function<void(const BatchProgress&)> progress;
   ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
+  LoadOptions load;                  // --no-defaults, for every job
 };
 
 struct BatchJobResult {
@@ -60,6 +61,7 @@ struct BatchOutcome {
   size_t sceneBuilds = 0, photonBuilds = 0, photonReuses = 0, evictions = 0;
   uint64_t peakCacheBytes = 0;
   double seconds = 0.0;
+  std::vector<std::string> notes;  // the jobs' load and plan notes, each once
 };
 
 // Validates every job (InputError naming the job unless keepGoing), then renders.

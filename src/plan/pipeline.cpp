@@ -11,7 +11,8 @@ namespace penumbra {
 RenderResult runRender(const RenderRequest& request) {
   Stopwatch total;
   RenderSession session(
-      {request.maxMemoryBytes, request.plan, request.threads, request.progress, request.notice, kStageCacheBytes});
+      {request.maxMemoryBytes, request.plan, request.threads, request.progress, request.notice, kStageCacheBytes,
+       request.load});
 
   // Bad views, pixels, outputs and oversized jobs fail here, before any heavy work.
   JobRequest job;

@@ -3,6 +3,7 @@
 #include "core/progress.h"
 #include "plan/render_plan.h"
 #include "plan/resource_estimate.h"
+#include "io/scene_loader.h"
 #include "io/tone_map.h"
 #include "core/image.h"
 #include "core/ray_record.h"
@@ -31,6 +32,7 @@ struct RenderRequest {
   DisplayOptions display;  // --exposure, --tonemap (PNG only)
   // Told before the photons start, e.g. that the job is estimated to take hours.
   std::function<void(const std::string& note)> notice;
+  LoadOptions load;  // --no-defaults
 };
 
 struct RenderResult {

@@ -33,7 +33,8 @@ PlannedJob RenderSession::plan(const JobRequest& request) {
   PlannedJob job;
   job.request = request;
   Stopwatch clock;
-  job.scene = loadScene(request.scenePath, request.overrides, loadLimits(options_.maxMemoryBytes));
+  job.scene = loadScene(request.scenePath, request.overrides, loadLimits(options_.maxMemoryBytes), options_.load);
+  job.notes = job.scene.load.notes;
   job.loadSeconds = clock.seconds();
   if (request.scenePath == "-") {
     // A scene read from stdin can be read once: it shares nothing with another job.
@@ -226,6 +227,9 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {
   stats.seed = scene.render.seed;
   stats.model = transportOf(scene).name();
   stats.lookup = job.plan[Pass::Precompute].on ? "precomputed" : "exact";
+  stats.ignoredExtensions = scene.load.ignoredExtensions;
+  if (scene.load.framedCamera) stats.defaultsAdded.push_back("camera");
+  if (scene.load.defaultSky) stats.defaultsAdded.push_back("sky");
   FrameOptions frame;
   frame.aov = job.aov;
   frame.needs = photonNeeds(job.plan);

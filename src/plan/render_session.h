@@ -11,6 +11,7 @@
 #include "plan/render_frame.h"
 #include "plan/render_plan.h"
 #include "plan/reuse_key.h"
+#include "io/scene_loader.h"
 #include <functional>
 #include <list>
 #include <map>
@@ -33,6 +34,7 @@ struct SessionOptions {
   // Told on the session's thread, e.g. that a job is estimated to take hours.
   std::function<void(const std::string& note)> notice;
   uint64_t stageCacheBytes = kStageCacheBytes;  // photon stages kept for later jobs (LRU)
+  LoadOptions load;  // --no-defaults: a glTF scene gets no framed camera or default sky
 };
 
 // One render a command asks for: a scene with its overrides, one view, and the
@@ -57,7 +59,7 @@ struct PlannedJob {
   ReuseKeys keys;
   Admission admission;
   std::vector<std::string> inputs;  // every file the job reads
-  std::vector<std::string> notes;
+  std::vector<std::string> notes;   // the scene's load notes, then the plan's overrides
   double loadSeconds = 0.0;
   bool prepared = false;  // split by reach and confirmed (RenderSession::prepare)
 };

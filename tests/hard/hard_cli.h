@@ -17,4 +17,11 @@ inline constexpr const char* kFloorScene =
   "objects": [{"type": "quad", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2]}],
   "photons": {"shadow": 2000, "indirect": 2000}})";
 
+// How many times `part` occurs in `text` (a note said once, a line per scene).
+inline size_t occurrences(const std::string& text, const std::string& part) {
+  size_t n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
 }  // namespace penumbra::hard

@@ -61,11 +61,11 @@ TEST(HardGltfValues, VersionsAndRequiredExtensionsAreChecked) {
   json j = triangle();
   j["asset"]["version"] = "3.0";
   expectRefused(dir, j, {"asset.version", "\"3.0\""});
-  for (const char* ext : {"KHR_draco_mesh_compression", "KHR_texture_transform", "EXT_meshopt_compression"}) {
+  for (const char* ext : {"KHR_draco_mesh_compression", "VENDOR_unknown_extension", "EXT_meshopt_compression"}) {
     j = triangle();
     j["extensionsUsed"] = {ext};
     j["extensionsRequired"] = {ext};
-    expectRefused(dir, j, {"extensionsRequired[0]", std::string("requires ") + ext + ", which penumbra does not support"});
+    expectRefused(dir, j, {"extensionsRequired[0]", std::string("requires ") + ext, "which penumbra does not support"});
   }
   const fs::path ok = dir.write("model.glb", glb(triangle(), 2));
   EXPECT_EQ(refusal(ok), "");
