@@ -13,13 +13,14 @@ inline uint8_t normalMapFields(const Material& m) {
   return m.normalTexture >= 0 ? uint8_t(kSurfaceAll | kSurfaceTangent) : uint8_t(0);
 }
 
-// Perturbs s.ns by the material's normal map: n' = normalize(T x scale + B y scale +
-// N z) with (x, y, z) = 2 texel - 1 read as data, T the record's tangent made
-// orthogonal to N, B = cross(N, T) x handedness, N the shading normal on the
-// surface's outside. n' is turned back to the side the ray came from and kept on
-// the geometric normal's side (as pbrt does). A record without a tangent is left as
-// it is; a perturbed normal facing away from the viewer falls back to ng, as an
-// interpolated one does (meshSurface). Needs normalMapFields(m) in the record.
+// Perturbs s.ns by the material's normal map, read as data in tangent space: the
+// texel maps to a direction in the frame of the record's tangent (made orthogonal
+// to the shading normal), its bitangent (with the tangent's handedness) and the
+// shading normal, the tangent-plane part scaled by normal_scale. The result faces
+// the side the ray came from and stays on the geometric normal's side (as pbrt
+// does); a record without a tangent is left as it is, and a normal facing away from
+// the viewer falls back to ng, as an interpolated one does (meshSurface). Needs
+// normalMapFields(m) in the record.
 void applyNormalMap(const Material& m, const TextureLookup& textures, float footprint, const Vec3& rayDir,
                     SurfaceRecord& s);
 
