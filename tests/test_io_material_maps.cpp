@@ -68,16 +68,6 @@ tinygltf::Model quads(const std::vector<tinygltf::Material>& materials, const st
   return m;
 }
 
-int addTexture(tinygltf::Model& m, const std::string& uri) {
-  tinygltf::Image image;
-  image.uri = uri;
-  m.images.push_back(image);
-  tinygltf::Texture texture;
-  texture.source = static_cast<int>(m.images.size()) - 1;
-  m.textures.push_back(texture);
-  return static_cast<int>(m.textures.size()) - 1;
-}
-
 Scene loadWritten(tinygltf::Model& m, const fs::path& file) {
   tinygltf::TinyGLTF writer;
   EXPECT_TRUE(writer.WriteGltfSceneToFile(&m, file.string(), true, true, false, false));

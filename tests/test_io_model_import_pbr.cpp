@@ -26,7 +26,7 @@ TEST(Gltf, MetallicRoughnessTextureIsReadAsDataBesideTheBaseColour) {
   mr.pixels.assign(4, Color(0.0f, 128.0f / 255.0f, 1.0f));
   writeImage((dir / "mr.png").string(), mr);
   tinygltf::Model m = makeGltf();
-  addImageTexture(m, "mr.png");
+  addTexture(m, "mr.png");
   m.materials[1].pbrMetallicRoughness.baseColorTexture.index = 0;
   m.materials[1].pbrMetallicRoughness.metallicRoughnessTexture.index = 0;
   m.materials[1].pbrMetallicRoughness.roughnessFactor = 0.8;
@@ -49,7 +49,7 @@ TEST(Gltf, TextureTransformAndVolumeAttenuationReachTheMaterial) {
   img.pixels.assign(4, Color(0.5f));
   writeImage((dir / "base.png").string(), img);
   tinygltf::Model m = makeGltf();
-  addImageTexture(m, "base.png");
+  addTexture(m, "base.png");
   tinygltf::TextureInfo& info = m.materials[1].pbrMetallicRoughness.baseColorTexture;
   info.index = 0;
   info.extensions["KHR_texture_transform"] = tinygltf::Value(tinygltf::Value::Object{

@@ -1,6 +1,6 @@
 // A small glTF scene for loader tests, written with tinygltf's writer: four quads
 // (paint, chrome, glass, an emissive lamp) under transformed nodes, a camera, a
-// point light and a sun; and an image file as the model's texture 0.
+// point light and a sun.
 #pragma once
 #include "core/math.h"
 #include "support/gltf_writer.h"
@@ -111,16 +111,6 @@ inline void writeGltf(const tinygltf::Model& m, const std::filesystem::path& fil
 
 inline void expectNear(const Vec3& a, const Vec3& b, float tol, const char* what) {
   EXPECT_NEAR(glm::length(a - b), 0.0f, tol) << what << ": (" << a.x << ", " << a.y << ", " << a.z << ")";
-}
-
-// Adds `uri` (a file beside the model) as image and texture 0.
-inline void addImageTexture(tinygltf::Model& m, const std::string& uri) {
-  tinygltf::Image image;
-  image.uri = uri;
-  m.images.push_back(image);
-  tinygltf::Texture texture;
-  texture.source = static_cast<int>(m.images.size()) - 1;
-  m.textures.push_back(texture);
 }
 
 }  // namespace penumbra

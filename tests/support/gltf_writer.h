@@ -1,8 +1,9 @@
 // Building glTF models in tests for tinygltf's writer: raw data appended to the
-// model's one buffer as a buffer view and an accessor over it.
+// model's one buffer as a buffer view and an accessor over it, and image textures.
 #pragma once
 #include <tiny_gltf.h>
 #include <cstddef>
+#include <string>
 
 namespace penumbra {
 
@@ -25,6 +26,18 @@ inline int addAccessor(tinygltf::Model& m, const void* data, size_t bytes, int c
   a.count = count;
   m.accessors.push_back(a);
   return static_cast<int>(m.accessors.size()) - 1;
+}
+
+// Adds `uri` (an image file beside the model) as an image and a texture over it;
+// returns the texture's index.
+inline int addTexture(tinygltf::Model& m, const std::string& uri) {
+  tinygltf::Image image;
+  image.uri = uri;
+  m.images.push_back(image);
+  tinygltf::Texture texture;
+  texture.source = static_cast<int>(m.images.size()) - 1;
+  m.textures.push_back(texture);
+  return static_cast<int>(m.textures.size()) - 1;
 }
 
 }  // namespace penumbra
