@@ -33,6 +33,7 @@ struct Camera {
 enum class LightType { Point, Directional, Quad, Sphere, Mesh, Environment };
 
 struct EnvironmentMap;  // core/environment.h
+struct MeshEmission;    // core/emission_map.h
 
 struct Light {
   LightType type = LightType::Point;
@@ -52,6 +53,10 @@ struct Light {
   std::vector<float> areaCdf;
   float pointError = 0.0f;
   int material = -1;
+  // Mesh: emits on both sides of each triangle (glTF's doubleSided); and its emissive
+  // texture with the tables that draw triangles by luminance (null: uniform radiance).
+  bool twoSided = false;
+  std::shared_ptr<const MeshEmission> emission;
   // A point light with a cone is a spot: full intensity within `spotCosInner` of
   // `direction`, falling to 0 at `spotCosOuter` (glTF's cone angles, as cosines).
   float spotCosInner = -1.0f, spotCosOuter = -1.0f;
@@ -104,6 +109,10 @@ struct Material {
   Color emission{0.0f};
   bool twoSidedEmission = false;  // a sphere emits all round, a quad on one side
   int light = -1;                 // the area light this surface belongs to, -1 = none
+  int emissionTexture = -1;       // times emission (colour, sRGB-decoded), -1 = none
+  // glTF's model adds emission to the surface's BSDF; a scene file's emitting material
+  // is a light's surface and only glows, as a quad light's does.
+  bool emitterShades = false;
   // glTF's metallic-roughness model (the physical model's MetalRough BSDF, the classic
   // model's Phong terms); `diffuse` is its base colour and `texture` the base map.
   bool metalRough = false;
