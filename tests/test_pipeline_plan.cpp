@@ -127,5 +127,30 @@ TEST(Plan, ReasonsNameWhyAPassIsOff) {
   EXPECT_TRUE(forced[Pass::ShadowRays].changesImage);
 }
 
+TEST(Plan, LookupAutoPrecomputesWhereExactGathersWouldDominate) {
+  // A user's model under a point light with a 200k-photon indirect map and no
+  // photons.lookup: at 640 x 480 the exact gathers cost far more than one query per
+  // point plus the cells; a 16 x 16 render has fewer points than cells: exact.
+  Scene scene;
+  scene.lights.push_back(Light{});
+  Material bounce;
+  bounce.pR = 0.5f;
+  scene.materials.push_back(bounce);
+  scene.photons.indirectPhotons = 200000;
+  ASSERT_EQ(scene.photons.lookup, PhotonLookup::Auto);
+  const RenderPlan big = makePlan(scene, Aov::Beauty);
+  ASSERT_TRUE(big[Pass::IndirectPhotons].on);
+  EXPECT_TRUE(big[Pass::Precompute].on);
+  EXPECT_EQ(big[Pass::Precompute].reason.rfind("auto: precomputed: exact gathers ~", 0), 0u) << big[Pass::Precompute].reason;
+  scene.camera.width = scene.camera.height = 16;
+  const RenderPlan small = makePlan(scene, Aov::Beauty);
+  EXPECT_FALSE(small[Pass::Precompute].on);
+  EXPECT_EQ(small[Pass::Precompute].reason.rfind("auto: exact", 0), 0u) << small[Pass::Precompute].reason;
+  scene.camera.width = 640;
+  scene.camera.height = 480;
+  scene.photons.lookup = PhotonLookup::Exact;
+  EXPECT_EQ(makePlan(scene, Aov::Beauty)[Pass::Precompute].reason, "photons.lookup is exact");
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -178,8 +178,10 @@ enum class IndirectEstimator { Classic, Density };
 // shadow map only where the cost model says it pays (plan/gate_decision.h).
 enum class GateMode { Off, On, Auto };
 // exact: every gate vote and estimate gathers its k nearest photons (the definition);
-// precomputed: both are computed once per cell of a hash grid and read by one query.
-enum class PhotonLookup { Exact, Precomputed };
+// precomputed: both are computed once per cell of a hash grid and read by one query;
+// auto: precomputed where the plan's cost model finds exact gathers would dominate
+// the frame (plan/lookup_decision.h), exact otherwise.
+enum class PhotonLookup { Exact, Precomputed, Auto };
 enum class HemisphereSampling { Uniform, Cosine };
 
 struct PhotonSettings {
@@ -201,7 +203,7 @@ struct PhotonSettings {
   int passes = 1;         // progressive passes, each with fresh photons and a smaller radius
   float alpha = 0.7f;     // radius reduction: r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1)
   float radius = 0.0f;    // first-pass gather radius for passes > 1; 0 = from the k-th neighbour
-  PhotonLookup lookup = PhotonLookup::Exact;
+  PhotonLookup lookup = PhotonLookup::Auto;
   float lookupCell = 1.0f;  // precomputed: cell size in units of the typical gather radius
 };
 
