@@ -1,5 +1,6 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
 // 0 ok, 2 bad input (one-line message), 1 internal error.
+#include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "plan/pipeline.h"
 #include "cli/progress_meter.h"
@@ -14,7 +15,6 @@
 #include "io/texture_gen.h"
 #include <algorithm>
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 #include <charconv>
 #include <cstdlib>
 #include <optional>
@@ -74,14 +74,6 @@ std::string otherCommandsHint(const CLI::App& app, const CLI::App& current, cons
   return " (" + option + " is an option of " + list + ", not of " + current.get_name() + ")";
 }
 
-// The pipeline's stats plus the up-front estimate, in one JSON object.
-std::string statsWithEstimate(const RenderResult& result) {
-  nlohmann::json stats = nlohmann::json::parse(statsToJson(result.stats));
-  stats["estimate"] = nlohmann::json::parse(estimateToJson(result.estimate));
-  stats["notes"] = result.notes;
-  return stats.dump(2) + "\n";
-}
-
 int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std::string& tracePixelArg,
                      bool quiet) {
   if (!tracePixelArg.empty()) {
@@ -109,11 +101,11 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
     if (req.outputPath.empty() || req.outputPath == "-") std::cout << json;
     else writeTextFileAtomic(req.outputPath, json);
   }
-  if (statsToStdout) std::cout << statsWithEstimate(result);
-  else if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsWithEstimate(result));
+  if (statsToStdout) std::cout << statsReport(result);
+  else if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsReport(result));
   if (!quiet) {
     for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
-    std::cerr << statsSummary(result.stats);
+    std::cerr << statsSummary(result.stats) << "  " << cpuLine(result.stats.cpu) << "\n";
   }
   return 0;
 }

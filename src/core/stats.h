@@ -1,6 +1,7 @@
 // Render statistics as plain counters. Parallel phases keep one RayCounts per
 // thread (tbb::enumerable_thread_specific) and add them up afterwards.
 #pragma once
+#include "core/cpu_time.h"
 #include "core/map_kind.h"
 #include <chrono>
 #include <cstdint>
@@ -58,6 +59,7 @@ struct RenderStats {
   float cacheCell = 0.0f;            // precomputed: cell size (last pass)
   uint64_t cacheBytes = 0;
   uint64_t peakRssBytes = 0;
+  CpuTiming cpu;  // the process's CPU time over the span of time.total
   std::vector<std::string> ignoredExtensions;  // a glTF scene's optional extensions left unread
   std::vector<std::string> defaultsAdded;      // what loading added to a glTF scene: "camera", "sky"
 };
