@@ -1,10 +1,12 @@
-// CPU time where the user reads times: --stats and the render summary, sweep rows
-// and batch jobs. Values are checked for sanity (a share in (0, 1.05] at one
-// thread), never for speed.
+// CPU time where the user reads times: --stats and the render summary, sweep rows,
+// batch jobs, and `penumbra bench` (its table, its JSON with the thread counts
+// interleaved, and its refusals of bad input before any render). Values are
+// checked for sanity (a share in (0, 1.05] at one thread), never for speed.
 #include "plan/batch_run.h"
 #include "support/cli_run.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <tbb/info.h>
 #include <algorithm>
 #include <filesystem>
 #include <sstream>
@@ -88,6 +90,62 @@ TEST(Timings, BatchJobsAndTheWholeBatchCarryCpuTime) {
   ASSERT_EQ(cli.exitCode, 0) << cli.err;
   EXPECT_NE(cli.err.find("     cpu share  reused"), std::string::npos) << cli.err;
   EXPECT_NE(cli.err.find(" (cpu "), std::string::npos) << cli.err;
+}
+
+// Two rounds at 1 and 2 threads: renders and control passes alternate 1, 2, 1, 2.
+TEST(Bench, PrintsSpeedupBesideTheControlAndWritesEverySample) {
+  if (tbb::info::default_concurrency() < 2) GTEST_SKIP() << "needs two cores";
+  const ScratchDir dir;
+  const fs::path json = dir / "bench.json";
+  const auto r = runCli("bench " + quote(kScene) + " --threads 1,2 --repeat 2 -q" + kSmall + " --json " +
+                        quote(json.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("threads 1,2 interleaved, 2 rounds"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("speed-up 2/1 of the total: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(", beside the control's "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\ncontrol "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\ncpu share "), std::string::npos) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(testing::readFile(json));
+  const nlohmann::json& runs = j["scenes"][0]["runs"];
+  ASSERT_EQ(runs.size(), 4u);
+  ASSERT_EQ(j["control"]["runs"].size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(runs[i]["threads"], i % 2 + 1);
+    EXPECT_EQ(runs[i]["round"], i / 2);
+    EXPECT_EQ(j["control"]["runs"][i]["threads"], i % 2 + 1);
+    expectSaneShare(runs[i]["cpu_s"], runs[i]["cpu_share"], "run " + std::to_string(i));
+    EXPECT_GT(runs[i]["time_s"]["render"].get<double>(), 0.0);
+  }
+  const nlohmann::json& total = j["scenes"][0]["stages_s"]["total"];
+  EXPECT_LE(total["1"]["min"].get<double>(), total["1"]["median"].get<double>());
+  EXPECT_GT(total["speedup"]["2/1"]["min"].get<double>(), 0.0);
+  EXPECT_GT(j["control"]["seconds"]["speedup"]["2/1"]["min"].get<double>(), 0.0);
+}
+
+// Bad input: one line, exit 2, nothing rendered (no progress line) and no JSON.
+TEST(Bench, RefusesBadInputBeforeAnyRender) {
+  const ScratchDir dir;
+  const std::string json = quote((dir / "b.json").string());
+  const std::string scene = quote(kScene);
+  const std::pair<std::string, std::string> cases[] = {
+      {scene + " " + quote((dir / "missing.json").string()), "missing.json"},
+      {scene + " --threads 1,x", "--threads: expected thread counts like 1,2"},
+      {scene + " --threads 0", "--threads: expected thread counts like 1,2"},
+      {scene + " --threads 1,1", "--threads: 1 is given twice"},
+      {scene + " --threads 100000", "--threads: 100000 is more than the"},
+      {scene + " --repeat 0", "--repeat: expected a count of rounds, at least 1, got 0"},
+      {"- --repeat 1", "a scene on stdin can be read only once"},
+  };
+  for (const auto& [args, says] : cases) {
+    const auto r = runCli("bench " + args + " --json " + json);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(dir / "b.json")) << args;
+  }
+  const auto intoScene = runCli("bench " + scene + " --json " + scene);
+  EXPECT_EQ(intoScene.exitCode, 2) << intoScene.err;
+  EXPECT_NE(intoScene.err.find("--json"), std::string::npos) << intoScene.err;
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "plan/pipeline.h"
 #include "cli/progress_meter.h"
 #include "cli/batch_command.h"
+#include "cli/bench_command.h"
 #include "cli/plan_command.h"
 #include "cli/sweep_command.h"
 #include "core/error.h"
@@ -53,7 +54,7 @@ uint64_t parseSeed(const std::string& arg) {
 }
 
 // An option another command has: say which, so a habit from one command is not a
-// dead end in the next (" (--threads is an option of render, sweep and batch)").
+// dead end in the next (" (--threads is an option of render, sweep, batch and bench)").
 std::string otherCommandsHint(const CLI::App& app, const CLI::App& current, const std::string& option) {
   std::vector<std::string> owners;
   for (const CLI::App* sub : app.get_subcommands({})) {
@@ -166,6 +167,7 @@ int main(int argc, char** argv) {
   PlanCommand plan(app);
   CheckCommand check(app);
   BatchCommand batch(app);
+  BenchCommand bench(app);
 
   // From here on an interrupt removes our temp files, never an old output.
   installTempFileCleanup();
@@ -212,6 +214,7 @@ int main(int argc, char** argv) {
     if (plan.selected()) return plan.run();
     if (check.selected()) return check.run();
     if (batch.selected()) return batch.run();
+    if (bench.selected()) return bench.run();
     if (*texture) {
       writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),
                  {{"penumbra:texture", textureName}});

@@ -38,6 +38,16 @@ struct Timings {
          total = 0;
 };
 
+// The stages by their --stats names (time_s.*), in the order a render runs them.
+struct TimingField {
+  const char* name;
+  double Timings::*field;
+};
+constexpr TimingField kTimingFields[] = {
+    {"load", &Timings::load},       {"build_bvh", &Timings::buildBvh},     {"emit", &Timings::emit},
+    {"build_maps", &Timings::buildMaps}, {"precompute", &Timings::precompute}, {"render", &Timings::render},
+    {"write", &Timings::write},     {"total", &Timings::total}};
+
 struct RenderStats {
   std::string scene;
   int width = 0, height = 0, spp = 1, threads = 1;
