@@ -22,9 +22,11 @@ TEST(CpuTime, ShareIsCpuOverWallTimesThreads) {
   const CpuTiming busy = cpuTiming(2.0, 3.8, 2, 0.5);
   EXPECT_DOUBLE_EQ(busy.share, 0.95);
   EXPECT_FALSE(busy.contended());
-  // Exactly at the threshold is not contended; an empty span is neither.
+  // Exactly at the threshold is not contended; an empty or a short span is not judged.
   EXPECT_FALSE(cpuTiming(1.0, kContendedShare, 1, 0.0).contended());
   EXPECT_FALSE(cpuTiming(0.0, 0.0, 2, -1.0).contended());
+  EXPECT_FALSE(cpuTiming(0.1, 0.02, 2, 0.0).contended());
+  EXPECT_TRUE(cpuTiming(kShortestJudgedSeconds, 0.2, 2, 0.0).contended());
   EXPECT_DOUBLE_EQ(cpuTiming(0.0, 0.0, 2, -1.0).share, 0.0);
 }
 

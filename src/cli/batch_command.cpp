@@ -67,7 +67,7 @@ std::string batchSummary(const BatchOutcome& o) {
     s += fmt::format("{:<24} {:>7.2f}s {:>7.2f}s {:>5}  {:<14} {:<12} {}\n", j.name, j.seconds, j.cpu.cpuSeconds,
                      share, j.reused.empty() ? "-" : j.reused, status, j.outputs.empty() ? "" : j.outputs.front());
   }
-  s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s ({}); scenes built {}, photon maps "
+  s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s; {}; scenes built {}, photon maps "
                    "built {} (reused {} times, {} evicted, cache peak {:.1f} MB)\n",
                    o.jobs.size(), o.rendered, o.upToDate, o.failed, o.seconds, cpuLine(o.cpu), o.sceneBuilds,
                    o.photonBuilds, o.photonReuses, o.evictions, o.peakCacheBytes / 1e6);

@@ -91,7 +91,7 @@ int SweepCommand::run() {
   if (!o.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     const SweepTotals& t = out.totals;
-    std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s ({}); {} emission(s), {} prefix cut(s), {} map "
+    std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {}; {} emission(s), {} prefix cut(s), {} map "
                              "build(s), {} BVH build(s)\n",
                              out.rows.size(), t.resumed, t.wallSeconds, cpuLine(t.cpu), t.emissions, t.prefixCuts,
                              t.mapBuilds, t.bvhBuilds);

@@ -10,6 +10,9 @@ namespace penumbra {
 // Below this share of (wall x threads) the span's times are contended: other work
 // (or a serial stage) kept the workers off their cores part of the time.
 constexpr double kContendedShare = 0.9;
+// Spans shorter than this are not judged: waking the workers and the serial set-up
+// of a tiny render keep its share low on any machine.
+constexpr double kShortestJudgedSeconds = 0.5;
 
 struct CpuTiming {
   double wallSeconds = 0.0;
@@ -19,7 +22,7 @@ struct CpuTiming {
   double loadAverage = -1.0;  // 1-minute load average at the span's start; < 0 unknown
 
   bool known() const { return wallSeconds > 0.0; }
-  bool contended() const { return known() && share < kContendedShare; }
+  bool contended() const { return wallSeconds >= kShortestJudgedSeconds && share < kContendedShare; }
 };
 
 // `cpu` seconds over `wall` seconds on `threads` workers, the span started at `load`.
