@@ -3,6 +3,7 @@
 #include "cli/sweep_run.h"
 #include "cli/plan_command.h"
 #include "cli/progress_meter.h"
+#include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
@@ -90,10 +91,10 @@ int SweepCommand::run() {
   if (!o.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     const SweepTotals& t = out.totals;
-    std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {} emission(s), {} prefix cut(s), {} map "
+    std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {}; {} emission(s), {} prefix cut(s), {} map "
                              "build(s), {} BVH build(s)\n",
-                             out.rows.size(), t.resumed, t.wallSeconds, t.emissions, t.prefixCuts, t.mapBuilds,
-                             t.bvhBuilds);
+                             out.rows.size(), t.resumed, t.wallSeconds, cpuLine(t.cpu), t.emissions, t.prefixCuts,
+                             t.mapBuilds, t.bvhBuilds);
     std::cerr << "wrote " << (std::filesystem::path(o.out) / "report.md").string() << "\n";
   }
   return 0;

@@ -1,6 +1,7 @@
 // results.csv rows both ways, the Pareto front, and the markdown report.
 #include "cli/sweep_results.h"
 #include "core/error.h"
+#include "plan/cpu_report.h"
 #include <fmt/format.h>
 #include <algorithm>
 #include <fstream>
@@ -23,6 +24,7 @@ const Column kColumns[] = {
     {"reference", &SweepRow::reference}, {"load_s", &SweepRow::load}, {"bvh_s", &SweepRow::bvh},
     {"emit_s", &SweepRow::emit}, {"maps_s", &SweepRow::maps}, {"precompute_s", &SweepRow::precompute},
     {"render_s", &SweepRow::render}, {"total_s", &SweepRow::total}, {"spent_s", &SweepRow::spent},
+    {"cpu_s", &SweepRow::cpu}, {"cpu_share", &SweepRow::cpuShare}, {"load_avg_1m", &SweepRow::loadAverage},
     {"camera_rays", &SweepRow::cameraRays}, {"shadow_rays", &SweepRow::shadowRays},
     {"reflection_rays", &SweepRow::reflectionRays}, {"refraction_rays", &SweepRow::refractionRays},
     {"gate_queries", &SweepRow::gateQueries}, {"shadow_rays_avoided", &SweepRow::shadowRaysAvoided},
@@ -195,6 +197,7 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
       "{:.2f} s; ratio {:.2f}.\n\n",
       t.bvhBuilds, t.emissions, t.prefixCuts, t.mapBuilds, t.resumed, t.wallSeconds, t.photonSeconds,
       t.renderSeconds, denom, denom > 0 ? t.wallSeconds / denom : 0.0);
+  if (t.cpu.known()) md += "Sweep " + cpuLine(t.cpu) + "; each run's in `results.csv` (`cpu_s`, `cpu_share`).\n\n";
 
   std::string head = "|";
   std::string rule = "|";

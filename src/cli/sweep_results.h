@@ -17,6 +17,8 @@ struct SweepRow {
   std::vector<std::string> values;  // one per knob
   bool reference = false;           // the default reference itself (error 0)
   double load = 0, bvh = 0, emit = 0, maps = 0, precompute = 0, render = 0, total = 0, spent = 0;
+  // The process's CPU time over `spent`, its share of (spent x threads), the load at the run's start.
+  double cpu = 0, cpuShare = 0, loadAverage = -1;
   uint64_t cameraRays = 0, shadowRays = 0, reflectionRays = 0, refractionRays = 0;
   uint64_t gateQueries = 0, shadowRaysAvoided = 0, gatherQueries = 0;
   uint64_t photonsEmitted = 0, photonsStored = 0;
@@ -48,6 +50,7 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows);
 
 struct SweepTotals {
   double wallSeconds = 0;       // the whole sweep
+  CpuTiming cpu;                // ... and its CPU time
   double photonSeconds = 0;     // sum over distinct photon settings: emission (share) + map build
   double renderSeconds = 0;     // sum of every render pass (precompute + render, ungated ones too)
   size_t emissions = 0, prefixCuts = 0, mapBuilds = 0, bvhBuilds = 0, resumed = 0;
