@@ -76,7 +76,7 @@ std::string otherCommandsHint(const CLI::App& app, const CLI::App& current, cons
 }
 
 int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std::string& tracePixelArg,
-                     bool quiet) {
+                     bool quiet, bool verbose) {
   if (!tracePixelArg.empty()) {
     req.tracePixel = parsePixel(tracePixelArg);
   }
@@ -106,7 +106,7 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   else if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsReport(result));
   if (!quiet) {
     for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
-    std::cerr << statsSummary(result.stats) << "  " << cpuLine(result.stats.cpu) << "\n";
+    std::cerr << statsSummary(result.stats, verbose || !statsPath.empty()) << "  " << cpuLine(result.stats.cpu) << "\n";
   }
   return 0;
 }
@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
 
   RenderRequest req;
   std::string statsPath, tracePixelArg;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
   std::string seedArg, maxMemoryArg;
   std::optional<int> spp;
   CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
@@ -146,6 +146,7 @@ int main(int argc, char** argv) {
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-q,--quiet", quiet, "No progress, notes or summary on stderr");
+  render->add_flag("-v,--verbose", verbose, "The summary also gives the reasons of automatic decisions (the gate)");
   PlanArgs planArgs;
   addPlanOptions(*render, planArgs);
   std::string toneArg;
@@ -208,7 +209,7 @@ int main(int argc, char** argv) {
       if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
       if (!planArgs.gateSetting().empty()) req.overrides.push_back(planArgs.gateSetting());
-      return runRenderCommand(req, statsPath, tracePixelArg, quiet);
+      return runRenderCommand(req, statsPath, tracePixelArg, quiet, verbose);
     }
     if (sweep.selected()) return sweep.run();
     if (plan.selected()) return plan.run();
