@@ -40,6 +40,16 @@ def pareto(points):
     return front
 
 
+# Exit codes penumbra sweep tells apart: data it cannot plot (the message says why),
+# and matplotlib missing.
+NOTHING_TO_PLOT, NO_MATPLOTLIB = 2, 3
+
+
+def fail(message):
+    print(message, file=sys.stderr)
+    sys.exit(NOTHING_TO_PLOT)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv")
@@ -52,15 +62,19 @@ def main():
         header = reader.fieldnames or []
         rows = list(reader)
     if "run" not in header or "reference" not in header:
-        sys.exit(f"{args.csv}: not a penumbra sweep results.csv")
+        fail(f"{args.csv}: not a penumbra sweep results.csv")
     knobs = header[header.index("run") + 1:header.index("reference")]
     runs = [r for r in rows if r["reference"] != "1" and float(r["rmse"]) > 0.0]
     if not runs:
-        sys.exit(f"{args.csv}: no run with a positive error to plot")
+        fail(f"{args.csv}: no run with a positive error to plot (every run matches the reference)")
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("matplotlib cannot be imported (python3-matplotlib: make deps installs it)", file=sys.stderr)
+        sys.exit(NO_MATPLOTLIB)
 
     fig, ax = plt.subplots(figsize=(7.5, 5.0), dpi=120)
     ax.scatter([float(r["total_s"]) for r in runs], [float(r["rmse"]) for r in runs],

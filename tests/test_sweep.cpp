@@ -202,6 +202,25 @@ TEST(Sweep, ABadRunFailsBeforeAnyRender) {
   EXPECT_FALSE(fs::exists(dir / "results.csv"));
 }
 
+TEST(Sweep, AFailedSweepLeavesNoFileThatBlocksARetryWithOtherKnobs) {
+  // A reference of the wrong size fails the sweep; the same folder then takes a
+  // sweep of other knobs, since the failed one finished no run.
+  testing::ScratchDir dir;
+  writeImage((dir / "small.exr").string(), Image(8, 8));
+  SweepRequest req = cornellSweep(dir.path().string());
+  const std::vector<std::string> base = {"camera.width=16", "camera.height=16"};
+  req.spec = expandGrid({keyKnob("render.max_depth=1,2")}, base);
+  req.referencePath = (dir / "small.exr").string();
+  EXPECT_THROW(runSweep(req), InputError);
+  req.spec = expandGrid({keyKnob("camera.spp=1,2")}, base);
+  req.referencePath.clear();
+  EXPECT_NO_THROW(runSweep(req));
+  std::ifstream csv(dir / "results.csv");
+  std::string header;
+  ASSERT_TRUE(std::getline(csv, header));
+  EXPECT_NE(header.find("camera.spp"), std::string::npos) << header;
+}
+
 // The keys decide what runs share: each photon input changes the photon key,
 // camera and gather settings keep it, and only geometry inputs change the other.
 TEST(ReuseKey, ChangesExactlyWithTheInputsThatMatter) {

@@ -32,8 +32,11 @@ std::string drawTradeoffPlot(const std::string& script, const std::string& csv, 
   const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
   const int status = runProgram({python, script, csv, png, "--title", title});
   if (status == 0) return "";
-  return fmt::format("{} not drawn: {} {} exited with {} (python3-matplotlib missing? make deps installs it)",
-                     png, python, script, status);
+  // The script's exit codes: 2 = nothing it can plot (its line above says why),
+  // 3 = matplotlib missing; anything else is its own failure.
+  if (status == 2) return fmt::format("{} not drawn: nothing to plot (the line above says why)", png);
+  if (status == 3) return fmt::format("{} not drawn: python3-matplotlib is missing (make deps installs it)", png);
+  return fmt::format("{} not drawn: {} {} exited with {}", png, python, script, status);
 }
 
 }  // namespace penumbra

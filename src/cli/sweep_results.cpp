@@ -145,6 +145,12 @@ std::map<std::string, SweepRow> readFinishedRows(const std::string& path, const 
   const std::string header = joinCsv(csvHeader(knobs));
   if (!std::getline(in, line)) return rows;
   if (line != header) {
+    // A header alone holds no finished run: a failed sweep's, which a retry replaces.
+    std::string row;
+    while (std::getline(in, row)) {
+      if (!row.empty()) break;
+    }
+    if (row.empty()) return rows;
     throw InputError(path + ": written by a sweep with other knobs (header differs); use another -o folder "
                      "or --force to start again");
   }
