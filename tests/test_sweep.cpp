@@ -68,7 +68,29 @@ TEST(Sweep, ParetoFrontKeepsOnlyUnbeatenRuns) {
   SweepRow ref = row(9, 0.0);
   ref.reference = true;
   rows.push_back(ref);
-  EXPECT_EQ(paretoFront(rows), (std::vector<size_t>{0, 1, 3}));
+  EXPECT_EQ(paretoFront(rows, SweepMetric::Rmse), (std::vector<size_t>{0, 1, 3}));
+}
+
+TEST(Sweep, TheMetricDecidesTheFrontAndTheBestRun) {
+  // The README's case: a run whose RMSE a few hot caustic pixels dominate, against a
+  // blotchier one with the lower RMSE but ten times the relMSE and 15 dB less PSNR.
+  auto row = [](double t, double rmse, double relMse, double psnr) {
+    SweepRow r;
+    r.total = t;
+    r.rmse = rmse;
+    r.relMse = relMse;
+    r.psnr = psnr;
+    return r;
+  };
+  const std::vector<SweepRow> rows = {row(20, 0.066, 0.00099, 42.5), row(10, 0.048, 0.0096, 27.6)};
+  EXPECT_EQ(bestRun(rows, SweepMetric::RelMse), 0u);
+  EXPECT_EQ(bestRun(rows, SweepMetric::Psnr), 0u);
+  EXPECT_EQ(bestRun(rows, SweepMetric::RmseClamped), 0u);
+  EXPECT_EQ(bestRun(rows, SweepMetric::Rmse), 1u);
+  EXPECT_EQ(paretoFront(rows, SweepMetric::Rmse), (std::vector<size_t>{1}));
+  EXPECT_EQ(paretoFront(rows), (std::vector<size_t>{1, 0}));
+  EXPECT_EQ(parseMetric("rmse-clamped"), SweepMetric::RmseClamped);
+  EXPECT_THROW(parseMetric("mse"), InputError);
 }
 
 TEST(Sweep, RunsEqualStandaloneRendersAndRerunsResume) {

@@ -2,6 +2,7 @@
 #include "cli/sweep_results.h"
 #include "core/error.h"
 #include "plan/cpu_report.h"
+#include <cmath>
 #include <fmt/format.h>
 #include <algorithm>
 #include <fstream>
@@ -168,7 +169,37 @@ std::map<std::string, SweepRow> readFinishedRows(const std::string& path, const 
   return rows;
 }
 
-std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows) {
+const char* metricName(SweepMetric metric) { return kMetricNames[static_cast<size_t>(metric)]; }
+
+SweepMetric parseMetric(const std::string& name) {
+  std::string known;
+  for (size_t i = 0; i < std::size(kMetricNames); ++i) {
+    if (name == kMetricNames[i]) return static_cast<SweepMetric>(i);
+    known += (i ? ", " : "") + std::string(kMetricNames[i]);
+  }
+  throw InputError("--metric: unknown metric '" + name + "' (known: " + known + ")");
+}
+
+double metricError(const SweepRow& r, SweepMetric metric) {
+  switch (metric) {
+    case SweepMetric::RelMse: return r.relMse;
+    case SweepMetric::Rmse: return r.rmse;
+    case SweepMetric::Psnr:
+    case SweepMetric::RmseClamped: return std::pow(10.0, -r.psnr / 20.0);
+  }
+  return r.rmse;
+}
+
+size_t bestRun(const std::vector<SweepRow>& rows, SweepMetric metric) {
+  size_t best = rows.size();
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].reference) continue;
+    if (best == rows.size() || metricError(rows[i], metric) < metricError(rows[best], metric)) best = i;
+  }
+  return best;
+}
+
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric) {
   std::vector<size_t> front;
   for (size_t i = 0; i < rows.size(); ++i) {
     if (rows[i].reference) continue;
@@ -177,7 +208,8 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows) {
       if (j == i || rows[j].reference) continue;
       const SweepRow& a = rows[j];
       const SweepRow& b = rows[i];
-      beaten = a.total <= b.total && a.rmse <= b.rmse && (a.total < b.total || a.rmse < b.rmse);
+      const double ea = metricError(a, metric), eb = metricError(b, metric);
+      beaten = a.total <= b.total && ea <= eb && (a.total < b.total || ea < eb);
     }
     if (!beaten) front.push_back(i);
   }
@@ -186,7 +218,7 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows) {
 }
 
 std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, const std::vector<SweepRow>& rows,
-                           const SweepTotals& t) {
+                           const SweepTotals& t, SweepMetric metric) {
   std::string md = fmt::format("# Sweep of {}\n\n{} runs. Knobs (`--set` keys they write):\n\n{}\n", scene,
                                rows.size(), knobList(spec));
   md += fmt::format("**Reference:** {}\n\n", t.referenceNote);
@@ -215,8 +247,13 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
            fmt::format(" {:.3f} | {:.4g} | {:.4g} | {:.2f} | {:.4g} |{}\n", r.total, r.rmse, r.relMse, r.psnr,
                        r.worstRmse, r.reference ? " (reference)" : "");
   };
-  md += "## Pareto front\n\nRuns that no other run beats on both time and RMSE, fastest first:\n\n" + head + rule;
-  for (size_t i : paretoFront(rows)) md += line(rows[i]);
+  md += fmt::format("**Ranked by** {} (`--metric`).\n\n", metricName(metric));
+  if (const size_t best = bestRun(rows, metric); best < rows.size()) {
+    md += "## Best run\n\n" + head + rule + line(rows[best]) + "\n";
+  }
+  md += fmt::format("## Pareto front\n\nRuns that no other run beats on both time and {}, fastest first:\n\n",
+                    metricName(metric)) + head + rule;
+  for (size_t i : paretoFront(rows, metric)) md += line(rows[i]);
 
   bool anyGate = false;
   for (const SweepRow& r : rows) anyGate = anyGate || r.gate;

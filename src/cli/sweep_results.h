@@ -44,9 +44,24 @@ std::string resultsCsv(const std::vector<SweepKnob>& knobs, const std::vector<Sw
 std::map<std::string, SweepRow> readFinishedRows(const std::string& path,
                                                     const std::vector<SweepKnob>& knobs);
 
-// Rows no other row beats on both total time and RMSE (the reference excluded),
-// fastest first.
-std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows);
+// What the front, the plot and the best run rank by (every metric stays in
+// results.csv). relMSE by default: plain RMSE lets a few bright caustic pixels
+// outweigh visible noise everywhere else. rmse-clamped is the RMSE of values clamped
+// to [0, 1], the one PSNR reports, so the two rank alike.
+enum class SweepMetric { RelMse, Rmse, Psnr, RmseClamped };
+inline constexpr const char* kMetricNames[] = {"relmse", "rmse", "psnr", "rmse-clamped"};
+const char* metricName(SweepMetric metric);
+SweepMetric parseMetric(const std::string& name);  // throws InputError naming the choices
+// The row's error under `metric`, lower better (PSNR as its clamped RMSE).
+double metricError(const SweepRow& row, SweepMetric metric);
+
+// Rows no other row beats on both total time and the metric (the reference
+// excluded), fastest first.
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric = SweepMetric::RelMse);
+
+// The run with the lowest error under `metric` (the reference excluded), rows.size()
+// when there is none.
+size_t bestRun(const std::vector<SweepRow>& rows, SweepMetric metric);
 
 struct SweepTotals {
   double wallSeconds = 0;       // the whole sweep
@@ -58,6 +73,7 @@ struct SweepTotals {
 };
 
 std::string reportMarkdown(const std::string& scene, const SweepSpec& spec,
-                           const std::vector<SweepRow>& rows, const SweepTotals& totals);
+                           const std::vector<SweepRow>& rows, const SweepTotals& totals,
+                           SweepMetric metric = SweepMetric::RelMse);
 
 }  // namespace penumbra

@@ -72,7 +72,7 @@ class Sweep {
     SweepOutcome out;
     out.rows = rows_;
     out.totals = totals_;
-    writeTextFileAtomic((dir / "report.md").string(), reportMarkdown(sceneName_, spec_, rows_, totals_));
+    writeTextFileAtomic((dir / "report.md").string(), reportMarkdown(sceneName_, spec_, rows_, totals_, req_.metric));
     if (!req_.plotScript.empty()) plot(dir);
     out.notes = notes_;
     return out;
@@ -261,7 +261,8 @@ class Sweep {
   // A machine without matplotlib still gets every result, and a note saying why no plot.
   void plot(const fs::path& dir) {
     const std::string note = drawTradeoffPlot(req_.plotScript, (dir / "results.csv").string(),
-                                              (dir / "tradeoff.png").string(), sceneName_);
+                                              (dir / "tradeoff.png").string(), sceneName_,
+                                              metricName(req_.metric));
     if (!note.empty()) notes_.push_back(note);
   }
 
