@@ -243,6 +243,22 @@ TEST(Sweep, AFailedSweepLeavesNoFileThatBlocksARetryWithOtherKnobs) {
   EXPECT_NE(header.find("camera.spp"), std::string::npos) << header;
 }
 
+TEST(Sweep, AKnobThatChangesNothingIsSaidWithItsReason) {
+  // fig03's one point light: gate auto turns the gate off, so photons.shadow changes
+  // no pixel; spp does.
+  testing::ScratchDir dir;
+  SweepRequest req = cornellSweep(dir.path().string());
+  req.scenePath = kShadows;
+  req.spec = expandGrid({keyKnob("photons.shadow=1e3,1e4"), keyKnob("camera.spp=1,2")},
+                        {"camera.width=16", "camera.height=16"});
+  const SweepOutcome out = runSweep(req);
+  std::string notes;
+  for (const std::string& n : out.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("knob photons.shadow changed nothing: its runs rendered identical images (the gate was off"),
+            std::string::npos) << notes;
+  EXPECT_EQ(notes.find("knob camera.spp"), std::string::npos) << notes;
+}
+
 // The keys decide what runs share: each photon input changes the photon key,
 // camera and gather settings keep it, and only geometry inputs change the other.
 TEST(ReuseKey, ChangesExactlyWithTheInputsThatMatter) {

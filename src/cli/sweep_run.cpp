@@ -5,6 +5,7 @@
 #include "cli/sweep_run.h"
 #include "cli/plot_script.h"
 #include "cli/sweep_folder.h"
+#include "cli/sweep_idle_knobs.h"
 #include "cli/progress_line.h"
 #include "plan/cpu_report.h"
 #include "plan/render_session.h"
@@ -67,6 +68,7 @@ class Sweep {
     totals_.bvhBuilds = session_.sceneBuilds();
     totals_.cpu = clock_.timing(session_.options().threads);
     totals_.wallSeconds = totals_.cpu.wallSeconds;
+    for (const std::string& n : idleKnobNotes(spec_, rows_, dir)) notes_.push_back(n);
     const std::string contended = contendedNote(renderedCpu_, "run");
     if (!contended.empty()) notes_.push_back(contended);
     SweepOutcome out;
