@@ -89,6 +89,11 @@ TEST(Sweep, TheMetricDecidesTheFrontAndTheBestRun) {
   EXPECT_EQ(bestRun(rows, SweepMetric::Rmse), 1u);
   EXPECT_EQ(paretoFront(rows, SweepMetric::Rmse), (std::vector<size_t>{1}));
   EXPECT_EQ(paretoFront(rows), (std::vector<size_t>{1, 0}));
+  const std::string md = reportMarkdown("scene", SweepSpec{}, rows, SweepTotals{});
+  EXPECT_NE(md.find("## Best run"), std::string::npos);
+  // Time to reach: relMSE 0.002 first at the 20 s run, 0.01 already at the 10 s one.
+  EXPECT_NE(md.find("| 0.002 | 20.000 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0.01 | 10.000 |"), std::string::npos) << md;
   EXPECT_EQ(parseMetric("rmse-clamped"), SweepMetric::RmseClamped);
   EXPECT_THROW(parseMetric("mse"), InputError);
 }

@@ -217,6 +217,42 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric m
   return front;
 }
 
+namespace {
+
+// The fastest run reaching each error of a 1-2-5 ladder between the runs' best and
+// worst error under `metric`: what a given accuracy costs on this scene.
+std::string timeToReach(const SweepSpec& spec, const std::vector<SweepRow>& rows, SweepMetric metric) {
+  double lo = 0.0, hi = 0.0;
+  for (const SweepRow& r : rows) {
+    const double e = metricError(r, metric);
+    if (r.reference || !(e > 0.0) || !std::isfinite(e)) continue;
+    lo = lo > 0.0 ? std::min(lo, e) : e;
+    hi = std::max(hi, e);
+  }
+  if (!(lo > 0.0)) return "";
+  std::string md = fmt::format("\n## Time to reach an error\n\nThe fastest run whose {} is at most E:\n\n| E | time s |",
+                               metricName(metric));
+  std::string rule = "|---|---|";
+  for (const SweepKnob& k : spec.knobs) { md += " " + k.name + " |"; rule += "---|"; }
+  md += "\n" + rule + "\n";
+  const double steps[] = {1.0, 2.0, 5.0};
+  for (double decade = std::pow(10.0, std::floor(std::log10(lo))); decade <= hi * 10.0; decade *= 10.0) {
+    for (double step : steps) {
+      const double target = decade * step;
+      if (target < lo || target > 2.0 * hi) continue;
+      size_t fastest = rows.size();
+      for (size_t i = 0; i < rows.size(); ++i) {
+        if (rows[i].reference || metricError(rows[i], metric) > target) continue;
+        if (fastest == rows.size() || rows[i].total < rows[fastest].total) fastest = i;
+      }
+      if (fastest < rows.size()) md += fmt::format("| {:.3g} | {:.3f} |", target, rows[fastest].total) + settings(spec, rows[fastest]) + "\n";
+    }
+  }
+  return md;
+}
+
+}  // namespace
+
 std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, const std::vector<SweepRow>& rows,
                            const SweepTotals& t, SweepMetric metric) {
   std::string md = fmt::format("# Sweep of {}\n\n{} runs. Knobs (`--set` keys they write):\n\n{}\n", scene,
@@ -254,6 +290,8 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
   md += fmt::format("## Pareto front\n\nRuns that no other run beats on both time and {}, fastest first:\n\n",
                     metricName(metric)) + head + rule;
   for (size_t i : paretoFront(rows, metric)) md += line(rows[i]);
+
+  md += timeToReach(spec, rows, metric);
 
   bool anyGate = false;
   for (const SweepRow& r : rows) anyGate = anyGate || r.gate;
