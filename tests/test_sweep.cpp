@@ -262,6 +262,9 @@ TEST(Sweep, AKnobThatChangesNothingIsSaidWithItsReason) {
   EXPECT_NE(notes.find("knob photons.shadow changed nothing: its runs rendered identical images (the gate was off"),
             std::string::npos) << notes;
   EXPECT_EQ(notes.find("knob camera.spp"), std::string::npos) << notes;
+  // The contact sheet: four 192-pixel tiles in a row, 6-pixel gaps.
+  const Image sheet = readImage((dir / "runs.png").string());
+  EXPECT_EQ(sheet.width, 4 * (192 + 6) + 6);
 }
 
 // The keys decide what runs share: each photon input changes the photon key,

@@ -10,6 +10,7 @@
 #include "plan/cpu_report.h"
 #include "plan/render_session.h"
 #include "core/error.h"
+#include "io/contact_sheet.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
 #include "io/temp_file.h"
@@ -75,6 +76,7 @@ class Sweep {
     out.rows = rows_;
     out.totals = totals_;
     writeTextFileAtomic((dir / "report.md").string(), reportMarkdown(sceneName_, spec_, rows_, totals_, req_.metric));
+    contactSheet(dir);
     if (!req_.plotScript.empty()) plot(dir);
     out.notes = notes_;
     return out;
@@ -258,6 +260,20 @@ class Sweep {
     writeCsv();
     status_ = "done";
     showProgress();
+  }
+
+  // Every run's image labelled with its settings, time and error (runs.png).
+  void contactSheet(const fs::path& dir) {
+    std::vector<SheetTile> tiles;
+    for (const SweepRow& r : rows_) {
+      if (r.image.empty()) continue;
+      tiles.push_back({(dir / r.image).string(),
+                       {r.id, r.reference ? fmt::format("{:.2f} s  the reference", r.total)
+                                          : fmt::format("{:.2f} s  {} {:.3g}", r.total, metricName(req_.metric),
+                                                        metricError(r, req_.metric))}});
+    }
+    const std::string note = writeContactSheet((dir / "runs.png").string(), tiles);
+    if (!note.empty()) notes_.push_back(note);
   }
 
   // A machine without matplotlib still gets every result, and a note saying why no plot.
