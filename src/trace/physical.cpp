@@ -86,7 +86,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   const bool textured = readsUv(m);
-  SurfaceRecord s = ctx.tracer.surface(ray, hit, (textured ? kSurfaceAll : kSurfaceShadingNormal) | normalMapFields(m));
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, textured ? kSurfaceAll : kSurfaceShadingNormal);
   const float footprint = hit.t * ctx.pixelSpread;
   // An area light seen by the camera or through mirrors and glass (diffuse surfaces
   // sample it directly instead): part of the direct term.
@@ -100,7 +100,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   if (textured && ctx.textures) {
     // A texture is the diffuse albedo's (base colour's) map: multiplied in, or added
     // and kept <= 1; a metallic-roughness map scales those factors.
-    applyNormalMap(m, *ctx.textures, footprint, ray.dir, s);
+    applyNormalMap(m, *ctx.textures, ctx.tracer, hit, footprint, ray.dir, s);
     if (m.texture >= 0) {
       Color texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
       bsdf.diffuse = m.textureBlend == TextureBlend::Multiply

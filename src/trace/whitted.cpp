@@ -74,7 +74,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   const bool textured = readsUv(m);
-  SurfaceRecord s = ctx.tracer.surface(ray, hit, (textured ? kSurfaceAll : kSurfaceShadingNormal) | normalMapFields(m));
+  SurfaceRecord s = ctx.tracer.surface(ray, hit, textured ? kSurfaceAll : kSurfaceShadingNormal);
   auto recordHit = [&](RayRecord& r) {
     r.hit = true;
     r.t = hit.t;
@@ -88,7 +88,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   const Color glow = emitterGlow(ctx, m, s, footprint, false);
   if (maxComponent(m.emission) > 0.0f && !m.emitterShades) return finish(glow, recordHit);  // a light's surface
 
-  if (ctx.textures) applyNormalMap(m, *ctx.textures, footprint, ray.dir, s);
+  if (ctx.textures) applyNormalMap(m, *ctx.textures, ctx.tracer, hit, footprint, ray.dir, s);
   Color texel(1.0f);
   if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
   Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
