@@ -210,18 +210,14 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
   if (light.type == LightType::Mesh) return meshLightPhoton(light, u1, u2, u3, u4);
   if (light.type == LightType::Environment) return environmentPhoton(light, bounds, u1, u2, u3, u4);
   if (light.type == LightType::Quad || light.type == LightType::Sphere) {
-    Vec3 n;
     if (light.type == LightType::Quad) {
       r.origin = light.position + u1 * light.edge1 + u2 * light.edge2;
-      n = unitCross(light.edge1, light.edge2);
+      r.normal = unitCross(light.edge1, light.edge2);
       r.error = quadPointError(light);
     } else {
-      n = uniformSphere(u1, u2);
-      r.origin = light.position + light.radius * n;
-      r.error = gammaBound(5) * (maxComponent(glm::abs(light.position)) + light.radius);
+      r = sphereLightStart(light, uniformSphere(u1, u2));
     }
-    r.dir = toWorld(cosineHemisphere(u3, u4), n);
-    r.normal = n;
+    r.dir = toWorld(cosineHemisphere(u3, u4), r.normal);
     return r;
   }
   // Uniform over the disc that covers the scene, seen along the light's direction,
@@ -232,6 +228,14 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
   r.origin = bounds.center - light.direction * (1.01f * bounds.radius) +
              rad * (std::cos(phi) * t + std::sin(phi) * b);
   r.dir = light.direction;
+  return r;
+}
+
+PhotonRay sphereLightStart(const Light& light, const Vec3& n) {
+  PhotonRay r;
+  r.origin = light.position + light.radius * n;
+  r.normal = n;
+  r.error = gammaBound(5) * (maxComponent(glm::abs(light.position)) + light.radius);
   return r;
 }
 

@@ -22,7 +22,7 @@ struct Camera {
   float orthoHeight = 0.0f;
   int width = 640;
   int height = 480;
-  int spp = 1;  // samples per pixel; 1 = pixel centre, >1 = stratified jitter
+  int spp = 1;  // samples per pixel and pass; stratified over spp x passes (1 in all: the centre)
 };
 
 // Point and directional lights are deltas; quad, sphere and mesh lights are area

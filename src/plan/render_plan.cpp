@@ -9,6 +9,7 @@
 #include "core/light_sample.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
+#include "emit/caustic_aim.h"
 #include "emit/light_reach.h"
 #include <algorithm>
 #include <fmt/format.h>
@@ -200,7 +201,7 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
   };
   std::vector<Target> targets = {
       {Pass::GlobalPhotons, ReachRule::Scattering, "a surface that scatters photons"},
-      {Pass::CausticPhotons, ReachRule::Specular, "a specular surface (area lights; point and directional lights aim)"}};
+      {Pass::CausticPhotons, ReachRule::Specular, "a specular surface (spots and environments; other lights aim)"}};
   // Not the classic estimator: it averages photon colours (not a density), so each
   // photon must carry its light's colour at the weight the power split gives it.
   if (density) targets.push_back({Pass::IndirectPhotons, ReachRule::Bouncing, "a surface that bounces photons (p_r or p_t > 0)"});
@@ -213,7 +214,7 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
     int none = 0, emitting = 0;
     std::vector<std::string> shares;
     for (size_t l = 0; l < scene.lights.size(); ++l) {
-      const bool aimed = t.pass == Pass::CausticPhotons && isDeltaLight(scene.lights[l]);
+      const bool aimed = t.pass == Pass::CausticPhotons && aimsCausticPhotons(scene.lights[l]);
       if (aimed || !(maxComponent(scene.lights[l].radiance()) > 0.0f)) continue;
       ++emitting;
       none += d.reach[l] == 0.0f;
