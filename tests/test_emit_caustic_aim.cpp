@@ -96,7 +96,8 @@ TEST(CausticAim, AreaLightsGiveThePointLightsCausticPerWattTowardsTheSphere) {
   };
   const double rho = kSphereLightRadius;
   const Case cases[] = {
-      {"quad", causticOf(sceneWith(std::string(R"({"type": "quad", )") + kSquare + R"(, "radiance": 1})")), towardsQuad},
+      {"quad", causticOf(sceneWith(std::string(R"({"type": "quad", )") + kSquare + R"(, "radiance": 1})")),
+       towardsQuad},
       {"sphere",
        causticOf(sceneWith(R"({"type": "sphere", "center": [0, 5, 0], "radius": 0.1, "radiance": 1})")),
        kPiD * rho * rho * 2.0 * kPiD * oneMinusCos},
@@ -176,7 +177,9 @@ TEST(CausticAim, MeanPowerFactorIsTheUnaimedShareHeadingForTheTargets) {
       squares += f * f;
       if (f > 0.0) {  // within float rounding of a cone's rim (1e-5 of the radius)
         bool hit = false;
-        for (const SceneSphere& t : targets) hit = hit || crossesTarget({t.center, t.radius * 1.00001f}, r.origin, r.dir);
+        for (const SceneSphere& t : targets) {
+          hit = hit || crossesTarget({t.center, t.radius * 1.00001f}, r.origin, r.dir);
+        }
         ASSERT_TRUE(hit) << "an aimed photon with power heads for no target";
       }
     }

@@ -2,8 +2,8 @@
 // the specular targets, one drawn per photon in proportion to its measure.
 #include "emit/caustic_aim.h"
 #include "core/sampling.h"
-#include <algorithm>
 #include "emit/emit.h"
+#include <algorithm>
 
 namespace penumbra {
 
@@ -207,7 +207,8 @@ CausticAim aimAt(const Light& light, const std::vector<SceneSphere>& targets, co
 float sampleAimed(const Light& light, const SceneSphere& bounds, const CausticAim& aim, Rng& rng,
                   PhotonRay& r, std::vector<float>& scratch) {
   if (aim.targets == nullptr || aim.targets->empty()) return 0.0f;
-  return isDeltaLight(light) ? sampleDelta(light, bounds, aim, rng, r) : sampleArea(light, bounds, aim, rng, r, scratch);
+  return isDeltaLight(light) ? sampleDelta(light, bounds, aim, rng, r)
+                             : sampleArea(light, bounds, aim, rng, r, scratch);
 }
 
 }  // namespace penumbra
