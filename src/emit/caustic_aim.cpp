@@ -199,7 +199,10 @@ CausticAim aimAt(const Light& light, const std::vector<SceneSphere>& targets, co
   std::vector<float> scratch;
   PhotonRay r;
   double sum = 0.0;
-  for (int i = 0; i < kShareSamples; ++i) sum += sampleArea(light, bounds, aim, rng, r, scratch);
+  for (int i = 0; i < kShareSamples; ++i) {
+    const float factor = sampleArea(light, bounds, aim, rng, r, scratch);
+    if (factor > 0.0f) sum += factor * luminance(r.weight);
+  }
   aim.share = std::min(1.0, sum / kShareSamples);
   return aim;
 }
