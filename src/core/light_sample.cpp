@@ -161,6 +161,7 @@ Color lightPower(const Light& light, const SceneSphere& bounds) {
   if (light.type == LightType::Point) return light.radiance() * (4.0f * kPi);
   if (light.type == LightType::Directional) return light.radiance() * (kPi * bounds.radius * bounds.radius);
   if (light.type == LightType::Environment) return environmentPower(light, bounds);
+  if (light.type == LightType::Mesh) return light.radiance() * (kPi * meshLightPowerFactor(light));
   return light.radiance() * (kPi * lightArea(light));  // a Lambertian emitter: pi A L
 }
 
@@ -242,6 +243,7 @@ float classicPhotonWeight(const Light& light) {
   if (light.isSpot()) return luminance(light.radiance()) * spotSolidAngle(light) / (4.0f * kPi);
   if (light.type == LightType::Point) return luminance(light.radiance());
   if (light.type == LightType::Directional || light.type == LightType::Environment) return 0.0f;
+  if (light.type == LightType::Mesh) return luminance(light.radiance()) * meshLightPowerFactor(light) * 0.25f;
   return luminance(light.radiance()) * lightArea(light) * 0.25f;
 }
 

@@ -248,10 +248,6 @@ SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit, uint8_t fi
     float len = glm::length(n);
     if (len > 1e-12f) ns = n / len;
   }
-  if ((fields & kSurfaceTangent) && !mesh.tangents.empty()) {
-    const glm::vec4 &t0 = mesh.tangents[tri[0]], &t1 = mesh.tangents[tri[1]], &t2 = mesh.tangents[tri[2]];
-    rec.tangent = glm::vec4(Vec3(w * t0 + hit.u * t1 + hit.v * t2), t0.w < 0.0f ? -1.0f : 1.0f);
-  }
   const float radius = meshRadii_[geometries_[hit.geomId].index];
   if (!(fields & kSurfaceUv)) {
     // Not asked for: leave the defaults.
@@ -279,6 +275,17 @@ SurfaceRecord TraceScene::meshSurface(const Ray& ray, const Hit& hit, uint8_t fi
   rec.ng = ng;
   rec.ns = ns;
   return rec;
+}
+
+glm::vec4 TraceScene::tangent(const Hit& hit) const {
+  const GeometryRef& g = geometries_[hit.geomId];
+  if (g.sphere) return glm::vec4(0.0f);
+  const TriangleMesh& mesh = scene_.meshes[g.index];
+  if (mesh.tangents.empty()) return glm::vec4(0.0f);
+  const auto& tri = mesh.triangles[hit.primId];
+  const float w = 1.0f - hit.u - hit.v;
+  const glm::vec4 &t0 = mesh.tangents[tri[0]], &t1 = mesh.tangents[tri[1]], &t2 = mesh.tangents[tri[2]];
+  return glm::vec4(Vec3(w * t0 + hit.u * t1 + hit.v * t2), t0.w < 0.0f ? -1.0f : 1.0f);
 }
 
 }  // namespace penumbra

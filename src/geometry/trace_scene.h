@@ -23,7 +23,6 @@ enum SurfaceFields : uint8_t {
   kSurfaceShadingNormal = 1 << 0,  // ns interpolated from vertex normals (else ns = ng)
   kSurfaceUv = 1 << 1,             // uv and uvPerWorld
   kSurfaceAll = kSurfaceShadingNormal | kSurfaceUv,
-  kSurfaceTangent = 1 << 2,        // tangent interpolated from the mesh's (normal maps only)
 };
 
 // Everything shading needs about a hit. Normals are unit length and face the
@@ -35,9 +34,6 @@ struct SurfaceRecord {
   Vec3 ns{0.0f, 0.0f, 1.0f};  // shading normal, facing the incoming ray
   Vec2 uv{0.0f};
   Vec2 uvPerWorld{1.0f};  // uv change per unit of world distance (u, v): texture filter widths
-  // With kSurfaceTangent on a mesh with tangents: xyz along +u (not unit, not yet
-  // orthogonal to ns, never flipped with it), w the bitangent's sign; else all 0.
-  glm::vec4 tangent{0.0f};
   float error = 0.0f;  // bound on position's distance from the true surface along ng
   float spread = 0.0f; // bound on its error in any direction (along the surface too)
   int material = 0;
@@ -62,6 +58,11 @@ class TraceScene {
   bool intersect(const Ray& ray, Hit& hit) const;
   bool occluded(const Ray& ray) const;
   SurfaceRecord surface(const Ray& ray, const Hit& hit, uint8_t fields = kSurfaceAll) const;
+  // A mesh hit's tangent interpolated from its mesh's (normal-mapped meshes only): xyz
+  // along +u (not unit, not yet orthogonal to ns, never flipped with it), w the
+  // bitangent's sign; all 0 on a sphere or a mesh without tangents. Apart from the
+  // record, which stays small for the many hits without a normal map.
+  glm::vec4 tangent(const Hit& hit) const;
 
   // Coherent rays (camera rays of a tile, their shadow rays to one light) as Embree
   // packets of packetWidth() lanes with the coherent flag (geometry/packet_trace.cpp).

@@ -31,52 +31,69 @@ using glm::dmat4;
   throw ModelError("glTF file " + path + ": " + problem);
 }
 
-// An accessor's elements as doubles, `span.components` per element (normalised
-// integers scaled to [0, 1]); accessorSpan has proven every byte inside its buffer.
-// Non-finite floats are refused unless `keepNonFinite` (normals: judged later).
-std::vector<double> readAccessor(const AccessorSpan& span, const std::string& where, const std::string& path,
-                                 bool keepNonFinite = false) {
-  std::vector<double> out(span.count * span.components, 0.0);
-  if (span.data == nullptr) return out;  // no buffer view: zeros, as the spec says
+// Calls use(i, v) for each element i of an accessor, v its `span.components` values
+// as doubles (normalised integers scaled to [0, 1]), one element at a time: the
+// callers convert straight into the mesh's float arrays, with no copy of the whole
+// accessor. accessorSpan has proven every byte inside its buffer. Non-finite floats
+// are refused unless `keepNonFinite` (normals and tangents: judged by the caller).
+template <class Use>
+void forEachElement(const AccessorSpan& span, const std::string& where, const std::string& path, bool keepNonFinite,
+                    Use&& use) {
+  double v[16] = {};  // the widest accessor type, MAT4; zeros without a buffer view (the spec)
+  const int components = std::min(span.components, 16);
   for (uint64_t i = 0; i < span.count; ++i) {
-    const unsigned char* p = span.data + i * span.stride;
-    for (int c = 0; c < span.components; ++c, p += span.componentSize) {
-      double v = 0.0;
+    const unsigned char* p = span.data ? span.data + i * span.stride : nullptr;
+    for (int c = 0; p && c < components; ++c, p += span.componentSize) {
       switch (span.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); v = f; break; }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t b; std::memcpy(&b, p, 1); v = span.normalized ? std::max(b / 127.0, -1.0) : b; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v = *p / (span.normalized ? 255.0 : 1.0); break;
-        case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t h; std::memcpy(&h, p, 2); v = span.normalized ? std::max(h / 32767.0, -1.0) : h; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t h; std::memcpy(&h, p, 2); v = h / (span.normalized ? 65535.0 : 1.0); break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t u; std::memcpy(&u, p, 4); v = u; break; }
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); v[c] = f; break; }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t b; std::memcpy(&b, p, 1); v[c] = span.normalized ? std::max(b / 127.0, -1.0) : b; break; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v[c] = *p / (span.normalized ? 255.0 : 1.0); break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t h; std::memcpy(&h, p, 2); v[c] = span.normalized ? std::max(h / 32767.0, -1.0) : h; break; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t h; std::memcpy(&h, p, 2); v[c] = h / (span.normalized ? 65535.0 : 1.0); break; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t u; std::memcpy(&u, p, 4); v[c] = u; break; }
         default: fail(path, where + ": a component type penumbra does not read");
       }
-      if (!keepNonFinite && !std::isfinite(v)) fail(path, where + ": holds a value that is not a finite float");
-      out[i * span.components + c] = v;
+      if (!keepNonFinite && !std::isfinite(v[c])) fail(path, where + ": holds a value that is not a finite float");
     }
+    if (!use(size_t(i), static_cast<const double*>(v))) return;
   }
-  return out;
 }
 
-// Index accessors hold UNSIGNED_BYTE/SHORT/INT (checkGltfModel); each must name a vertex.
-std::vector<uint32_t> readIndices(const tinygltf::Model& m, int index, uint64_t vertices, const std::string& where,
-                                  const std::string& path) {
-  const AccessorSpan span = accessorSpan(m, index, where, path);
-  std::vector<uint32_t> out(span.count);
-  for (uint64_t i = 0; i < span.count; ++i) {
-    const unsigned char* p = span.data + i * span.stride;
-    uint32_t v = 0;
-    if (span.componentSize == 1) v = *p;
-    else if (span.componentSize == 2) { uint16_t h; std::memcpy(&h, p, 2); v = h; }
-    else std::memcpy(&v, p, 4);
-    if (v >= vertices) {
-      gltfFail(path, "accessors[" + std::to_string(index) + "]", "index " + std::to_string(v) + " (element " + std::to_string(i) +
-                                                                     ") names a vertex its mesh does not have (" + std::to_string(vertices) + ")");
+// A primitive's indices, read in place. Index accessors hold UNSIGNED_BYTE/SHORT/INT
+// in a buffer view (checkGltfModel), and each must name a vertex: all are checked up front, as the
+// spec wants of the unused tail too. Without an accessor, element i is vertex i.
+class IndexReader {
+ public:
+  IndexReader(const tinygltf::Model& m, int index, uint64_t vertices, const std::string& where, const std::string& path)
+      : indexed_(index >= 0) {
+    if (!indexed_) {
+      span_.count = vertices;
+      return;
     }
-    out[i] = v;
+    span_ = accessorSpan(m, index, where, path);
+    for (uint64_t i = 0; i < span_.count; ++i) {
+      const uint32_t v = read(i);
+      if (v >= vertices) {
+        gltfFail(path, "accessors[" + std::to_string(index) + "]", "index " + std::to_string(v) + " (element " + std::to_string(i) +
+                                                                       ") names a vertex its mesh does not have (" + std::to_string(vertices) + ")");
+      }
+    }
   }
-  return out;
-}
+  uint64_t count() const { return span_.count; }
+  uint32_t operator[](uint64_t i) const { return indexed_ ? read(i) : static_cast<uint32_t>(i); }
+
+ private:
+  uint32_t read(uint64_t i) const {
+    const unsigned char* p = span_.data + i * span_.stride;
+    uint32_t v = 0;
+    if (span_.componentSize == 1) v = *p;
+    else if (span_.componentSize == 2) { uint16_t h; std::memcpy(&h, p, 2); v = h; }
+    else std::memcpy(&v, p, 4);
+    return v;
+  }
+  bool indexed_;
+  AccessorSpan span_;
+};
 
 // TANGENT (VEC4 FLOAT: xyz along +u, w the bitangent's sign), read only for a
 // normal-mapped primitive. The node's linear map carries xyz; a mirroring one turns w.
@@ -91,18 +108,19 @@ void addTangents(const tinygltf::Model& m, int accessor, const glm::dmat3& linea
     gltfFail(path, where + ".attributes.TANGENT", "has " + std::to_string(span.count) + " elements but POSITION has " +
                                                       std::to_string(mesh.positions.size()) + " (the spec wants equal counts)");
   }
-  const std::vector<double> t = readAccessor(span, where + ".attributes.TANGENT", path, true);
   const double handedness = glm::determinant(linear) < 0.0 ? -1.0 : 1.0;
   mesh.tangents.reserve(span.count);
-  for (size_t i = 0; i < span.count; ++i) {
-    const Vec3 d(glm::normalize(linear * glm::dvec3(t[4 * i], t[4 * i + 1], t[4 * i + 2])));
-    if (!isFinite(d) || std::fabs(glm::length(d) - 1.0f) > 1e-3f || !std::isfinite(t[4 * i + 3])) {
+  forEachElement(span, where + ".attributes.TANGENT", path, true, [&](size_t, const double* t) {
+    const Vec3 d(glm::normalize(linear * glm::dvec3(t[0], t[1], t[2])));
+    if (!isFinite(d) || std::fabs(glm::length(d) - 1.0f) > 1e-3f || !std::isfinite(t[3])) {
       mesh.tangents.clear();
+      mesh.tangents.shrink_to_fit();
       if (out.warning.empty()) out.warning = where + ".attributes.TANGENT: a tangent of zero length or not finite; tangents are computed from the uvs";
-      return;
+      return false;
     }
-    mesh.tangents.emplace_back(d, t[4 * i + 3] * handedness < 0.0 ? -1.0f : 1.0f);
-  }
+    mesh.tangents.emplace_back(d, t[3] * handedness < 0.0 ? -1.0f : 1.0f);
+    return true;
+  });
 }
 
 void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, const dmat4& world, const std::string& name,
@@ -110,61 +128,62 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) return;
   const int posIndex = prim.attributes.at("POSITION");  // checkGltfModel: present, VEC3 FLOAT
-  const std::vector<double> pos = readAccessor(accessorSpan(m, posIndex, where, path), where + ".attributes.POSITION", path);
-  const size_t count = pos.size() / 3;
+  const AccessorSpan posSpan = accessorSpan(m, posIndex, where, path);
+  const size_t count = posSpan.count;
   TriangleMesh mesh;
   mesh.name = name;
   mesh.material = prim.material;
   const glm::dmat3 linear(world), normalMatrix = glm::transpose(glm::inverse(linear));
   mesh.positions.reserve(count);
-  for (size_t i = 0; i < count; ++i) {
-    mesh.positions.push_back(Vec3(world * glm::dvec4(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2], 1.0)));
-  }
+  forEachElement(posSpan, where + ".attributes.POSITION", path, false, [&](size_t, const double* p) {
+    mesh.positions.push_back(Vec3(world * glm::dvec4(p[0], p[1], p[2], 1.0)));
+    return true;
+  });
   auto attr = prim.attributes.find("NORMAL");
   if (attr != prim.attributes.end()) {
-    const std::vector<double> nrm = readAccessor(accessorSpan(m, attr->second, where, path), where + ".attributes.NORMAL", path, true);
     mesh.normals.reserve(count);
-    for (size_t i = 0; i < count; ++i) {
-      const Vec3 n(glm::normalize(normalMatrix * glm::dvec3(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2])));
+    forEachElement(accessorSpan(m, attr->second, where, path), where + ".attributes.NORMAL", path, true,
+                   [&](size_t, const double* v) {
+      const Vec3 n(glm::normalize(normalMatrix * glm::dvec3(v[0], v[1], v[2])));
       // A normal that cannot be normalised (zero, NaN) leaves the whole primitive
       // flat-shaded by its geometric normals: a guessed direction would be wrong.
       if (!isFinite(n) || std::fabs(glm::length(n) - 1.0f) > 1e-3f) {
         mesh.normals.clear();
+        mesh.normals.shrink_to_fit();
         if (out.warning.empty()) out.warning = where + ".attributes.NORMAL: a normal of zero length or not finite; the primitive is flat-shaded";
-        break;
+        return false;
       }
       mesh.normals.push_back(n);
-    }
+      return true;
+    });
   }
   if ((attr = prim.attributes.find("TEXCOORD_0")) != prim.attributes.end()) {
-    const std::vector<double> uv = readAccessor(accessorSpan(m, attr->second, where, path), where + ".attributes.TEXCOORD_0", path);
     mesh.uvs.reserve(count);
-    for (size_t i = 0; i < count; ++i) {
-      if (!(std::fabs(uv[2 * i]) <= kMaxTexCoord && std::fabs(uv[2 * i + 1]) <= kMaxTexCoord)) {
+    forEachElement(accessorSpan(m, attr->second, where, path), where + ".attributes.TEXCOORD_0", path, false,
+                   [&](size_t i, const double* uv) {
+      if (!(std::fabs(uv[0]) <= kMaxTexCoord && std::fabs(uv[1]) <= kMaxTexCoord)) {
         gltfFail(path, "accessors[" + std::to_string(attr->second) + "]",
                  "texture coordinate " + std::to_string(i) + " is beyond +-1e6");
       }
-      mesh.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
-    }
+      mesh.uvs.emplace_back(uv[0], uv[1]);
+      return true;
+    });
   }
   const bool normalMapped = prim.material >= 0 && static_cast<size_t>(prim.material) < m.materials.size() &&
                             m.materials[prim.material].normalTexture.index >= 0;
   if (normalMapped && (attr = prim.attributes.find("TANGENT")) != prim.attributes.end()) {
     addTangents(m, attr->second, linear, where, path, mesh, out);
   }
-  std::vector<uint32_t> idx;
-  if (prim.indices >= 0) {
-    idx = readIndices(m, prim.indices, count, where + ".indices", path);
-  } else {
-    idx.resize(count);
-    for (size_t i = 0; i < count; ++i) idx[i] = static_cast<uint32_t>(i);
-  }
+  // The triangles straight from the index accessor, with no list of indices beside them.
+  const IndexReader idx(m, prim.indices, count, where + ".indices", path);
+  const uint64_t n = idx.count();
   const bool flip = glm::determinant(linear) < 0.0;  // a mirroring node turns faces inside out
+  mesh.triangles.reserve(n < 3 ? 0 : mode == TINYGLTF_MODE_TRIANGLES ? n / 3 : n - 2);
   auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
     mesh.triangles.push_back(flip ? std::array<uint32_t, 3>{a, c, b} : std::array<uint32_t, 3>{a, b, c});
   };
   // Strips and fans become triangles, the strip's odd ones turned to keep the winding.
-  for (size_t i = 0; i + 2 < idx.size();) {
+  for (uint64_t i = 0; i + 2 < n;) {
     if (mode == TINYGLTF_MODE_TRIANGLES) { add(idx[i], idx[i + 1], idx[i + 2]); i += 3; continue; }
     if (mode == TINYGLTF_MODE_TRIANGLE_FAN) add(idx[0], idx[i + 1], idx[i + 2]);
     else if (i % 2 == 0) add(idx[i], idx[i + 1], idx[i + 2]);

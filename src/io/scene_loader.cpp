@@ -22,6 +22,9 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 namespace penumbra {
 
@@ -157,6 +160,15 @@ std::string readText(const std::string& path) {
   return readSceneText(in, path);
 }
 
+// What loading freed (a model's file bytes and parsed buffers, the readers' own
+// arrays) goes back to the system rather than staying in glibc's heap, where it would
+// stay resident beneath the BVH built next.
+void returnFreedHeap() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 // `modelPath` non-empty: a glTF scene, `jsonText` its settings ("" = none).
 Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
                      const std::vector<std::string>& overrides, const std::string& modelPath,
@@ -171,6 +183,7 @@ Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
   try {
     Scene scene = buildScene(document, context, modelPath, options);
     scene.file = fileName;
+    returnFreedHeap();
     return scene;
   } catch (const json::exception& e) {
     // Every access is type-checked first; this is a safety net, not a path.

@@ -2,6 +2,7 @@
 // contribute, with the reason in words; then the user's --enable / --disable.
 #include "plan/render_plan.h"
 #include "plan/gate_decision.h"
+#include "plan/lookup_decision.h"
 #include "plan/transport_model.h"
 #include "core/bsdf.h"
 #include "core/error.h"
@@ -113,9 +114,20 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
   plan[Pass::Packets] = scene.render.packets ? on("render.packets is true (the same image, faster)")
                                              : off("render.packets is false");
   const bool maps = gate.on || plan[photonPass(model.indirectLookup(ps).map)].on;
-  plan[Pass::Precompute] = ps.lookup != PhotonLookup::Precomputed ? off("photons.lookup is exact")
-                           : !maps ? off("no gate or indirect map to precompute")
-                                   : on("photons.lookup is precomputed");
+  PassDecision& precompute = plan[Pass::Precompute];
+  if (ps.lookup == PhotonLookup::Exact) {
+    precompute = off("photons.lookup is exact");
+  } else if (!maps) {
+    precompute = off("no gate or indirect map to precompute");
+  } else if (ps.lookup == PhotonLookup::Precomputed) {
+    precompute = on("photons.lookup is precomputed");
+  } else {
+    const IndirectLookup gather = model.indirectLookup(ps);
+    const bool gathers = plan[photonPass(gather.map)].on;
+    const LookupDecision d = decideLookup(scene, gate.on ? gatedLightCount(scene) : 0, gather.k,
+                                          gathers ? double(budgets[gather.map]) : 0.0);
+    precompute = d.precomputed ? on(d.reason) : off(d.reason);
+  }
 }
 
 }  // namespace

@@ -111,5 +111,17 @@ void endRecord(ThreadState& ts, int index, const Hit& hit, const SurfaceRecord& 
                const Material& m, const Color& contribution, const std::string& note);
 Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s);
 
+// Whether shading this material reads the hit's uv (some texture of it).
+inline bool readsUv(const Material& m) {
+  return m.texture >= 0 || m.metalRoughTexture >= 0 || m.normalTexture >= 0 || m.emissionTexture >= 0;
+}
+
+// What an emitting surface sends back along a ray: its emission (times its emissive
+// texture) on its emitting side. A light's glow belongs to the direct term, which a
+// ray whose lights are sampled leaves out (`lightsSampled`); a decorative emitter,
+// which no light sampling covers, glows for every ray.
+Color emitterGlow(const ShadingContext& ctx, const Material& m, const SurfaceRecord& s, float footprint,
+                  bool lightsSampled);
+
 
 }  // namespace penumbra
