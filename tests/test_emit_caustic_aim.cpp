@@ -3,6 +3,7 @@
 // gets the same caustic power per watt heading for it, and most aimed photons are
 // stored; an aimed photon's mean power factor is the share of unaimed ones that head
 // for the targets (overlapping cones, targets cut by or behind the emitting side).
+#include "core/emission_map.h"
 #include "core/math.h"
 #include "core/mesh_light.h"
 #include "core/rng.h"
@@ -96,7 +97,8 @@ TEST(CausticAim, AreaLightsGiveThePointLightsCausticPerWattTowardsTheSphere) {
   };
   const double rho = kSphereLightRadius;
   const Case cases[] = {
-      {"quad", causticOf(sceneWith(std::string(R"({"type": "quad", )") + kSquare + R"(, "radiance": 1})")), towardsQuad},
+      {"quad", causticOf(sceneWith(std::string(R"({"type": "quad", )") + kSquare + R"(, "radiance": 1})")),
+       towardsQuad},
       {"sphere",
        causticOf(sceneWith(R"({"type": "sphere", "center": [0, 5, 0], "radius": 0.1, "radiance": 1})")),
        kPiD * rho * rho * 2.0 * kPiD * oneMinusCos},
@@ -127,14 +129,26 @@ bool crossesTarget(const SceneSphere& t, const Vec3& o, const Vec3& d) {
   return glm::dot(c, c) <= r2 || (along > 0.0 && glm::dot(c, c) - along * along <= r2);
 }
 
+// Mean and standard error per channel of values added one at a time.
+struct Mean {
+  glm::dvec3 sum{0.0}, squares{0.0};
+  void add(const glm::dvec3& v) {
+    sum += v;
+    squares += v * v;
+  }
+  glm::dvec3 mean(int n) const { return sum / double(n); }
+  glm::dvec3 sd(int n) const { return glm::sqrt(glm::max(squares / double(n) - mean(n) * mean(n), 0.0) / double(n)); }
+};
+
 TEST(CausticAim, MeanPowerFactorIsTheUnaimedShareHeadingForTheTargets) {
-  // An aimed photon's factor is the unaimed density over the aimed one, so its mean
-  // is the share of unaimed photons whose first line meets a target. Targets: two whose
-  // cones overlap (a direction in both is counted once), one cut by the quad's plane
-  // (half of its cone is behind the emitting side), one wholly behind the quad (left
-  // out of its mixture; the sphere light's top faces it). Brute force: 2M unaimed
-  // photons per light (binomial sd ~0.02% of the share); aimed: 400k photons, the sd of
-  // their mean from their own spread. Tolerance 4 sd.
+  // An aimed photon's power is the unaimed one's times its factor, the unaimed density
+  // over the aimed one, so their mean is the unaimed photons' power whose first line
+  // meets a target. Targets: two whose cones overlap (a direction in both is counted
+  // once), one cut by the quad's plane (half of its cone is behind the emitting side),
+  // one wholly behind the quad (left out of its mixture; the sphere light's top faces
+  // it). A textured two-sided mesh light's photons carry texel / density. Brute force:
+  // 2M unaimed photons per light (sd ~0.3% of the share); aimed: 400k photons, the sd
+  // of their mean from their own spread. Tolerance 4 sd, per channel.
   const std::vector<SceneSphere> targets = {
       {Vec3(0.0f, 0.5f, 0.0f), 0.4f}, {Vec3(0.3f, 0.9f, 0.1f), 0.3f},
       {Vec3(1.5f, 2.05f, 0.0f), 0.3f}, {Vec3(0.0f, 5.0f, 0.0f), 0.5f}};
@@ -150,42 +164,50 @@ TEST(CausticAim, MeanPowerFactorIsTheUnaimedShareHeadingForTheTargets) {
   sphere.radius = 0.3f;
   // Two triangles of a square tilted 30 degrees, shining down and to -x.
   const Vec3 a(-0.6f, 2.2f, -0.5f), b(-0.6f, 2.2f, 0.5f), e(0.866f, -0.5f, 0.0f);
-  const Light mesh = makeMeshLight({a, b + e, b, a, a + e, b + e}, Color(1.0f), 0);
+  const std::vector<Vec3> square = {a, b + e, b, a, a + e, b + e};
+  const Light mesh = makeMeshLight(square, Color(1.0f), 0);
   ASSERT_LT(glm::cross(e, b - a).y, 0.0f);
+  EmissionMap map;
+  map.width = map.height = 2;
+  map.texels = {Color(4.0f, 2.0f, 1.0f), Color(0.05f), Color(0.0f, 2.0f, 0.0f), Color(1.0f)};
+  const std::vector<Vec2> uvs = {Vec2(0, 0), Vec2(1, 1), Vec2(0, 1), Vec2(0, 0), Vec2(1, 0), Vec2(1, 1)};
+  Light textured = makeMeshLight(square, Color(1.0f), 0, uvs, &map);
+  textured.twoSided = true;
 
-  for (const Light* light : {&std::as_const(quad), &std::as_const(sphere), &mesh}) {
+  for (const Light* light : {&std::as_const(quad), &std::as_const(sphere), &mesh, &std::as_const(textured)}) {
+    const std::string name = light == &textured ? "textured mesh" : std::to_string(int(light->type));
     Rng brute(hashKey(3, 1));
     constexpr int kUnaimed = 2000000, kAimed = 400000;
-    int hits = 0;
+    Mean unaimed, aimed;
     for (int i = 0; i < kUnaimed; ++i) {
       const float u1 = brute.uniform(), u2 = brute.uniform(), u3 = brute.uniform(), u4 = brute.uniform();
       const PhotonRay r = sampleLightPhoton(*light, bounds, u1, u2, u3, u4);
       bool hit = false;
       for (const SceneSphere& t : targets) hit = hit || crossesTarget(t, r.origin, r.dir);
-      hits += hit;
+      unaimed.add(hit ? glm::dvec3(r.weight) : glm::dvec3(0.0));
     }
-    const double share = double(hits) / kUnaimed;
     const CausticAim aim = aimAt(*light, targets, bounds, hashKey(3, 2));
     Rng rng(hashKey(3, 3));
     std::vector<float> scratch;
-    double sum = 0.0, squares = 0.0;
     for (int i = 0; i < kAimed; ++i) {
       PhotonRay r;
       const double f = sampleAimed(*light, bounds, aim, rng, r, scratch);
-      sum += f;
-      squares += f * f;
+      aimed.add(f > 0.0 ? f * glm::dvec3(r.weight) : glm::dvec3(0.0));
       if (f > 0.0) {  // within float rounding of a cone's rim (1e-5 of the radius)
         bool hit = false;
-        for (const SceneSphere& t : targets) hit = hit || crossesTarget({t.center, t.radius * 1.00001f}, r.origin, r.dir);
-        ASSERT_TRUE(hit) << "an aimed photon with power heads for no target";
+        for (const SceneSphere& t : targets) {
+          hit = hit || crossesTarget({t.center, t.radius * 1.00001f}, r.origin, r.dir);
+        }
+        ASSERT_TRUE(hit) << name << ": an aimed photon with power heads for no target";
       }
     }
-    const double mean = sum / kAimed, sdMean = std::sqrt((squares / kAimed - mean * mean) / kAimed);
-    const double sdShare = std::sqrt(share * (1.0 - share) / kUnaimed);
-    std::printf("light type %d: unaimed share %.5f, mean aimed factor %.5f (sd %.5f), budget share %.4f\n",
-                int(light->type), share, mean, std::hypot(sdMean, sdShare), aim.share);
-    EXPECT_NEAR(mean, share, 4.0 * std::hypot(sdMean, sdShare)) << int(light->type);
-    EXPECT_NEAR(aim.share, share, 0.15 * share) << int(light->type);  // 4096 photons: <= 4% sd
+    const glm::dvec3 want = unaimed.mean(kUnaimed), got = aimed.mean(kAimed);
+    const glm::dvec3 sd = glm::sqrt(unaimed.sd(kUnaimed) * unaimed.sd(kUnaimed) + aimed.sd(kAimed) * aimed.sd(kAimed));
+    std::printf("%s light: unaimed share (g) %.5f, mean aimed factor %.5f (sd %.5f), budget share %.4f\n",
+                name.c_str(), want.g, got.g, sd.g, aim.share);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 4.0 * sd[c]) << name << " channel " << c;
+    const double share = luminance(Color(want));
+    EXPECT_NEAR(aim.share, share, 0.15 * share) << name;  // 4096 photons: <= 4% sd
   }
 }
 

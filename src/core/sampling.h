@@ -52,4 +52,25 @@ inline Vec2 stratified2D(int s, int n, Rng& rng) {
   return {(s + rng.uniform()) / n, (row + rng.uniform()) / n};
 }
 
+// Point i of a (0,2)-sequence in base 2 (van der Corput, and Sobol's second
+// dimension), each coordinate's bits XORed with half of `scramble` (Kollig & Keller
+// 2002): every aligned run of 2^k points, so every prefix of 2^k, puts one point in
+// each elementary cell of area 2^-k, and a random scramble makes each point uniform.
+inline Vec2 sobol02(uint32_t i, uint64_t scramble) {
+  uint32_t x = i;  // bit reversal: the radical inverse in base 2
+  x = (x << 16) | (x >> 16);
+  x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+  x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+  x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+  x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+  uint32_t y = 0;
+  for (uint32_t v = 1u << 31; i != 0; i >>= 1, v ^= v >> 1) {
+    if (i & 1u) y ^= v;
+  }
+  x ^= static_cast<uint32_t>(scramble);
+  y ^= static_cast<uint32_t>(scramble >> 32);
+  // The top 24 bits: exact in float and below 1.
+  return {static_cast<float>(x >> 8) * 0x1p-24f, static_cast<float>(y >> 8) * 0x1p-24f};
+}
+
 }  // namespace penumbra

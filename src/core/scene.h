@@ -22,7 +22,7 @@ struct Camera {
   float orthoHeight = 0.0f;
   int width = 640;
   int height = 480;
-  int spp = 1;  // samples per pixel and pass; stratified over spp x passes (1 in all: the centre)
+  int spp = 1;  // samples per pixel and pass (one pass at spp 1: the pixel centre)
 };
 
 // Point and directional lights are deltas; quad, sphere and mesh lights are area

@@ -2,8 +2,8 @@
 // the specular targets, one drawn per photon in proportion to its measure.
 #include "emit/caustic_aim.h"
 #include "core/sampling.h"
-#include <algorithm>
 #include "emit/emit.h"
+#include <algorithm>
 
 namespace penumbra {
 
@@ -199,7 +199,10 @@ CausticAim aimAt(const Light& light, const std::vector<SceneSphere>& targets, co
   std::vector<float> scratch;
   PhotonRay r;
   double sum = 0.0;
-  for (int i = 0; i < kShareSamples; ++i) sum += sampleArea(light, bounds, aim, rng, r, scratch);
+  for (int i = 0; i < kShareSamples; ++i) {
+    const float factor = sampleArea(light, bounds, aim, rng, r, scratch);
+    if (factor > 0.0f) sum += factor * luminance(r.weight);
+  }
   aim.share = std::min(1.0, sum / kShareSamples);
   return aim;
 }
@@ -207,7 +210,8 @@ CausticAim aimAt(const Light& light, const std::vector<SceneSphere>& targets, co
 float sampleAimed(const Light& light, const SceneSphere& bounds, const CausticAim& aim, Rng& rng,
                   PhotonRay& r, std::vector<float>& scratch) {
   if (aim.targets == nullptr || aim.targets->empty()) return 0.0f;
-  return isDeltaLight(light) ? sampleDelta(light, bounds, aim, rng, r) : sampleArea(light, bounds, aim, rng, r, scratch);
+  return isDeltaLight(light) ? sampleDelta(light, bounds, aim, rng, r)
+                             : sampleArea(light, bounds, aim, rng, r, scratch);
 }
 
 }  // namespace penumbra

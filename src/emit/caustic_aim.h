@@ -28,8 +28,9 @@ CausticAim aimAt(const Light& light, const std::vector<SceneSphere>& targets, co
                  uint64_t key);
 
 // One aimed photon into `r`. Returns the factor on the light's unaimed photon power
-// (the unaimed density over the mixture's), 0 when it heads for no target. `scratch`
-// holds an area light's per-target cones (reused, so a batch allocates once).
+// (the unaimed density over the mixture's), 0 when it heads for no target; r.weight
+// keeps the unaimed start's weight. `scratch` holds an area light's per-target cones
+// (reused, so a batch allocates once).
 float sampleAimed(const Light& light, const SceneSphere& bounds, const CausticAim& aim, Rng& rng,
                   PhotonRay& r, std::vector<float>& scratch);
 

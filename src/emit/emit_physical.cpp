@@ -131,8 +131,8 @@ PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& trac
             // photons whose path turns out L S+ D.
             float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
             r = emitterPhoton(light, bounds, u1, u2, u3, u4);
-            power *= r.weight;  // 1 but for an environment map's photons
           }
+          power *= r.weight;  // 1 but for an environment map's photons and a textured emitter's
           t.emitted += glm::dvec3(power);
           if (maxComponent(power) <= 0.0f) return;
           tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);

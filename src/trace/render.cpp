@@ -65,21 +65,25 @@ void storePixel(const glm::dvec3& sum, int counted, Aov aov, int spp, size_t ind
   if (geometric(aov)) image.coverage[index] = static_cast<float>(counted) / static_cast<float>(spp);
 }
 
-// Camera sample `s` of this pass: its random stream and its offset in the pixel. It is
-// sample pass x spp + s of the frame's passes x spp, stratified over them all, so N
-// passes of spp samples place their rays as one pass of N x spp does (and one pass
-// keeps the pixel centre at spp 1).
+// Camera sample `s` of this pass: its random stream and its offset in the pixel. One
+// pass keeps its spp jittered strata (the pixel centre at spp 1). Progressive passes
+// take point pass x spp + s of the pixel's own scrambled (0,2)-sequence: each pass
+// covers the pixel evenly, any number of passes adds up to strata (spp 1 x 16 passes
+// as stratified as spp 16), and a pass's samples do not depend on how many follow.
 struct CameraSample {
   uint64_t key;
   Vec2 offset;
 };
 CameraSample cameraSample(const ShadingContext& ctx, uint64_t pixel, int s) {
-  const uint64_t spp = static_cast<uint64_t>(ctx.scene.camera.spp);
-  const uint64_t index = ctx.pass * spp + static_cast<uint64_t>(s);
-  const uint64_t key = hashKey(ctx.scene.render.seed, pixel, index);
+  const uint64_t seed = ctx.scene.render.seed;
+  const uint64_t index = static_cast<uint64_t>(ctx.pass) * ctx.scene.camera.spp + static_cast<uint64_t>(s);
+  const uint64_t key = hashKey(seed, pixel, index);
+  if (ctx.passes > 1) {
+    // The scramble's stream is a sample index no frame reaches (passes x spp < 2^32).
+    return {key, sobol02(static_cast<uint32_t>(index), hashKey(seed, pixel, ~uint64_t(0)))};
+  }
   Rng rng(key);
-  const Vec2 offset = stratified2D(static_cast<int>(index), static_cast<int>(ctx.passes * spp), rng);
-  return {key, offset};
+  return {key, stratified2D(s, ctx.scene.camera.spp, rng)};
 }
 
 // The packet path's per-thread buffers, sized for one tile on first use.

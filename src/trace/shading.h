@@ -50,7 +50,7 @@ struct ShadingContext {
   const IndirectPhotonMap* globalMap = nullptr;
   float causticRadius = 0.0f, globalRadius = 0.0f;
   uint32_t pass = 0;  // progressive pass: sample streams continue after earlier passes'
-  uint32_t passes = 1;  // of the frame: camera samples are stratified over passes x spp
+  uint32_t passes = 1;  // of the frame: more than one draws camera samples from a sequence over all
   float classicScale = 1.0f;  // turns stored photon flux back into photon colour
   float pixelSpread = 0.0f;   // radians per pixel, for texture filter widths
   bool hasGlass = false;      // some material is transparent (GlassShadows says what it does)
