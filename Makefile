@@ -53,18 +53,19 @@ test-fast: build
 	cd $(BUILD) && ctest -L unit -j $(JOBS) --output-on-failure
 
 # Benchmark suite (docs/PERFORMANCE.md, "Benchmark suite and 1-vs-2-core scaling"): each
-# executable writes Google Benchmark JSON to $(RESULTS)/NAME.json and its console output to
-# NAME.log; the tables are printed from the JSON. A few minutes in all.
-RESULTS ?= bench/results
+# executable writes Google Benchmark JSON to $(BENCH_OUT)/NAME.json and its console output to
+# NAME.log; the tables are printed from the JSON. A few minutes in all. Results stay out of
+# the checkout (the cache folder `penumbra bench` writes its JSON to by default).
+BENCH_OUT ?= $(or $(XDG_CACHE_HOME),$(HOME)/.cache)/penumbra/bench
 GATHER_FILTER := (Knn50|Classify)/1M/.*morton:1/leaf:48/threads:[12]/shuffled:0
 # Three repetitions with 1- and 2-thread runs interleaved; the tables take the fastest.
 BENCH_REPS ?= 3
 define run_bench
-	@mkdir -p $(RESULTS)
+	@mkdir -p $(BENCH_OUT)
 	@echo "== $(1) $(2)"
-	@$(BUILD)/bench/$(1) --benchmark_out=$(RESULTS)/$(1).json --benchmark_out_format=json \
+	@$(BUILD)/bench/$(1) --benchmark_out=$(BENCH_OUT)/$(1).json --benchmark_out_format=json \
 	  --benchmark_repetitions=$(BENCH_REPS) --benchmark_enable_random_interleaving=true $(2) \
-	  > $(RESULTS)/$(1).log 2>&1 || { tail -n 20 $(RESULTS)/$(1).log; exit 1; }
+	  > $(BENCH_OUT)/$(1).log 2>&1 || { tail -n 20 $(BENCH_OUT)/$(1).log; exit 1; }
 endef
 
 bench: build
@@ -73,18 +74,20 @@ bench: build
 	$(call run_bench,bench_gather,--benchmark_filter='$(GATHER_FILTER)')
 	$(call run_bench,bench_render,--benchmark_filter='BM_(Scene|Control)')
 	$(call run_bench,bench_load,)
-	@scripts/bench_table.py bench $(RESULTS)
+	@scripts/bench_table.py bench $(BENCH_OUT)
+	@echo "JSON and logs in $(BENCH_OUT)"
 
 # Per scene and stage (stats.time.* through runRender), 1 and 2 threads, and the speed-up.
 scaling: build
 	$(call run_bench,bench_photons,)
 	$(call run_bench,bench_render,--benchmark_filter='BM_(Scene|Control)')
-	@scripts/bench_table.py scaling $(RESULTS)
+	@scripts/bench_table.py scaling $(BENCH_OUT)
+	@echo "JSON and logs in $(BENCH_OUT)"
 
 # Share of each benchmarked render's time inside Embree and nanoflann (perf samples),
 # against the libraries' raw rates on the same rays and points (about 3 minutes).
 bench-profile: build
-	scripts/profile_render.py $(BUILD) $(RESULTS)/profile
+	scripts/profile_render.py $(BUILD) $(BENCH_OUT)/profile
 
 # Writes only into out/gallery; gallery-docs also refreshes the images and table in docs/.
 gallery: renderer

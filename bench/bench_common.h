@@ -2,6 +2,7 @@
 // JSON context, CpuShare (contended or slow?), and one scene's camera, shadow and
 // incoherent rays and first-hit points (bench_rays, profile_render).
 #pragma once
+#include "core/cpu_time.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "geometry/trace_scene.h"
@@ -10,7 +11,6 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <benchmark/benchmark.h>
-#include <sys/resource.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -25,20 +25,10 @@ namespace penumbra::bench {
 // took them (the 2-thread figure is then a measure of the load, not of the scaling).
 class CpuShare {
  public:
-  CpuShare() : cpu0_(cpuSeconds()), wall0_(std::chrono::steady_clock::now()) {}
-  void report(benchmark::State& state, int threads) const {
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
-    state.counters["cpu_share"] = wall > 0 ? (cpuSeconds() - cpu0_) / (wall * threads) : 0.0;
-  }
+  void report(benchmark::State& state, int threads) const { state.counters["cpu_share"] = span_.timing(threads).share; }
 
  private:
-  static double cpuSeconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-  }
-  double cpu0_;
-  std::chrono::steady_clock::time_point wall0_;
+  CpuSpan span_;
 };
 
 inline int benchmarkMain(int argc, char** argv) {

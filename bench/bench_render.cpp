@@ -3,11 +3,10 @@
 // and ray/gather counts as counters for `make scaling` and docs/PERFORMANCE.md; and
 // a compute-only control that measures the machine's own 2T/1T in the same run.
 #include "bench/bench_common.h"
+#include "plan/compute_control.h"
 #include "plan/pipeline.h"
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#include <array>
 #include <string>
 
 using namespace penumbra;
@@ -72,28 +71,13 @@ void BM_SceneCornellPhysical(benchmark::State& s) {
   renderScene(s, "cornell_physical.json", {"camera.spp=1"});
 }
 
-// The machine's own ceiling for the scaling table: 256 fixed chunks of register-only
-// arithmetic (no memory traffic, nothing shared). Its 2T/1T is what this run's two
-// vCPUs could give any stage; on a shared host it drops below 2 when the host slows
-// both vCPUs, which the CPU share cannot see (both threads still run all the time).
+// The machine's own ceiling for the scaling table (plan/compute_control.h), the same
+// work `penumbra bench` measures beside the user's scenes.
 void BM_ControlCompute(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  constexpr size_t kChunks = 256;
-  constexpr uint64_t kStepsPerChunk = uint64_t(1) << 20;
-  std::array<uint64_t, kChunks> out{};
   const penumbra::bench::CpuShare cpu;
-  for (auto _ : state) {
-    tbb::parallel_for(size_t(0), kChunks, [&](size_t c) {
-      uint64_t a = c + 1, b = ~c;
-      for (uint64_t i = 0; i < kStepsPerChunk; ++i) {  // two xorshift64 chains
-        a ^= a << 13; a ^= a >> 7; a ^= a << 17;
-        b ^= b << 13; b ^= b >> 7; b ^= b << 17;
-      }
-      out[c] = a ^ b;
-    });
-    benchmark::DoNotOptimize(out.data());
-  }
+  for (auto _ : state) benchmark::DoNotOptimize(computeControl());
   cpu.report(state, threads);
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Google Benchmark JSON (bench/results/*.json) -> the markdown tables of `make bench`
+"""Google Benchmark JSON (BENCH_OUT/*.json) -> the markdown tables of `make bench`
 (figure, 1T, 2T, speed-up, target) and `make scaling` (per scene and stage).
 Standard library only.  Usage: bench_table.py {bench|scaling} RESULTS_DIR"""
 import glob

@@ -132,5 +132,33 @@ TEST(Gltf, AnOrthographicCameraKeepsItsHeightAndAspect) {
   EXPECT_EQ(s.camera.height, 160);
 }
 
+TEST(Gltf, EmissiveTextureAndDoubleSidedReachTheLampAndItsLight) {
+  // The lamp's emissive texture (a colour: sRGB-decoded) multiplies emissiveFactor x
+  // strength; doubleSided makes it emit on both sides; glTF's emitter keeps its BSDF.
+  // The lamp quad has no uvs, so its light takes the texture's mean colour.
+  const testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
+  Image glow(2, 1);
+  glow.pixels = {Color(1.0f), Color(0.0f)};
+  writeImage((dir / "glow.png").string(), glow);
+  tinygltf::Model m = makeGltf();
+  addTexture(m, "glow.png");
+  m.materials[3].emissiveTexture.index = 0;
+  m.materials[3].doubleSided = true;
+  writeGltf(m, dir / "model.gltf", false);
+  const Scene s = loadScene((dir / "model.gltf").string());
+  const Material& lamp = s.materials[s.meshes[3].material];
+  ASSERT_GE(lamp.emissionTexture, 0);
+  EXPECT_FALSE(s.textures[lamp.emissionTexture].data);
+  EXPECT_TRUE(lamp.twoSidedEmission);
+  EXPECT_TRUE(lamp.emitterShades);
+  EXPECT_EQ(lamp.diffuse, Color(1.0f));
+  ASSERT_GE(lamp.light, 0);
+  const Light& light = s.lights[lamp.light];
+  EXPECT_TRUE(light.twoSided);
+  EXPECT_FALSE(light.emission);
+  expectNear(light.radiance(), Vec3(1.0f, 0.5f, 0.25f) * 4.0f * 0.5f, 1e-3f, "mean texel x factor x strength");
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -51,7 +51,7 @@ const char* kScene = R"({
   ],
   "render": {"max_depth": 5, "background": [0.05, 0.05, 0.1], "seed": 7},
   "photons": {"shadow": 30000, "indirect": 20000, "k_shadow": 30, "k_indirect": 30,
-              "estimator": "classic", "gate": true}
+              "estimator": "classic", "gate": true, "lookup": "exact"}
 })";
 
 class TempDir {

@@ -142,7 +142,7 @@ TEST(ExrAov, ExrHeaderNamesTheSettings) {
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"model", "classic"}, {"aov", "beauty"}, {"width", "33"}, {"height", "25"}, {"spp", "2"},
       {"seed", "7"}, {"max_depth", "3"}, {"photons.shadow", "3000"}, {"photons.k_shadow", "20"},
-      {"photons.gate", "on"}, {"photons.gate_decision", "on"}, {"photons.lookup", "exact"}};
+      {"photons.gate", "on"}, {"photons.gate_decision", "on"}, {"photons.lookup", "precomputed"}};
   for (const auto& [key, value] : expected) EXPECT_EQ(attr(key), value) << key;
   EXPECT_FALSE(attr("version").empty());
   EXPECT_NE(attr("version"), "unknown");  // CMake passes the project version

@@ -68,7 +68,34 @@ TEST(Sweep, ParetoFrontKeepsOnlyUnbeatenRuns) {
   SweepRow ref = row(9, 0.0);
   ref.reference = true;
   rows.push_back(ref);
-  EXPECT_EQ(paretoFront(rows), (std::vector<size_t>{0, 1, 3}));
+  EXPECT_EQ(paretoFront(rows, SweepMetric::Rmse), (std::vector<size_t>{0, 1, 3}));
+}
+
+TEST(Sweep, TheMetricDecidesTheFrontAndTheBestRun) {
+  // The README's case: a run whose RMSE a few hot caustic pixels dominate, against a
+  // blotchier one with the lower RMSE but ten times the relMSE and 15 dB less PSNR.
+  auto row = [](double t, double rmse, double relMse, double psnr) {
+    SweepRow r;
+    r.total = t;
+    r.rmse = rmse;
+    r.relMse = relMse;
+    r.psnr = psnr;
+    return r;
+  };
+  const std::vector<SweepRow> rows = {row(20, 0.066, 0.00099, 42.5), row(10, 0.048, 0.0096, 27.6)};
+  EXPECT_EQ(bestRun(rows, SweepMetric::RelMse), 0u);
+  EXPECT_EQ(bestRun(rows, SweepMetric::Psnr), 0u);
+  EXPECT_EQ(bestRun(rows, SweepMetric::RmseClamped), 0u);
+  EXPECT_EQ(bestRun(rows, SweepMetric::Rmse), 1u);
+  EXPECT_EQ(paretoFront(rows, SweepMetric::Rmse), (std::vector<size_t>{1}));
+  EXPECT_EQ(paretoFront(rows), (std::vector<size_t>{1, 0}));
+  const std::string md = reportMarkdown("scene", SweepSpec{}, rows, SweepTotals{});
+  EXPECT_NE(md.find("## Best run"), std::string::npos);
+  // Time to reach: relMSE 0.002 first at the 20 s run, 0.01 already at the 10 s one.
+  EXPECT_NE(md.find("| 0.002 | 20.000 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 0.01 | 10.000 |"), std::string::npos) << md;
+  EXPECT_EQ(parseMetric("rmse-clamped"), SweepMetric::RmseClamped);
+  EXPECT_THROW(parseMetric("mse"), InputError);
 }
 
 TEST(Sweep, RunsEqualStandaloneRendersAndRerunsResume) {
@@ -200,6 +227,44 @@ TEST(Sweep, ABadRunFailsBeforeAnyRender) {
   }
   EXPECT_TRUE(fs::is_empty(dir / "runs"));
   EXPECT_FALSE(fs::exists(dir / "results.csv"));
+}
+
+TEST(Sweep, AFailedSweepLeavesNoFileThatBlocksARetryWithOtherKnobs) {
+  // A reference of the wrong size fails the sweep; the same folder then takes a
+  // sweep of other knobs, since the failed one finished no run.
+  testing::ScratchDir dir;
+  writeImage((dir / "small.exr").string(), Image(8, 8));
+  SweepRequest req = cornellSweep(dir.path().string());
+  const std::vector<std::string> base = {"camera.width=16", "camera.height=16"};
+  req.spec = expandGrid({keyKnob("render.max_depth=1,2")}, base);
+  req.referencePath = (dir / "small.exr").string();
+  EXPECT_THROW(runSweep(req), InputError);
+  req.spec = expandGrid({keyKnob("camera.spp=1,2")}, base);
+  req.referencePath.clear();
+  EXPECT_NO_THROW(runSweep(req));
+  std::ifstream csv(dir / "results.csv");
+  std::string header;
+  ASSERT_TRUE(std::getline(csv, header));
+  EXPECT_NE(header.find("camera.spp"), std::string::npos) << header;
+}
+
+TEST(Sweep, AKnobThatChangesNothingIsSaidWithItsReason) {
+  // fig03's one point light: gate auto turns the gate off, so photons.shadow changes
+  // no pixel; spp does.
+  testing::ScratchDir dir;
+  SweepRequest req = cornellSweep(dir.path().string());
+  req.scenePath = kShadows;
+  req.spec = expandGrid({keyKnob("photons.shadow=1e3,1e4"), keyKnob("camera.spp=1,2")},
+                        {"camera.width=16", "camera.height=16"});
+  const SweepOutcome out = runSweep(req);
+  std::string notes;
+  for (const std::string& n : out.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("knob photons.shadow changed nothing: its runs rendered identical images (the gate was off"),
+            std::string::npos) << notes;
+  EXPECT_EQ(notes.find("knob camera.spp"), std::string::npos) << notes;
+  // The contact sheet: four 192-pixel tiles in a row, 6-pixel gaps.
+  const Image sheet = readImage((dir / "runs.png").string());
+  EXPECT_EQ(sheet.width, 4 * (192 + 6) + 6);
 }
 
 // The keys decide what runs share: each photon input changes the photon key,

@@ -5,6 +5,7 @@
 #include "plan/batch_run.h"
 #include "cli/plan_command.h"
 #include "cli/progress_meter.h"
+#include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "plan/resource_estimate.h"
 #include "io/scene_loader.h"
@@ -57,16 +58,19 @@ namespace {
 
 // The table printed after a batch: one line per job and the totals.
 std::string batchSummary(const BatchOutcome& o) {
-  std::string s = fmt::format("{:<24} {:>8}  {:<14} {:<12} {}\n", "job", "time", "reused", "status", "output");
+  std::string s = fmt::format("{:<24} {:>8} {:>8} {:>5}  {:<14} {:<12} {}\n", "job", "time", "cpu", "share", "reused",
+                              "status", "output");
   for (const BatchJobResult& j : o.jobs) {
     const std::string status = j.status.size() > 60 ? j.status.substr(0, 57) + "..." : j.status;
-    s += fmt::format("{:<24} {:>7.2f}s  {:<14} {:<12} {}\n", j.name, j.seconds, j.reused.empty() ? "-" : j.reused,
-                     status, j.outputs.empty() ? "" : j.outputs.front());
+    // A job that only checked its outputs ran too briefly for a share to mean anything.
+    const std::string share = j.status == "rendered" ? fmt::format("{:.2f}", j.cpu.share) : "-";
+    s += fmt::format("{:<24} {:>7.2f}s {:>7.2f}s {:>5}  {:<14} {:<12} {}\n", j.name, j.seconds, j.cpu.cpuSeconds,
+                     share, j.reused.empty() ? "-" : j.reused, status, j.outputs.empty() ? "" : j.outputs.front());
   }
-  s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s; scenes built {}, photon maps built {} "
-                   "(reused {} times, {} evicted, cache peak {:.1f} MB)\n",
-                   o.jobs.size(), o.rendered, o.upToDate, o.failed, o.seconds, o.sceneBuilds, o.photonBuilds,
-                   o.photonReuses, o.evictions, o.peakCacheBytes / 1e6);
+  s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s; {}; scenes built {}, photon maps "
+                   "built {} (reused {} times, {} evicted, cache peak {:.1f} MB)\n",
+                   o.jobs.size(), o.rendered, o.upToDate, o.failed, o.seconds, cpuLine(o.cpu), o.sceneBuilds,
+                   o.photonBuilds, o.photonReuses, o.evictions, o.peakCacheBytes / 1e6);
   return s;
 }
 

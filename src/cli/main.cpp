@@ -1,9 +1,11 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
 // 0 ok, 2 bad input (one-line message), 1 internal error.
+#include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "plan/pipeline.h"
 #include "cli/progress_meter.h"
 #include "cli/batch_command.h"
+#include "cli/bench_command.h"
 #include "cli/plan_command.h"
 #include "cli/sweep_command.h"
 #include "core/error.h"
@@ -14,7 +16,6 @@
 #include "io/texture_gen.h"
 #include <algorithm>
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 #include <charconv>
 #include <cstdlib>
 #include <optional>
@@ -53,7 +54,7 @@ uint64_t parseSeed(const std::string& arg) {
 }
 
 // An option another command has: say which, so a habit from one command is not a
-// dead end in the next (" (--threads is an option of render, sweep and batch)").
+// dead end in the next (" (--threads is an option of render, sweep, batch and bench)").
 std::string otherCommandsHint(const CLI::App& app, const CLI::App& current, const std::string& option) {
   std::vector<std::string> owners;
   for (const CLI::App* sub : app.get_subcommands({})) {
@@ -74,16 +75,8 @@ std::string otherCommandsHint(const CLI::App& app, const CLI::App& current, cons
   return " (" + option + " is an option of " + list + ", not of " + current.get_name() + ")";
 }
 
-// The pipeline's stats plus the up-front estimate, in one JSON object.
-std::string statsWithEstimate(const RenderResult& result) {
-  nlohmann::json stats = nlohmann::json::parse(statsToJson(result.stats));
-  stats["estimate"] = nlohmann::json::parse(estimateToJson(result.estimate));
-  stats["notes"] = result.notes;
-  return stats.dump(2) + "\n";
-}
-
 int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std::string& tracePixelArg,
-                     bool quiet) {
+                     bool quiet, bool verbose) {
   if (!tracePixelArg.empty()) {
     req.tracePixel = parsePixel(tracePixelArg);
   }
@@ -109,11 +102,11 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
     if (req.outputPath.empty() || req.outputPath == "-") std::cout << json;
     else writeTextFileAtomic(req.outputPath, json);
   }
-  if (statsToStdout) std::cout << statsWithEstimate(result);
-  else if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsWithEstimate(result));
+  if (statsToStdout) std::cout << statsReport(result);
+  else if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsReport(result));
   if (!quiet) {
     for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
-    std::cerr << statsSummary(result.stats);
+    std::cerr << statsSummary(result.stats, verbose || !statsPath.empty()) << "  " << cpuLine(result.stats.cpu) << "\n";
   }
   return 0;
 }
@@ -129,7 +122,7 @@ int main(int argc, char** argv) {
 
   RenderRequest req;
   std::string statsPath, tracePixelArg;
-  bool quiet = false;
+  bool quiet = false, verbose = false;
   std::string seedArg, maxMemoryArg;
   std::optional<int> spp;
   CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
@@ -153,6 +146,7 @@ int main(int argc, char** argv) {
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-q,--quiet", quiet, "No progress, notes or summary on stderr");
+  render->add_flag("-v,--verbose", verbose, "The summary also gives the reasons of automatic decisions (the gate)");
   PlanArgs planArgs;
   addPlanOptions(*render, planArgs);
   std::string toneArg;
@@ -174,6 +168,7 @@ int main(int argc, char** argv) {
   PlanCommand plan(app);
   CheckCommand check(app);
   BatchCommand batch(app);
+  BenchCommand bench(app);
 
   // From here on an interrupt removes our temp files, never an old output.
   installTempFileCleanup();
@@ -214,12 +209,13 @@ int main(int argc, char** argv) {
       if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
       if (!planArgs.gateSetting().empty()) req.overrides.push_back(planArgs.gateSetting());
-      return runRenderCommand(req, statsPath, tracePixelArg, quiet);
+      return runRenderCommand(req, statsPath, tracePixelArg, quiet, verbose);
     }
     if (sweep.selected()) return sweep.run();
     if (plan.selected()) return plan.run();
     if (check.selected()) return check.run();
     if (batch.selected()) return batch.run();
+    if (bench.selected()) return bench.run();
     if (*texture) {
       writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),
                  {{"penumbra:texture", textureName}});

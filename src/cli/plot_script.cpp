@@ -26,14 +26,17 @@ int runProgram(const std::vector<std::string>& args) {
 }  // namespace
 
 std::string drawTradeoffPlot(const std::string& script, const std::string& csv, const std::string& png,
-                             const std::string& title) {
+                             const std::string& title, const std::string& metric) {
   // Debian's interpreter first: python3-matplotlib (make deps) is installed for it,
   // and a python3 earlier on PATH (pyenv, a venv) may not have it.
   const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const int status = runProgram({python, script, csv, png, "--title", title});
+  const int status = runProgram({python, script, csv, png, "--title", title, "--metric", metric});
   if (status == 0) return "";
-  return fmt::format("{} not drawn: {} {} exited with {} (python3-matplotlib missing? make deps installs it)",
-                     png, python, script, status);
+  // The script's exit codes: 2 = nothing it can plot (its line above says why),
+  // 3 = matplotlib missing; anything else is its own failure.
+  if (status == 2) return fmt::format("{} not drawn: nothing to plot (the line above says why)", png);
+  if (status == 3) return fmt::format("{} not drawn: python3-matplotlib is missing (make deps installs it)", png);
+  return fmt::format("{} not drawn: {} {} exited with {}", png, python, script, status);
 }
 
 }  // namespace penumbra

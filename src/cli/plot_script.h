@@ -5,8 +5,9 @@
 
 namespace penumbra {
 
-// Draws `png` from `csv`; returns "" on success, else one line saying why not.
+// Draws `png` from `csv` with `metric` (sweep_results.h's names) on the error axis;
+// returns "" on success, else one line saying why not.
 std::string drawTradeoffPlot(const std::string& script, const std::string& csv, const std::string& png,
-                             const std::string& title);
+                             const std::string& title, const std::string& metric);
 
 }  // namespace penumbra

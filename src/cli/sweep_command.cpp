@@ -3,6 +3,7 @@
 #include "cli/sweep_run.h"
 #include "cli/plan_command.h"
 #include "cli/progress_meter.h"
+#include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
@@ -19,7 +20,7 @@ struct SweepCommand::Options {
   std::string scene, out, reference, aov, photons, k, depth, spp;
   std::vector<std::string> vary, overrides;
   PlanArgs plan;
-  std::string maxMemory;
+  std::string maxMemory, metric = "relmse";
   int threads = 0;
   bool force = false, noGateCompare = false, quiet = false;
 };
@@ -37,6 +38,7 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--vary", o.vary, "Any scene key and its values: --vary photons.shadow=1e5,1e6 (repeatable)");
   c->add_option("-D,--set", o.overrides, "Override a scene value in every run")->take_all()->allow_extra_args(false);
   c->add_option("--reference", o.reference, "Reference image (EXR) for the error (default: the run at every knob's highest value)");
+  c->add_option("--metric", o.metric, "What the front, the plot and the best run rank by: relmse (default), rmse, psnr or rmse-clamped; results.csv keeps every one");
   c->add_option("--aov", o.aov, "View to render (default: the scene's render.aov)");
   c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
@@ -54,6 +56,7 @@ int SweepCommand::run() {
   Options& o = *o_;
   // The knobs' keys depend on the model: load the scene once with the sweep's --set.
   const uint64_t maxMemory = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
+  const SweepMetric metric = parseMetric(o.metric);  // before the scene is read
   const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before the scene is read
   if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
   const Scene base = loadScene(o.scene, o.overrides, loadLimits(maxMemory), o.plan.load());
@@ -70,6 +73,7 @@ int SweepCommand::run() {
   req.outDir = o.out;
   req.spec = expandGrid(knobs, o.overrides);
   req.referencePath = o.reference;
+  req.metric = metric;
   req.aov = o.aov;
   req.threads = o.threads;
   req.force = o.force;
@@ -90,10 +94,10 @@ int SweepCommand::run() {
   if (!o.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     const SweepTotals& t = out.totals;
-    std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {} emission(s), {} prefix cut(s), {} map "
+    std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {}; {} emission(s), {} prefix cut(s), {} map "
                              "build(s), {} BVH build(s)\n",
-                             out.rows.size(), t.resumed, t.wallSeconds, t.emissions, t.prefixCuts, t.mapBuilds,
-                             t.bvhBuilds);
+                             out.rows.size(), t.resumed, t.wallSeconds, cpuLine(t.cpu), t.emissions, t.prefixCuts,
+                             t.mapBuilds, t.bvhBuilds);
     std::cerr << "wrote " << (std::filesystem::path(o.out) / "report.md").string() << "\n";
   }
   return 0;

@@ -24,12 +24,26 @@ const std::pair<const char*, const char*> kFields[] = {
     {"set", "--set values"},     {"view", "view"},
     {"plan", "--enable/--disable"}, {"reference", "reference image"}};
 
+// Whether results.csv has a row below its header.
+bool hasFinishedRuns(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  if (!std::getline(in, line)) return false;
+  while (std::getline(in, line)) {
+    if (!line.empty()) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void checkSweepFolder(const std::string& dir, const SweepIdentity& identity) {
   const fs::path file = fs::path(dir) / "sweep.json";
   std::error_code ec;
-  const bool results = fs::exists(fs::path(dir) / "results.csv", ec);
+  const bool results = hasFinishedRuns(fs::path(dir) / "results.csv");
+  // Nothing finished (no results, or a failed sweep's header alone): nothing to resume
+  // and nothing a new sweep could mix with, so the folder is free.
+  if (!results) return;
   if (!fs::exists(file, ec)) {
     if (results) {
       throw InputError(dir + ": has a results.csv but no sweep.json, so its rows cannot be told apart from "

@@ -1,6 +1,8 @@
 // results.csv rows both ways, the Pareto front, and the markdown report.
 #include "cli/sweep_results.h"
 #include "core/error.h"
+#include "plan/cpu_report.h"
+#include <cmath>
 #include <fmt/format.h>
 #include <algorithm>
 #include <fstream>
@@ -23,6 +25,7 @@ const Column kColumns[] = {
     {"reference", &SweepRow::reference}, {"load_s", &SweepRow::load}, {"bvh_s", &SweepRow::bvh},
     {"emit_s", &SweepRow::emit}, {"maps_s", &SweepRow::maps}, {"precompute_s", &SweepRow::precompute},
     {"render_s", &SweepRow::render}, {"total_s", &SweepRow::total}, {"spent_s", &SweepRow::spent},
+    {"cpu_s", &SweepRow::cpu}, {"cpu_share", &SweepRow::cpuShare}, {"load_avg_1m", &SweepRow::loadAverage},
     {"camera_rays", &SweepRow::cameraRays}, {"shadow_rays", &SweepRow::shadowRays},
     {"reflection_rays", &SweepRow::reflectionRays}, {"refraction_rays", &SweepRow::refractionRays},
     {"gate_queries", &SweepRow::gateQueries}, {"shadow_rays_avoided", &SweepRow::shadowRaysAvoided},
@@ -143,6 +146,12 @@ std::map<std::string, SweepRow> readFinishedRows(const std::string& path, const 
   const std::string header = joinCsv(csvHeader(knobs));
   if (!std::getline(in, line)) return rows;
   if (line != header) {
+    // A header alone holds no finished run: a failed sweep's, which a retry replaces.
+    std::string row;
+    while (std::getline(in, row)) {
+      if (!row.empty()) break;
+    }
+    if (row.empty()) return rows;
     throw InputError(path + ": written by a sweep with other knobs (header differs); use another -o folder "
                      "or --force to start again");
   }
@@ -160,7 +169,37 @@ std::map<std::string, SweepRow> readFinishedRows(const std::string& path, const 
   return rows;
 }
 
-std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows) {
+const char* metricName(SweepMetric metric) { return kMetricNames[static_cast<size_t>(metric)]; }
+
+SweepMetric parseMetric(const std::string& name) {
+  std::string known;
+  for (size_t i = 0; i < std::size(kMetricNames); ++i) {
+    if (name == kMetricNames[i]) return static_cast<SweepMetric>(i);
+    known += (i ? ", " : "") + std::string(kMetricNames[i]);
+  }
+  throw InputError("--metric: unknown metric '" + name + "' (known: " + known + ")");
+}
+
+double metricError(const SweepRow& r, SweepMetric metric) {
+  switch (metric) {
+    case SweepMetric::RelMse: return r.relMse;
+    case SweepMetric::Rmse: return r.rmse;
+    case SweepMetric::Psnr:
+    case SweepMetric::RmseClamped: return std::pow(10.0, -r.psnr / 20.0);
+  }
+  return r.rmse;
+}
+
+size_t bestRun(const std::vector<SweepRow>& rows, SweepMetric metric) {
+  size_t best = rows.size();
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].reference) continue;
+    if (best == rows.size() || metricError(rows[i], metric) < metricError(rows[best], metric)) best = i;
+  }
+  return best;
+}
+
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric) {
   std::vector<size_t> front;
   for (size_t i = 0; i < rows.size(); ++i) {
     if (rows[i].reference) continue;
@@ -169,7 +208,8 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows) {
       if (j == i || rows[j].reference) continue;
       const SweepRow& a = rows[j];
       const SweepRow& b = rows[i];
-      beaten = a.total <= b.total && a.rmse <= b.rmse && (a.total < b.total || a.rmse < b.rmse);
+      const double ea = metricError(a, metric), eb = metricError(b, metric);
+      beaten = a.total <= b.total && ea <= eb && (a.total < b.total || ea < eb);
     }
     if (!beaten) front.push_back(i);
   }
@@ -177,8 +217,44 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows) {
   return front;
 }
 
+namespace {
+
+// The fastest run reaching each error of a 1-2-5 ladder between the runs' best and
+// worst error under `metric`: what a given accuracy costs on this scene.
+std::string timeToReach(const SweepSpec& spec, const std::vector<SweepRow>& rows, SweepMetric metric) {
+  double lo = 0.0, hi = 0.0;
+  for (const SweepRow& r : rows) {
+    const double e = metricError(r, metric);
+    if (r.reference || !(e > 0.0) || !std::isfinite(e)) continue;
+    lo = lo > 0.0 ? std::min(lo, e) : e;
+    hi = std::max(hi, e);
+  }
+  if (!(lo > 0.0)) return "";
+  std::string md = fmt::format("\n## Time to reach an error\n\nThe fastest run whose {} is at most E:\n\n| E | time s |",
+                               metricName(metric));
+  std::string rule = "|---|---|";
+  for (const SweepKnob& k : spec.knobs) { md += " " + k.name + " |"; rule += "---|"; }
+  md += "\n" + rule + "\n";
+  const double steps[] = {1.0, 2.0, 5.0};
+  for (double decade = std::pow(10.0, std::floor(std::log10(lo))); decade <= hi * 10.0; decade *= 10.0) {
+    for (double step : steps) {
+      const double target = decade * step;
+      if (target < lo || target > 2.0 * hi) continue;
+      size_t fastest = rows.size();
+      for (size_t i = 0; i < rows.size(); ++i) {
+        if (rows[i].reference || metricError(rows[i], metric) > target) continue;
+        if (fastest == rows.size() || rows[i].total < rows[fastest].total) fastest = i;
+      }
+      if (fastest < rows.size()) md += fmt::format("| {:.3g} | {:.3f} |", target, rows[fastest].total) + settings(spec, rows[fastest]) + "\n";
+    }
+  }
+  return md;
+}
+
+}  // namespace
+
 std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, const std::vector<SweepRow>& rows,
-                           const SweepTotals& t) {
+                           const SweepTotals& t, SweepMetric metric) {
   std::string md = fmt::format("# Sweep of {}\n\n{} runs. Knobs (`--set` keys they write):\n\n{}\n", scene,
                                rows.size(), knobList(spec));
   md += fmt::format("**Reference:** {}\n\n", t.referenceNote);
@@ -195,6 +271,7 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
       "{:.2f} s; ratio {:.2f}.\n\n",
       t.bvhBuilds, t.emissions, t.prefixCuts, t.mapBuilds, t.resumed, t.wallSeconds, t.photonSeconds,
       t.renderSeconds, denom, denom > 0 ? t.wallSeconds / denom : 0.0);
+  if (t.cpu.known()) md += "Sweep " + cpuLine(t.cpu) + "; each run's in `results.csv` (`cpu_s`, `cpu_share`).\n\n";
 
   std::string head = "|";
   std::string rule = "|";
@@ -206,8 +283,15 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
            fmt::format(" {:.3f} | {:.4g} | {:.4g} | {:.2f} | {:.4g} |{}\n", r.total, r.rmse, r.relMse, r.psnr,
                        r.worstRmse, r.reference ? " (reference)" : "");
   };
-  md += "## Pareto front\n\nRuns that no other run beats on both time and RMSE, fastest first:\n\n" + head + rule;
-  for (size_t i : paretoFront(rows)) md += line(rows[i]);
+  md += fmt::format("**Ranked by** {} (`--metric`).\n\n", metricName(metric));
+  if (const size_t best = bestRun(rows, metric); best < rows.size()) {
+    md += "## Best run\n\n" + head + rule + line(rows[best]) + "\n";
+  }
+  md += fmt::format("## Pareto front\n\nRuns that no other run beats on both time and {}, fastest first:\n\n",
+                    metricName(metric)) + head + rule;
+  for (size_t i : paretoFront(rows, metric)) md += line(rows[i]);
+
+  md += timeToReach(spec, rows, metric);
 
   bool anyGate = false;
   for (const SweepRow& r : rows) anyGate = anyGate || r.gate;

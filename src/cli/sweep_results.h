@@ -17,6 +17,8 @@ struct SweepRow {
   std::vector<std::string> values;  // one per knob
   bool reference = false;           // the default reference itself (error 0)
   double load = 0, bvh = 0, emit = 0, maps = 0, precompute = 0, render = 0, total = 0, spent = 0;
+  // The process's CPU time over `spent`, its share of (spent x threads), the load at the run's start.
+  double cpu = 0, cpuShare = 0, loadAverage = -1;
   uint64_t cameraRays = 0, shadowRays = 0, reflectionRays = 0, refractionRays = 0;
   uint64_t gateQueries = 0, shadowRaysAvoided = 0, gatherQueries = 0;
   uint64_t photonsEmitted = 0, photonsStored = 0;
@@ -42,12 +44,28 @@ std::string resultsCsv(const std::vector<SweepKnob>& knobs, const std::vector<Sw
 std::map<std::string, SweepRow> readFinishedRows(const std::string& path,
                                                     const std::vector<SweepKnob>& knobs);
 
-// Rows no other row beats on both total time and RMSE (the reference excluded),
-// fastest first.
-std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows);
+// What the front, the plot and the best run rank by (every metric stays in
+// results.csv). relMSE by default: plain RMSE lets a few bright caustic pixels
+// outweigh visible noise everywhere else. rmse-clamped is the RMSE of values clamped
+// to [0, 1], the one PSNR reports, so the two rank alike.
+enum class SweepMetric { RelMse, Rmse, Psnr, RmseClamped };
+inline constexpr const char* kMetricNames[] = {"relmse", "rmse", "psnr", "rmse-clamped"};
+const char* metricName(SweepMetric metric);
+SweepMetric parseMetric(const std::string& name);  // throws InputError naming the choices
+// The row's error under `metric`, lower better (PSNR as its clamped RMSE).
+double metricError(const SweepRow& row, SweepMetric metric);
+
+// Rows no other row beats on both total time and the metric (the reference
+// excluded), fastest first.
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric = SweepMetric::RelMse);
+
+// The run with the lowest error under `metric` (the reference excluded), rows.size()
+// when there is none.
+size_t bestRun(const std::vector<SweepRow>& rows, SweepMetric metric);
 
 struct SweepTotals {
   double wallSeconds = 0;       // the whole sweep
+  CpuTiming cpu;                // ... and its CPU time
   double photonSeconds = 0;     // sum over distinct photon settings: emission (share) + map build
   double renderSeconds = 0;     // sum of every render pass (precompute + render, ungated ones too)
   size_t emissions = 0, prefixCuts = 0, mapBuilds = 0, bvhBuilds = 0, resumed = 0;
@@ -55,6 +73,7 @@ struct SweepTotals {
 };
 
 std::string reportMarkdown(const std::string& scene, const SweepSpec& spec,
-                           const std::vector<SweepRow>& rows, const SweepTotals& totals);
+                           const std::vector<SweepRow>& rows, const SweepTotals& totals,
+                           SweepMetric metric = SweepMetric::RelMse);
 
 }  // namespace penumbra

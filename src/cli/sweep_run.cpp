@@ -5,9 +5,12 @@
 #include "cli/sweep_run.h"
 #include "cli/plot_script.h"
 #include "cli/sweep_folder.h"
+#include "cli/sweep_idle_knobs.h"
 #include "cli/progress_line.h"
+#include "plan/cpu_report.h"
 #include "plan/render_session.h"
 #include "core/error.h"
+#include "io/contact_sheet.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
 #include "io/temp_file.h"
@@ -64,11 +67,16 @@ class Sweep {
     totals_.prefixCuts = session_.prefixCuts();
     totals_.mapBuilds = session_.photonBuilds();
     totals_.bvhBuilds = session_.sceneBuilds();
-    totals_.wallSeconds = clock_.seconds();
+    totals_.cpu = clock_.timing(session_.options().threads);
+    totals_.wallSeconds = totals_.cpu.wallSeconds;
+    for (const std::string& n : idleKnobNotes(spec_, rows_, dir)) notes_.push_back(n);
+    const std::string contended = contendedNote(renderedCpu_, "run");
+    if (!contended.empty()) notes_.push_back(contended);
     SweepOutcome out;
     out.rows = rows_;
     out.totals = totals_;
-    writeTextFileAtomic((dir / "report.md").string(), reportMarkdown(sceneName_, spec_, rows_, totals_));
+    writeTextFileAtomic((dir / "report.md").string(), reportMarkdown(sceneName_, spec_, rows_, totals_, req_.metric));
+    contactSheet(dir);
     if (!req_.plotScript.empty()) plot(dir);
     out.notes = notes_;
     return out;
@@ -165,15 +173,15 @@ class Sweep {
     showProgress();
     session_.photonsByBudget(jobs, [&](BudgetStage& b) {
       totals_.photonSeconds += b.stage.emitSeconds + b.stage.buildSeconds;
-      double spent = b.seconds;
+      double spent = b.seconds, spentCpu = b.cpuSeconds;
       for (const PlannedJob* j : b.jobs) {
         const PlannedRun& run = *std::find_if(runs_.begin(), runs_.end(), [&](const PlannedRun& r) { return &r.job == j; });
         Reuse reuse;
         reuse.bvh = !usedGeometry_.insert(run.job.keys.geometry).second;
         reuse.maps = j != b.jobs.front();
         reuse.prefixOf = b.prefixOf;
-        renderRun(run, b.stage, bvh, spent, reuse);
-        spent = 0.0;
+        renderRun(run, b.stage, bvh, spent, spentCpu, reuse);
+        spent = spentCpu = 0.0;
       }
     });
   }
@@ -191,10 +199,12 @@ class Sweep {
     uint64_t prefixOf = 0;  // > 0: photons cut out of an emission of this many
   };
 
-  void renderRun(const PlannedRun& p, PhotonStage& stage, double bvh, double spentBefore, const Reuse& reuse) {
+  // `spentBefore` and `cpuBefore`: what the run's shared photon stage cost first.
+  void renderRun(const PlannedRun& p, PhotonStage& stage, double bvh, double spentBefore, double cpuBefore,
+                 const Reuse& reuse) {
     const SweepRun& run = spec_.runs[p.index];
     current_ = p.index;
-    Stopwatch clock;
+    const CpuSpan clock;
     RenderResult result = renderOne(stage, p, true);
     const RenderStats& st = result.stats;
     SweepRow row;
@@ -239,7 +249,12 @@ class Sweep {
     if (row.reference) {
       writeImage((fs::path(req_.outDir) / "reference.exr").string(), result.image, {{"penumbra:sweep_reference", run.id}});
     }
-    row.spent = spentBefore + clock.seconds();
+    const CpuTiming cpu = clock.timing(session_.options().threads, spentBefore, cpuBefore);
+    row.spent = cpu.wallSeconds;
+    row.cpu = cpu.cpuSeconds;
+    row.cpuShare = cpu.share;
+    row.loadAverage = cpu.loadAverage;
+    renderedCpu_.push_back(cpu);
     rows_[p.index] = row;
     ++finishedNow_;
     writeCsv();
@@ -247,10 +262,25 @@ class Sweep {
     showProgress();
   }
 
+  // Every run's image labelled with its settings, time and error (runs.png).
+  void contactSheet(const fs::path& dir) {
+    std::vector<SheetTile> tiles;
+    for (const SweepRow& r : rows_) {
+      if (r.image.empty()) continue;
+      tiles.push_back({(dir / r.image).string(),
+                       {r.id, r.reference ? fmt::format("{:.2f} s  the reference", r.total)
+                                          : fmt::format("{:.2f} s  {} {:.3g}", r.total, metricName(req_.metric),
+                                                        metricError(r, req_.metric))}});
+    }
+    const std::string note = writeContactSheet((dir / "runs.png").string(), tiles);
+    if (!note.empty()) notes_.push_back(note);
+  }
+
   // A machine without matplotlib still gets every result, and a note saying why no plot.
   void plot(const fs::path& dir) {
     const std::string note = drawTradeoffPlot(req_.plotScript, (dir / "results.csv").string(),
-                                              (dir / "tradeoff.png").string(), sceneName_);
+                                              (dir / "tradeoff.png").string(), sceneName_,
+                                              metricName(req_.metric));
     if (!note.empty()) notes_.push_back(note);
   }
 
@@ -261,7 +291,7 @@ class Sweep {
     size_t todo = 0, done = 0;
     for (const PlannedRun& p : runs_) (p.done ? done : todo) += 1;
     const std::string id = current_ < spec_.runs.size() ? spec_.runs[current_].id : "";
-    req_.progress(progressLine("sweep", done + finishedNow_, spec_.runs.size(), id, status_, clock_.seconds(),
+    req_.progress(progressLine("sweep", done + finishedNow_, spec_.runs.size(), id, status_, clock_.wallSeconds(),
                                finishedNow_, todo - finishedNow_));
   }
 
@@ -278,7 +308,8 @@ class Sweep {
   size_t finishedNow_ = 0;
   std::string csvPath_, sceneName_, status_;
   std::vector<std::string> notes_;
-  Stopwatch clock_;
+  std::vector<CpuTiming> renderedCpu_;  // the runs rendered now (not resumed)
+  CpuSpan clock_;
 };
 
 }  // namespace

@@ -24,6 +24,7 @@ struct SweepRequest {
   bool force = false;         // redo every run, even those results.csv has
   bool compareGate = true;    // gated runs: render again ungated for the gate's trade-off
   std::string plotScript;     // scripts/plot_tradeoff.py; empty: no plot
+  SweepMetric metric = SweepMetric::RelMse;  // what the front, plot and best run rank by
   uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available
   PlanOverrides plan;           // --enable / --disable, for every run
   // One line describing the sweep's progress (run i of n, phase, elapsed, ETA),

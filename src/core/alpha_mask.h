@@ -2,6 +2,7 @@
 // bytes, looked up at a hit's uv by the geometry's intersection filter, and the one
 // rule that keeps or drops a hit (a cutoff, or a keyed coin for blended alpha).
 #pragma once
+#include "core/bilinear.h"
 #include "core/math.h"
 #include "core/rng.h"
 #include <cstdint>
@@ -25,25 +26,10 @@ struct AlphaMask {
   // Bilinear between texel centres, repeating in u and v (glTF's default sampler): a
   // magnified mask keeps a smooth cut edge instead of texel-sized steps.
   float at(Vec2 uv) const {
-    const float x = uv.x * float(width) - 0.5f, y = uv.y * float(height) - 0.5f;
-    const float fx = std::floor(x), fy = std::floor(y);
-    const float tx = x - fx, ty = y - fy;
-    const int x0 = wrap(fx, width), y0 = wrap(fy, height);
-    const int x1 = x0 + 1 == width ? 0 : x0 + 1, y1 = y0 + 1 == height ? 0 : y0 + 1;
-    const float top = (1.0f - tx) * texel(x0, y0) + tx * texel(x1, y0);
-    const float bottom = (1.0f - tx) * texel(x0, y1) + tx * texel(x1, y1);
-    return ((1.0f - ty) * top + ty * bottom) * (1.0f / 255.0f);
+    const auto texel = [&](int x, int y) { return float(alpha[size_t(y) * size_t(width) + size_t(x)]); };
+    return bilinearRepeat(width, height, uv, texel) * (1.0f / 255.0f);
   }
   size_t bytes() const { return alpha.size(); }
-
- private:
-  float texel(int x, int y) const { return float(alpha[size_t(y) * size_t(width) + size_t(x)]); }
-  // A texel index in [0, n): floor(coord) mod n, for any finite coordinate.
-  static int wrap(float coord, int n) {
-    const float m = std::fmod(coord, float(n));
-    const int i = static_cast<int>(m < 0.0f ? m + float(n) : m);
-    return i >= n || i < 0 ? 0 : i;
-  }
 };
 
 // Whether a hit with this coverage counts. `key` identifies the ray and the primitive

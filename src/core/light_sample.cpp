@@ -161,6 +161,7 @@ Color lightPower(const Light& light, const SceneSphere& bounds) {
   if (light.type == LightType::Point) return light.radiance() * (4.0f * kPi);
   if (light.type == LightType::Directional) return light.radiance() * (kPi * bounds.radius * bounds.radius);
   if (light.type == LightType::Environment) return environmentPower(light, bounds);
+  if (light.type == LightType::Mesh) return light.radiance() * (kPi * meshLightPowerFactor(light));
   return light.radiance() * (kPi * lightArea(light));  // a Lambertian emitter: pi A L
 }
 
@@ -209,18 +210,14 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
   if (light.type == LightType::Mesh) return meshLightPhoton(light, u1, u2, u3, u4);
   if (light.type == LightType::Environment) return environmentPhoton(light, bounds, u1, u2, u3, u4);
   if (light.type == LightType::Quad || light.type == LightType::Sphere) {
-    Vec3 n;
     if (light.type == LightType::Quad) {
       r.origin = light.position + u1 * light.edge1 + u2 * light.edge2;
-      n = unitCross(light.edge1, light.edge2);
+      r.normal = unitCross(light.edge1, light.edge2);
       r.error = quadPointError(light);
     } else {
-      n = uniformSphere(u1, u2);
-      r.origin = light.position + light.radius * n;
-      r.error = gammaBound(5) * (maxComponent(glm::abs(light.position)) + light.radius);
+      r = sphereLightStart(light, uniformSphere(u1, u2));
     }
-    r.dir = toWorld(cosineHemisphere(u3, u4), n);
-    r.normal = n;
+    r.dir = toWorld(cosineHemisphere(u3, u4), r.normal);
     return r;
   }
   // Uniform over the disc that covers the scene, seen along the light's direction,
@@ -234,10 +231,19 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
   return r;
 }
 
+PhotonRay sphereLightStart(const Light& light, const Vec3& n) {
+  PhotonRay r;
+  r.origin = light.position + light.radius * n;
+  r.normal = n;
+  r.error = gammaBound(5) * (maxComponent(glm::abs(light.position)) + light.radius);
+  return r;
+}
+
 float classicPhotonWeight(const Light& light) {
   if (light.isSpot()) return luminance(light.radiance()) * spotSolidAngle(light) / (4.0f * kPi);
   if (light.type == LightType::Point) return luminance(light.radiance());
   if (light.type == LightType::Directional || light.type == LightType::Environment) return 0.0f;
+  if (light.type == LightType::Mesh) return luminance(light.radiance()) * meshLightPowerFactor(light) * 0.25f;
   return luminance(light.radiance()) * lightArea(light) * 0.25f;
 }
 

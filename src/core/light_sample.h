@@ -100,5 +100,8 @@ struct PhotonRay {
 float classicPhotonWeight(const Light& light);
 PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                             float u3, float u4);
+// A sphere light's photon start at the unit normal `n`: its surface point and rounding
+// error (no direction yet).
+PhotonRay sphereLightStart(const Light& light, const Vec3& n);
 
 }  // namespace penumbra

@@ -7,18 +7,27 @@
 
 namespace penumbra {
 
-// A mesh light of uniform radiance `radiance` (W/(sr m^2)) over `triangles` (world
-// space, 3 corners each, emitting on the side of (b - a) x (c - a)); triangles whose
-// float area is 0 are left out. `material` is the emitting material's index.
-Light makeMeshLight(const std::vector<Vec3>& triangles, const Color& radiance, int material);
+// A mesh light of radiance `radiance` (W/(sr m^2)) over `triangles` (world space, 3
+// corners each, emitting on the side of (b - a) x (c - a)); triangles whose float area
+// is 0 are left out. `material` is the emitting material's index. With `map`, the
+// radiance is times its texel at `uvs` (3 per triangle) and triangles are drawn by
+// area x luminance (core/emission_map.h).
+struct EmissionMap;
+Light makeMeshLight(const std::vector<Vec3>& triangles, const Color& radiance, int material,
+                    const std::vector<Vec2>& uvs = {}, const EmissionMap* map = nullptr);
 
-// Total area of a mesh light's triangles.
+// Total area of a mesh light's triangles (its emitting area, per side).
 inline float meshLightArea(const Light& light) {
   return light.areaCdf.empty() ? 0.0f : light.areaCdf.back();
 }
 
-// One sample uniform by area (pdf_A = 1 / A): the incidence L cos_l A / d^2, invalid
-// behind the sampled triangle's emitting side.
+// Its power over pi L: the area per side (the area x mean texel luminance when
+// textured), twice over for a two-sided light.
+float meshLightPowerFactor(const Light& light);
+
+// One sample uniform by area (pdf_A = 1 / A; textured: by area x luminance): the
+// incidence L cos_l / (pdf_A d^2), invalid behind the sampled triangle's emitting side
+// (a two-sided light has none).
 LightIncidence sampleMeshLight(const LightSampler& s, float u1, float u2);
 
 // Closed-form unoccluded irradiance: Lambert's formula per triangle facing p, each
@@ -27,8 +36,10 @@ LightIncidence sampleMeshLight(const LightSampler& s, float u1, float u2);
 inline constexpr size_t kMeshClosedFormTriangles = 64;
 bool meshLightIrradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E);
 
-// A photon from a uniform point (triangle by area from u1, position from u1's
-// remainder and u2) in a cosine-weighted direction about that triangle's normal.
+// A photon from a uniform point (triangle by area, or area x luminance, from u1,
+// position from u1's remainder and u2) in a cosine-weighted direction about that
+// triangle's normal (or, two-sided, either side's); a textured light's photon weighs
+// its texel over the triangle's density.
 PhotonRay meshLightPhoton(const Light& light, float u1, float u2, float u3, float u4);
 
 // Lambert's formula for the polygon poly[0..m) (corners relative to the receiving

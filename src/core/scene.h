@@ -22,7 +22,7 @@ struct Camera {
   float orthoHeight = 0.0f;
   int width = 640;
   int height = 480;
-  int spp = 1;  // samples per pixel; 1 = pixel centre, >1 = stratified jitter
+  int spp = 1;  // samples per pixel and pass; stratified over spp x passes (1 in all: the centre)
 };
 
 // Point and directional lights are deltas; quad, sphere and mesh lights are area
@@ -33,6 +33,7 @@ struct Camera {
 enum class LightType { Point, Directional, Quad, Sphere, Mesh, Environment };
 
 struct EnvironmentMap;  // core/environment.h
+struct MeshEmission;    // core/emission_map.h
 
 struct Light {
   LightType type = LightType::Point;
@@ -52,6 +53,10 @@ struct Light {
   std::vector<float> areaCdf;
   float pointError = 0.0f;
   int material = -1;
+  // Mesh: emits on both sides of each triangle (glTF's doubleSided); and its emissive
+  // texture with the tables that draw triangles by luminance (null: uniform radiance).
+  bool twoSided = false;
+  std::shared_ptr<const MeshEmission> emission;
   // A point light with a cone is a spot: full intensity within `spotCosInner` of
   // `direction`, falling to 0 at `spotCosOuter` (glTF's cone angles, as cosines).
   float spotCosInner = -1.0f, spotCosOuter = -1.0f;
@@ -104,6 +109,10 @@ struct Material {
   Color emission{0.0f};
   bool twoSidedEmission = false;  // a sphere emits all round, a quad on one side
   int light = -1;                 // the area light this surface belongs to, -1 = none
+  int emissionTexture = -1;       // times emission (colour, sRGB-decoded), -1 = none
+  // glTF's model adds emission to the surface's BSDF; a scene file's emitting material
+  // is a light's surface and only glows, as a quad light's does.
+  bool emitterShades = false;
   // glTF's metallic-roughness model (the physical model's MetalRough BSDF, the classic
   // model's Phong terms); `diffuse` is its base colour and `texture` the base map.
   bool metalRough = false;
@@ -181,8 +190,10 @@ enum class IndirectEstimator { Classic, Density };
 // shadow map only where the cost model says it pays (plan/gate_decision.h).
 enum class GateMode { Off, On, Auto };
 // exact: every gate vote and estimate gathers its k nearest photons (the definition);
-// precomputed: both are computed once per cell of a hash grid and read by one query.
-enum class PhotonLookup { Exact, Precomputed };
+// precomputed: both are computed once per cell of a hash grid and read by one query;
+// auto: precomputed where the plan's cost model finds exact gathers would dominate
+// the frame (plan/lookup_decision.h), exact otherwise.
+enum class PhotonLookup { Exact, Precomputed, Auto };
 enum class HemisphereSampling { Uniform, Cosine };
 
 struct PhotonSettings {
@@ -204,7 +215,7 @@ struct PhotonSettings {
   int passes = 1;         // progressive passes, each with fresh photons and a smaller radius
   float alpha = 0.7f;     // radius reduction: r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1)
   float radius = 0.0f;    // first-pass gather radius for passes > 1; 0 = from the k-th neighbour
-  PhotonLookup lookup = PhotonLookup::Exact;
+  PhotonLookup lookup = PhotonLookup::Auto;
   float lookupCell = 1.0f;  // precomputed: cell size in units of the typical gather radius
 };
 

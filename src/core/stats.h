@@ -1,6 +1,7 @@
 // Render statistics as plain counters. Parallel phases keep one RayCounts per
 // thread (tbb::enumerable_thread_specific) and add them up afterwards.
 #pragma once
+#include "core/cpu_time.h"
 #include "core/map_kind.h"
 #include <chrono>
 #include <cstdint>
@@ -37,6 +38,16 @@ struct Timings {
          total = 0;
 };
 
+// The stages by their --stats names (time_s.*), in the order a render runs them.
+struct TimingField {
+  const char* name;
+  double Timings::*field;
+};
+constexpr TimingField kTimingFields[] = {
+    {"load", &Timings::load},       {"build_bvh", &Timings::buildBvh},     {"emit", &Timings::emit},
+    {"build_maps", &Timings::buildMaps}, {"precompute", &Timings::precompute}, {"render", &Timings::render},
+    {"write", &Timings::write},     {"total", &Timings::total}};
+
 struct RenderStats {
   std::string scene;
   int width = 0, height = 0, spp = 1, threads = 1;
@@ -58,6 +69,7 @@ struct RenderStats {
   float cacheCell = 0.0f;            // precomputed: cell size (last pass)
   uint64_t cacheBytes = 0;
   uint64_t peakRssBytes = 0;
+  CpuTiming cpu;  // the process's CPU time over the span of time.total
   std::vector<std::string> ignoredExtensions;  // a glTF scene's optional extensions left unread
   std::vector<std::string> defaultsAdded;      // what loading added to a glTF scene: "camera", "sky"
 };

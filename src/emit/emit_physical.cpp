@@ -9,6 +9,7 @@
 #include "core/sampling.h"
 #include "emit/batch_buffers.h"
 #include "emit/budget.h"
+#include "emit/caustic_aim.h"
 #include <tbb/parallel_for.h>
 #include <tbb/enumerable_thread_specific.h>
 
@@ -23,90 +24,6 @@ PhotonTally& PhotonTally::operator+=(const PhotonTally& o) {
 namespace {
 
 enum : uint64_t { kGlobalStream = 3, kCausticStream = 4 };
-
-// Point and directional lights aim their caustic photons; a spot's cone would cut
-// the aim, so it emits unaimed like an area light.
-bool isAimed(const Light& light) { return isDeltaLight(light) && !light.isSpot(); }
-
-// The caustic pass samples directions (point lights) or disc points (directional
-// lights) only towards the targets, from the mixture of one cone or disc per
-// target; a photon's power divides by the mixture density, so overlapping
-// targets are not counted twice and the estimate stays unbiased.
-struct Aim {
-  std::vector<SceneSphere> targets;
-  std::vector<float> measure;  // solid angle (point) or disc area (directional) per target
-  float total = 0.0f;
-};
-
-Aim aimAt(const Light& light, const std::vector<SceneSphere>& targets) {
-  Aim aim;
-  aim.targets = targets;
-  for (const SceneSphere& t : targets) {
-    float m;
-    if (light.type == LightType::Point) {
-      float d = glm::length(t.center - light.position);
-      float cosMax = d > t.radius ? std::sqrt(1.0f - (t.radius / d) * (t.radius / d)) : -1.0f;
-      m = 2.0f * kPi * (1.0f - cosMax);
-    } else {
-      m = kPi * t.radius * t.radius;
-    }
-    aim.measure.push_back(m);
-    aim.total += m;
-  }
-  return aim;
-}
-
-// How many targets' cones (or discs) contain this photon's start.
-int coverage(const Light& light, const Aim& aim, const PhotonRay& r) {
-  int n = 0;
-  for (const SceneSphere& t : aim.targets) {
-    Vec3 c = t.center - r.origin;
-    float along = glm::dot(c, r.dir);
-    float perp2 = glm::dot(c, c) - along * along;
-    bool inside = glm::dot(c, c) <= t.radius * t.radius;
-    // Both cases are "the ray's line passes within the radius": for a point light
-    // that is the cone of the sphere, for a directional light its disc.
-    if (inside || (along > 0.0f && perp2 <= t.radius * t.radius) ||
-        (light.type == LightType::Directional && perp2 <= t.radius * t.radius)) {
-      ++n;
-    }
-  }
-  return n;
-}
-
-// Samples one aimed photon; returns the factor on the light's unaimed photon power
-// (total measure / (full measure x coverage)), 0 if it missed every target.
-float sampleAimed(const Light& light, const SceneSphere& bounds, const Aim& aim, Rng& rng,
-                  PhotonRay& r) {
-  float pick = rng.uniform() * aim.total;
-  size_t j = 0;
-  while (j + 1 < aim.measure.size() && pick >= aim.measure[j]) pick -= aim.measure[j++];
-  const SceneSphere& t = aim.targets[j];
-  float u1 = rng.uniform(), u2 = rng.uniform();
-  if (light.type == LightType::Point) {
-    r.origin = light.position;
-    Vec3 axis = t.center - light.position;
-    float d = glm::length(axis);
-    float cosMax = d > t.radius ? std::sqrt(1.0f - (t.radius / d) * (t.radius / d)) : -1.0f;
-    float cosT = 1.0f - u1 * (1.0f - cosMax);
-    float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
-    float phi = 2.0f * kPi * u2;
-    Vec3 local(sinT * std::cos(phi), sinT * std::sin(phi), cosT);
-    r.dir = d > 0.0f ? toWorld(local, axis / d) : uniformSphere(u1, u2);
-    r.origin = pointLightOrigin(light, r.dir, bounds);
-  } else {
-    float rad = t.radius * std::sqrt(u1), phi = 2.0f * kPi * u2;
-    Vec3 tt, bb;
-    orthonormalBasis(light.direction, tt, bb);
-    float back = glm::dot(t.center - bounds.center, light.direction) + 1.01f * bounds.radius;
-    r.origin = t.center - light.direction * back + rad * (std::cos(phi) * tt + std::sin(phi) * bb);
-    r.dir = light.direction;
-  }
-  int n = coverage(light, aim, r);
-  if (n == 0) return 0.0f;  // rounding at a cone's rim
-  float full = light.type == LightType::Point ? 4.0f * kPi : kPi * bounds.radius * bounds.radius;
-  return aim.total / (full * static_cast<float>(n));
-}
 
 // Follows one photon; stores it at smooth surfaces as the pass dictates and plays
 // Russian roulette by the sampled weight: survive with q = min(1, max weight), then
@@ -154,24 +71,33 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray
   }
 }
 
-// Each light's share of a pass's budget: its power; aimed (caustic, delta lights)
-// only the power that heads for the targets; unaimed times the reach, the share
-// whose first hit can lead to a store.
-std::vector<double> photonWeights(const Scene& scene, const SceneSphere& bounds, const std::vector<Aim>& aims,
+// Each light's share of a pass's budget: its power; aimed (caustic) only the power that
+// heads for the targets; unaimed times the reach, the share whose first hit can lead to
+// a store.
+std::vector<double> photonWeights(const Scene& scene, const SceneSphere& bounds, const std::vector<CausticAim>& aims,
                                   bool caustic, const std::vector<float>& reach) {
   std::vector<double> weights;
   for (size_t l = 0; l < scene.lights.size(); ++l) {
     const Light& light = scene.lights[l];
     double w = luminance(lightPower(light, bounds));
-    if (caustic && isAimed(light)) {  // area lights and spots emit unaimed
-      float full = light.type == LightType::Point ? 4.0f * kPi : kPi * bounds.radius * bounds.radius;
-      w *= std::min(1.0, double(aims[l].total) / full);
+    if (caustic && aimsCausticPhotons(light)) {
+      w *= aims[l].share;
     } else if (reach.size() == scene.lights.size()) {
       w *= reach[l];
     }
     weights.push_back(w);
   }
   return weights;
+}
+
+// Every light's caustic aim at `targets` (none for the global pass).
+std::vector<CausticAim> aimsOf(const Scene& scene, const SceneSphere& bounds, const std::vector<SceneSphere>& targets) {
+  enum : uint64_t { kAimStream = 5 };
+  std::vector<CausticAim> aims;
+  for (size_t l = 0; l < scene.lights.size(); ++l) {
+    aims.push_back(aimAt(scene.lights[l], targets, bounds, hashKey(scene.render.seed, kAimStream, l)));
+  }
+  return aims;
 }
 
 PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, MapKind kind,
@@ -181,8 +107,7 @@ PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& trac
   std::vector<SceneSphere> targets = kind == MapKind::Caustic ? specularTargets(scene)
                                                                : std::vector<SceneSphere>{};
   if (kind == MapKind::Caustic && targets.empty()) total = 0;
-  std::vector<Aim> aims;
-  for (const Light& l : scene.lights) aims.push_back(kind == MapKind::Caustic ? aimAt(l, targets) : Aim{});
+  const std::vector<CausticAim> aims = aimsOf(scene, bounds, targets);
   const std::vector<double> weights =
       photonWeights(scene, bounds, aims, kind == MapKind::Caustic,
                     options.reach[kind]);
@@ -193,17 +118,17 @@ PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& trac
       weights, counts, options, &cuts, emitted, [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
-        const bool aimed = kind == MapKind::Caustic && isAimed(light);
+        const bool aimed = kind == MapKind::Caustic && aimsCausticPhotons(light);
         return [&, &light = light, share, aimed, aim = aims[batch.light], &t = tallies.local(),
-                rng = Rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch)))](
-                   BatchAppender<IndirectPhoton>& out) mutable {
+                rng = Rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch))),
+                scratch = std::vector<float>()](BatchAppender<IndirectPhoton>& out) mutable {
           PhotonRay r;
           Color power = share;
           if (aimed) {
-            power *= sampleAimed(light, bounds, aim, rng, r);
+            power *= sampleAimed(light, bounds, aim, rng, r, scratch);
           } else {
-            // Area lights are not aimed at the specular objects: their caustic photons
-            // are the share of all photons whose path turns out L S+ D.
+            // A spot's and an environment's caustic photons are the share of all their
+            // photons whose path turns out L S+ D.
             float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
             r = emitterPhoton(light, bounds, u1, u2, u3, u4);
             power *= r.weight;  // 1 but for an environment map's photons
@@ -243,9 +168,7 @@ std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& 
   const SceneSphere bounds = tracer.boundingSphere();
   const std::vector<SceneSphere> targets = caustic ? specularTargets(scene) : std::vector<SceneSphere>{};
   if (caustic && targets.empty()) return std::vector<uint64_t>(scene.lights.size(), 0);
-  std::vector<Aim> aims;
-  for (const Light& l : scene.lights) aims.push_back(caustic ? aimAt(l, targets) : Aim{});
-  return splitByWeight(photonWeights(scene, bounds, aims, caustic, reach), total);
+  return splitByWeight(photonWeights(scene, bounds, aimsOf(scene, bounds, targets), caustic, reach), total);
 }
 
 PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass,

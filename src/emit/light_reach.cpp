@@ -24,7 +24,7 @@ bool reaches(const Scene& scene, int material, ReachRule rule) {
 
 std::vector<float> measureReach(const Scene& scene, const TraceScene& tracer, ReachRule rule,
                                 uint32_t pilots) {
-  enum : uint64_t { kReachStream = 7 };  // the emitters use 1-4: a stream of its own
+  enum : uint64_t { kReachStream = 7 };  // the emitters and the caustic aim use 1-5: a stream of its own
   std::vector<float> fraction(scene.lights.size(), 0.0f);
   if (pilots == 0) return fraction;
   // Classify each material once: the pilot's loop is rays only.

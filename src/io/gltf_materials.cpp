@@ -1,6 +1,6 @@
 // glTF materials: metallic-roughness (base colour, metallic, roughness and their
-// textures, KHR_materials_ior), transmission + ior as glass, emissive as emission,
-// the normal map and alphaMode.
+// textures, KHR_materials_ior), transmission + ior as glass, emissive (factor, texture,
+// strength, doubleSided) as emission, the normal map and alphaMode.
 #include "io/gltf_materials.h"
 
 #include "io/gltf_files.h"
@@ -119,7 +119,12 @@ std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std
         float(extensionNumber(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0));
     const float strength =
         float(extensionNumber(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0));
+    // Emission adds to the surface's BSDF (glTF's model), on the front only unless
+    // the material is double-sided.
     m.emission = colour(g.emissiveFactor, Color(0.0f)) * strength;
+    m.emitterShades = true;
+    m.twoSidedEmission = g.doubleSided;
+    mm.emissionTexture = textureFile(model, g.emissiveTexture.index, path, folder);
     m.ambient = Color(0.1f) * base;
     if (transmission >= 0.5f) {
       // Glass: smooth, the base colour as its transmission filter.

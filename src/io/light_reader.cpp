@@ -1,11 +1,15 @@
 // The "lights" section: point and directional lights, and the quad and sphere
 // area lights, whose surfaces also join the scene as emitting objects.
 #include "core/light_sample.h"
+#include "core/emission_map.h"
 #include "core/mesh_light.h"
+#include "io/emission_map_reader.h"
 #include "io/float_checks.h"
 #include "io/scene_sections.h"
 #include "io/shapes.h"
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <string>
 
 namespace penumbra {
@@ -62,6 +66,19 @@ void readSphereLight(const JsonNode& item, Light& light) {
   light.radius = radius.asFloat(Range::above(0.0));
   checkPositions(radius, {light.position - Vec3(light.radius), light.position + Vec3(light.radius)},
                  "center +- radius");
+}
+
+// The mean of a map's texels (the light of a textured mesh that has no uvs).
+Color meanTexel(const EmissionMap& map) {
+  Color sum(0.0f);
+  for (const Color& c : map.texels) sum += c;
+  return map.texels.empty() ? Color(1.0f) : sum / float(map.texels.size());
+}
+
+std::string percent(float share) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f%%", 100.0 * share);
+  return text;
 }
 
 }  // namespace
@@ -136,28 +153,52 @@ void addMeshEmitters(Scene& scene) {
   for (size_t mi = 0; mi < scene.materials.size(); ++mi) {
     Material& m = scene.materials[mi];
     if (m.light >= 0 || !(maxComponent(m.emission) > 0.0f)) continue;
+    // Its triangles, and with an emissive texture their uvs (a mesh without uvs
+    // leaves the light untextured, at the texture's mean colour).
     std::vector<Vec3> triangles;
+    std::vector<Vec2> uvs;
+    bool everyMeshHasUvs = true;
     for (const TriangleMesh& mesh : scene.meshes) {
       if (mesh.material != static_cast<int>(mi)) continue;
+      everyMeshHasUvs = everyMeshHasUvs && !mesh.uvs.empty();
       for (const auto& t : mesh.triangles) {
         triangles.insert(triangles.end(), {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]});
+        if (!mesh.uvs.empty()) uvs.insert(uvs.end(), {mesh.uvs[t[0]], mesh.uvs[t[1]], mesh.uvs[t[2]]});
       }
     }
     if (triangles.empty()) continue;  // an unused emitting material lights nothing
+    std::optional<EmissionMap> map;
+    Color radiance = m.emission;
+    if (m.emissionTexture >= 0) {
+      map = readEmissionMap(scene.textures[size_t(m.emissionTexture)].path, m.uvTransform());
+      if (!everyMeshHasUvs) {
+        radiance *= meanTexel(*map);
+        map.reset();
+      }
+    }
     if (scene.lights.size() >= kMaxLights) {
       throwInputError(scene.file + ": at most " + std::to_string(kMaxLights) +
                       " lights, counting one per emitting material");
     }
-    Light light = makeMeshLight(triangles, m.emission, static_cast<int>(mi));
+    Light light = makeMeshLight(triangles, radiance, static_cast<int>(mi), uvs, map ? &*map : nullptr);
     if (light.areaCdf.empty()) continue;
-    // As a quad light's surface: black, it only glows (on the front of each triangle).
+    if (light.emission && light.emission->meanLuminance < kDecorativeEmission) {
+      scene.load.notes.push_back("material " + m.name + ": its emissive texture averages " +
+                                 percent(light.emission->meanLuminance) +
+                                 " of full emission: it glows where seen and lights nothing");
+      continue;
+    }
+    light.twoSided = m.twoSidedEmission;
     m.light = static_cast<int>(scene.lights.size());
-    m.ambient = m.diffuse = m.specular = Color(0.0f);
-    m.kr = 0.0f;
-    m.transparent = false;
-    m.pR = m.pT = 0.0f;
-    m.texture = -1;
-    m.twoSidedEmission = false;
+    if (!m.emitterShades) {
+      // As a quad light's surface: black, it only glows.
+      m.ambient = m.diffuse = m.specular = Color(0.0f);
+      m.kr = 0.0f;
+      m.transparent = false;
+      m.metalRough = false;
+      m.pR = m.pT = 0.0f;
+      m.texture = -1;
+    }
     scene.lights.push_back(std::move(light));
   }
 }

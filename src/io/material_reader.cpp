@@ -99,7 +99,7 @@ void readNormalAndAlpha(const JsonNode& node, Material& m, Scene& scene, Texture
 Material readMaterial(const JsonNode& node, const std::string& name, Scene& scene,
                       TextureIndex& textures) {
   node.allowKeys({"ambient", "diffuse", "specular", "shininess", "reflective", "transparent",
-                  "p_r", "p_t", "texture", "emission", "metallic", "roughness", "metallic_roughness_texture",
+                  "p_r", "p_t", "texture", "emission", "emission_texture", "metallic", "roughness", "metallic_roughness_texture",
                   "normal_texture", "normal_scale", "alpha", "alpha_mode", "alpha_cutoff", "alpha_texture"});
   Material m;
   m.name = name;
@@ -109,6 +109,11 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
   m.shininess = node.floatOr("shininess", m.shininess, Range::atLeast(0.0));
   // An emitting material makes its meshes one area light (addMeshEmitters).
   m.emission = node.colorOr("emission", m.emission);
+  if (node.has("emission_texture")) {
+    const JsonNode file = node.child("emission_texture");
+    if (!(maxComponent(m.emission) > 0.0f)) file.fail("needs an emission above 0 (the texture multiplies it)");
+    m.emissionTexture = textureIndex(file, false, scene, textures);
+  }
   const Range unit = Range::between(0.0, 1.0);
   if (node.has("reflective")) {
     JsonNode reflective = node.child("reflective");

@@ -95,6 +95,9 @@ void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fa
     if (!mm.metalRoughTexture.empty()) m.metalRoughTexture = addTextureFile(where, mm.metalRoughTexture, scene, true);
     if (!mm.normalTexture.empty()) m.normalTexture = addTextureFile(where, mm.normalTexture, scene, true);
     if (!mm.alphaTexture.empty()) m.alphaMask = addAlphaMask(where, mm.alphaTexture, scene, false);
+    if (!mm.emissionTexture.empty() && maxComponent(m.emission) > 0.0f) {
+      m.emissionTexture = addTextureFile(where, mm.emissionTexture, scene);
+    }
     index[mesh.material] = static_cast<int>(scene.materials.size());
     scene.materials.push_back(std::move(m));
   }

@@ -30,6 +30,7 @@ struct ModelMaterial {
   std::string metalRoughTexture;  // glTF's metallicRoughnessTexture, "" = none
   std::string normalTexture;      // tangent-space normal map (glTF normalTexture, MTL norm/bump)
   std::string alphaTexture;       // the image whose alpha channel cuts out (glTF: the base colour's)
+  std::string emissionTexture;    // times the emission (glTF emissiveTexture, MTL map_Ke)
 };
 
 struct LoadedModel {

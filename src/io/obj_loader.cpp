@@ -198,6 +198,7 @@ ModelMaterial mapMtl(const tinyobj::material_t& t, const std::filesystem::path& 
     return (tex.is_relative() ? dir / tex : tex).lexically_normal().string();
   };
   if (!t.diffuse_texname.empty()) out.texture = file(t.diffuse_texname);
+  if (!t.emissive_texname.empty()) out.emissionTexture = file(t.emissive_texname);
   // norm, else map_Bump / bump: read as a tangent-space normal map (what exporters
   // write there today), -bm its scale.
   const std::string& normal = t.normal_texname.empty() ? t.bump_texname : t.normal_texname;

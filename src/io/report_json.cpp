@@ -71,7 +71,7 @@ std::string rayTreeToJson(const RayTree& tree, int x, int y) {
   return nlohmann::json({{"pixel", {x, y}}, {"rays", rays}}).dump(2) + "\n";
 }
 
-std::string statsSummary(const RenderStats& s) {
+std::string statsSummary(const RenderStats& s, bool detail) {
   const RayCounts& r = s.rays;
   std::string out = fmt::format(
       "{}: {}x{} spp {} on {} thread{} in {:.2f} s (load {:.2f}, bvh {:.2f}, photons {:.2f}+{:.2f}, "
@@ -91,7 +91,7 @@ std::string statsSummary(const RenderStats& s) {
                        s.cacheRecords, s.cacheCell, s.cacheBytes / 1e6, r.cacheLookups, r.cacheFallbacks,
                        s.cacheLazyCells);
   }
-  if (s.gateMode == "auto") out += fmt::format("  gate: {}\n", s.gateReason);
+  if (detail && s.gateMode == "auto") out += fmt::format("  gate: {}\n", s.gateReason);
   if (r.gateQueries) {
     out += fmt::format("  gate: {} queries, {:.1f}% lit, {:.1f}% shadowed, {:.1f}% mixed; {} shadow rays avoided\n",
                        r.gateQueries, 100.0 * r.gateLit / r.gateQueries,

@@ -104,9 +104,9 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
   out.passes = node.intOr("passes", out.passes, 1, 100000);
   out.alpha = node.floatOr("alpha", out.alpha, Range{0.0, 1.0, true, false});
   out.radius = gatherRadius(node, "radius", out.radius);
-  size_t lookup = node.enumOr("lookup", out.lookup == PhotonLookup::Precomputed,
-                              {"exact", "precomputed"});
-  out.lookup = lookup == 0 ? PhotonLookup::Exact : PhotonLookup::Precomputed;
+  // In PhotonLookup's order.
+  out.lookup = static_cast<PhotonLookup>(
+      node.enumOr("lookup", static_cast<size_t>(out.lookup), {"exact", "precomputed", "auto"}));
   out.lookupCell = node.floatOr("lookup_cell", out.lookupCell, Range{0.05, 8.0, false, false});
 }
 

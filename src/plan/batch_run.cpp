@@ -2,6 +2,7 @@
 // session, which shares scenes and photon stages between jobs; a job's views are
 // rendered from the same maps.
 #include "plan/batch_run.h"
+#include "plan/cpu_report.h"
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
 #include "core/error.h"
@@ -28,7 +29,7 @@ struct PreparedJob {
 }  // namespace
 
 BatchOutcome runBatch(const BatchRequest& req) {
-  Stopwatch clock;
+  const CpuSpan clock;
   BatchOutcome out;
   RenderSession session({req.maxMemoryBytes, req.plan, req.threads, req.phases, {}, req.mapCacheBytes, req.load});
 
@@ -104,10 +105,10 @@ BatchOutcome runBatch(const BatchRequest& req) {
     BatchJobResult r;
     r.name = p.job->name;
     for (const BatchOutput& o : p.job->outputs) r.outputs.push_back(o.path);
-    Stopwatch jobClock;
+    const CpuSpan jobClock;
     auto report = [&](const char* phase) {
       if (!req.progress) return;
-      req.progress({done, prepared.size(), p.job->name, phase, clock.seconds()});
+      req.progress({done, prepared.size(), p.job->name, phase, clock.wallSeconds()});
     };
     if (!p.error.empty()) {
       r.status = "failed: " + p.error;
@@ -145,7 +146,8 @@ BatchOutcome runBatch(const BatchRequest& req) {
       }
     }
     if (r.status.rfind("failed", 0) == 0) ++out.failed;
-    r.seconds = jobClock.seconds();
+    r.cpu = jobClock.timing(session.options().threads);
+    r.seconds = r.cpu.wallSeconds;
     out.jobs.push_back(r);
     ++done;
     report("done");
@@ -154,7 +156,14 @@ BatchOutcome runBatch(const BatchRequest& req) {
   out.photonBuilds = session.photonBuilds();
   out.evictions = session.evictions();
   out.peakCacheBytes = session.peakStageBytes();
-  out.seconds = clock.seconds();
+  std::vector<CpuTiming> rendered;
+  for (const BatchJobResult& j : out.jobs) {
+    if (j.status == "rendered") rendered.push_back(j.cpu);
+  }
+  const std::string contended = contendedNote(rendered, "job");
+  if (!contended.empty()) out.notes.push_back(contended);
+  out.cpu = clock.timing(session.options().threads);
+  out.seconds = out.cpu.wallSeconds;
   return out;
 }
 

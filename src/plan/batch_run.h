@@ -52,6 +52,7 @@ struct BatchJobResult {
   std::string status;   // "rendered", "up to date", "failed: ..."
   std::string reused;   // "scene", "photons", "scene+photons" or "-"
   double seconds = 0.0;
+  CpuTiming cpu;  // the process's CPU time over the same span
   std::vector<std::string> outputs;
 };
 
@@ -61,7 +62,9 @@ struct BatchOutcome {
   size_t sceneBuilds = 0, photonBuilds = 0, photonReuses = 0, evictions = 0;
   uint64_t peakCacheBytes = 0;
   double seconds = 0.0;
-  std::vector<std::string> notes;  // the jobs' load and plan notes, each once
+  CpuTiming cpu;  // over the whole batch
+  // The jobs' load and plan notes, each once; the contended note when rendered jobs had too little CPU.
+  std::vector<std::string> notes;
 };
 
 // Validates every job (InputError naming the job unless keepGoing), then renders.

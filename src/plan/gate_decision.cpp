@@ -3,9 +3,22 @@
 #include "plan/gate_decision.h"
 #include "plan/cost_model.h"
 #include "core/light_sample.h"
+#include <algorithm>
 #include <fmt/format.h>
 
 namespace penumbra {
+
+namespace {
+
+bool answersFor(const Light& l) {
+  return l.type != LightType::Directional && l.type != LightType::Environment && maxComponent(l.radiance()) > 0.0f;
+}
+
+}  // namespace
+
+int gatedLightCount(const Scene& scene) {
+  return static_cast<int>(std::count_if(scene.lights.begin(), scene.lights.end(), answersFor));
+}
 
 GateDecision decideGate(const Scene& scene) {
   using namespace cost;
@@ -15,20 +28,17 @@ GateDecision decideGate(const Scene& scene) {
   // light; directional and environment lights emit no shadow photons, so the gate
   // never answers them.
   double testsPerPoint = 0.0;
-  int gatedLights = 0;
   for (const Light& l : scene.lights) {
-    if (l.type == LightType::Directional || l.type == LightType::Environment || maxComponent(l.radiance()) <= 0.0f)
-      continue;
-    testsPerPoint += lightSampleCount(l, scene.render.lightSamples);
-    ++gatedLights;
+    if (answersFor(l)) testsPerPoint += lightSampleCount(l, scene.render.lightSamples);
   }
+  const int gatedLights = gatedLightCount(scene);
   if (!scene.render.shadows || gatedLights == 0 || ps.shadowPhotons == 0) {
     d.reason = "auto: off: no shadow tests the gate could answer";
     return d;
   }
   // Camera hits bound the shading points from below; reflections add to both sides.
   const double points = double(scene.camera.width) * scene.camera.height * scene.camera.spp;
-  const double lookupNs = ps.lookup == PhotonLookup::Precomputed ? kLookupNs : kExactVoteNs * gatedLights;
+  const double lookupNs = ps.lookup != PhotonLookup::Exact ? kLookupNs : kExactVoteNs * gatedLights;
   d.savedMs = points * testsPerPoint * kShadowRayNs * kAvoidable * 1e-6;
   d.costMs = (double(ps.shadowPhotons) * kShadowPhotonNs + points * lookupNs) * 1e-6;
   d.gate = d.savedMs > d.costMs;

@@ -13,7 +13,12 @@ struct GateDecision {
   std::string reason;    // one line for the summary and --stats
 };
 
-// The shadow-ray, lookup and shadow-photon costs of plan/cost_model.h.
+// The shadow-ray, lookup and shadow-photon costs of plan/cost_model.h. Lookups that
+// are not exact count as precomputed: lookup auto precomputes wherever votes dominate.
 GateDecision decideGate(const Scene& scene);
+
+// Lights whose shadow tests the gate can answer: lit ones that emit shadow photons
+// (not directional, not the environment).
+int gatedLightCount(const Scene& scene);
 
 }  // namespace penumbra

@@ -2,6 +2,7 @@
 // prepare it (BVH, light split, pilot), build its photon maps, render its frame with
 // every pass, write the image. Every step is the render session's (render_session.h).
 #include "plan/pipeline.h"
+#include "plan/cpu_report.h"
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
 #include "io/image_io.h"
@@ -9,7 +10,7 @@
 namespace penumbra {
 
 RenderResult runRender(const RenderRequest& request) {
-  Stopwatch total;
+  const CpuSpan total;
   RenderSession session(
       {request.maxMemoryBytes, request.plan, request.threads, request.progress, request.notice, kStageCacheBytes,
        request.load});
@@ -39,8 +40,11 @@ RenderResult runRender(const RenderRequest& request) {
                renderMetadata(planned.scene, planned.plan, stats, planned.viewName, request.outputPath), request.display);
     stats.time.write = phase.seconds();
   }
-  stats.time.total = total.seconds();
+  stats.cpu = total.timing(stats.threads);
+  stats.time.total = stats.cpu.wallSeconds;
   stats.peakRssBytes = peakRssBytes();
+  const std::string contended = contendedNote({stats.cpu}, "render");
+  if (!contended.empty()) result.notes.push_back(contended);
   return result;
 }
 

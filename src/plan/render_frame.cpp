@@ -128,7 +128,9 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
                            "using the ambient term");
   }
   const bool needsLight = aov != Aov::Depth && aov != Aov::Normal;
-  const int passes = options.tracePixel ? 1 : model.passes(scene, aov);
+  // --trace-pixel traces the first sample of the render's own sequence, in one pass.
+  ctx.passes = static_cast<uint32_t>(model.passes(scene, aov));
+  const int passes = options.tracePixel ? 1 : static_cast<int>(ctx.passes);
   stats.passes = passes;
 
   LookupCache cache;

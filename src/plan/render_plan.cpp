@@ -2,12 +2,14 @@
 // contribute, with the reason in words; then the user's --enable / --disable.
 #include "plan/render_plan.h"
 #include "plan/gate_decision.h"
+#include "plan/lookup_decision.h"
 #include "plan/transport_model.h"
 #include "core/bsdf.h"
 #include "core/error.h"
 #include "core/light_sample.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
+#include "emit/caustic_aim.h"
 #include "emit/light_reach.h"
 #include <algorithm>
 #include <fmt/format.h>
@@ -112,9 +114,20 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
   plan[Pass::Packets] = scene.render.packets ? on("render.packets is true (the same image, faster)")
                                              : off("render.packets is false");
   const bool maps = gate.on || plan[photonPass(model.indirectLookup(ps).map)].on;
-  plan[Pass::Precompute] = ps.lookup != PhotonLookup::Precomputed ? off("photons.lookup is exact")
-                           : !maps ? off("no gate or indirect map to precompute")
-                                   : on("photons.lookup is precomputed");
+  PassDecision& precompute = plan[Pass::Precompute];
+  if (ps.lookup == PhotonLookup::Exact) {
+    precompute = off("photons.lookup is exact");
+  } else if (!maps) {
+    precompute = off("no gate or indirect map to precompute");
+  } else if (ps.lookup == PhotonLookup::Precomputed) {
+    precompute = on("photons.lookup is precomputed");
+  } else {
+    const IndirectLookup gather = model.indirectLookup(ps);
+    const bool gathers = plan[photonPass(gather.map)].on;
+    const LookupDecision d = decideLookup(scene, gate.on ? gatedLightCount(scene) : 0, gather.k,
+                                          gathers ? double(budgets[gather.map]) : 0.0);
+    precompute = d.precomputed ? on(d.reason) : off(d.reason);
+  }
 }
 
 }  // namespace
@@ -188,7 +201,7 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
   };
   std::vector<Target> targets = {
       {Pass::GlobalPhotons, ReachRule::Scattering, "a surface that scatters photons"},
-      {Pass::CausticPhotons, ReachRule::Specular, "a specular surface (area lights; point and directional lights aim)"}};
+      {Pass::CausticPhotons, ReachRule::Specular, "a specular surface (spots and environments; other lights aim)"}};
   // Not the classic estimator: it averages photon colours (not a density), so each
   // photon must carry its light's colour at the weight the power split gives it.
   if (density) targets.push_back({Pass::IndirectPhotons, ReachRule::Bouncing, "a surface that bounces photons (p_r or p_t > 0)"});
@@ -201,7 +214,7 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
     int none = 0, emitting = 0;
     std::vector<std::string> shares;
     for (size_t l = 0; l < scene.lights.size(); ++l) {
-      const bool aimed = t.pass == Pass::CausticPhotons && isDeltaLight(scene.lights[l]);
+      const bool aimed = t.pass == Pass::CausticPhotons && aimsCausticPhotons(scene.lights[l]);
       if (aimed || !(maxComponent(scene.lights[l].radiance()) > 0.0f)) continue;
       ++emitting;
       none += d.reach[l] == 0.0f;

@@ -174,6 +174,7 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
     if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
   }
   const TraceScene& tracer = *assets(lead).tracer;
+  const CpuSpan emitting;
   Emission emission = [&] {
     const PhaseGuard phase(options_.progress);
     return emitPhotonsFor(lead.scene, tracer, needs, top, 0, smaller, beginPhase(options_.progress, "photons"));
@@ -181,10 +182,11 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
   ++emissions_;
   std::stable_sort(budgets.begin(), budgets.end(),
                    [](const MapCounts& a, const MapCounts& b) { return a.total() > b.total(); });
-  double shared = emission.seconds;
+  // The shared emission is charged to the first budget, in wall and CPU time alike.
+  double shared = emitting.wallSeconds(), sharedCpu = emitting.cpuSeconds();
   for (const MapCounts& b : budgets) {
     BudgetStage s;
-    Stopwatch build;
+    const CpuSpan build;
     {
       const PhaseGuard phase(options_.progress);
       if (!buildStage(emission, b, false, s.stage, beginPhase(options_.progress, "maps"))) {
@@ -196,8 +198,9 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
       }
     }
     ++photonBuilds_;
-    s.seconds = build.seconds() + shared;
-    shared = 0.0;
+    s.cpuSeconds = build.cpuSeconds() + sharedCpu;
+    s.seconds = build.wallSeconds() + shared;
+    shared = sharedCpu = 0.0;
     s.prefixOf = s.stage.fromPrefix ? emission.budgets.total() : 0;
     for (const PlannedJob* j : jobs) {
       if (planBudgets(j->plan) == b) s.jobs.push_back(j);

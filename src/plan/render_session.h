@@ -3,6 +3,7 @@
 // scene (BVH, textures) and the photon stages (LRU under a byte cap), and renders
 // frames from them; the commands only choose what to render and in which order.
 #pragma once
+#include "core/cpu_time.h"
 #include "core/progress.h"
 #include <tbb/global_control.h>
 #include "plan/job_admission.h"
@@ -71,6 +72,7 @@ struct BudgetStage {
   // What the maps cost before the first frame: their build, and for the first
   // budget also the emission they share.
   double seconds = 0.0;
+  double cpuSeconds = 0.0;  // the process's CPU time over the same span
   uint64_t prefixOf = 0;  // > 0: cut out of an emission of this many photons
 };
 

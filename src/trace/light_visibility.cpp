@@ -225,7 +225,7 @@ void tracePrimaryShadows(const ShadingContext& ctx, uint32_t lights, const Ray* 
     for (int i = 0; i < n; ++i) {
       if (!hits[i].valid()) continue;
       const Material& m = scene.materials[ctx.tracer.materialOf(hits[i])];
-      if (maxComponent(m.emission) > 0.0f) continue;  // an emitter only glows
+      if (maxComponent(m.emission) > 0.0f && !m.emitterShades) continue;  // a light's surface only glows
       if (!ctx.choices.integrator->shadesDirect(scene, m)) continue;
       // The record the integrators build (position, normals and error bounds do not
       // depend on the uv fields).

@@ -85,12 +85,13 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   }
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
-  const bool textured = m.texture >= 0 || m.metalRoughTexture >= 0 || m.normalTexture >= 0;
+  const bool textured = readsUv(m);
   SurfaceRecord s = ctx.tracer.surface(ray, hit, textured ? kSurfaceAll : kSurfaceShadingNormal);
-  if (maxComponent(m.emission) > 0.0f) {
-    // An area light seen by the camera or through mirrors and glass (diffuse
-    // surfaces sample it directly instead): part of the direct term.
-    Color glow = (terms & kTermEmitters) && (s.frontFace || m.twoSidedEmission) ? m.emission : Color(0.0f);
+  const float footprint = hit.t * ctx.pixelSpread;
+  // An area light seen by the camera or through mirrors and glass (diffuse surfaces
+  // sample it directly instead): part of the direct term.
+  const Color glow = emitterGlow(ctx, m, s, footprint, !(terms & kTermEmitters));
+  if (maxComponent(m.emission) > 0.0f && !m.emitterShades) {
     if (recIndex >= 0) endRecord(ts, recIndex, hit, s, m, throughput * glow, "emitter");
     return glow;
   }
@@ -99,7 +100,6 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   if (textured && ctx.textures) {
     // A texture is the diffuse albedo's (base colour's) map: multiplied in, or added
     // and kept <= 1; a metallic-roughness map scales those factors.
-    const float footprint = hit.t * ctx.pixelSpread;
     applyNormalMap(m, *ctx.textures, ctx.tracer, hit, footprint, ray.dir, s);
     if (m.texture >= 0) {
       Color texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
@@ -118,7 +118,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   std::string note;
   ts.currentRecord = recIndex;
 
-  Color color(0.0f);
+  Color color = glow;  // an emitter that also reflects (glTF's model) adds its glow
   if (hasSmoothLobe(bsdf)) {
     CachedAnswer storage;
     const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);

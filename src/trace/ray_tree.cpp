@@ -1,7 +1,9 @@
 // Helpers both integrators share: counting rays by kind, recording the ray tree
-// of one pixel (--trace-pixel, never on the render's hot path), mirror directions.
+// of one pixel (--trace-pixel, never on the render's hot path), mirror directions and
+// the glow of emitting surfaces.
 #include "core/optics.h"
 #include "trace/shading.h"
+#include "trace/texture_lookup.h"
 
 namespace penumbra {
 namespace {
@@ -51,6 +53,14 @@ void endRecord(ThreadState& ts, int index, const Hit& hit, const SurfaceRecord& 
 Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s) {
   Vec3 r = reflect(dir, s.ns);
   return glm::dot(r, s.ng) > 0.0f ? r : reflect(dir, s.ng);
+}
+
+Color emitterGlow(const ShadingContext& ctx, const Material& m, const SurfaceRecord& s, float footprint,
+                  bool lightsSampled) {
+  if (!(maxComponent(m.emission) > 0.0f) || (lightsSampled && m.light >= 0)) return Color(0.0f);
+  if (!s.frontFace && !m.twoSidedEmission) return Color(0.0f);
+  if (m.emissionTexture < 0 || !ctx.textures) return m.emission;
+  return m.emission * ctx.textures->lookup(m.emissionTexture, s, footprint, m.uvTransform());
 }
 
 }  // namespace penumbra

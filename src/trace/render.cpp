@@ -65,6 +65,23 @@ void storePixel(const glm::dvec3& sum, int counted, Aov aov, int spp, size_t ind
   if (geometric(aov)) image.coverage[index] = static_cast<float>(counted) / static_cast<float>(spp);
 }
 
+// Camera sample `s` of this pass: its random stream and its offset in the pixel. It is
+// sample pass x spp + s of the frame's passes x spp, stratified over them all, so N
+// passes of spp samples place their rays as one pass of N x spp does (and one pass
+// keeps the pixel centre at spp 1).
+struct CameraSample {
+  uint64_t key;
+  Vec2 offset;
+};
+CameraSample cameraSample(const ShadingContext& ctx, uint64_t pixel, int s) {
+  const uint64_t spp = static_cast<uint64_t>(ctx.scene.camera.spp);
+  const uint64_t index = ctx.pass * spp + static_cast<uint64_t>(s);
+  const uint64_t key = hashKey(ctx.scene.render.seed, pixel, index);
+  Rng rng(key);
+  const Vec2 offset = stratified2D(static_cast<int>(index), static_cast<int>(ctx.passes * spp), rng);
+  return {key, offset};
+}
+
 // The packet path's per-thread buffers, sized for one tile on first use.
 struct TileBuffers {
   std::vector<glm::ivec2> pixels;
@@ -97,16 +114,12 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
       for (int y = by; y < std::min(by + 4, y1); ++y)
         for (int x = bx; x < std::min(bx + 4, x1); ++x) b.pixels[static_cast<size_t>(n++)] = {x, y};
   for (int i = 0; i < n; ++i) { b.sums[i] = glm::dvec3(0.0); b.counted[i] = 0; }
-  const uint64_t seed = ctx.scene.render.seed;
-  const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
   for (int s = 0; s < cam.spp; ++s) {
     for (int i = 0; i < n; ++i) {
       const glm::ivec2 p = b.pixels[i];
-      const uint64_t pixel = static_cast<uint64_t>(p.y) * cam.width + p.x;
-      b.keys[i] = hashKey(seed, pixel, first + static_cast<uint64_t>(s));
-      Rng rng(b.keys[i]);
-      const Vec2 off = stratified2D(s, cam.spp, rng);
-      b.rays[i] = camera.generate(p.x + off.x, p.y + off.y);
+      const CameraSample cs = cameraSample(ctx, static_cast<uint64_t>(p.y) * cam.width + p.x, s);
+      b.keys[i] = cs.key;
+      b.rays[i] = camera.generate(p.x + cs.offset.x, p.y + cs.offset.y);
     }
     ctx.tracer.intersectPacket(b.rays.data(), n, b.hits.data());
     tracePrimaryShadows(ctx, shadowLights, b.rays.data(), b.hits.data(), n, b.known.data(),
@@ -139,7 +152,6 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   const int tile = options.tileSize;
   const int tilesX = (cam.width + tile - 1) / tile, tilesY = (cam.height + tile - 1) / tile;
   const int numTiles = tilesX * tilesY;
-  const uint64_t seed = ctx.scene.render.seed;
   tbb::enumerable_thread_specific<ThreadState> states;
   tbb::enumerable_thread_specific<TileBuffers> buffers;
   const bool packets = ctx.choices.packets;
@@ -160,13 +172,10 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
             uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
             glm::dvec3 sum(0.0);  // double: many finite samples near float's top cannot overflow
             int counted = 0;
-            // A progressive pass continues the sample sequence where earlier passes stopped.
-            const uint64_t first = static_cast<uint64_t>(ctx.pass) * cam.spp;
             for (int s = 0; s < cam.spp; ++s) {
-              Rng rng(hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
-              Vec2 off = stratified2D(s, cam.spp, rng);
-              beginSample(ts, hashKey(seed, pixel, first + static_cast<uint64_t>(s)));
-              Color c = shadeSample(ctx, camera.generate(x + off.x, y + off.y), options.aov, ts);
+              const CameraSample cs = cameraSample(ctx, pixel, s);
+              beginSample(ts, cs.key);
+              Color c = shadeSample(ctx, camera.generate(x + cs.offset.x, y + cs.offset.y), options.aov, ts);
               addSample(c, options.aov, sum, counted, ts);
             }
             storePixel(sum, counted, options.aov, cam.spp, static_cast<size_t>(pixel), image);
@@ -195,12 +204,10 @@ RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
   RayTree tree;
   ThreadState ts;
   ts.recorder = &tree;
-  uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
-  Rng rng(hashKey(ctx.scene.render.seed, pixel, 0));
-  Vec2 off = stratified2D(0, cam.spp, rng);
-  beginSample(ts, hashKey(ctx.scene.render.seed, pixel, 0));
+  const CameraSample cs = cameraSample(ctx, static_cast<uint64_t>(y) * cam.width + x, 0);
+  beginSample(ts, cs.key);
   CameraRays camera(cam);
-  Ray ray = camera.generate(x + off.x, y + off.y);
+  Ray ray = camera.generate(x + cs.offset.x, y + cs.offset.y);
   ctx.choices.integrator->tree(ctx, ray, ts);
   return tree;
 }

@@ -50,6 +50,7 @@ struct ShadingContext {
   const IndirectPhotonMap* globalMap = nullptr;
   float causticRadius = 0.0f, globalRadius = 0.0f;
   uint32_t pass = 0;  // progressive pass: sample streams continue after earlier passes'
+  uint32_t passes = 1;  // of the frame: camera samples are stratified over passes x spp
   float classicScale = 1.0f;  // turns stored photon flux back into photon colour
   float pixelSpread = 0.0f;   // radians per pixel, for texture filter widths
   bool hasGlass = false;      // some material is transparent (GlassShadows says what it does)
@@ -109,6 +110,18 @@ int beginRecord(ThreadState& ts, RayKind kind, const Ray& ray, int depth, const 
 void endRecord(ThreadState& ts, int index, const Hit& hit, const SurfaceRecord& s,
                const Material& m, const Color& contribution, const std::string& note);
 Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s);
+
+// Whether shading this material reads the hit's uv (some texture of it).
+inline bool readsUv(const Material& m) {
+  return m.texture >= 0 || m.metalRoughTexture >= 0 || m.normalTexture >= 0 || m.emissionTexture >= 0;
+}
+
+// What an emitting surface sends back along a ray: its emission (times its emissive
+// texture) on its emitting side. A light's glow belongs to the direct term, which a
+// ray whose lights are sampled leaves out (`lightsSampled`); a decorative emitter,
+// which no light sampling covers, glows for every ray.
+Color emitterGlow(const ShadingContext& ctx, const Material& m, const SurfaceRecord& s, float footprint,
+                  bool lightsSampled);
 
 
 }  // namespace penumbra

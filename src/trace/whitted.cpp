@@ -73,7 +73,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   if (!found) return finish(missRadiance(ctx.scene, ray.dir), [](RayRecord&) {});
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
-  const bool textured = m.texture >= 0 || m.metalRoughTexture >= 0 || m.normalTexture >= 0;
+  const bool textured = readsUv(m);
   SurfaceRecord s = ctx.tracer.surface(ray, hit, textured ? kSurfaceAll : kSurfaceShadingNormal);
   auto recordHit = [&](RayRecord& r) {
     r.hit = true;
@@ -82,11 +82,11 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
     r.material = m.name;
     r.entering = s.frontFace;
   };
-  if (maxComponent(m.emission) > 0.0f) {  // an area light's surface: it only glows
-    return finish(s.frontFace || m.twoSidedEmission ? m.emission : Color(0.0f), recordHit);
-  }
   Vec3 toEye = -ray.dir;
   float footprint = cone + hit.t * ctx.pixelSpread;
+  // Whitted rays never sample a light's surface, so every ray sees its glow.
+  const Color glow = emitterGlow(ctx, m, s, footprint, false);
+  if (maxComponent(m.emission) > 0.0f && !m.emitterShades) return finish(glow, recordHit);  // a light's surface
 
   if (ctx.textures) applyNormalMap(m, *ctx.textures, ctx.tracer, hit, footprint, ray.dir, s);
   Color texel(1.0f);
@@ -101,7 +101,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   // pointer after children may have grown the vector, never hold it across.
   RayRecord scratchRec;
   ts.currentRecord = recIndex;
-  Color color = localShading(ctx, s, m, bsdf, toEye, texel, ts, recIndex >= 0 ? &scratchRec : nullptr);
+  Color color = glow + localShading(ctx, s, m, bsdf, toEye, texel, ts, recIndex >= 0 ? &scratchRec : nullptr);
 
   const RenderSettings& rs = ctx.scene.render;
   bool deeper = depth < rs.maxDepth;

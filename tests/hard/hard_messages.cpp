@@ -43,6 +43,7 @@ TEST(HardMessages, ContradictingGateFlagsAreRefusedByEveryCommand) {
     expectBadInput(runCli("plan " + scene + " " + f), says, "plan " + f);
     expectBadInput(runCli("sweep " + scene + " --spp 1 -q -o " + out + " " + f), says, "sweep " + f);
     expectBadInput(runCli("batch " + scene + " -q -o " + out + " " + f), says, "batch " + f);
+    expectBadInput(runCli("bench " + scene + " -q --repeat 1 --json " + out + ".json " + f), says, "bench " + f);
   }
   const CliResult plan = runCli("plan " + scene + " --gate off");
   EXPECT_EQ(plan.exitCode, 0) << plan.err;
@@ -55,7 +56,8 @@ TEST(HardMessages, EveryCommandRefusesASetValueThatIsNotUtf8) {
   const std::string out = quote((dir / "o").string());
   const std::string latin1 = " --set 'name=\"caf\xe9\"'";  // Latin-1, not UTF-8
   for (const std::string& cmd : {"render " + scene + " -q -o " + out + ".png", "plan " + scene, "check " + scene,
-                                 "sweep " + scene + " --spp 1 -q -o " + out, "batch " + scene + " -q -o " + out}) {
+                                 "sweep " + scene + " --spp 1 -q -o " + out, "batch " + scene + " -q -o " + out,
+                                 "bench " + scene + " -q --repeat 1 --json " + out + ".json"}) {
     expectBadInput(runCli(cmd + latin1), "not valid UTF-8", cmd);
   }
 }
@@ -67,7 +69,7 @@ TEST(HardMessages, EachOptionsErrorNamesThatOption) {
                  "--map-cache: expected a size", "--map-cache abc");
   // An option of another command says whose it is.
   const CliResult r = runCli("plan " + scene + " --threads 2");
-  expectBadInput(r, "--threads is an option of render, sweep and batch", "plan --threads");
+  expectBadInput(r, "--threads is an option of render, sweep, batch and bench", "plan --threads");
 }
 
 TEST(HardMessages, StatsDashGoesToStdout) {
