@@ -150,6 +150,18 @@ struct TriangleMesh {
   int material = 0;
 };
 
+// Embree reads each vertex with a 16-byte load, 4 bytes past the last one's end. The
+// tracer hands a mesh's positions to Embree without copying them only when their
+// storage reaches that far (capacity above size): loaders leave it so (padVertices).
+inline bool hasVertexPadding(const std::vector<Vec3>& positions) {
+  return positions.capacity() > positions.size();
+}
+inline void padVertices(std::vector<Vec3>& positions) {
+  if (positions.capacity() == positions.size()) positions.reserve(positions.size() + 1);
+  positions.push_back(Vec3(0.0f));  // the padding's bytes defined, then left outside the size
+  positions.pop_back();
+}
+
 struct Texture {
   std::string path;  // absolute, resolved against the scene file's folder
   bool data = false;  // values, not colours: never decoded from sRGB (metallic-roughness)

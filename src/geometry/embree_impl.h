@@ -30,6 +30,7 @@ struct TraceScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   std::string embreeError;  // first error Embree reported, if any (its error callback writes here)
+  bool compact = false;     // the BVH's leaves index the vertices (BvhLayout::Compact)
   std::vector<AlphaCut> cuts;  // one per cut-out mesh, reserved up front (filters hold pointers)
 
   Impl() = default;

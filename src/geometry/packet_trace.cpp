@@ -1,5 +1,6 @@
 // TraceScene's packet queries: rays in SoA Embree packets (RTCRayHit16/8/4) with
-// valid masks and the coherent flag; each lane answers as the single-ray query would.
+// valid masks and the coherent flag (but for occlusion in a compact BVH); each lane
+// answers as the single-ray query would.
 #include "geometry/trace_scene.h"
 #include "geometry/embree_impl.h"
 #include <algorithm>
@@ -45,16 +46,16 @@ bool fillLane(R& r, int i, const Ray& ray) {
   return true;
 }
 
-RTCIntersectContext coherentContext() {
+RTCIntersectContext packetContext(bool coherent) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   return context;
 }
 
 template <int K>
 void intersectK(RTCScene scene, const Ray* rays, int n, Hit* hits) {
-  RTCIntersectContext context = coherentContext();
+  RTCIntersectContext context = packetContext(true);
   for (int base = 0; base < n; base += K) {
     const int lanes = std::min(K, n - base);
     alignas(64) typename PacketApi<K>::RayHit rh;
@@ -80,8 +81,8 @@ void intersectK(RTCScene scene, const Ray* rays, int n, Hit* hits) {
 }
 
 template <int K>
-void occludedK(RTCScene scene, const Ray* rays, int n, uint8_t* blocked) {
-  RTCIntersectContext context = coherentContext();
+void occludedK(RTCScene scene, const Ray* rays, int n, uint8_t* blocked, bool coherent) {
+  RTCIntersectContext context = packetContext(coherent);
   for (int base = 0; base < n; base += K) {
     const int lanes = std::min(K, n - base);
     alignas(64) typename PacketApi<K>::RayOnly r;
@@ -131,10 +132,13 @@ void TraceScene::intersectPacket(const Ray* rays, int n, Hit* hits) const {
 }
 
 void TraceScene::occludedPacket(const Ray* rays, int n, uint8_t* blocked) const {
+  // Embree's coherent occlusion kernel for robust compact leaves (16 wide: AVX-512)
+  // never returns; the incoherent one answers the same.
+  const bool coherent = !impl_->compact;
   switch (packetWidth_) {
-    case 16: return occludedK<16>(impl_->scene, rays, n, blocked);
-    case 8: return occludedK<8>(impl_->scene, rays, n, blocked);
-    case 4: return occludedK<4>(impl_->scene, rays, n, blocked);
+    case 16: return occludedK<16>(impl_->scene, rays, n, blocked, coherent);
+    case 8: return occludedK<8>(impl_->scene, rays, n, blocked, coherent);
+    case 4: return occludedK<4>(impl_->scene, rays, n, blocked, coherent);
     default:
       for (int i = 0; i < n; ++i) blocked[i] = occluded(rays[i]);
   }

@@ -6,6 +6,7 @@
 #include "geometry/sphere_geometry.h"
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -21,24 +22,29 @@ void onEmbreeError(void* userPtr, RTCError code, const char* message) {
 
 RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh, const AlphaCut* cut) {
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-  for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    vertices[3 * i + 0] = mesh.positions[i].x;
-    vertices[3 * i + 1] = mesh.positions[i].y;
-    vertices[3 * i + 2] = mesh.positions[i].z;
+  // The scene outlives the tracer and never changes: Embree reads its arrays in place,
+  // the vertices only where their storage has the padding its 16-byte loads read.
+  static_assert(sizeof(Vec3) == 3 * sizeof(float) && sizeof(mesh.triangles[0]) == 3 * sizeof(unsigned));
+  if (hasVertexPadding(mesh.positions)) {
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, mesh.positions.data(), 0,
+                               sizeof(Vec3), mesh.positions.size());
+  } else {
+    auto* vertices = static_cast<Vec3*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                sizeof(Vec3), mesh.positions.size()));
+    std::copy(mesh.positions.begin(), mesh.positions.end(), vertices);
   }
-  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
-  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
-    for (int k = 0; k < 3; ++k) indices[3 * i + k] = mesh.triangles[i][k];
-  }
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.triangles.data(), 0,
+                             sizeof(mesh.triangles[0]), mesh.triangles.size());
   if (cut) attachAlphaFilter(geom, cut);
   rtcCommitGeometry(geom);
   return geom;
 }
 
 }  // namespace
+
+bool compactBvh(size_t triangles, BvhLayout layout) {
+  return layout == BvhLayout::Compact || (layout == BvhLayout::Auto && triangles >= kCompactBvhTriangles);
+}
 
 Vec2 sphericalUvPerWorld(float radius) {
   // u spans the equator (2 pi r) and v a meridian (pi r).
@@ -74,21 +80,22 @@ void TraceScene::computeFrames(const TriangleMesh& mesh, TriangleFrame* frames) 
   });
 }
 
-TraceScene::TraceScene(const Scene& scene, bool robust) : scene_(scene), impl_(std::make_unique<Impl>()) {
+TraceScene::TraceScene(const Scene& scene, bool robust, BvhLayout layout) : scene_(scene), impl_(std::make_unique<Impl>()) {
   // impl_ owns the handles and releases them on every exit, the throws below included.
   RTCDevice device = impl_->device = rtcNewDevice(nullptr);
   if (!device) throw std::runtime_error("cannot create Embree device");
   rtcSetDeviceErrorFunction(device, onEmbreeError, &impl_->embreeError);
   RTCScene rtcScene = impl_->scene = rtcNewScene(device);
-  if (robust) rtcSetSceneFlags(rtcScene, RTC_SCENE_FLAG_ROBUST);
+  size_t triangles = 0;
+  for (const TriangleMesh& mesh : scene.meshes) triangles += mesh.triangles.size();
+  const bool compact = impl_->compact = compactBvh(triangles, layout);
+  rtcSetSceneFlags(rtcScene, RTCSceneFlags((robust ? RTC_SCENE_FLAG_ROBUST : 0) | (compact ? RTC_SCENE_FLAG_COMPACT : 0)));
   nativePacketWidth_ = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) ? 16
                        : rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) ? 8
                        : rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED) ? 4
                                                                                                     : 1;
   packetWidth_ = nativePacketWidth_;
 
-  size_t triangles = 0;
-  for (const TriangleMesh& mesh : scene.meshes) triangles += mesh.triangles.size();
   // Cut-out meshes get a filter reading their AlphaCut; the vector never grows past
   // this, so the pointers Embree holds stay valid.
   impl_->cuts.reserve(scene.meshes.size());

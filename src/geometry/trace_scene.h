@@ -45,12 +45,21 @@ inline Vec3 spawnOrigin(const SurfaceRecord& s, const Vec3& dir) {
   return offsetRayOrigin(s.position, s.ng, s.error, dir);
 }
 
+// How Embree lays out the BVH's leaves. Fast: each leaf holds its triangles' vertices
+// (Embree's default). Compact (RTC_SCENE_FLAG_COMPACT): indices into the meshes' own
+// vertices, about half the BVH's bytes for slower rays (docs/PERFORMANCE.md, Memory).
+// Auto: compact from kCompactBvhTriangles triangles on, where the default layout
+// would outweigh the rest of a render's memory.
+enum class BvhLayout { Auto, Fast, Compact };
+constexpr size_t kCompactBvhTriangles = 1000000;
+bool compactBvh(size_t triangles, BvhLayout layout = BvhLayout::Auto);
+
 class TraceScene {
  public:
   // robust: Embree's watertight mode (RTC_SCENE_FLAG_ROBUST). Without it, rays through
   // a shared edge of two triangles can slip between them (holes in a scaled room);
   // docs/PERFORMANCE.md measures what it costs. Off only for that measurement.
-  explicit TraceScene(const Scene& scene, bool robust = true);
+  explicit TraceScene(const Scene& scene, bool robust = true, BvhLayout layout = BvhLayout::Auto);
   ~TraceScene();
   TraceScene(const TraceScene&) = delete;
   TraceScene& operator=(const TraceScene&) = delete;

@@ -134,7 +134,7 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
   mesh.name = name;
   mesh.material = prim.material;
   const glm::dmat3 linear(world), normalMatrix = glm::transpose(glm::inverse(linear));
-  mesh.positions.reserve(count);
+  mesh.positions.reserve(count + 1);  // padVertices: no reallocation
   forEachElement(posSpan, where + ".attributes.POSITION", path, false, [&](size_t, const double* p) {
     mesh.positions.push_back(Vec3(world * glm::dvec4(p[0], p[1], p[2], 1.0)));
     return true;

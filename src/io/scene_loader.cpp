@@ -106,6 +106,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   readObjects(root, scene);
   if (!modelPath.empty()) addSceneModel(root, model, scene);
   addMissingTangents(scene);  // normal-mapped meshes only
+  for (TriangleMesh& mesh : scene.meshes) padVertices(mesh.positions);  // the BVH reads them in place
   if (scene.lights.size() > 65535) root.fail("at most 65535 lights, the model's included");
   addEmitters(scene);
   addMeshEmitters(scene);

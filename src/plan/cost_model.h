@@ -30,6 +30,7 @@ constexpr double kSpillSlowdown = 0.3;  // extra time per doubling of photon dat
 constexpr double kIndexBytes = 8.25;               // KD index per photon: a 64-bit slot plus its part's nodes
 constexpr double kBvhBytesPerPrimitive = 70.0;     // Embree's default BVH, triangles or spheres
 constexpr double kBvhBuildBytesPerPrimitive = 32.0;  // Embree's build references, at the peak
+constexpr double kCompactBvhBytesPerPrimitive = 36.0;  // the compact layout (trace_scene.h), its build's peak too
 constexpr double kFrameBytesPerTriangle = 20.0;    // the tracer's geometric normal and error bounds
 constexpr double kCacheBytesPerRecord = 70.0;      // a lookup-cache slot, its verdicts and lazy-cell table
 constexpr double kBaseBytes = 140.0 * 1024 * 1024; // the process before any scene data

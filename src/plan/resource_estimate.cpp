@@ -3,6 +3,7 @@
 #include "plan/resource_estimate.h"
 #include "plan/transport_model.h"
 #include "plan/cost_model.h"
+#include "geometry/trace_scene.h"
 #include "core/light_sample.h"
 #include "core/photon.h"
 #include <OpenImageIO/imageio.h>
@@ -146,17 +147,23 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const double pixels = double(scene.camera.width) * scene.camera.height;
   // The frame, a second one to sum progressive passes, and the writer's copy.
   if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * (p.passes > 1 ? 2 : 1) + 12 + 6);
-  double primitives = scene.spheres.size(), meshBytes = 0.0, embreeCopyBytes = 0.0;
+  double meshBytes = 0.0, tracerBytes = 0.0;
+  size_t triangles = 0;
   for (const TriangleMesh& m : scene.meshes) {
-    primitives += m.triangles.size();
+    triangles += m.triangles.size();
     meshBytes += m.positions.size() * 12.0 + m.normals.size() * 12.0 + m.uvs.size() * 8.0 +
                  m.tangents.size() * 16.0 + m.triangles.size() * 12.0;
-    embreeCopyBytes += m.positions.size() * 12.0 + m.triangles.size() * (12.0 + kFrameBytesPerTriangle);
+    // Embree reads the indices in place, and the vertices too where they are padded.
+    tracerBytes += (hasVertexPadding(m.positions) ? 0.0 : m.positions.size() * 12.0) +
+                   m.triangles.size() * kFrameBytesPerTriangle;
   }
-  // Embree's BVH and the references its build holds at the peak, its own copies of
-  // the vertex and index buffers, and the tracer's per-triangle frames: every mesh
-  // object counts in full, instances of one file too (each is loaded as a copy).
-  e.bvhBytes = primitives * (kBvhBytesPerPrimitive + kBvhBuildBytesPerPrimitive) + embreeCopyBytes;
+  // Embree's BVH and the references its build holds at the peak, in the layout the
+  // tracer picks, a copy of unpadded vertices, and the tracer's per-triangle frames:
+  // every mesh object counts in full, instances of one file too (each is a copy).
+  const double primitives = double(scene.spheres.size()) + double(triangles);
+  e.bvhBytes = primitives * (compactBvh(triangles) ? kCompactBvhBytesPerPrimitive
+                                                   : kBvhBytesPerPrimitive + kBvhBuildBytesPerPrimitive) +
+               tracerBytes;
   // Alpha masks are decoded bytes the scene holds (one per texel), beside the cache.
   double maskBytes = 0.0;
   for (const AlphaMask& mask : scene.alphaMasks) maskBytes += double(mask.bytes());
