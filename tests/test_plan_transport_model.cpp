@@ -84,7 +84,11 @@ TEST(TransportModel, ProgressivePassesEmitTheGatePhotonsOnceAndNoOtherModelsMap)
   scene.photons.passes = 4;
   EXPECT_EQ(physicalTransport().passes(scene, Aov::Beauty), 4);
   EXPECT_EQ(physicalTransport().passes(scene, Aov::Depth), 1);
-  EXPECT_EQ(classicTransport().passes(scene, Aov::Beauty), 1);
+  // Classic passes take new camera samples over pass 0's maps.
+  EXPECT_EQ(classicTransport().passes(scene, Aov::Beauty), 4);
+  EXPECT_EQ(classicTransport().passes(scene, Aov::Depth), 1);
+  EXPECT_TRUE(physicalTransport().freshPhotonsEachPass());
+  EXPECT_FALSE(classicTransport().freshPhotonsEachPass());
 }
 
 TEST(TransportModel, TheFrameShadesWithTheModelsIntegrator) {

@@ -25,6 +25,7 @@ struct BatchCommand::Options {
   CLI::App* command = nullptr;
   std::vector<std::string> inputs, overrides;
   PlanArgs plan;
+  RenderBudget budget;  // --time-limit, --target-error: every job's
   std::string out, views, format = "png", shard, listShard, mapCache = "4G", maxMemory;
   int threads = 0;
   bool force = false, keepGoing = false, quiet = false;
@@ -48,6 +49,7 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
   c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a job estimated to need more, e.g. 8G (default: the memory available)");
   addPlanOptions(*c, o.plan);
+  addBudgetOptions(*c, o.budget);
   c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 }
 
@@ -97,6 +99,11 @@ int BatchCommand::run() {
     if (o.out.empty()) throw InputError("batch: -o DIR is required when scene files are given directly");
     std::filesystem::create_directories(o.out);
     req.jobs = jobsForScenes(o.inputs, o.out, o.overrides, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
+  }
+  // The command line's budget wins over a job's own, as its gate does.
+  for (BatchJob& j : req.jobs) {
+    if (o.budget.seconds > 0.0) j.budget.seconds = o.budget.seconds;
+    if (o.budget.targetError > 0.0) j.budget.targetError = o.budget.targetError;
   }
   if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
   const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;

@@ -108,8 +108,18 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
     const json& node = doc["jobs"][j];
     if (!node.is_object()) fail(path, where, "must be an object");
     for (const auto& [key, v] : node.items()) {
-      static const std::set<std::string> known = {"name", "scene", "scenes", "set", "views", "output", "orbit"};
-      if (!known.count(key)) fail(path, where + "." + key, "unknown key (known: name, scene, scenes, set, views, output, orbit)");
+      static const std::set<std::string> known = {"name",   "scene", "scenes",     "set",         "views",
+                                                  "output", "orbit", "time_limit", "target_error"};
+      if (!known.count(key)) {
+        fail(path, where + "." + key,
+             "unknown key (known: name, scene, scenes, set, views, output, orbit, time_limit, target_error)");
+      }
+    }
+    RenderBudget budget;
+    for (auto [key, field] : {std::pair{"time_limit", &RenderBudget::seconds}, {"target_error", &RenderBudget::targetError}}) {
+      if (!node.contains(key)) continue;
+      if (!node[key].is_number() || node[key].get<double>() < 0.0) fail(path, where + "." + key, "must be a number >= 0");
+      budget.*field = node[key].get<double>();
     }
     if (node.contains("scene") == node.contains("scenes")) fail(path, where, "needs exactly one of \"scene\" and \"scenes\"");
     if (!node.contains("output") || !node["output"].is_string()) fail(path, where + ".output", "must be a file name pattern");
@@ -136,7 +146,7 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
     for (const std::string& scene : scenes) {
       const std::string stem = given.empty() || scenes.size() > 1 ? fs::path(scene).stem().string() : given;
       if (!node.contains("orbit")) {
-        jobs.push_back({stem, scene, overrides, outputsFor(output, stem, views, path, where), where});
+        jobs.push_back({stem, scene, overrides, outputsFor(output, stem, views, path, where), where, budget});
         continue;
       }
       const json& o = node["orbit"];
@@ -188,6 +198,7 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
         job.overrides.push_back("camera.up=" + vec3(frame.up.x, frame.up.y, frame.up.z));
         job.outputs = outputsFor(replaceAll(output, "{i}", std::to_string(i)), job.name, views, path, where);
         job.where = fmt::format("{} (orbit {})", where, i);
+        job.budget = budget;
         jobs.push_back(std::move(job));
       }
     }

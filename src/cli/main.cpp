@@ -142,13 +142,16 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
   render->add_option("--stats", statsPath, "Write render statistics as JSON to this file (- : stdout)");
-  render->add_option("--aov", req.aov, "What to render: beauty, depth, normal, indirect (default: the scene's render.aov, else beauty)");
+  render->add_option("--aov", req.aov,
+                     "What to render: beauty, depth, normal, indirect, direct, caustic, or error (the beauty's "
+                     "per-pixel standard error) (default: the scene's render.aov, else beauty)");
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-q,--quiet", quiet, "No progress, notes or summary on stderr");
   render->add_flag("-v,--verbose", verbose, "The summary also gives the reasons of automatic decisions (the gate)");
   PlanArgs planArgs;
   addPlanOptions(*render, planArgs);
+  addBudgetOptions(*render, req.budget);
   std::string toneArg;
   render->add_option("--exposure", req.display.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
       ->check(CLI::Range(-64.0, 64.0));

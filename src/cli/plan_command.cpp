@@ -43,6 +43,14 @@ void addPlanOptions(CLI::App& command, PlanArgs& args) {
   addDefaultsOption(command, args.noDefaults);
 }
 
+void addBudgetOptions(CLI::App& command, RenderBudget& budget) {
+  command.add_option("--time-limit", budget.seconds,
+                     "Run progressive passes (at least 2) until this many seconds of the job have passed, then "
+                     "write the image; --stats names the passes done");
+  command.add_option("--target-error", budget.targetError,
+                     "Run progressive passes (at least 2) until the estimated noise RMSE is at most this");
+}
+
 void addDefaultsOption(CLI::App& command, bool& noDefaults) {
   command.add_flag("--no-defaults", noDefaults,
                    "Load a .gltf/.glb scene as it is: no camera framing a model that has none, no neutral sky "

@@ -3,6 +3,7 @@
 // --enable / --disable PASS options that render and plan share.
 #pragma once
 #include "io/scene_loader.h"
+#include "plan/render_budget.h"
 #include "plan/render_plan.h"
 #include <CLI/CLI.hpp>
 #include <string>
@@ -26,6 +27,8 @@ struct PlanArgs {
   std::string gateSetting() const;
 };
 void addPlanOptions(CLI::App& command, PlanArgs& args);
+// --time-limit and --target-error (render, batch and sweep: for each job).
+void addBudgetOptions(CLI::App& command, RenderBudget& budget);
 // --no-defaults alone (check has no plan options).
 void addDefaultsOption(CLI::App& command, bool& noDefaults);
 

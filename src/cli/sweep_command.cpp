@@ -20,6 +20,7 @@ struct SweepCommand::Options {
   std::string scene, out, reference, aov, photons, k, depth, spp;
   std::vector<std::string> vary, overrides;
   PlanArgs plan;
+  RenderBudget budget;  // --time-limit, --target-error: every run's
   std::string maxMemory, metric = "relmse";
   int threads = 0;
   bool force = false, noGateCompare = false, quiet = false;
@@ -45,6 +46,7 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
   c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a run estimated to need more, e.g. 8G (default: the memory available)");
   addPlanOptions(*c, o.plan);
+  addBudgetOptions(*c, o.budget);
   c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 }
 
@@ -80,6 +82,7 @@ int SweepCommand::run() {
   req.compareGate = !o.noGateCompare;
   req.plan = passes;
   req.load = o.plan.load();
+  req.budget = o.budget;
   req.maxMemoryBytes = maxMemory;
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
   req.plotScript = std::filesystem::exists(script) ? script.string() : "";

@@ -31,7 +31,8 @@ const Column kColumns[] = {
     {"gate_queries", &SweepRow::gateQueries}, {"shadow_rays_avoided", &SweepRow::shadowRaysAvoided},
     {"gather_queries", &SweepRow::gatherQueries}, {"photons_emitted", &SweepRow::photonsEmitted},
     {"photons_stored", &SweepRow::photonsStored}, {"rmse", &SweepRow::rmse}, {"rel_mse", &SweepRow::relMse},
-    {"psnr", &SweepRow::psnr}, {"worst1pct_rmse", &SweepRow::worstRmse}, {"gate", &SweepRow::gate},
+    {"psnr", &SweepRow::psnr}, {"worst1pct_rmse", &SweepRow::worstRmse},
+    {"noise_rmse", &SweepRow::noiseRmse}, {"gate", &SweepRow::gate},
     {"ungated_render_s", &SweepRow::ungatedRender}, {"ungated_shadow_rays", &SweepRow::ungatedShadowRays},
     {"gate_rmse", &SweepRow::gateRmse}, {"reused", &SweepRow::reused}, {"image", &SweepRow::image}};
 
@@ -257,7 +258,14 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
                            const SweepTotals& t, SweepMetric metric) {
   std::string md = fmt::format("# Sweep of {}\n\n{} runs. Knobs (`--set` keys they write):\n\n{}\n", scene,
                                rows.size(), knobList(spec));
-  md += fmt::format("**Reference:** {}\n\n", t.referenceNote);
+  md += fmt::format("**Reference:** {}", t.referenceNote);
+  for (const SweepRow& r : rows) {
+    if (!r.reference) continue;
+    md += r.noiseRmse >= 0.0 ? fmt::format(". Its own error estimate, how far it is from converged: ~{:.3g} RMSE of "
+                                           "noise (docs/accuracy.md)", r.noiseRmse)
+                             : ". It has no error estimate of its own (one pass of one sample)";
+  }
+  md += "\n\n";
   md += "**Error:** RMSE, relative MSE (mean of (a-r)^2/(r^2+0.01)) and PSNR (on values clamped to [0,1]) "
         "from OpenImageIO's ImageBufAlgo against the reference; `worst 1%` is the RMSE over the 1% of pixels "
         "with the largest squared error in that run.\n\n"

@@ -23,6 +23,7 @@ struct SweepRow {
   uint64_t gateQueries = 0, shadowRaysAvoided = 0, gatherQueries = 0;
   uint64_t photonsEmitted = 0, photonsStored = 0;
   double rmse = 0, relMse = 0, psnr = 0, worstRmse = 0;
+  double noiseRmse = -1;  // the run's own error estimate without the reference; < 0 unknown
   bool gate = false;
   double ungatedRender = 0, gateRmse = 0;  // gated runs: the same run with every shadow ray cast
   uint64_t ungatedShadowRays = 0;

@@ -90,7 +90,7 @@ class Sweep {
       PlannedRun p;
       p.index = i;
       try {
-        p.job = session_.plan(JobRequest{req_.scenePath, run.overrides, req_.aov, {}, {}});
+        p.job = session_.plan(JobRequest{req_.scenePath, run.overrides, req_.aov, {}, {}, req_.budget});
       } catch (const InputError& e) {
         throw InputError("sweep run '" + run.id + "': " + e.what());
       }
@@ -243,6 +243,7 @@ class Sweep {
     row.relMse = err.relMse;
     row.psnr = err.psnr;
     row.worstRmse = err.worstRmse;
+    row.noiseRmse = st.error.known() ? st.error.noiseRmse : -1.0;
     row.image = "runs/" + run.slug + ".exr";
     const ImageMetadata meta = {{"penumbra:sweep_run", run.id}};
     writeImage((fs::path(req_.outDir) / row.image).string(), result.image, meta);

@@ -7,6 +7,7 @@
 #include "cli/sweep_spec.h"
 #include "core/progress.h"
 #include "io/scene_loader.h"
+#include "plan/render_budget.h"
 #include "plan/render_plan.h"
 #include <functional>
 #include <string>
@@ -32,6 +33,7 @@ struct SweepRequest {
   std::function<void(const std::string& line)> progress;
   ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
   LoadOptions load;                  // --no-defaults, for every run
+  RenderBudget budget;               // --time-limit, --target-error, for every run
 };
 
 struct SweepOutcome {

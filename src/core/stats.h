@@ -2,6 +2,7 @@
 // thread (tbb::enumerable_thread_specific) and add them up afterwards.
 #pragma once
 #include "core/cpu_time.h"
+#include "core/error_estimate.h"
 #include "core/map_kind.h"
 #include <chrono>
 #include <cstdint>
@@ -56,6 +57,9 @@ struct RenderStats {
   RayCounts rays;
   std::string model = "classic";
   int passes = 1;
+  ErrorEstimate error;     // the image's noise (and bias change) without a reference
+  std::string budget;      // --time-limit / --target-error as given; empty: none
+  std::string budgetStop;  // ... and why the passes stopped
   MapCounts emitted, stored;  // photons per map, over every pass
   float causticRadius = 0.0f, globalRadius = 0.0f;  // last pass's, when passes > 1
   uint64_t photonMapBytes = 0;

@@ -18,14 +18,21 @@ inline constexpr std::array<const char*, 6> kViewNames = {"beauty", "depth", "no
 
 inline const char* viewName(Aov aov) { return kViewNames[static_cast<size_t>(aov)]; }
 
-// Parses a view name; throws InputError naming the known views otherwise.
+// The "error" view renders the beauty and writes its per-pixel standard error
+// (core/error_estimate.h) in its place.
+inline constexpr const char* kErrorView = "error";
+inline bool isErrorView(const std::string& name) { return name == kErrorView; }
+
+// Parses a view name (the error view renders the beauty); throws InputError naming
+// the known views otherwise.
 inline Aov parseAov(const std::string& name) {
+  if (isErrorView(name)) return Aov::Beauty;
   std::string known;
   for (size_t i = 0; i < kViewNames.size(); ++i) {
     if (name == kViewNames[i]) return static_cast<Aov>(i);
-    known += (i == 0 ? "" : i + 1 == kViewNames.size() ? " or " : ", ") + std::string(kViewNames[i]);
+    known += (i == 0 ? "" : ", ") + std::string(kViewNames[i]);
   }
-  throw InputError("--aov: unknown view '" + name + "' (use " + known + ")");
+  throw InputError("--aov: unknown view '" + name + "' (use " + known + " or " + kErrorView + ")");
 }
 
 }  // namespace penumbra

@@ -28,6 +28,13 @@ std::string statsToJson(const RenderStats& s) {
                {"refraction", r.refraction}};
   j["model"] = s.model;
   j["passes"] = s.passes;
+  const ErrorEstimate& e = s.error;
+  const char* source = e.source == ErrorSource::Passes ? "passes" : e.source == ErrorSource::Samples ? "samples" : "none";
+  j["error"] = {{"noise_rmse", e.known() ? nlohmann::json(e.noiseRmse) : nlohmann::json(nullptr)},
+                {"source", source}, {"count", e.count},
+                {"bias_rmse", e.biasRmse >= 0.0 ? nlohmann::json(e.biasRmse) : nlohmann::json(nullptr)},
+                {"bias_half", e.biasHalf}, {"text", describeError(e)}};
+  if (!s.budget.empty()) j["budget"] = {{"given", s.budget}, {"stopped", s.budgetStop}, {"passes", s.passes}};
   j["photons"] = {{"final_radius_caustic", s.causticRadius}, {"final_radius_global", s.globalRadius}};
   for (MapKind k : kAllMaps) {
     j["photons"][std::string("emitted_") + mapName(k)] = s.emitted[k];
@@ -80,6 +87,11 @@ std::string statsSummary(const RenderStats& s, bool detail) {
       s.time.load, s.time.buildBvh, s.time.emit, s.time.buildMaps,
       s.cacheRecords ? fmt::format("precompute {:.2f}, ", s.time.precompute) : "", s.time.render,
       r.camera, r.shadow, r.reflection, r.refraction);
+  if (s.error.known()) out += "  error: " + describeError(s.error) + "\n";
+  if (!s.budget.empty()) {
+    out += fmt::format("  budget {}: {} after {} passes (--set photons.passes={} renders the same image)\n", s.budget,
+                       s.budgetStop, s.passes, s.passes);
+  }
   if (r.nonfiniteSamples) {
     out += fmt::format("  warning: {} sample{} came out NaN or infinite and {} dropped (numeric.nonfinite_samples)\n",
                        r.nonfiniteSamples, r.nonfiniteSamples == 1 ? "" : "s",

@@ -62,7 +62,8 @@ void readRender(const JsonNode& node, RenderSettings& out) {
   out.minWeight = node.floatOr("min_weight", out.minWeight, Range::between(0.0, 1.0));
   out.shadows = node.boolOr("shadows", out.shadows);
   // Checked here so a typo fails at load time.
-  const std::vector<std::string> views(kViewNames.begin(), kViewNames.end());
+  std::vector<std::string> views(kViewNames.begin(), kViewNames.end());
+  views.push_back(kErrorView);
   if (node.has("aov")) out.aov = views[node.child("aov").asEnum(views)];
   out.lightSamples = node.intOr("light_samples", out.lightSamples, 1, 1024);
   out.packets = node.boolOr("packets", out.packets);

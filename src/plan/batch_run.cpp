@@ -49,7 +49,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
       }
       if (p.job->outputs.empty()) throw InputError("the job writes no output");
       checkOutputs(outputs, req.extraInputs);  // the jobs file
-      p.views.push_back(session.plan({p.job->scene, p.job->overrides, p.job->outputs.front().view, outputs, {}}));
+      p.views.push_back(session.plan({p.job->scene, p.job->overrides, p.job->outputs.front().view, outputs, {}, p.job->budget}));
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
         p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
       }
@@ -129,11 +129,19 @@ BatchOutcome runBatch(const BatchRequest& req) {
           ++out.photonReuses;
         }
         std::map<std::string, std::vector<std::pair<std::string, Image>>> files;
+        ImageMetadata meta = {{"penumbra:job", p.stamp}, {"penumbra:scene_file", fs::path(p.job->scene).filename().string()}};
         for (size_t v = 0; v < p.views.size(); ++v) {
           RenderResult result = session.frame(p.views[v], stage);
+          // The first view that reads light says its error and, under a budget, its passes.
+          const RenderStats& st = result.stats;
+          if (meta.size() == 2 && st.error.source != ErrorSource::None) {
+            meta.emplace_back("penumbra:error", describeError(st.error));
+            if (!st.budget.empty()) {
+              meta.emplace_back("penumbra:budget", fmt::format("{}: {} after {} passes", st.budget, st.budgetStop, st.passes));
+            }
+          }
           files[p.job->outputs[v].path].push_back({p.views[v].viewName, std::move(result.image)});
         }
-        const ImageMetadata meta = {{"penumbra:job", p.stamp}, {"penumbra:scene_file", fs::path(p.job->scene).filename().string()}};
         for (auto& [path, layers] : files) {
           if (layers.size() == 1) writeImage(path, layers.front().second, meta);
           else writeLayeredExr(path, layers, meta);

@@ -4,6 +4,7 @@
 // byte cap; skips jobs whose outputs are up to date; reports every job.
 #pragma once
 #include "core/progress.h"
+#include "plan/render_budget.h"
 #include "plan/render_session.h"
 #include <functional>
 #include <string>
@@ -22,6 +23,7 @@ struct BatchJob {
   std::vector<std::string> overrides;  // the batch's "set", then the job's, then the orbit's
   std::vector<BatchOutput> outputs;    // one per view
   std::string where;                   // "jobs[2] (orbit 3)": names the job in messages
+  RenderBudget budget;                 // "time_limit", "target_error" or the command line's
 };
 
 // Where a batch is: `done` of `total` jobs finished after `seconds`; `job` in `phase`.

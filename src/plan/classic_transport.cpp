@@ -1,5 +1,6 @@
 // The classic model: the report's Whitted tracer, with the shadow map's gate and
-// the indirect map in place of the ambient term; one frame, no progressive passes.
+// the indirect map in place of the ambient term. Its passes take new camera samples
+// over the same maps (its estimates do not converge with more photons per pass).
 #include "plan/photon_stage.h"
 #include "plan/transport_model.h"
 #include "core/bsdf.h"
@@ -45,7 +46,10 @@ class ClassicTransport final : public TransportModel {
       e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
     }
   }
-  int passes(const Scene&, Aov) const override { return 1; }
+  int passes(const Scene& scene, Aov aov) const override {
+    return aov == Aov::Depth || aov == Aov::Normal ? 1 : std::max(1, scene.photons.passes);
+  }
+  bool freshPhotonsEachPass() const override { return false; }
   IndirectLookup indirectLookup(const PhotonSettings& ps) const override {
     const CachedIndirect kind = ps.estimator == IndirectEstimator::Density ? CachedIndirect::Density
                                                                            : CachedIndirect::Classic;

@@ -76,7 +76,11 @@ ImageMetadata renderMetadata(const Scene& scene, const RenderPlan& plan, const R
                      {"penumbra:scene_file", scene.file},
                      {"penumbra:aov", aov},
                      {"penumbra:model", transportOf(scene).name()},
-                     {"penumbra:settings", summary(scene, plan, stats)}};
+                     {"penumbra:settings", summary(scene, plan, stats)},
+                     {"penumbra:error", describeError(stats.error)}};
+  if (stats.error.known()) m.emplace_back("penumbra:error.noise_rmse", fmt::format("{}", stats.error.noiseRmse));
+  if (stats.error.biasRmse >= 0.0) m.emplace_back("penumbra:error.bias_rmse", fmt::format("{}", stats.error.biasRmse));
+  if (!stats.budget.empty()) m.emplace_back("penumbra:budget", stats.budget + ": " + stats.budgetStop);
   if (isExr(outputPath)) addSettings(scene, plan, stats, m);
   return m;
 }

@@ -11,7 +11,9 @@ namespace penumbra {
 
 PhotonPlan photonPlanOf(const RenderPlan& plan, const Scene& scene, bool tracePixel) {
   const MapCounts b = planBudgets(plan);
-  return {b, tracePixel ? 1 : transportOf(scene).passes(scene, plan.aov)};
+  const TransportModel& model = transportOf(scene);
+  const int passes = tracePixel ? 1 : model.passes(scene, plan.aov);
+  return {b, passes, model.freshPhotonsEachPass() ? passes : 1};
 }
 
 Admission admitJob(const Scene& scene, const RenderPlan& plan, int threads, bool tracePixel,

@@ -56,6 +56,7 @@ class PhysicalTransport final : public TransportModel {
   int passes(const Scene& scene, Aov aov) const override {
     return aov == Aov::Depth || aov == Aov::Normal ? 1 : std::max(1, scene.photons.passes);
   }
+  bool freshPhotonsEachPass() const override { return true; }
   IndirectLookup indirectLookup(const PhotonSettings& ps) const override {
     // Irradiance answers the Lambertian part; a glossy lobe still gathers.
     return {MapKind::Global, CachedIndirect::Irradiance, ps.kGlobal, 0.0f};
@@ -68,7 +69,7 @@ class PhysicalTransport final : public TransportModel {
         "global_photons={} caustic_photons={} k_global={} k_caustic={} "
         "passes={} alpha={} radius={} max_bounces={} shadow_photons={} "
         "k_shadow={} gate={}",
-        budgets[MapKind::Global], budgets[MapKind::Caustic], ps.kGlobal, ps.kCaustic, ps.passes, ps.alpha, ps.radius,
+        budgets[MapKind::Global], budgets[MapKind::Caustic], ps.kGlobal, ps.kCaustic, stats.passes, ps.alpha, ps.radius,
         ps.maxBounces, stats.emitted[MapKind::Shadow], ps.kShadow, gate ? "on" : "off");
   }
   void addModelSettings(const Scene& scene, const MapCounts& budgets, const RenderStats& stats,
@@ -81,7 +82,7 @@ class PhysicalTransport final : public TransportModel {
     add("photons.caustic", budgets[MapKind::Caustic]);
     add("photons.k_global", ps.kGlobal);
     add("photons.k_caustic", ps.kCaustic);
-    add("photons.passes", ps.passes);
+    add("photons.passes", stats.passes);
     add("photons.alpha", ps.alpha);
     add("photons.radius", ps.radius);
     if (stats.passes > 1) add("photons.final_global_radius", stats.globalRadius);

@@ -21,6 +21,7 @@ RenderResult runRender(const RenderRequest& request) {
   job.overrides = request.overrides;
   job.view = request.aov;
   job.tracePixel = request.tracePixel;
+  job.budget = request.budget;
   const bool toStdout = request.outputPath.empty() || request.outputPath == "-";
   if (!request.outputPath.empty() && !(request.tracePixel && toStdout)) {
     job.outputs.push_back({request.outputPath, "-o", !request.tracePixel});

@@ -1,6 +1,7 @@
 // One render from scene file to image file (penumbra render), on the render session.
 #pragma once
 #include "core/progress.h"
+#include "plan/render_budget.h"
 #include "plan/render_plan.h"
 #include "plan/resource_estimate.h"
 #include "io/scene_loader.h"
@@ -33,6 +34,7 @@ struct RenderRequest {
   // Told before the photons start, e.g. that the job is estimated to take hours.
   std::function<void(const std::string& note)> notice;
   LoadOptions load;  // --no-defaults
+  RenderBudget budget;  // --time-limit, --target-error
 };
 
 struct RenderResult {

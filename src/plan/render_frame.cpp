@@ -7,6 +7,7 @@
 #include "trace/camera.h"
 #include "trace/light_visibility.h"
 #include "trace/shading.h"
+#include "core/error_estimate.h"
 #include "io/texture_gen.h"
 #include <fmt/format.h>
 
@@ -128,42 +129,54 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
                            "using the ambient term");
   }
   const bool needsLight = aov != Aov::Depth && aov != Aov::Normal;
+  const bool budgeted = options.budget.any() && needsLight && !options.tracePixel;
+  const bool fresh = model.freshPhotonsEachPass();
   // --trace-pixel traces the first sample of the render's own sequence, in one pass.
-  ctx.passes = static_cast<uint32_t>(model.passes(scene, aov));
+  // A budget's passes sample as any progressive render does, so its image equals the
+  // render with photons.passes set to the passes it ran.
+  ctx.passes = static_cast<uint32_t>(budgeted ? kBudgetMaxPasses : model.passes(scene, aov));
   const int passes = options.tracePixel ? 1 : static_cast<int>(ctx.passes);
-  stats.passes = passes;
+  const Stopwatch wall;
+  const std::function<double()> clock = options.clock ? options.clock : [&wall] { return wall.seconds(); };
 
   LookupCache cache;
   PhotonStage later;  // the maps of physical passes >= 1 (fresh photons each)
   RenderOptions render;
   render.aov = aov;
+  PassSpread spread;
+  Image variance;  // one pass: its samples' spread
+  if (needsLight && passes == 1 && scene.camera.spp > 1) render.variance = &variance;
+  int done = 0;
+  double passStart = clock();
   for (int pass = 0; pass < passes; ++pass) {
     const PhotonStage* maps = &stage;
-    if (pass > 0) {
+    if (pass > 0 && fresh) {
       later = PhotonStage();
       PhotonNeeds needs = options.needs;
       needs.maps[MapKind::Shadow] = false;  // the gate's photons are pass 0's, for every pass
+      const std::string name = budgeted ? fmt::format("pass {}", pass + 1) : phaseName("photons", pass, passes);
       Emission e = emitPhotonsFor(scene, *assets.tracer, needs, options.budgets, static_cast<uint32_t>(pass), {},
-                                  beginPhase(options.progress, phaseName("photons", pass, passes)));
+                                  beginPhase(options.progress, name));
       buildStage(e, e.budgets, true, later, beginPhase(options.progress, phaseName("maps", pass, passes)));
       endPhase(options.progress);
       maps = &later;
     }
-    addStage(*maps, stats);
+    if (pass == 0 || fresh) addStage(*maps, stats);
     ctx.indirectMap = maps->indirect.empty() ? nullptr : &maps->indirect;
     ctx.causticMap = maps->caustic.empty() ? nullptr : &maps->caustic;
     ctx.globalMap = maps->global.empty() ? nullptr : &maps->global;
     ctx.pass = static_cast<uint32_t>(pass);
     float radius = 0.0f;
-    if (passes > 1) {
+    if (passes > 1 && fresh) {
       stepRadius(scene.photons, ctx.pass, ctx.causticRadius, maps->caustic, scene.photons.kCaustic);
       stepRadius(scene.photons, ctx.pass, ctx.globalRadius, maps->global, scene.photons.kGlobal);
       stats.causticRadius = ctx.causticRadius;
       stats.globalRadius = ctx.globalRadius;
       radius = ctx.globalRadius;
     }
-    // Pass 0 keeps its lookups with its maps, for later frames on the same maps.
-    if (needsLight && precomputed) {
+    // Pass 0 keeps its lookups with its maps, for later frames on the same maps; a
+    // pass on pass 0's maps reads pass 0's lookups.
+    if (needsLight && precomputed && (pass == 0 || fresh)) {
       const std::string lookups = phaseName("lookups", pass, passes);
       if (pass == 0) {
         buildLookup(scene, model, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats, options.progress,
@@ -175,19 +188,44 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     Stopwatch phase;
     if (options.tracePixel) {
       result.rayTree = tracePixel(ctx, options.tracePixel->first, options.tracePixel->second);
+      done = 1;
       break;
     }
-    render.tiles = beginPhase(options.progress, phaseName("render", pass, passes));
+    render.tiles = beginPhase(options.progress, budgeted ? fmt::format("render {}", pass + 1)
+                                                         : phaseName("render", pass, passes));
     Image image = renderImage(ctx, render, stats.rays);
     endPhase(options.progress);
     if (ctx.lookup) stats.cacheLazyCells = ctx.lookup->lazyCells();
+    if (passes > 1) spread.add(result.image, image, pass);
     if (pass == 0) result.image = std::move(image);
     else for (size_t i = 0; i < image.pixels.size(); ++i) result.image.pixels[i] += image.pixels[i];
     stats.time.render += phase.seconds();
+    done = pass + 1;
+    if (options.afterPass) options.afterPass(done, result.image, spread.estimate());
+    if (budgeted) {
+      const double now = clock();
+      const BudgetState state{done, now, now - passStart, spread.estimate().noiseRmse};
+      passStart = now;
+      if (const char* stop = budgetStop(options.budget, state)) {
+        stats.budgetStop = stop;
+        break;
+      }
+    }
   }
+  stats.passes = done;
+  if (budgeted) stats.budget = describeBudget(options.budget);
   // Progressive passes are independent estimates: their mean is the image.
-  if (passes > 1) {
-    for (Color& c : result.image.pixels) c /= static_cast<float>(passes);
+  if (done > 1) {
+    for (Color& c : result.image.pixels) c /= static_cast<float>(done);
+  }
+  if (needsLight && !options.tracePixel) {
+    stats.error = done > 1 ? spread.estimate() : sampleError(variance, scene.camera.spp);
+    // One pass of one sample has no spread: its error view is 0 (and says unknown).
+    if (options.errorView) {
+      result.image = done > 1                ? spread.standardError()
+                     : render.variance       ? standardErrorOf(variance)
+                                             : Image(result.image.width, result.image.height);
+    }
   }
   stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, stage.bytes() + later.bytes());
 }

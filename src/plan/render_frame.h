@@ -4,9 +4,11 @@
 #pragma once
 #include "plan/photon_stage.h"
 #include "plan/pipeline.h"
+#include "plan/render_budget.h"
 #include "core/progress.h"
 #include "geometry/trace_scene.h"
 #include "trace/texture_lookup.h"
+#include <functional>
 #include <memory>
 
 namespace penumbra {
@@ -33,6 +35,17 @@ struct FrameOptions {
   std::optional<bool> precomputed;
   std::optional<std::pair<int, int>> tracePixel;
   ProgressPhases* progress = nullptr;  // the command's display; null: none
+  // Passes until the budget is met instead of photons.passes (at least 2).
+  RenderBudget budget;
+  // The job's seconds so far, read between passes on the calling thread; empty: the
+  // wall clock since the frame began (the session adds the job's earlier stages;
+  // tests give a deterministic clock).
+  std::function<double()> clock;
+  // The image written is the beauty's per-pixel standard error (the "error" view).
+  bool errorView = false;
+  // Called after each pass on the calling thread with the passes done, their sum and
+  // the estimate so far (tests compare a prefix of passes with the whole).
+  std::function<void(int passes, const Image& sum, const ErrorEstimate& error)> afterPass;
 };
 
 // Renders every pass of `scene` into result.image (or its ray tree), pass 0 from

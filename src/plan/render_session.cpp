@@ -76,6 +76,8 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
   const JobRequest& request = job.request;
   job.viewName = request.view.empty() ? scene.render.aov : request.view;
   job.aov = parseAov(job.viewName);
+  job.errorView = isErrorView(job.viewName);
+  checkBudget(request.budget);
   if (!transportOf(scene).hasView(job.aov)) {
     throw InputError(scene.file + ": view '" + job.viewName + "' needs the physical model (render.model: \"physical\")");
   }
@@ -209,7 +211,8 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
   }
 }
 
-RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {
+RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage, std::function<double()> clock,
+                                  std::function<void(int, const Image&, const ErrorEstimate&)> afterPass) {
   if (!job.prepared) throw std::logic_error("a frame of a job not prepared");
   const SceneAssets& a = assets(job);
   const Scene& scene = job.scene;
@@ -241,6 +244,16 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage) {
   frame.precomputed = precomputedLookups(job.plan);
   frame.tracePixel = job.request.tracePixel;
   frame.progress = options_.progress;
+  frame.budget = job.request.budget;
+  if (clock) {
+    frame.clock = std::move(clock);
+  } else {
+    // A budget counts the job's load, its BVH and its first photons (reused ones too).
+    const double spent = job.loadSeconds + a.bvhSeconds + stage.emitSeconds + stage.buildSeconds;
+    frame.clock = [spent, wall = Stopwatch()] { return spent + wall.seconds(); };
+  }
+  frame.errorView = job.errorView;
+  frame.afterPass = std::move(afterPass);
   const PhaseGuard phases(options_.progress);
   renderFrame(scene, a, stage, frame, result);
   return result;

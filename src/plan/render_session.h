@@ -9,6 +9,7 @@
 #include "plan/job_admission.h"
 #include "plan/output_safety.h"
 #include "plan/photon_stage.h"
+#include "plan/render_budget.h"
 #include "plan/render_frame.h"
 #include "plan/render_plan.h"
 #include "plan/reuse_key.h"
@@ -46,6 +47,7 @@ struct JobRequest {
   std::string view;  // empty: the scene's render.aov
   std::vector<OutputPath> outputs;
   std::optional<std::pair<int, int>> tracePixel;
+  RenderBudget budget;  // --time-limit / --target-error: passes until it is met
 };
 
 // A job loaded, planned and admitted: nothing large is allocated yet. Its scene
@@ -55,7 +57,8 @@ struct PlannedJob {
   JobRequest request;
   Scene scene;
   std::string viewName;
-  Aov aov = Aov::Beauty;
+  Aov aov = Aov::Beauty;  // the view whose light is rendered (the beauty for the error view)
+  bool errorView = false;  // writes the beauty's per-pixel standard error
   RenderPlan plan;
   ReuseKeys keys;
   Admission admission;
@@ -109,7 +112,10 @@ class RenderSession {
   void photonsByBudget(const std::vector<const PlannedJob*>& jobs, const std::function<void(BudgetStage&)>& visit);
 
   // Every pass of one frame from `stage`, into an image (or the pixel's ray tree).
-  RenderResult frame(const PlannedJob& job, PhotonStage& stage);
+  // `clock`: the job's seconds so far, for a budget's time limit; empty: its load,
+  // BVH and first photons plus the wall clock since the frame began.
+  RenderResult frame(const PlannedJob& job, PhotonStage& stage, std::function<double()> clock = {},
+                     std::function<void(int, const Image&, const ErrorEstimate&)> afterPass = {});
 
   size_t sceneBuilds() const { return sceneBuilds_; }
   size_t photonBuilds() const { return photonBuilds_; }

@@ -138,15 +138,17 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.photonPeakBytes = e.photonBytes + shadow * sizeof(ShadowPhoton) +
                       (indirect + global + caustic) * sizeof(IndirectPhoton);
   // A progressive pass emits its photons while the previous pass's maps still stand.
-  if (p.passes > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
+  if (p.photonPasses > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
   const PhotonSettings& ps = scene.photons;
   if (options.precomputed) {
     const double k = std::max(1, transportOf(scene).indirectLookup(ps).k);
     e.cacheBytes = 2.0 * (indirect + global + shadow) / k * kCacheBytesPerRecord;
   }
   const double pixels = double(scene.camera.width) * scene.camera.height;
-  // The frame, a second one to sum progressive passes, and the writer's copy.
-  if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * (p.passes > 1 ? 2 : 1) + 12 + 6);
+  // The frame; with progressive passes a second one to sum them, their spread and the
+  // bias check (core/error_estimate.h); else the samples' spread; the writer's copy.
+  const int frames = p.passes > 1 ? 4 : scene.camera.spp > 1 ? 2 : 1;
+  if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * frames + 12 + 6);
   double meshBytes = 0.0, tracerBytes = 0.0;
   size_t triangles = 0;
   for (const TriangleMesh& m : scene.meshes) {
@@ -177,7 +179,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // the per-photon costs grow with the log of the data past kCacheFriendlyBytes
   // (the constants are in plan/cost_model.h).
   const double spill = std::max(1.0, e.photonPeakBytes / kCacheFriendlyBytes);
-  e.photonSeconds = photonNs * (1.0 + kSpillSlowdown * std::log2(spill)) * p.passes / e.threads * 1e-9;
+  e.photonSeconds = photonNs * (1.0 + kSpillSlowdown * std::log2(spill)) * p.photonPasses / e.threads * 1e-9;
   const double samples = options.tracePixel ? 1.0 : pixels * scene.camera.spp;
   const bool lit = options.aov != Aov::Depth && options.aov != Aov::Normal;
   // Mirrors and glass repeat the shading at each level of the recursion, but few

@@ -22,6 +22,7 @@ struct StoreRates {
 struct PhotonPlan {
   MapCounts emitted;  // per pass
   int passes = 1;
+  int photonPasses = 1;  // passes that emit their own photons (classic passes reuse pass 0's)
 };
 
 struct ResourceEstimate {

@@ -48,8 +48,11 @@ class TransportModel {
   // Emits options.maps (as emittedMaps chose them) for pass `pass` into `e`.
   virtual void emit(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, uint32_t pass,
                     Emission& e) const = 0;
-  // Frames a view averages (1 unless the model renders progressively).
+  // Frames a view averages: photons.passes for views that read light.
   virtual int passes(const Scene& scene, Aov aov) const = 0;
+  // Whether each pass emits fresh photons (a consistent estimator) or every pass
+  // reads pass 0's maps and only takes new camera samples.
+  virtual bool freshPhotonsEachPass() const = 0;
   virtual IndirectLookup indirectLookup(const PhotonSettings& ps) const = 0;
 
   // The image's settings line (its photon part) and EXR keys for the settings only

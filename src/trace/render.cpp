@@ -46,14 +46,23 @@ Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadStat
 // (or be written as 0 and hide): drop it, count it, and let the pixel's other samples
 // stand. Geometric views average only the samples that hit: a miss is "no depth",
 // not 0 m, and its share of the pixel is the coverage.
-void addSample(const Color& c, Aov aov, glm::dvec3& sum, int& counted, ThreadState& ts) {
+void addSample(const Color& c, Aov aov, glm::dvec3& sum, glm::dvec3& squares, int& counted, ThreadState& ts) {
   if (!isFinite(c)) {
     ++ts.counts.nonfiniteSamples;
     return;
   }
   if (geometric(aov) && c.r == kNoHit) return;
   sum += glm::dvec3(c);
+  squares += glm::dvec3(c) * glm::dvec3(c);
   ++counted;
+}
+
+// The variance of a pixel's mean from its samples' spread, s^2 / n (0 below 2 samples).
+Color varianceOfMean(const glm::dvec3& sum, const glm::dvec3& squares, int counted) {
+  if (counted < 2) return Color(0.0f);
+  const double n = counted;
+  const glm::dvec3 mean = sum / n;
+  return Color(glm::max((squares - n * mean * mean) / (n - 1.0) / n, glm::dvec3(0.0)));
 }
 
 // A mean above float range is clamped to it (the writer clamps further). A pixel with
@@ -92,7 +101,7 @@ struct TileBuffers {
   std::vector<uint64_t> keys;
   std::vector<Ray> rays;
   std::vector<Hit> hits;
-  std::vector<glm::dvec3> sums;
+  std::vector<glm::dvec3> sums, squares;
   std::vector<int> counted;
   std::vector<uint32_t> known, blocked;
   PrimaryShadowScratch shadows;
@@ -104,11 +113,11 @@ struct TileBuffers {
 // Each pixel still adds its samples in sample order, so the sums equal the single path's.
 void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov aov,
                        uint32_t shadowLights, int x0, int y0, int x1, int y1, TileBuffers& b,
-                       ThreadState& ts, Image& image) {
+                       ThreadState& ts, Image& image, Image* variance) {
   const Camera& cam = ctx.scene.camera;
   const size_t cap = static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0);
   if (b.pixels.size() < cap) {
-    b.pixels.resize(cap); b.keys.resize(cap); b.rays.resize(cap); b.hits.resize(cap); b.sums.resize(cap);
+    b.pixels.resize(cap); b.keys.resize(cap); b.rays.resize(cap); b.hits.resize(cap); b.sums.resize(cap); b.squares.resize(cap);
     b.counted.resize(cap); b.known.resize(cap); b.blocked.resize(cap);
   }
   // Pixels in 4x4 blocks: a 16-ray packet covers a square of the film, not a row.
@@ -117,7 +126,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
     for (int bx = x0; bx < x1; bx += 4)
       for (int y = by; y < std::min(by + 4, y1); ++y)
         for (int x = bx; x < std::min(bx + 4, x1); ++x) b.pixels[static_cast<size_t>(n++)] = {x, y};
-  for (int i = 0; i < n; ++i) { b.sums[i] = glm::dvec3(0.0); b.counted[i] = 0; }
+  for (int i = 0; i < n; ++i) { b.sums[i] = b.squares[i] = glm::dvec3(0.0); b.counted[i] = 0; }
   for (int s = 0; s < cam.spp; ++s) {
     for (int i = 0; i < n; ++i) {
       const glm::ivec2 p = b.pixels[i];
@@ -133,13 +142,14 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
       ts.knownShadows = b.known[i];
       ts.blockedShadows = b.blocked[i];
       const Hit* hit = b.hits[i].valid() ? &b.hits[i] : nullptr;
-      addSample(shadeTraced(ctx, b.rays[i], hit, aov, ts), aov, b.sums[i], b.counted[i], ts);
+      addSample(shadeTraced(ctx, b.rays[i], hit, aov, ts), aov, b.sums[i], b.squares[i], b.counted[i], ts);
     }
   }
   ts.knownShadows = ts.blockedShadows = 0;
   for (int i = 0; i < n; ++i) {
     const size_t index = static_cast<size_t>(b.pixels[i].y) * cam.width + b.pixels[i].x;
     storePixel(b.sums[i], b.counted[i], aov, cam.spp, index, image);
+    if (variance) variance->pixels[index] = varianceOfMean(b.sums[i], b.squares[i], b.counted[i]);
   }
 }
 
@@ -149,6 +159,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   const Camera& cam = ctx.scene.camera;
   CameraRays camera(cam);
   Image image(cam.width, cam.height);
+  if (options.variance) *options.variance = Image(cam.width, cam.height);
   if (geometric(options.aov)) {
     image.content = options.aov == Aov::Depth ? ImageContent::Depth : ImageContent::Normal;
     image.coverage.assign(image.pixels.size(), 0.0f);
@@ -169,20 +180,22 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
       int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
       int x1 = std::min(x0 + tile, cam.width), y1 = std::min(y0 + tile, cam.height);
       if (packets) {
-        renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, buffers.local(), ts, image);
+        renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, buffers.local(), ts, image,
+                            options.variance);
       } else {
         for (int y = y0; y < y1; ++y) {
           for (int x = x0; x < x1; ++x) {
             uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
-            glm::dvec3 sum(0.0);  // double: many finite samples near float's top cannot overflow
+            glm::dvec3 sum(0.0), squares(0.0);  // double: many finite samples near float's top cannot overflow
             int counted = 0;
             for (int s = 0; s < cam.spp; ++s) {
               const CameraSample cs = cameraSample(ctx, pixel, s);
               beginSample(ts, cs.key);
               Color c = shadeSample(ctx, camera.generate(x + cs.offset.x, y + cs.offset.y), options.aov, ts);
-              addSample(c, options.aov, sum, counted, ts);
+              addSample(c, options.aov, sum, squares, counted, ts);
             }
             storePixel(sum, counted, options.aov, cam.spp, static_cast<size_t>(pixel), image);
+            if (options.variance) options.variance->pixels[pixel] = varianceOfMean(sum, squares, counted);
           }
         }
       }

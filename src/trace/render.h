@@ -17,6 +17,9 @@ struct RenderOptions {
   int tileSize = 16;
   // Expects every tile, then adds one per tile done (a relaxed atomic add); null: none.
   ProgressCounter* tiles = nullptr;
+  // Filled per pixel with the variance of its mean from its samples' spread (0 below
+  // two samples); null: not kept.
+  Image* variance = nullptr;
 };
 
 // Renders the whole image; `counts` receives the sum of every thread's counters.

@@ -1,0 +1,106 @@
+// Welford's per-pixel update from the frame's running sum, the noise RMSE of the mean
+// image, and the first-half/second-half bias check at 2, 4, 8, ... passes.
+#include "core/error_estimate.h"
+#include <fmt/format.h>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+// Mean over pixels and channels of a per-pixel quantity, in double.
+template <class F>
+double meanOver(const Image& like, F perChannel) {
+  const size_t n = like.pixels.size();
+  if (n == 0) return 0.0;
+  double sum = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) sum += perChannel(i, c);
+  }
+  return sum / (3.0 * double(n));
+}
+
+}  // namespace
+
+std::string describeError(const ErrorEstimate& e) {
+  if (!e.known()) return "unknown (one pass of one sample: use photons.passes or camera.spp >= 2)";
+  std::string out = fmt::format("~{:.3g} RMSE (noise, from {} {})", e.noiseRmse, e.count,
+                                e.source == ErrorSource::Passes ? "passes" : "samples per pixel");
+  if (e.source == ErrorSource::Samples) out += "; samples share one photon map, so its noise is not in it";
+  if (e.biasRmse > 0.0) {
+    out += fmt::format("; photon-map bias: passes 1-{} and {}-{} differ by ~{:.3g} RMSE beyond noise", e.biasHalf,
+                       e.biasHalf + 1, 2 * e.biasHalf, e.biasRmse);
+  } else if (e.biasRmse == 0.0) {
+    out += fmt::format("; photon-map bias: passes 1-{} and {}-{} agree within noise", e.biasHalf, e.biasHalf + 1,
+                       2 * e.biasHalf);
+  }
+  return out;
+}
+
+void PassSpread::add(const Image& sumBefore, const Image& image, int pass) {
+  if (pass == 0) {
+    m2_ = Image(image.width, image.height);
+    snapshot_ = image;
+    snapshotPasses_ = 1;
+    passes_ = 1;
+    return;
+  }
+  const float k = float(pass) + 1.0f;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const Color x = image.pixels[i];
+    const Color before = sumBefore.pixels[i] / float(pass);
+    const Color after = (sumBefore.pixels[i] + x) / k;
+    m2_.pixels[i] += (x - before) * (x - after);
+  }
+  passes_ = pass + 1;
+  if (passes_ != 2 * snapshotPasses_) return;
+  // Passes 1..h against h+1..2h: their difference's mean square, less what noise
+  // alone gives it (2 sigma^2 / h per pixel and channel), is the bias that changed.
+  const double h = snapshotPasses_;
+  const double meanSquare = meanOver(image, [&](size_t i, int c) {
+    const double first = snapshot_.pixels[i][c] / h;
+    const double second = (double(sumBefore.pixels[i][c]) + image.pixels[i][c] - snapshot_.pixels[i][c]) / h;
+    return (first - second) * (first - second);
+  });
+  const double noise = meanOver(image, [&](size_t i, int c) { return 2.0 * m2_.pixels[i][c] / (2.0 * h - 1.0) / h; });
+  biasRmse_ = std::sqrt(std::max(0.0, meanSquare - noise));
+  biasHalf_ = snapshotPasses_;
+  for (size_t i = 0; i < image.pixels.size(); ++i) snapshot_.pixels[i] = sumBefore.pixels[i] + image.pixels[i];
+  snapshotPasses_ = passes_;
+}
+
+ErrorEstimate PassSpread::estimate() const {
+  ErrorEstimate e;
+  if (passes_ < 2) return e;
+  e.source = ErrorSource::Passes;
+  e.count = passes_;
+  const double n = passes_;
+  e.noiseRmse = std::sqrt(meanOver(m2_, [&](size_t i, int c) { return m2_.pixels[i][c] / (n * (n - 1.0)); }));
+  e.biasRmse = biasRmse_;
+  e.biasHalf = biasHalf_;
+  return e;
+}
+
+Image PassSpread::standardError() const {
+  Image out(m2_.width, m2_.height);
+  const float n = float(passes_);
+  if (passes_ < 2) return out;
+  for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = glm::sqrt(m2_.pixels[i] / (n * (n - 1.0f)));
+  return out;
+}
+
+ErrorEstimate sampleError(const Image& varianceOfMean, int spp) {
+  ErrorEstimate e;
+  if (spp < 2 || varianceOfMean.pixels.empty()) return e;
+  e.source = ErrorSource::Samples;
+  e.count = spp;
+  e.noiseRmse = std::sqrt(meanOver(varianceOfMean, [&](size_t i, int c) { return varianceOfMean.pixels[i][c]; }));
+  return e;
+}
+
+Image standardErrorOf(const Image& varianceOfMean) {
+  Image out(varianceOfMean.width, varianceOfMean.height);
+  for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = glm::sqrt(varianceOfMean.pixels[i]);
+  return out;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,59 @@
+// How far a render is from converged without a reference: the spread of its
+// independent estimates (progressive passes, else a pixel's samples) as the standard
+// error of the mean image, and the photon-map bias that passes shrink, kept apart.
+#pragma once
+#include "core/image.h"
+#include <string>
+
+namespace penumbra {
+
+// Where an image's noise figure comes from.
+enum class ErrorSource { None, Passes, Samples };
+
+struct ErrorEstimate {
+  ErrorSource source = ErrorSource::None;
+  int count = 0;  // passes, or samples per pixel, the spread is taken over
+  // Standard error of the image: sqrt(mean over pixels and channels of SE^2), the
+  // RMSE the image has against its own converged mean. < 0: unknown.
+  double noiseRmse = -1.0;
+  // Passes only: the change, beyond noise, between the mean of the first `biasHalf`
+  // passes and of the next `biasHalf`: photon-map bias that the shrinking radii take
+  // away. A lower bound on what is left of it. < 0: not measured (fewer than 2 passes).
+  double biasRmse = -1.0;
+  int biasHalf = 0;
+
+  bool known() const { return noiseRmse >= 0.0; }
+};
+
+// "~0.012 RMSE (noise, from 8 passes)", or why there is no figure.
+std::string describeError(const ErrorEstimate& e);
+
+// Per-pixel spread of progressive passes, added one pass at a time (Welford's update
+// from the running sum the frame keeps), and the bias check at each power of two.
+class PassSpread {
+ public:
+  // `sumBefore`: the sum of passes 0..pass-1 (unused at pass 0); `image`: pass `pass`.
+  // Call before adding `image` into the sum.
+  void add(const Image& sumBefore, const Image& image, int pass);
+
+  int passes() const { return passes_; }
+  // The estimate after the passes added so far (noise needs 2 passes).
+  ErrorEstimate estimate() const;
+  // Per pixel, the standard error of the mean of the passes (0 with one pass).
+  Image standardError() const;
+
+ private:
+  Image m2_;        // per pixel and channel, the sum of squared deviations (Welford)
+  Image snapshot_;  // the sum of the first `snapshotPasses_` passes
+  int snapshotPasses_ = 0;
+  int passes_ = 0;
+  double biasRmse_ = -1.0;
+  int biasHalf_ = 0;
+};
+
+// An estimate from one pass's per-pixel variance of the mean (from its samples).
+ErrorEstimate sampleError(const Image& varianceOfMean, int spp);
+// Per pixel, the square root of a variance image.
+Image standardErrorOf(const Image& varianceOfMean);
+
+}  // namespace penumbra

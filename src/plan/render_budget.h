@@ -1,0 +1,40 @@
+// Renders to a budget (--time-limit, --target-error): progressive passes run until
+// the budget is met, and the image equals a render of the same scene with
+// photons.passes set to the passes done.
+#pragma once
+#include <functional>
+#include <string>
+
+namespace penumbra {
+
+// The most passes a budget runs (photons.passes' own bound).
+constexpr int kBudgetMaxPasses = 100000;
+// A pass is not started when it would end past the time limit by more than this share
+// of it: the render then stops short of the limit by less than one pass.
+constexpr double kTimeLimitOverrun = 0.1;
+
+struct RenderBudget {
+  double seconds = 0.0;      // --time-limit: wall seconds of the job; 0 = none
+  double targetError = 0.0;  // --target-error: the noise RMSE to reach; 0 = none
+  bool any() const { return seconds > 0.0 || targetError > 0.0; }
+};
+
+// Where a budgeted render stands after a pass.
+struct BudgetState {
+  int passes = 0;             // passes done
+  double elapsed = 0.0;       // the job's wall seconds so far
+  double lastPass = 0.0;      // the last pass's wall seconds (photons, maps, render)
+  double noiseRmse = -1.0;    // the estimate after the last pass; < 0 unknown
+};
+
+// Null while another pass should run; else why the render stops ("target error
+// reached", "time limit", ...). Two passes always run: the estimate needs them.
+const char* budgetStop(const RenderBudget& budget, const BudgetState& s);
+
+// "--time-limit 10 s" / "--target-error 0.03" / both, for notes and --stats.
+std::string describeBudget(const RenderBudget& budget);
+
+// Throws InputError (exit 2) for a negative or non-finite limit.
+void checkBudget(const RenderBudget& budget);
+
+}  // namespace penumbra

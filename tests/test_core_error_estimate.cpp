@@ -1,0 +1,98 @@
+// The error estimate against synthetic passes of known spread: the noise RMSE of P
+// passes of per-pixel noise sigma is sigma / sqrt(P); Welford's update equals the
+// two-pass formula; a drift between the first and second half of the passes is
+// measured as bias, and no drift as none; a samples' variance image gives its RMSE.
+#include "core/error_estimate.h"
+#include "core/rng.h"
+#include <gtest/gtest.h>
+#include <cmath>
+#include <vector>
+
+namespace penumbra {
+namespace {
+
+constexpr int kSide = 64;
+constexpr double kSigma = 0.1;
+
+// Pass p of a flat grey image with per-pixel noise: uniform of sd kSigma, plus `drift`
+// in the first `driftPasses` passes.
+Image noisyPass(int p, double drift = 0.0, int driftPasses = 0) {
+  Image im(kSide, kSide);
+  Rng rng(hashKey(7, uint64_t(p)));
+  const double half = kSigma * std::sqrt(3.0);  // uniform on [-half, half] has sd kSigma
+  for (Color& c : im.pixels) {
+    for (int ch = 0; ch < 3; ++ch) c[ch] = float(0.5 + (p < driftPasses ? drift : 0.0) + (2.0 * rng.uniform() - 1.0) * half);
+  }
+  return im;
+}
+
+// Adds passes 0..n-1 the way a frame does: spread first, then into the sum.
+PassSpread addPasses(int n, Image& sum, double drift = 0.0, int driftPasses = 0) {
+  PassSpread spread;
+  for (int p = 0; p < n; ++p) {
+    const Image x = noisyPass(p, drift, driftPasses);
+    spread.add(sum, x, p);
+    if (p == 0) sum = x;
+    else for (size_t i = 0; i < x.pixels.size(); ++i) sum.pixels[i] += x.pixels[i];
+  }
+  return spread;
+}
+
+TEST(ErrorEstimate, NoiseOfPPassesIsSigmaOverRootP) {
+  // 12288 pixel channels: the estimated variance's relative sd is sqrt(2 / (12288 (P-1)))
+  // at most 1.3%, so the RMSE's is at most 0.7%; tolerance 4 sd.
+  for (int passes : {2, 8, 32}) {
+    Image sum;
+    const ErrorEstimate e = addPasses(passes, sum).estimate();
+    ASSERT_TRUE(e.known());
+    EXPECT_EQ(e.source, ErrorSource::Passes);
+    EXPECT_EQ(e.count, passes);
+    const double want = kSigma / std::sqrt(double(passes));
+    EXPECT_NEAR(e.noiseRmse, want, 4.0 * 0.0065 / std::sqrt(passes - 1.0) * want) << passes;
+  }
+}
+
+TEST(ErrorEstimate, WelfordEqualsTheTwoPassFormula) {
+  constexpr int kPasses = 5;
+  Image sum;
+  const PassSpread spread = addPasses(kPasses, sum);
+  const Image se = spread.standardError();
+  for (size_t i = 0; i < se.pixels.size(); i += 97) {
+    for (int c = 0; c < 3; ++c) {
+      double mean = 0.0, squares = 0.0;
+      for (int p = 0; p < kPasses; ++p) mean += noisyPass(p).pixels[i][c] / double(kPasses);
+      for (int p = 0; p < kPasses; ++p) squares += std::pow(noisyPass(p).pixels[i][c] - mean, 2);
+      EXPECT_NEAR(se.pixels[i][c], std::sqrt(squares / (kPasses - 1.0) / kPasses), 1e-5) << i;
+    }
+  }
+}
+
+TEST(ErrorEstimate, ADriftBetweenHalvesIsBiasAndNoDriftIsNone) {
+  // 16 passes: the check compares 1-8 with 9-16. Noise alone gives the halves' means a
+  // difference of sd sigma / 2 per pixel channel; subtracting it leaves a bias
+  // estimate whose spread over 12288 channels is ~0.02 x sigma.
+  Image flat, drifted;
+  const ErrorEstimate none = addPasses(16, flat).estimate();
+  EXPECT_EQ(none.biasHalf, 8);
+  EXPECT_LT(none.biasRmse, 0.1 * kSigma);
+  const double drift = 0.05;
+  const ErrorEstimate some = addPasses(16, drifted, drift, 8).estimate();
+  EXPECT_NEAR(some.biasRmse, drift, 0.1 * drift);
+}
+
+TEST(ErrorEstimate, OnePassIsUnknownAndSamplesGiveTheirVariance) {
+  Image sum;
+  EXPECT_FALSE(addPasses(1, sum).estimate().known());
+  Image variance(4, 4);
+  for (size_t i = 0; i < variance.pixels.size(); ++i) variance.pixels[i] = Color(i < 8 ? 0.01f : 0.03f);
+  const ErrorEstimate e = sampleError(variance, 16);
+  EXPECT_EQ(e.source, ErrorSource::Samples);
+  EXPECT_NEAR(e.noiseRmse, std::sqrt(0.02), 1e-7);
+  EXPECT_FALSE(sampleError(variance, 1).known());
+  EXPECT_NEAR(standardErrorOf(variance).pixels[15].g, std::sqrt(0.03f), 1e-7);
+  EXPECT_NE(describeError(e).find("from 16 samples per pixel"), std::string::npos) << describeError(e);
+  EXPECT_NE(describeError(ErrorEstimate()).find("unknown"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace penumbra

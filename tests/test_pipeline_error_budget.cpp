@@ -1,0 +1,151 @@
+// Error estimates and budgets through the render session: a target error stops at
+// the first pass whose estimate reaches it and its image is that many passes' byte
+// for byte; a time limit counts a deterministic clock; the error view writes the
+// per-pixel standard error whose RMS is the estimate; the classic model's passes
+// take new camera samples over one set of maps; and the estimate of 2 passes against
+// a render 16x as long.
+#include "plan/pipeline.h"
+#include "plan/render_session.h"
+#include "support/scratch_dir.h"
+#include <gtest/gtest.h>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+namespace {
+
+const std::string kCornell = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell_physical.json";
+const std::string kShowcase = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/showcase.json";
+const std::vector<std::string> kSmall = {"camera.width=40", "camera.height=40", "photons.global=20000",
+                                         "photons.caustic=20000"};
+
+std::vector<std::string> with(std::vector<std::string> base, const std::vector<std::string>& more) {
+  base.insert(base.end(), more.begin(), more.end());
+  return base;
+}
+
+struct SessionRender {
+  RenderResult result;
+  std::vector<ErrorEstimate> estimates;  // after 1, 2, ... passes
+  std::vector<Image> means;              // the mean image after each pass, when kept
+};
+
+SessionRender renderInSession(const std::string& scene, const std::vector<std::string>& overrides,
+                              RenderBudget budget = {}, std::function<double()> clock = {}, bool keepMeans = false) {
+  SessionOptions options;
+  options.threads = 2;
+  RenderSession session(options);
+  JobRequest request;
+  request.scenePath = scene;
+  request.overrides = overrides;
+  request.budget = budget;
+  PlannedJob job = session.plan(request);
+  session.prepare(job);
+  SessionRender out;
+  out.result = session.frame(job, session.photons(job), std::move(clock),
+                             [&](int passes, const Image& sum, const ErrorEstimate& e) {
+                               out.estimates.push_back(e);
+                               if (!keepMeans) return;
+                               Image mean = sum;
+                               for (Color& c : mean.pixels) c /= float(passes);
+                               out.means.push_back(std::move(mean));
+                             });
+  return out;
+}
+
+bool samePixels(const Image& a, const Image& b) {
+  return a.pixels.size() == b.pixels.size() &&
+         std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Color)) == 0;
+}
+
+double rmse(const Image& a, const Image& b) {
+  double squares = 0.0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) squares += std::pow(double(a.pixels[i][c]) - b.pixels[i][c], 2);
+  }
+  return std::sqrt(squares / (3.0 * a.pixels.size()));
+}
+
+TEST(ErrorBudget, TargetErrorStopsAtTheFirstPassThatReachesItWithThatManyPassesPixels) {
+  const SessionRender fixed = renderInSession(kCornell, with(kSmall, {"photons.passes=12"}));
+  ASSERT_EQ(fixed.estimates.size(), 12u);
+  EXPECT_FALSE(fixed.estimates[0].known());
+  const double target = fixed.estimates[5].noiseRmse;  // six passes' estimate
+  int first = 0;
+  for (int n = 2; n <= 12 && !first; ++n) {
+    if (fixed.estimates[n - 1].noiseRmse <= target) first = n;
+  }
+  const SessionRender budgeted = renderInSession(kCornell, kSmall, {0.0, target});
+  ASSERT_EQ(budgeted.result.stats.passes, first);
+  EXPECT_EQ(budgeted.result.stats.budgetStop, "target error reached");
+  EXPECT_DOUBLE_EQ(budgeted.result.stats.error.noiseRmse, target);
+  const SessionRender same = renderInSession(kCornell, with(kSmall, {"photons.passes=" + std::to_string(first)}));
+  EXPECT_TRUE(samePixels(budgeted.result.image, same.result.image));
+}
+
+TEST(ErrorBudget, TimeLimitCountsTheJobsClock) {
+  // Each pass takes 1 s on this clock: a 5.5 s limit is met after 6 passes.
+  int calls = 0;
+  const SessionRender a = renderInSession(kCornell, kSmall, {5.5, 0.0}, [&calls] { return double(calls++); });
+  EXPECT_EQ(a.result.stats.passes, 6);
+  EXPECT_EQ(a.result.stats.budgetStop, "time limit reached");
+  // 3 s per pass and a 10 s limit: the fourth pass would end at 12 s, past 11 s.
+  calls = 0;
+  const SessionRender b = renderInSession(kCornell, kSmall, {10.0, 0.0}, [&calls] { return 3.0 * calls++; });
+  EXPECT_EQ(b.result.stats.passes, 3);
+  EXPECT_EQ(b.result.stats.budgetStop, "time limit: the next pass would overrun it");
+}
+
+TEST(ErrorBudget, TheErrorViewIsThePerPixelStandardErrorOfTheEstimate) {
+  const RenderResult beauty = renderInSession(kCornell, with(kSmall, {"photons.passes=4"})).result;
+  RenderRequest req;
+  req.scenePath = kCornell;
+  req.overrides = with(kSmall, {"photons.passes=4"});
+  req.aov = "error";
+  req.threads = 1;
+  const RenderResult error = runRender(req);
+  double squares = 0.0;
+  for (const Color& c : error.image.pixels) squares += double(c.r) * c.r + double(c.g) * c.g + double(c.b) * c.b;
+  ASSERT_TRUE(beauty.stats.error.known());
+  EXPECT_NEAR(std::sqrt(squares / (3.0 * error.image.pixels.size())), beauty.stats.error.noiseRmse,
+              1e-4 * beauty.stats.error.noiseRmse);
+  EXPECT_DOUBLE_EQ(error.stats.error.noiseRmse, beauty.stats.error.noiseRmse) << "one thread or two";
+  // One pass of one sample: no spread, an unknown estimate and a black error view.
+  req.overrides = with(kSmall, {"camera.spp=1"});
+  const RenderResult one = runRender(req);
+  EXPECT_FALSE(one.stats.error.known());
+  for (const Color& c : one.image.pixels) ASSERT_EQ(c, Color(0.0f));
+}
+
+TEST(ErrorBudget, ClassicPassesTakeNewSamplesOverOneSetOfMaps) {
+  const std::vector<std::string> small = {"camera.width=50", "camera.height=32", "photons.shadow=20000",
+                                          "photons.indirect=20000", "camera.spp=1"};
+  const SessionRender one = renderInSession(kShowcase, small);
+  const SessionRender four = renderInSession(kShowcase, with(small, {"photons.passes=4"}));
+  EXPECT_EQ(four.result.stats.passes, 4);
+  EXPECT_EQ(four.result.stats.emitted, one.result.stats.emitted) << "pass 0's photons serve every pass";
+  EXPECT_FALSE(one.result.stats.error.known());
+  ASSERT_TRUE(four.result.stats.error.known());
+  EXPECT_EQ(four.result.stats.error.source, ErrorSource::Passes);
+  EXPECT_FALSE(samePixels(one.result.image, four.result.image)) << "passes move the camera samples";
+}
+
+// The estimate of 2 passes against the RMSE from the render of 32 (the same seed, so
+// its first 2 passes are these). Pure noise of variance s^2 per pass gives that RMSE
+// s sqrt(15 / 32), so the estimate s / sqrt(2) is 1.03x it; the bound is +-25%. The
+// passes' camera samples are one stratified sequence, so the spread overstates the
+// antialiasing part (more so at lower resolutions and more passes).
+TEST(ErrorBudget, EstimateOfTwoPassesIsWithinAQuarterOfTheErrorAgainstSixteenTimesAsMany) {
+  const std::vector<std::string> settings = {"camera.width=128", "camera.height=128", "photons.passes=32"};
+  const SessionRender r = renderInSession(kCornell, settings, {}, {}, true);
+  ASSERT_EQ(r.means.size(), 32u);
+  const double estimate = r.estimates[1].noiseRmse, measured = rmse(r.means[1], r.means[31]);
+  std::printf("cornell_physical 128x128, 2 passes: estimate %.5f, against 32 passes %.5f (ratio %.3f)\n", estimate,
+              measured, estimate / measured);
+  EXPECT_NEAR(estimate / measured, 1.0, 0.25);
+}
+
+}  // namespace
+}  // namespace penumbra
