@@ -26,13 +26,12 @@ std::string describeError(const ErrorEstimate& e) {
   std::string out = fmt::format("~{:.3g} RMSE (noise, from {} {})", e.noiseRmse, e.count,
                                 e.source == ErrorSource::Passes ? "passes" : "samples per pixel");
   if (e.source == ErrorSource::Samples) out += "; samples share one photon map, so its noise is not in it";
-  if (e.biasRmse > 0.0) {
-    out += fmt::format("; photon-map bias: passes 1-{} and {}-{} differ by ~{:.3g} RMSE beyond noise", e.biasHalf,
-                       e.biasHalf + 1, 2 * e.biasHalf, e.biasRmse);
-  } else if (e.biasRmse == 0.0) {
-    out += fmt::format("; photon-map bias: passes 1-{} and {}-{} agree within noise", e.biasHalf, e.biasHalf + 1,
-                       2 * e.biasHalf);
-  }
+  if (e.biasRmse < 0.0) return out;
+  const std::string halves = e.biasHalf == 1 ? "passes 1 and 2"
+                                             : fmt::format("passes 1-{} and {}-{}", e.biasHalf, e.biasHalf + 1,
+                                                           2 * e.biasHalf);
+  out += e.biasRmse > 0.0 ? fmt::format("; photon-map bias: {} differ by ~{:.3g} RMSE beyond noise", halves, e.biasRmse)
+                          : fmt::format("; photon-map bias: {} agree within noise", halves);
   return out;
 }
 
