@@ -136,6 +136,31 @@ TEST(Sweep, RunsEqualStandaloneRendersAndRerunsResume) {
   EXPECT_TRUE(fs::exists(dir / "report.md"));
 }
 
+// --repeat renders each frame again on its maps: the same image, the fastest time kept
+// beside the median, and each run's own error estimate beside its measured error.
+TEST(Sweep, RepeatsKeepTheFastestAndTheMedianAndEveryRunItsEstimate) {
+  testing::ScratchDir dir;
+  SweepRequest req;
+  req.scenePath = kCornell;
+  req.outDir = dir.path().string();
+  req.spec = expandGrid({namedKnob("spp", "2,4", physicalTransport())},
+                        {"camera.width=32", "camera.height=32", "photons.global=3000", "photons.caustic=3000"});
+  req.threads = 2;
+  req.repeat = 3;
+  const SweepOutcome out = runSweep(req);
+  ASSERT_EQ(out.rows.size(), 2u);
+  for (const SweepRow& row : out.rows) {
+    EXPECT_GT(row.render, 0.0) << row.id;
+    EXPECT_LE(row.render, row.renderMedian) << row.id;
+    EXPECT_GT(row.noiseRmse, 0.0) << row.id << ": spp >= 2 has a spread";
+  }
+  const Image alone = standalone(kCornell, req.spec.runs[0].overrides, dir / "alone.exr");
+  EXPECT_EQ(compareImages(readImage((dir / out.rows[0].image).string()), alone).maxError, 0.0);
+  const std::string report = testing::readFile(dir / "report.md");
+  EXPECT_NE(report.find("rendered 3 times"), std::string::npos) << report;
+  EXPECT_NE(report.find("Its own error estimate"), std::string::npos) << report;
+}
+
 // Two lights of equal power, one shut in a black box: the plan splits the global
 // photons by reach (all to the free light) in every progressive pass, in the sweep
 // as in a lone render.

@@ -21,6 +21,7 @@ struct SweepCommand::Options {
   std::vector<std::string> vary, overrides;
   PlanArgs plan;
   RenderBudget budget;  // --time-limit, --target-error: every run's
+  int repeat = 1;
   std::string maxMemory, metric = "relmse";
   int threads = 0;
   bool force = false, noGateCompare = false, quiet = false;
@@ -47,6 +48,8 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a run estimated to need more, e.g. 8G (default: the memory available)");
   addPlanOptions(*c, o.plan);
   addBudgetOptions(*c, o.budget);
+  c->add_option("--repeat", o.repeat, "Render each run's frame N times on its maps; keep the fastest and the median "
+                "(render_s, render_median_s)")->check(CLI::Range(1, 1000));
   c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 }
 
@@ -83,6 +86,7 @@ int SweepCommand::run() {
   req.plan = passes;
   req.load = o.plan.load();
   req.budget = o.budget;
+  req.repeat = o.repeat;
   req.maxMemoryBytes = maxMemory;
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
   req.plotScript = std::filesystem::exists(script) ? script.string() : "";

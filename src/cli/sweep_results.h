@@ -17,6 +17,8 @@ struct SweepRow {
   std::vector<std::string> values;  // one per knob
   bool reference = false;           // the default reference itself (error 0)
   double load = 0, bvh = 0, emit = 0, maps = 0, precompute = 0, render = 0, total = 0, spent = 0;
+  // --repeat N: render is the fastest of the run's N frames, this their median.
+  double renderMedian = 0;
   // The process's CPU time over `spent`, its share of (spent x threads), the load at the run's start.
   double cpu = 0, cpuShare = 0, loadAverage = -1;
   uint64_t cameraRays = 0, shadowRays = 0, reflectionRays = 0, refractionRays = 0;
@@ -71,6 +73,7 @@ struct SweepTotals {
   double renderSeconds = 0;     // sum of every render pass (precompute + render, ungated ones too)
   size_t emissions = 0, prefixCuts = 0, mapBuilds = 0, bvhBuilds = 0, resumed = 0;
   std::string referenceNote;    // which reference the errors are against
+  int repeat = 1;               // frames rendered per run (--repeat)
 };
 
 std::string reportMarkdown(const std::string& scene, const SweepSpec& spec,

@@ -34,6 +34,7 @@ struct SweepRequest {
   ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
   LoadOptions load;                  // --no-defaults, for every run
   RenderBudget budget;               // --time-limit, --target-error, for every run
+  int repeat = 1;                    // --repeat: frames per run, the fastest and the median kept
 };
 
 struct SweepOutcome {
