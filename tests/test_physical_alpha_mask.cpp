@@ -1,7 +1,8 @@
 // Alpha cut-outs through the geometry's Embree filter: a checkerboard-masked quad
 // over a floor casts a checkerboard shadow (direct light and photons), camera rays
-// see the floor through its holes (single rays and packets alike), and a blended
-// quad lets through 1 - alpha of the light, the same rays on every run.
+// see the floor through its holes (single rays and packets alike), a blended quad
+// lets through 1 - alpha of the light, the same rays on every run, and a mask cuts
+// by its mesh's vertex alpha too.
 #include "support/physical_fixtures.h"
 
 namespace penumbra {
@@ -184,6 +185,65 @@ TEST(AlphaMask, MaskWithoutTextureCutsByTheFactorAlone) {
     Hit hit;
     ASSERT_TRUE(tracer.intersect(makeRay(Vec3(0.3f, 5.0f, 0.2f), Vec3(0, -1, 0)), hit));
     EXPECT_EQ(tracer.materialOf(hit), alpha < 0.5f ? 0 : 1) << alpha;
+  }
+}
+
+// The untextured mask quad with vertex alpha `alphaAt(x)` at its corners (white RGB).
+template <class Alpha>
+Scene vertexAlphaScene(Alpha alphaAt) {
+  Scene scene = maskedScene(AlphaMode::Mask, false);
+  TriangleMesh& quad = scene.meshes[1];
+  for (const Vec3& p : quad.positions) quad.colors.emplace_back(1.0f, 1.0f, 1.0f, alphaAt(p.x));
+  return scene;
+}
+
+TEST(AlphaMask, VertexAlphaZeroLetsCameraAndShadowRaysThrough) {
+  // Alpha 0 at every corner: a ray straight down meets the floor (t = 5), and the
+  // light reaches the floor under the quad in full (1e-4 relative).
+  const Scene scene = vertexAlphaScene([](float) { return 0.0f; });
+  Rig rig(scene);
+  Hit hit;
+  ASSERT_TRUE(rig.tracer.intersect(makeRay(Vec3(0.2f, 5.0f, 0.3f), Vec3(0, -1, 0)), hit));
+  EXPECT_EQ(rig.tracer.materialOf(hit), 0);
+  EXPECT_NEAR(hit.t, 5.0f, 1e-5f);
+  const Vec3 p = onFloor(Vec3(0.2f, kMaskY, 0.3f));
+  EXPECT_LT(rel(trace(rig, sideRay(p), kTermDirect).g, closedForm(p)), 1e-4);
+}
+
+TEST(AlphaMask, VertexAlphaRampCutsWhereItFallsBelowTheCutoff) {
+  // Alpha (x + 1) / 2 across the quad: cut out for x < 0, kept for x > 0. Straight-
+  // down rays (single and in a packet) meet the floor or the quad on either side,
+  // occlusion agrees, and the floor is lit under the cut half only (exactly 0 under
+  // the kept one; the closed form within 1e-4 relative under the cut one).
+  const Scene scene = vertexAlphaScene([](float x) { return 0.5f * (x + 1.0f); });
+  Rig rig(scene);
+  std::vector<Ray> rays, shortRays;
+  for (float x : {-0.8f, -0.3f, -0.05f, 0.05f, 0.3f, 0.8f}) {
+    for (float z : {-0.7f, 0.1f, 0.6f}) {
+      rays.push_back(makeRay(Vec3(x, 5.0f, z), Vec3(0, -1, 0)));
+      shortRays.push_back(rays.back());
+      shortRays.back().tMax = 4.5f;
+    }
+  }
+  std::vector<Hit> packet(rays.size());
+  rig.tracer.intersectPacket(rays.data(), int(rays.size()), packet.data());
+  std::vector<uint8_t> blocked(rays.size());
+  rig.tracer.occludedPacket(shortRays.data(), int(rays.size()), blocked.data());
+  for (size_t k = 0; k < rays.size(); ++k) {
+    const bool kept = rays[k].origin.x > 0.0f;
+    Hit hit;
+    ASSERT_TRUE(rig.tracer.intersect(rays[k], hit));
+    EXPECT_NEAR(hit.t, kept ? 4.0f : 5.0f, 1e-5f) << k;
+    EXPECT_EQ(packet[k].t, hit.t) << k;
+    EXPECT_EQ(rig.tracer.occluded(shortRays[k]), kept) << k;
+    EXPECT_EQ(blocked[k] != 0, kept) << k;
+    const Vec3 p = onFloor(Vec3(rays[k].origin.x, kMaskY, rays[k].origin.z));
+    const double got = trace(rig, sideRay(p), kTermDirect).g;
+    if (kept) {
+      EXPECT_EQ(got, 0.0) << k;
+    } else {
+      EXPECT_LT(rel(got, closedForm(p)), 1e-4) << k;
+    }
   }
 }
 

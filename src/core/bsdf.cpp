@@ -170,9 +170,10 @@ void setMetalRough(Bsdf& b, ShadingModel model, const Color& base, float metalli
   b.kr = b.metallic * (smooth * smooth) * (smooth * smooth);
 }
 
-Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce) {
+Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce, const Color& tint) {
   Bsdf b;
-  b.diffuse = m.diffuse;
+  const Color base = m.diffuse * tint;
+  b.diffuse = base;
   b.specular = m.specular;
   b.shininess = m.shininess;
   b.kr = m.kr;
@@ -183,7 +184,7 @@ Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce) 
   b.uniformBounce = bounce == HemisphereSampling::Uniform;
   if (model == ShadingModel::Classic) b.type = BsdfType::ClassicPhong;
   else b.type = m.transparent ? BsdfType::Dielectric : BsdfType::Opaque;
-  if (m.metalRough && !m.transparent) setMetalRough(b, model, m.diffuse, m.metallic, m.roughness);
+  if (m.metalRough && !m.transparent) setMetalRough(b, model, base, m.metallic, m.roughness);
   return b;
 }
 

@@ -64,7 +64,9 @@ struct BsdfSample {
   bool valid = false;  // false: absorbed (classic roulette) or no usable direction
 };
 
-Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce);
+// `tint` multiplies the base colour (diffuse, or the metallic-roughness base): a
+// mesh's vertex colour at the hit, 1 elsewhere.
+Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce, const Color& tint = Color(1.0f));
 // Makes `b` glTF's metallic-roughness at one hit's values: MetalRough in the physical
 // model, its Phong terms in the classic one. makeBsdf calls it with the material's
 // factors; a hit with textures calls it again with the texels applied.

@@ -124,8 +124,9 @@ struct Material {
   int normalTexture = -1;
   float normalScale = 1.0f;
   // Cut-outs (glTF alphaMode): coverage = alpha x the mask's texel at uv (1 without a
-  // mask). Mask keeps a hit where coverage >= alphaCutoff; Blend keeps it with
-  // probability coverage. Cut out for every ray, photons included (the Embree filter).
+  // mask) x the mesh's vertex alpha (1 without colours). Mask keeps a hit where
+  // coverage >= alphaCutoff; Blend keeps it with probability coverage. Cut out for
+  // every ray, photons included (the Embree filter).
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alpha = 1.0f;         // the base colour factor's alpha
   float alphaCutoff = 0.5f;
@@ -146,6 +147,10 @@ struct TriangleMesh {
   // Per vertex, only for a normal-mapped material (else empty): xyz the unit tangent
   // along +u, w = +-1 with the bitangent cross(n, t) x w pointing up the image (-v).
   std::vector<glm::vec4> tangents;
+  // Per vertex, only when the file gives colours that are not all white (else empty):
+  // linear RGBA in [0, 1] (glTF's COLOR_0, OBJ's `v x y z r g b`). RGB multiplies the
+  // base colour, A the alpha a cut-out material tests.
+  std::vector<glm::vec4> colors;
   std::vector<std::array<uint32_t, 3>> triangles;
   int material = 0;
 };

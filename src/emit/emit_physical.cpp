@@ -43,7 +43,9 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray
       return;
     }
     SurfaceRecord s = tracer.surface(ray, hit, kSurfaceShadingNormal);
-    Bsdf bsdf = makeBsdf(scene.materials[s.material], ShadingModel::Physical, ps.sampling);
+    // The albedo camera paths see at this hit: the vertex colour tints the base.
+    Bsdf bsdf =
+        makeBsdf(scene.materials[s.material], ShadingModel::Physical, ps.sampling, Color(tracer.vertexColor(hit)));
     if (hasGatheredLobe(bsdf)) {  // where a camera path reads the maps
       bool store = pass == MapKind::Global ? diffuseBounces > 0 : specularBounces > 0;
       if (store) {

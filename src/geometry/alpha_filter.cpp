@@ -34,7 +34,9 @@ Vec2 hitUv(const AlphaCut& cut, uint32_t prim, float u, float v) {
 bool keeps(const AlphaCut& cut, RTCRayN* ray, RTCHitN* hit, unsigned n, unsigned i) {
   const uint32_t prim = RTCHitN_primID(hit, n, i);
   float coverage = cut.alpha;
-  if (cut.mask) coverage *= cut.mask->at(hitUv(cut, prim, RTCHitN_u(hit, n, i), RTCHitN_v(hit, n, i)));
+  const float u = RTCHitN_u(hit, n, i), v = RTCHitN_v(hit, n, i);
+  if (cut.mask) coverage *= cut.mask->at(hitUv(cut, prim, u, v));
+  if (!cut.mesh->colors.empty()) coverage *= vertexColorAt(*cut.mesh, prim, u, v).a;
   if (cut.mode != AlphaMode::Blend) return alphaKeeps(cut.mode, coverage, cut.cutoff, 0);
   if (coverage >= 1.0f) return true;
   if (coverage <= 0.0f) return false;

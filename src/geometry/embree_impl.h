@@ -12,8 +12,9 @@
 namespace penumbra {
 
 // What a cut-out mesh's filter reads at each candidate hit (geometry/alpha_filter.cpp):
-// the mesh's uvs (or its spherical mapping's centre), the material's alpha rule and
-// its mask. It lives in TraceScene::Impl, at a fixed address while the scene exists.
+// the mesh's uvs (or its spherical mapping's centre) and vertex alphas, the
+// material's alpha rule and its mask. It lives in TraceScene::Impl, at a fixed
+// address while the scene exists.
 struct AlphaCut {
   const TriangleMesh* mesh = nullptr;
   const AlphaMask* mask = nullptr;  // null: the material's alpha alone

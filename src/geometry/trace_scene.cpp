@@ -108,6 +108,7 @@ TraceScene::TraceScene(const Scene& scene, bool robust, BvhLayout layout) : scen
     for (const Vec3& p : mesh.positions) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
     meshCentres_.push_back(mesh.positions.empty() ? Vec3(0.0f) : 0.5f * (lo + hi));
     meshRadii_.push_back(mesh.positions.empty() ? 1.0f : std::max(1e-6f, 0.5f * glm::length(hi - lo)));
+    coloured_ = coloured_ || !mesh.colors.empty();
     if (mesh.triangles.empty()) continue;
     const AlphaCut* cut = alphaCutOf(scene, m, meshCentres_.back());
     RTCGeometry geom = createMeshGeometry(device, mesh, cut);
@@ -293,6 +294,20 @@ glm::vec4 TraceScene::tangent(const Hit& hit) const {
   const float w = 1.0f - hit.u - hit.v;
   const glm::vec4 &t0 = mesh.tangents[tri[0]], &t1 = mesh.tangents[tri[1]], &t2 = mesh.tangents[tri[2]];
   return glm::vec4(Vec3(w * t0 + hit.u * t1 + hit.v * t2), t0.w < 0.0f ? -1.0f : 1.0f);
+}
+
+glm::vec4 TraceScene::meshColor(const Hit& hit) const {
+  const GeometryRef& g = geometries_[hit.geomId];
+  if (g.sphere) return glm::vec4(1.0f);
+  const TriangleMesh& mesh = scene_.meshes[g.index];
+  return mesh.colors.empty() ? glm::vec4(1.0f) : vertexColorAt(mesh, hit.primId, hit.u, hit.v);
+}
+
+glm::vec4 vertexColorAt(const TriangleMesh& mesh, uint32_t prim, float u, float v) {
+  const auto& tri = mesh.triangles[prim];
+  const float w = 1.0f - u - v;
+  const glm::vec4 c = w * mesh.colors[tri[0]] + u * mesh.colors[tri[1]] + v * mesh.colors[tri[2]];
+  return glm::clamp(c, 0.0f, 1.0f);
 }
 
 }  // namespace penumbra

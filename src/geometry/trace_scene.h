@@ -72,6 +72,10 @@ class TraceScene {
   // bitangent's sign; all 0 on a sphere or a mesh without tangents. Apart from the
   // record, which stays small for the many hits without a normal map.
   glm::vec4 tangent(const Hit& hit) const;
+  // A hit's vertex colour (linear RGBA, interpolated as uvs are): the mesh's colours,
+  // 1 on a sphere or a mesh without them. Apart from the record, as the tangent is; a
+  // scene without colours answers from one flag.
+  glm::vec4 vertexColor(const Hit& hit) const { return coloured_ ? meshColor(hit) : glm::vec4(1.0f); }
 
   // Coherent rays (camera rays of a tile, their shadow rays to one light) as Embree
   // packets of packetWidth() lanes with the coherent flag (geometry/packet_trace.cpp).
@@ -117,6 +121,7 @@ class TraceScene {
   const AlphaCut* alphaCutOf(const Scene& scene, size_t meshIndex, const Vec3& centre);
   SurfaceRecord sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
   SurfaceRecord meshSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
+  glm::vec4 meshColor(const Hit& hit) const;
 
   const Scene& scene_;
   std::unique_ptr<Impl> impl_;
@@ -126,8 +131,13 @@ class TraceScene {
   std::vector<float> meshRadii_;         // half-diagonal: spherical-uv scale on meshes without uvs
   int packetWidth_ = 1;
   int nativePacketWidth_ = 1;
+  bool coloured_ = false;  // some mesh has vertex colours
   SceneSphere bounds_;
 };
+
+// The colour at barycentrics (u, v) of triangle `prim` of a mesh with colours,
+// clamped to [0, 1]: shading and the cut-out filter read the same value.
+glm::vec4 vertexColorAt(const TriangleMesh& mesh, uint32_t prim, float u, float v);
 
 // Equirectangular (u, v) of a unit direction from a centre, y up: u grows
 // eastwards with u = 0.5 facing +z, v = 0 at the north pole. u is in [0, 1).

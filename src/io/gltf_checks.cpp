@@ -150,10 +150,20 @@ void checkPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, cons
   // triangles, at any cost in memory the count asks for.
   if (positions.data == nullptr) gltfFail(path, at("accessors", pos->second), "POSITION has no bufferView (all zeros)");
   for (const auto& [name, index] : p.attributes) {
-    if (name != "NORMAL" && name != "TEXCOORD_0") continue;
+    if (name != "NORMAL" && name != "TEXCOORD_0" && name != "COLOR_0") continue;
     const AccessorSpan a = accessorSpan(m, index, where + ".attributes." + name, path);
     const bool normal = name == "NORMAL";
-    if (a.components != (normal ? 3 : 2)) gltfFail(path, at("accessors", index), name + " must be a " + (normal ? "VEC3" : "VEC2"));
+    if (name == "COLOR_0") {
+      // The spec's colour accessors: floats, or unsigned integers read as 0..1.
+      const bool unorm = a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                          a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+      if ((a.components != 3 && a.components != 4) || (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !unorm)) {
+        gltfFail(path, at("accessors", index),
+                 "COLOR_0 must be a VEC3 or VEC4 of FLOAT, or of normalized UNSIGNED_BYTE or UNSIGNED_SHORT");
+      }
+    } else if (a.components != (normal ? 3 : 2)) {
+      gltfFail(path, at("accessors", index), name + " must be a " + (normal ? "VEC3" : "VEC2"));
+    }
     if (normal && a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) gltfFail(path, at("accessors", index), "NORMAL must be FLOAT");
     if (a.count != positions.count) {
       gltfFail(path, where + ".attributes." + name, "has " + std::to_string(a.count) + " elements but POSITION has " +
@@ -306,8 +316,9 @@ void checkGltfBudget(const tinygltf::Model& m, const std::vector<int>& roots, co
   double bytes = 0.0;
   for (const tinygltf::Buffer& b : m.buffers) bytes += static_cast<double>(b.data.size());
   for (const tinygltf::Image& im : m.images) bytes += static_cast<double>(im.image.size());
-  // Per vertex: position, normal and uv read as doubles, then kept as floats;
-  // per index: read as a double, kept as uint32, and a third of a triangle.
+  // Per vertex: position, normal and uv read as doubles, then kept as floats, and
+  // an RGBA colour where the primitive has COLOR_0; per index: read as a double,
+  // kept as uint32, and a third of a triangle.
   std::vector<int> stack(roots.begin(), roots.end());
   while (!stack.empty()) {  // the forest is checked: each node once
     const tinygltf::Node& n = m.nodes[stack.back()];
@@ -320,7 +331,8 @@ void checkGltfBudget(const tinygltf::Model& m, const std::vector<int>& roots, co
       const double vertices = static_cast<double>(m.accessors[pos->second].count);
       const double indices = p.indices >= 0 && static_cast<size_t>(p.indices) < m.accessors.size()
                                  ? static_cast<double>(m.accessors[p.indices].count) : vertices;
-      bytes += vertices * (64.0 + 32.0) + indices * 16.0;
+      const double colour = p.attributes.count("COLOR_0") ? 16.0 : 0.0;
+      bytes += vertices * (64.0 + 32.0 + colour) + indices * 16.0;
     }
   }
   if (bytes > static_cast<double>(limits.maxBytes)) {

@@ -5,6 +5,7 @@
 #include "io/float_checks.h"
 
 #include "io/camera_checks.h"
+#include "io/gltf_attributes.h"
 #include "io/gltf_checks.h"
 #include "io/gltf_document.h"
 #include "io/gltf_extensions.h"
@@ -29,34 +30,6 @@ using glm::dmat4;
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) {
   throw ModelError("glTF file " + path + ": " + problem);
-}
-
-// Calls use(i, v) for each element i of an accessor, v its `span.components` values
-// as doubles (normalised integers scaled to [0, 1]), one element at a time: the
-// callers convert straight into the mesh's float arrays, with no copy of the whole
-// accessor. accessorSpan has proven every byte inside its buffer. Non-finite floats
-// are refused unless `keepNonFinite` (normals and tangents: judged by the caller).
-template <class Use>
-void forEachElement(const AccessorSpan& span, const std::string& where, const std::string& path, bool keepNonFinite,
-                    Use&& use) {
-  double v[16] = {};  // the widest accessor type, MAT4; zeros without a buffer view (the spec)
-  const int components = std::min(span.components, 16);
-  for (uint64_t i = 0; i < span.count; ++i) {
-    const unsigned char* p = span.data ? span.data + i * span.stride : nullptr;
-    for (int c = 0; p && c < components; ++c, p += span.componentSize) {
-      switch (span.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); v[c] = f; break; }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t b; std::memcpy(&b, p, 1); v[c] = span.normalized ? std::max(b / 127.0, -1.0) : b; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v[c] = *p / (span.normalized ? 255.0 : 1.0); break;
-        case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t h; std::memcpy(&h, p, 2); v[c] = span.normalized ? std::max(h / 32767.0, -1.0) : h; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t h; std::memcpy(&h, p, 2); v[c] = h / (span.normalized ? 65535.0 : 1.0); break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t u; std::memcpy(&u, p, 4); v[c] = u; break; }
-        default: fail(path, where + ": a component type penumbra does not read");
-      }
-      if (!keepNonFinite && !std::isfinite(v[c])) fail(path, where + ": holds a value that is not a finite float");
-    }
-    if (!use(size_t(i), static_cast<const double*>(v))) return;
-  }
 }
 
 // A primitive's indices, read in place. Index accessors hold UNSIGNED_BYTE/SHORT/INT
@@ -94,34 +67,6 @@ class IndexReader {
   bool indexed_;
   AccessorSpan span_;
 };
-
-// TANGENT (VEC4 FLOAT: xyz along +u, w the bitangent's sign), read only for a
-// normal-mapped primitive. The node's linear map carries xyz; a mirroring one turns w.
-// A tangent that cannot be normalised leaves the primitive to computed tangents.
-void addTangents(const tinygltf::Model& m, int accessor, const glm::dmat3& linear, const std::string& where,
-                 const std::string& path, TriangleMesh& mesh, LoadedModel& out) {
-  const AccessorSpan span = accessorSpan(m, accessor, where + ".attributes.TANGENT", path);
-  if (span.components != 4 || span.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-    gltfFail(path, "accessors[" + std::to_string(accessor) + "]", "TANGENT must be a VEC4 of FLOAT");
-  }
-  if (span.count != mesh.positions.size()) {
-    gltfFail(path, where + ".attributes.TANGENT", "has " + std::to_string(span.count) + " elements but POSITION has " +
-                                                      std::to_string(mesh.positions.size()) + " (the spec wants equal counts)");
-  }
-  const double handedness = glm::determinant(linear) < 0.0 ? -1.0 : 1.0;
-  mesh.tangents.reserve(span.count);
-  forEachElement(span, where + ".attributes.TANGENT", path, true, [&](size_t, const double* t) {
-    const Vec3 d(glm::normalize(linear * glm::dvec3(t[0], t[1], t[2])));
-    if (!isFinite(d) || std::fabs(glm::length(d) - 1.0f) > 1e-3f || !std::isfinite(t[3])) {
-      mesh.tangents.clear();
-      mesh.tangents.shrink_to_fit();
-      if (out.warning.empty()) out.warning = where + ".attributes.TANGENT: a tangent of zero length or not finite; tangents are computed from the uvs";
-      return false;
-    }
-    mesh.tangents.emplace_back(d, t[3] * handedness < 0.0 ? -1.0f : 1.0f);
-    return true;
-  });
-}
 
 void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, const dmat4& world, const std::string& name,
                   const std::string& where, const std::string& path, LoadedModel& out) {
@@ -174,6 +119,7 @@ void addPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& prim, con
   if (normalMapped && (attr = prim.attributes.find("TANGENT")) != prim.attributes.end()) {
     addTangents(m, attr->second, linear, where, path, mesh, out);
   }
+  if ((attr = prim.attributes.find("COLOR_0")) != prim.attributes.end()) addColors(m, attr->second, where, path, mesh);
   // The triangles straight from the index accessor, with no list of indices beside them.
   const IndexReader idx(m, prim.indices, count, where + ".indices", path);
   const uint64_t n = idx.count();

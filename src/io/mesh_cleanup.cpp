@@ -1,4 +1,4 @@
-// Degenerate-triangle removal for loaded and transformed meshes.
+// Degenerate-triangle and white-colour removal for loaded and transformed meshes.
 #include "io/mesh_cleanup.h"
 #include <algorithm>
 
@@ -18,6 +18,13 @@ size_t dropDegenerateTriangles(TriangleMesh& mesh) {
   mesh.triangles.erase(std::remove_if(mesh.triangles.begin(), mesh.triangles.end(), degenerate),
                        mesh.triangles.end());
   return before - mesh.triangles.size();
+}
+
+void dropWhiteColors(TriangleMesh& mesh) {
+  const auto white = [](const glm::vec4& c) { return c == glm::vec4(1.0f); };
+  if (!std::all_of(mesh.colors.begin(), mesh.colors.end(), white)) return;
+  mesh.colors.clear();
+  mesh.colors.shrink_to_fit();
 }
 
 }  // namespace penumbra

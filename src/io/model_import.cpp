@@ -109,6 +109,7 @@ void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fa
     // Triangles whose normal cannot be computed in float would hit with NaN normals.
     dropDegenerateTriangles(mesh);
     if (mesh.triangles.empty()) continue;
+    dropWhiteColors(mesh);
     scene.meshes.push_back(std::move(mesh));
     ++added;
   }

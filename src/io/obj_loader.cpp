@@ -1,4 +1,4 @@
-// OBJ loading: tinyobjloader parse, vertex unification, normals and uvs; MTL
+// OBJ loading: tinyobjloader parse, vertex unification, normals, uvs and colours; MTL
 // materials mapped onto penumbra's, and the mesh split by material.
 #include "io/obj_loader.h"
 
@@ -63,6 +63,8 @@ TriangleMesh readObj(const std::string& path, tinyobj::ObjReader& reader, std::v
   const size_t numPositions = attrib.vertices.size() / 3;
   const size_t numNormals = attrib.normals.size() / 3;
   const size_t numUvs = attrib.texcoords.size() / 2;
+  // tinyobjloader keeps `v x y z r g b` colours only when every vertex has one.
+  const bool colours = !attrib.colors.empty() && attrib.colors.size() == attrib.vertices.size();
 
   // Gather triangle corners; a corner-less attribute anywhere drops it everywhere,
   // since a mesh carries normals and uvs for all vertices or for none.
@@ -128,6 +130,10 @@ TriangleMesh readObj(const std::string& path, tinyobj::ObjReader& reader, std::v
         }
         mesh.positions.push_back(p);
         positionOf.push_back(key.v);
+        if (colours) {
+          const auto* c = &attrib.colors[3 * size_t(key.v)];
+          mesh.colors.push_back(glm::clamp(glm::vec4(float(c[0]), float(c[1]), float(c[2]), 1.0f), 0.0f, 1.0f));
+        }
         if (allNormals) {
           Vec3 n(attrib.normals[3 * key.n], attrib.normals[3 * key.n + 1],
                  attrib.normals[3 * key.n + 2]);
@@ -252,6 +258,7 @@ LoadedModel loadObjModel(const std::string& path, const LoadLimits& limits) {
         part.positions.push_back(all.positions[v]);
         if (!all.normals.empty()) part.normals.push_back(all.normals[v]);
         if (!all.uvs.empty()) part.uvs.push_back(all.uvs[v]);
+        if (!all.colors.empty()) part.colors.push_back(all.colors[v]);
       }
       tri[c] = it->second;
     }

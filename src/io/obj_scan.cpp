@@ -69,8 +69,10 @@ void checkMtl(const std::string& path) {
 uint64_t ObjScan::loadBytes() const {
   // tinyobjloader: 3 floats per v/vn, 2 per vt, a 12-byte index per corner; then a
   // hash entry and a unified vertex (position, normal, uv) per corner at most, and
-  // the split by material copying vertices and triangles once more.
-  return positions * 12 + normals * 12 + uvs * 8 + faceCorners * (12 + 48 + 2 * 32) + faces * 8;
+  // the split by material copying vertices and triangles once more. A colour: 3
+  // floats, then RGBA per unified vertex and its copy.
+  return positions * 12 + normals * 12 + uvs * 8 + faceCorners * (12 + 48 + 2 * 32) + faces * 8 +
+         coloured * 12 + (coloured > 0 ? faceCorners * 2 * 16 : 0);
 }
 
 ObjScan scanObj(const std::string& path, const LoadLimits& limits) {
@@ -109,7 +111,8 @@ ObjScan scanObj(const std::string& path, const LoadLimits& limits) {
     const char* what = tag == "v" ? "vertex" : tag == "vn" ? "normal" : tag == "vt" ? "texture coordinate" : nullptr;
     if (!what) continue;
     (tag == "v" ? scan.positions : tag == "vn" ? scan.normals : scan.uvs) += 1;
-    while (fields >> field) {
+    for (int count = 0; fields >> field; ++count) {
+      if (tag == "v" && count == 5) ++scan.coloured;
       double v = 0.0;
       if (!finiteFloat(field, v)) {
         throw ObjError(fmt::format("OBJ file {}:{}: {} field \"{}\" is not a finite single-precision number", path,

@@ -12,6 +12,7 @@ namespace penumbra {
 struct ObjScan {
   std::vector<std::string> mtlFiles;  // mtllib files found, beside the OBJ or as given
   uint64_t positions = 0, normals = 0, uvs = 0, faceCorners = 0, faces = 0;
+  uint64_t coloured = 0;  // `v` lines with a colour after the position (x y z r g b)
   // What loading allocates at its peak: tinyobjloader's arrays, the unified vertices
   // and the per-material copies.
   uint64_t loadBytes() const;

@@ -110,10 +110,10 @@ TriangleMesh readBox(const JsonNode& node) {
 
 // A mesh object: its file's materials (MTL, glTF) unless the object names one; faces
 // without a material take the scene's (or the implicit default).
-// What a mesh holds in memory: vertices with their normals and uvs, and triangles.
+// What a mesh holds in memory: vertices with their normals, uvs and colours, and triangles.
 uint64_t bytesOf(const TriangleMesh& m) {
   return m.positions.size() * sizeof(Vec3) + m.normals.size() * sizeof(Vec3) + m.uvs.size() * sizeof(Vec2) +
-         m.triangles.size() * sizeof(m.triangles[0]);
+         m.colors.size() * sizeof(m.colors[0]) + m.triangles.size() * sizeof(m.triangles[0]);
 }
 
 // The scene's meshes from index `first` on.

@@ -154,7 +154,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   for (const TriangleMesh& m : scene.meshes) {
     triangles += m.triangles.size();
     meshBytes += m.positions.size() * 12.0 + m.normals.size() * 12.0 + m.uvs.size() * 8.0 +
-                 m.tangents.size() * 16.0 + m.triangles.size() * 12.0;
+                 (m.tangents.size() + m.colors.size()) * 16.0 + m.triangles.size() * 12.0;
     // Embree reads the indices in place, and the vertices too where they are padded.
     tracerBytes += (hasVertexPadding(m.positions) ? 0.0 : m.positions.size() * 12.0) +
                    m.triangles.size() * kFrameBytesPerTriangle;

@@ -96,7 +96,8 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
     return glow;
   }
   ++ts.shadingPoint;
-  Bsdf bsdf = makeBsdf(m, ShadingModel::Physical, ctx.scene.photons.sampling);
+  // The vertex colour multiplies the base colour, as the texture below does.
+  Bsdf bsdf = makeBsdf(m, ShadingModel::Physical, ctx.scene.photons.sampling, Color(ctx.tracer.vertexColor(hit)));
   if (textured && ctx.textures) {
     // A texture is the diffuse albedo's (base colour's) map: multiplied in, or added
     // and kept <= 1; a metallic-roughness map scales those factors.

@@ -15,12 +15,13 @@ namespace {
 
 // Phong through the BSDF and light interfaces: ambient (or the indirect estimate)
 // plus, per visible light, the classic BSDF (k_d N.L + k_s (R.V)^n) times the
-// light's incident term (I / d^2 for point lights).
+// light's incident term (I / d^2 for point lights). The vertex colour `tint` is in
+// the BSDF's base already; the ambient term, the base's too, takes it here.
 Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m, const Bsdf& bsdf,
-                   const Vec3& toEye, const Color& texel, ThreadState& ts, RayRecord* rec) {
+                   const Vec3& toEye, const Color& texel, const Color& tint, ThreadState& ts, RayRecord* rec) {
   CachedAnswer storage;
   const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);
-  Color lit = ambientTerm(ctx, s, m, cached, ts);
+  Color lit = ambientTerm(ctx, s, m, cached, ts) * tint;
   const BsdfFrame frame{s.ns, s.ng, s.frontFace};
   const auto& lights = ctx.scene.lights;
   ++ts.shadingPoint;
@@ -91,17 +92,18 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   if (ctx.textures) applyNormalMap(m, *ctx.textures, ctx.tracer, hit, footprint, ray.dir, s);
   Color texel(1.0f);
   if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
-  Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling);
+  const Color tint(ctx.tracer.vertexColor(hit));
+  Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling, tint);
   if (m.metalRoughTexture >= 0 && ctx.textures) {
     const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);
-    setMetalRough(bsdf, ShadingModel::Classic, m.diffuse, mr.metallic, mr.roughness);
+    setMetalRough(bsdf, ShadingModel::Classic, m.diffuse * tint, mr.metallic, mr.roughness);
   }
 
   // Local shading records its gate notes into this ray's record; fetch the
   // pointer after children may have grown the vector, never hold it across.
   RayRecord scratchRec;
   ts.currentRecord = recIndex;
-  Color color = glow + localShading(ctx, s, m, bsdf, toEye, texel, ts, recIndex >= 0 ? &scratchRec : nullptr);
+  Color color = glow + localShading(ctx, s, m, bsdf, toEye, texel, tint, ts, recIndex >= 0 ? &scratchRec : nullptr);
 
   const RenderSettings& rs = ctx.scene.render;
   bool deeper = depth < rs.maxDepth;
@@ -159,7 +161,8 @@ Color whittedSample(const ShadingContext& ctx, const Ray& ray, const Hit* hit, A
   if (!hit) return Color(0.0f);
   const SurfaceRecord s = ctx.tracer.surface(ray, *hit, kSurfaceShadingNormal);
   CachedAnswer storage;
-  return ambientTerm(ctx, s, ctx.scene.materials[s.material], lookupAt(ctx, s, storage, ts), ts);
+  return ambientTerm(ctx, s, ctx.scene.materials[s.material], lookupAt(ctx, s, storage, ts), ts) *
+         Color(ctx.tracer.vertexColor(*hit));
 }
 
 void whittedTree(const ShadingContext& ctx, const Ray& ray, ThreadState& ts) {
