@@ -162,7 +162,9 @@ TEST(VertexColors, ClassicIndirectPhotonsOffTheFloorTakeItsHue) {
       ASSERT_GT(power.r, 0.0f);
       ASSERT_NEAR(power.g, c.g * power.r, power.r / 256.0f);
       ASSERT_NEAR(power.b, c.b * power.r, power.r / 256.0f);
-      if (c.g == 0.0f) ASSERT_EQ(power.g + power.b, 0.0f);
+      if (c.g == 0.0f) {
+        ASSERT_EQ(power.g + power.b, 0.0f);
+      }
       ++onCeiling;
     }
     EXPECT_GT(onCeiling, 2000u);

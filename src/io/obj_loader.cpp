@@ -131,8 +131,8 @@ TriangleMesh readObj(const std::string& path, tinyobj::ObjReader& reader, std::v
         mesh.positions.push_back(p);
         positionOf.push_back(key.v);
         if (colours) {
-          const auto* c = &attrib.colors[3 * size_t(key.v)];
-          mesh.colors.push_back(glm::clamp(glm::vec4(float(c[0]), float(c[1]), float(c[2]), 1.0f), 0.0f, 1.0f));
+          const auto* rgb = &attrib.colors[3 * size_t(key.v)];
+          mesh.colors.push_back(glm::clamp(glm::vec4(float(rgb[0]), float(rgb[1]), float(rgb[2]), 1.0f), 0.0f, 1.0f));
         }
         if (allNormals) {
           Vec3 n(attrib.normals[3 * key.n], attrib.normals[3 * key.n + 1],

@@ -94,7 +94,7 @@ BenchOutcome runBench(const BenchRequest& req) {
     RenderSession session({req.maxMemoryBytes, req.plan, most, nullptr, {}, kStageCacheBytes, req.load});
     std::vector<OutputPath> outputs;
     if (!req.jsonPath.empty()) outputs.push_back({req.jsonPath, "--json", false});
-    const PlannedJob job = session.plan({path, req.overrides, "", outputs, {}});
+    const PlannedJob job = session.plan({path, req.overrides, "", outputs, {}, {}});
     SceneBench s;
     s.path = path;
     s.name = job.scene.name;
