@@ -99,13 +99,14 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   IndirectPhotonMap map;
   map.build(std::move(photons.global));
   rig.ctx.globalMap = &map;
-  // A fixed gather radius r (a progressive pass's estimate): every photon within r
+  // A fixed gather radius r (a progressive pass of photons.radius): every photon within r
   // on the same face counts, unbiased away from edges. Within r of an edge the disc
   // holds no photons beyond it (the adjacent face's are rejected by the normal test);
   // the Epanechnikov kernel's mass beyond a straight edge integrated over the band is
   // E[x+] = 8 r / (15 pi), so the area mean is low by (sum of face perimeters)
   // 8 r / (15 pi) / A = 0.44% at r = 0.01. That first-order correction is applied.
   const float r = 0.01f;
+  rig.ctx.globalK = 0;
   rig.ctx.globalRadius = r;
   const Vec3 e = kBoxMax - kBoxMin;
   const double perimeters = 4.0 * (double(e.x) + e.y + e.z) * 2.0;

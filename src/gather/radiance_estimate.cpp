@@ -2,24 +2,27 @@
 #include "gather/radiance_estimate.h"
 #include "gather/indirect_estimate.h"
 #include <algorithm>
+#include <cmath>
 
 namespace penumbra {
 
-RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf,
-                                const BsdfFrame& frame, const Vec3& p, const Vec3& wo, int k,
-                                float radius, GatherScratch& s) {
+RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, const BsdfFrame& frame,
+                                const Vec3& p, const Vec3& wo, const PhotonGather& gather, GatherScratch& s) {
   RadianceEstimate e;
-  if (map.empty() || (radius <= 0.0f && k <= 0)) return e;
+  const float maxRadius = std::max(gather.maxRadius, 0.0f);
+  if (map.empty() || (maxRadius == 0.0f && gather.k <= 0)) return e;
   size_t n;
   float r2;
-  if (radius > 0.0f) {
-    n = map.within(p, radius, s);
-    r2 = radius * radius;
+  if (gather.k <= 0) {
+    n = map.within(p, maxRadius, s);
+    r2 = maxRadius * maxRadius;
   } else {
     // Sorted (canonical order) so the float sum is the same at any thread count.
-    n = map.knn(p, static_cast<size_t>(k), 0.0f, s);
+    n = map.knn(p, static_cast<size_t>(gather.k), maxRadius, s);
     r2 = 0.0f;
     for (size_t i = 0; i < n; ++i) r2 = std::max(r2, s.dist2[i]);
+    // Fewer than k inside the bound: the k-th lies beyond it, the disc is the bound's.
+    if (maxRadius > 0.0f && n < static_cast<size_t>(gather.k)) r2 = maxRadius * maxRadius;
   }
   if (n == 0 || !(r2 >= std::numeric_limits<float>::min())) return e;
   e.radius = std::sqrt(r2);
@@ -63,6 +66,17 @@ float typicalKnnRadius(const IndirectPhotonMap& map, int k, GatherScratch& s) {
   }
   std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
   return radii[radii.size() / 2];
+}
+
+double passRadiusShare(uint32_t pass, float alpha) {
+  // The product is Gamma(i + 1 + alpha) / (Gamma(1 + alpha) Gamma(i + 2)).
+  const double a = alpha, i = pass;
+  return std::exp(std::lgamma(i + 1.0 + a) - std::lgamma(1.0 + a) - std::lgamma(i + 2.0));
+}
+
+int passK(int k, uint32_t pass, float alpha) {
+  if (k <= kMinPassK) return k;
+  return std::max(kMinPassK, static_cast<int>(std::lround(k * passRadiusShare(pass, alpha))));
 }
 
 }  // namespace penumbra
