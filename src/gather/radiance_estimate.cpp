@@ -1,10 +1,54 @@
 // Photon radiance estimate; finite for any input (empty maps, coincident photons).
 #include "gather/radiance_estimate.h"
 #include "gather/indirect_estimate.h"
+#include "gather/surface_share.h"
 #include <algorithm>
 #include <cmath>
 
 namespace penumbra {
+
+namespace {
+
+struct PhotonSum {
+  Color sum{0.0f};
+  int found = 0;
+};
+
+// The kernel-weighted sum over the gathered photons on the query's surface: those
+// whose normal agrees with frame.ng and, when `keep` is given, that lie on the
+// query's side of its cuts. Photons at an angle to the surface go to `record`.
+PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, float invR2,
+                     const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo, SurfaceCuts* record,
+                     const SurfaceCuts* keep) {
+  // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
+  const bool lambertOnly = bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy);
+  const PhotonArray<IndirectPhoton>& photons = map.photons();
+  PhotonSum a;
+  for (size_t i = 0; i < n; ++i) {
+    const IndirectPhoton& ph = photons[s.indices[i]];
+    const Vec3 normal = decodeOctahedral(ph.normal);
+    const float cos = glm::dot(normal, frame.ng);
+    if (cos <= kIndirectMinNormalCos) {
+      if (record) record->add(ph.position, normal, cos);
+      continue;
+    }
+    const float w = 1.0f - s.dist2[i] * invR2;
+    if (w <= 0.0f || (keep && !keep->keeps(ph.position))) continue;
+    ++a.found;
+    if (lambertOnly) {
+      a.sum += w * ph.power.color();  // decoded once per photon on either path
+      continue;
+    }
+    const Vec3 wi = -decodeOctahedral(ph.direction);
+    const float cosI = glm::dot(frame.ns, wi);
+    if (cosI <= 1e-4f) continue;
+    a.sum += w * ph.power.color() * evaluateBsdf(bsdf, frame, wo, wi) / cosI;
+  }
+  if (lambertOnly) a.sum *= (1.0f - bsdf.kr) * bsdf.diffuse * (1.0f / kPi);
+  return a;
+}
+
+}  // namespace
 
 RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, const BsdfFrame& frame,
                                 const Vec3& p, const Vec3& wo, const PhotonGather& gather, GatherScratch& s) {
@@ -26,30 +70,16 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, 
   }
   if (n == 0 || !(r2 >= std::numeric_limits<float>::min())) return e;
   e.radius = std::sqrt(r2);
-  // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
-  const bool lambertOnly = bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy);
-  const PhotonArray<IndirectPhoton>& photons = map.photons();
   const float invR2 = 1.0f / r2;
-  Color sum(0.0f);
-  int found = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const IndirectPhoton& ph = photons[s.indices[i]];
-    if (glm::dot(decodeOctahedral(ph.normal), frame.ng) <= kIndirectMinNormalCos) continue;
-    float w = 1.0f - s.dist2[i] * invR2;
-    if (w <= 0.0f) continue;
-    ++found;
-    if (lambertOnly) {
-      sum += w * ph.power.color();  // decoded once per photon on either path
-      continue;
-    }
-    Vec3 wi = -decodeOctahedral(ph.direction);
-    float cosI = glm::dot(frame.ns, wi);
-    if (cosI <= 1e-4f) continue;
-    sum += w * ph.power.color() * evaluateBsdf(bsdf, frame, wo, wi) / cosI;
+  SurfaceCuts cuts(p, frame.ng, e.radius);
+  PhotonSum a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, &cuts, nullptr);
+  if (cuts.count() > 0) {
+    // Near an edge: only the photons on the query's side, over the kernel's mass there.
+    a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, nullptr, &cuts);
+    a.sum /= cuts.share();
   }
-  if (lambertOnly) sum *= (1.0f - bsdf.kr) * bsdf.diffuse * (1.0f / kPi);
-  e.found = found;
-  e.value = sum * (2.0f / kPi * invR2);
+  e.found = a.found;
+  e.value = a.sum * (2.0f / kPi * invR2);
   return e;
 }
 

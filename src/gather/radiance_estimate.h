@@ -25,16 +25,18 @@ struct PhotonGather {
 // over the photons whose stored normal agrees with frame.ng (cos > 0.5). The kernel
 // integrates to 1 over the disc, so a uniformly lit plane gets exactly f Phi / area
 // in expectation (k nearest: the k-th photon weighs 0, so the other k - 1 over the
-// disc's area, as the unbiased estimate of a Poisson density); near edges and corners
-// the estimate is biased low by the part of the disc that holds no surface, and a
-// caustic is blurred over about r (the usual density-estimation bias, -> 0 with r).
+// disc's area, as the unbiased estimate of a Poisson density). Where the disc reaches
+// past the surface's edge (photons of a neighbouring surface at an angle to it mark
+// the edge: surface_share.h), only photons on the query's side count, over the
+// kernel's mass on that side; the density-estimation bias left is that of a curved
+// density (-> 0 with r), and a caustic is blurred over about r.
 RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, const BsdfFrame& frame,
                                 const Vec3& p, const Vec3& wo, const PhotonGather& gather,
                                 GatherScratch& scratch);
 
 // The median distance to the k-th nearest photon, measured at up to 256 photons
-// spread evenly through the map's storage order: the first progressive pass's
-// radius when none is given. Deterministic; 0 for an empty map.
+// spread evenly through the map's storage order: the lookup cache's cell scale and
+// the typical radius --stats reports. Deterministic; 0 for an empty map.
 float typicalKnnRadius(const IndirectPhotonMap& map, int k, GatherScratch& scratch);
 
 // Progressive passes (Knaus & Zwicker 2011): pass i's (0-based) squared gather radius
