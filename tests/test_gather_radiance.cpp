@@ -152,17 +152,53 @@ TEST(SurfaceShare, AThinWallKeepsTheFloorBeyondItOut) {
   }
 }
 
+TEST(SurfaceShare, ACurvedSurfaceTurningAwayCutsNothing) {
+  // 20000 photons spread evenly over a unit sphere (a Fibonacci lattice), gathered
+  // within 1.2: the disc reaches 74 degrees around the sphere, so photons 60-74
+  // degrees away stand at an angle to the query, each on its own tangent plane. No
+  // two agree on a plane: the estimate is the plain kernel sum over the photons
+  // facing the query's way, computed here by brute force.
+  const int n = 20000;
+  const float phi = 0.001f, r = 1.2f;
+  PhotonArray<IndirectPhoton> photons;
+  for (int i = 0; i < n; ++i) {
+    const float z = 1.0f - (2.0f * i + 1.0f) / n, rho = std::sqrt(1.0f - z * z);
+    const float a = 2.399963f * i;  // the golden angle
+    const Vec3 p(rho * std::cos(a), rho * std::sin(a), z);
+    photons.push_back({p, Color(phi), encodeOctahedral(-p), encodeOctahedral(p)});
+  }
+  IndirectPhotonMap map;
+  map.build(photons);
+  const Vec3 q = glm::normalize(Vec3(0.3f, -0.2f, 0.9f));
+  double plain = 0.0;
+  for (const IndirectPhoton& ph : photons) {
+    const float d2 = glm::dot(ph.position - q, ph.position - q);
+    if (d2 < r * r && glm::dot(decodeOctahedral(ph.normal), q) > 0.5f)
+      plain += 2.0 / (kPi * r * r) * (1.0 - d2 / (r * r)) * ph.power.color().g;
+  }
+  Bsdf white;
+  white.type = BsdfType::Opaque;
+  white.diffuse = Color(1.0f);
+  GatherScratch scratch;
+  const RadianceEstimate e = photonRadiance(map, white, BsdfFrame{q, q, true}, q, q, PhotonGather{0, r}, scratch);
+  EXPECT_NEAR(e.value.g * kPi / plain, 1.0, 1e-4);
+}
+
 TEST(SurfaceShare, PhotonsFacingAwayOrAlongTheSurfaceCutNothing) {
   const Vec3 p(0, 0, 0), n = kY;
   SurfaceCuts cuts(p, n, 0.1f);
   cuts.add(Vec3(0.05f, -0.001f, 0), -kY, -1.0f);  // the far side of a thin floor
   cuts.add(Vec3(0.05f, 0.0f, 0), kY, 1.0f);        // the floor itself
   cuts.add(Vec3(0.5f, 0.0f, 0), -kX, 0.0f);        // a wall beyond the radius
-  EXPECT_EQ(cuts.count(), 0);
-  EXPECT_EQ(cuts.share(), 1.0f);
-  // Two photons of one wall make one cut, at the wall's distance.
-  cuts.add(Vec3(0.04f, 0.01f, 0.02f), -kX, 0.0f);
+  cuts.add(Vec3(0.5f, 0.05f, 0), -kX, 0.0f);
+  cuts.add(Vec3(0.04f, 0.01f, 0.02f), -kX, 0.0f);  // one photon of a wall: no plane yet
+  SurfaceCuts lone = cuts;
+  lone.finish();
+  EXPECT_EQ(lone.count(), 0);
+  EXPECT_EQ(lone.share(), 1.0f);
+  // A second photon of the wall, 0.064 from the first: one cut, at the wall's distance.
   cuts.add(Vec3(0.04f, 0.05f, -0.03f), -kX, 0.0f);
+  cuts.finish();
   EXPECT_EQ(cuts.count(), 1);
   EXPECT_NEAR(cuts.share(), 1.0 - kernelMassBeyond(0.4), 1e-6);
   EXPECT_TRUE(cuts.keeps(Vec3(0.039f, 0, 0.05f)));

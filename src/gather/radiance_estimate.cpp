@@ -73,6 +73,7 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, 
   const float invR2 = 1.0f / r2;
   SurfaceCuts cuts(p, frame.ng, e.radius);
   PhotonSum a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, &cuts, nullptr);
+  cuts.finish();
   if (cuts.count() > 0) {
     // Near an edge: only the photons on the query's side, over the kernel's mass there.
     a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, nullptr, &cuts);

@@ -11,6 +11,9 @@ namespace {
 constexpr float kSameEdgeCos = 0.7071f;
 // Distances below this share of the radius are the edge itself, to rounding.
 constexpr float kOnEdge = 1e-4f;
+// Two photons are on one plane with normals within 0.8 degrees and the second within
+// kCoplanar radii of the first's plane; kConfirmSpan radii apart they confirm it.
+constexpr float kSamePlaneCos = 0.9999f, kCoplanar = 1e-3f, kConfirmSpan = 0.1f;
 
 }  // namespace
 
@@ -26,20 +29,39 @@ double kernelMassBeyond(double d) {
 
 void SurfaceCuts::add(const Vec3& position, const Vec3& normal, float cos) {
   if (!(std::abs(cos) < kIndirectMinNormalCos)) return;  // the surface itself, or facing away
-  // The photon's plane: signed distance s of the query from it. In the tangent plane
-  // the surface keeps the query's side, t . nt > -s with nt the normal's tangent
-  // part (|nt| >= sin 60 degrees), so the line lies |s| / |nt| away, along -sign(s) nt.
-  const float s = glm::dot(p_ - position, normal);
-  const Vec3 nt = normal - cos * ng_;
+  // A plane farther than the radius (in the tangent plane) cuts nothing.
+  if (!(std::abs(glm::dot(p_ - position, normal)) < radius_ * glm::length(normal - cos * ng_))) return;
+  for (int i = 0; i < planeCount_; ++i) {
+    Plane& plane = planes_[i];
+    const Vec3 offset = position - plane.point;
+    if (glm::dot(normal, plane.normal) > kSamePlaneCos &&
+        std::abs(glm::dot(offset, plane.normal)) <= kCoplanar * radius_) {
+      plane.confirmed = plane.confirmed || glm::length(offset) >= kConfirmSpan * radius_;
+      return;
+    }
+  }
+  if (planeCount_ < kMaxPlanes) planes_[planeCount_++] = {position, normal, false};
+}
+
+void SurfaceCuts::finish() {
+  for (int i = 0; i < planeCount_; ++i)
+    if (planes_[i].confirmed) cut(planes_[i]);
+}
+
+void SurfaceCuts::cut(const Plane& plane) {
+  // Signed distance s of the query from the plane. In the tangent plane the surface
+  // keeps the query's side, t . nt > -s with nt the normal's tangent part (|nt| >=
+  // sin 60 degrees), so the line lies |s| / |nt| away, along -sign(s) nt.
+  const float s = glm::dot(p_ - plane.point, plane.normal);
+  const Vec3 nt = plane.normal - glm::dot(plane.normal, ng_) * ng_;
   const float len = glm::length(nt);
   const float d = std::abs(s) / len;
-  if (!(d < radius_)) return;
-  // A query on the edge itself (s within rounding of 0) keeps the side the photon's
-  // normal points to if the photon stands above its surface (a concave edge), the
+  // A query on the edge itself (s within rounding of 0) keeps the side the normal
+  // points to if the plane's photon stands above its surface (a concave edge), the
   // other if below (convex); a photon on the line itself says nothing.
   float side = s;
   if (std::abs(s) <= kOnEdge * radius_) {
-    const float h = glm::dot(position - p_, ng_);
+    const float h = glm::dot(plane.point - p_, ng_);
     if (std::abs(h) <= kOnEdge * radius_) return;
     side = h;
   }
@@ -58,7 +80,7 @@ void SurfaceCuts::add(const Vec3& position, const Vec3& normal, float cos) {
     dist_[count_++] = d;
     return;
   }
-  // A fourth direction (a point among curved neighbours): it replaces the farthest cut.
+  // A fourth direction: it replaces the farthest cut.
   int far = 0;
   for (int c = 1; c < count_; ++c) far = dist_[c] > dist_[far] ? c : far;
   if (d < dist_[far]) {
