@@ -6,12 +6,12 @@
 // The reference (tests/data/reference/cornell_physical_converged.exr): the scene at
 // 512 x 512, the mean of two renders (seeds 1 and 2) of 256 passes of 2M global + 2M
 // caustic photons at spp 1, box-filtered 4 x 4 (a 128-pixel render's pixels cover the
-// same areas). At 512 x 512 the two differ by an RMSE of 0.0089 (0.149 in the
-// caustic), so their mean's own noise is about 0.0044 (0.074): well below what a
-// 64-pass render here misses it by. The caustic (cornell_physical_converged_caustic.exr:
-// the caustic view, 16 passes of 2M caustic photons, filtered the same way) is the
-// pixels above 1% of its brightest. PENUMBRA_UPDATE_REFERENCES=1 renders both again
-// (about an hour on two cores).
+// same areas). Two seeds, because a k-nearest estimate's noise falls with passes, not
+// with photons a pass; their difference bounds the mean's own error, a fraction of
+// what a 64-pass render here misses it by (docs/PERFORMANCE.md). The caustic
+// (cornell_physical_converged_caustic.exr: the caustic view, 16 passes of 2M caustic
+// photons, filtered the same way) is the pixels above 1% of its brightest.
+// PENUMBRA_UPDATE_REFERENCES=1 renders both again (slow: three long renders).
 #include "plan/pipeline.h"
 #include "io/image_io.h"
 #include <gtest/gtest.h>
@@ -104,8 +104,8 @@ TEST(Convergence, RmseFallsAtLeastAsPassesToTheMinusOneThird) {
     whole[i] = rmse(image, reference);
     focus[i] = rmse(image, reference, &caustic);
   }
-  // 16^(-1/3) = 0.397. Measured (seeds 1, 2, 3): whole 0.23, 0.21, 0.31; caustic
-  // 0.21, 0.15, 0.33. With one map-wide radius the ratios were 0.57 and 0.67.
+  // 16^(-1/3) = 0.397; the other seeds and the map-wide radius's ratios are in the
+  // commit that made this test.
   const double bound = std::pow(16.0, -1.0 / 3.0);
   std::printf("RMSE at 4 and 64 passes: whole %.5f -> %.5f (x%.3f), caustic (%ld px) %.4f -> %.4f (x%.3f); "
               "bound x%.3f\n",

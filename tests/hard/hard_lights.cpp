@@ -86,9 +86,8 @@ TEST(HardLights, LightsInsideClosedObjectsLightNothingOutside) {
 // ends (gather/surface_share.h). The one-pass k-nearest estimate has no radius: far
 // from any photon it reaches through the walls (docs/photon-maps.md), but there too
 // the walls' photons keep the inner bottom out; asserted to stay on the floor near
-// the box (<= 2% of the pixels: 0.65% measured for the point light, 5.7% before the
-// walls cut the disc) and below 1e-4 elsewhere, the ~6e-6 residue of photons that
-// start a rounding error outside a face at the box's edges.
+// the box (<= 2% of the pixels) and below 1e-4 elsewhere, the ~6e-6 residue of
+// photons that start a rounding error outside a face at the box's edges.
 TEST(HardLights, PhotonsOfALightInsideAClosedObjectConvergeToDark) {
   const float kResidual = 1e-4f;
   for (const std::string& light : {pointAt(0, 0.5, 0), kQuadInBox}) {
