@@ -182,8 +182,9 @@ TEST(PhotonEstimate, UniformPhotonsOnAPlaneGiveFTimesTheIrradiance) {
     }
     Bsdf b = makeBsdf(m, ShadingModel::Physical, HemisphereSampling::Cosine);
     const Color f = evaluateBsdf(b, frame, wo, wi) / glm::dot(n, wi);
-    for (float radius : {0.2f, 0.0f}) {
-      RadianceEstimate e = photonRadiance(map, b, frame, q, wo, 400, radius, scratch);
+    for (PhotonGather gather : {PhotonGather{0, 0.2f}, PhotonGather{400, 0.0f}}) {
+      const float radius = gather.maxRadius;
+      RadianceEstimate e = photonRadiance(map, b, frame, q, wo, gather, scratch);
       for (int c = 0; c < 3; ++c) {
         const double want = f[c] * (c + 1) * phi / (h * h);
         EXPECT_LT(rel(e.value[c], want), 0.01) << (glossy ? "glossy" : "lambert") << " r=" << radius
@@ -197,7 +198,7 @@ TEST(PhotonEstimate, UniformPhotonsOnAPlaneGiveFTimesTheIrradiance) {
   IndirectPhotonMap backMap;
   backMap.build(back);
   Bsdf b = makeBsdf(lambert("m", Color(0.5f)), ShadingModel::Physical, HemisphereSampling::Cosine);
-  EXPECT_EQ(photonRadiance(backMap, b, frame, q, wo, 400, 0.2f, scratch).value, Color(0.0f));
+  EXPECT_EQ(photonRadiance(backMap, b, frame, q, wo, PhotonGather{0, 0.2f}, scratch).value, Color(0.0f));
 }
 
 }  // namespace

@@ -255,7 +255,7 @@ Color LookupCache::estimateAt(const IndirectPhotonMap& map, const Vec3& p, const
       Bsdf white;  // rho = 1, no glossy or mirror part: photonRadiance = irradiance / pi
       white.type = BsdfType::Opaque;
       white.diffuse = Color(1.0f);
-      return photonRadiance(map, white, BsdfFrame{n, n, true}, p, n, k_, radius_, s).value;
+      return photonRadiance(map, white, BsdfFrame{n, n, true}, p, n, PhotonGather{k_, radius_}, s).value;
     }
     case CachedIndirect::None: break;
   }

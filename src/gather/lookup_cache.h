@@ -26,9 +26,9 @@ enum class CachedIndirect : uint8_t {
 struct LookupCacheParams {
   float cellSize = 0.0f;  // world units (> 0); see cacheCellSize()
   CachedIndirect indirect = CachedIndirect::None;
-  int k = 50;              // photons per indirect estimate (radius == 0)
+  int k = 50;              // photons per indirect estimate
   float maxRadius = 0.0f;  // classic/density: bound of the k-nearest gather (0 = none)
-  float radius = 0.0f;     // irradiance: fixed gather radius (> 0) instead of k nearest
+  float radius = 0.0f;     // irradiance: PhotonGather's bound (k = 0: a fixed radius)
   bool gate = false;       // precompute shadow-gate verdicts
   GateParams gateParams;
   // Once the cells are known, expects one unit per cell and step (summary, vote,

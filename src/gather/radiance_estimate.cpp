@@ -1,52 +1,86 @@
 // Photon radiance estimate; finite for any input (empty maps, coincident photons).
 #include "gather/radiance_estimate.h"
 #include "gather/indirect_estimate.h"
+#include "gather/surface_share.h"
 #include <algorithm>
+#include <cmath>
 
 namespace penumbra {
 
-RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf,
-                                const BsdfFrame& frame, const Vec3& p, const Vec3& wo, int k,
-                                float radius, GatherScratch& s) {
-  RadianceEstimate e;
-  if (map.empty() || (radius <= 0.0f && k <= 0)) return e;
-  size_t n;
-  float r2;
-  if (radius > 0.0f) {
-    n = map.within(p, radius, s);
-    r2 = radius * radius;
-  } else {
-    // Sorted (canonical order) so the float sum is the same at any thread count.
-    n = map.knn(p, static_cast<size_t>(k), 0.0f, s);
-    r2 = 0.0f;
-    for (size_t i = 0; i < n; ++i) r2 = std::max(r2, s.dist2[i]);
-  }
-  if (n == 0 || !(r2 >= std::numeric_limits<float>::min())) return e;
-  e.radius = std::sqrt(r2);
+namespace {
+
+struct PhotonSum {
+  Color sum{0.0f};
+  int found = 0;
+};
+
+// The kernel-weighted sum over the gathered photons on the query's surface: those
+// whose normal agrees with frame.ng and, when `keep` is given, that lie on the
+// query's side of its cuts. Photons at an angle to the surface go to `record`.
+PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, float invR2,
+                     const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo, SurfaceCuts* record,
+                     const SurfaceCuts* keep) {
   // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
   const bool lambertOnly = bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy);
   const PhotonArray<IndirectPhoton>& photons = map.photons();
-  const float invR2 = 1.0f / r2;
-  Color sum(0.0f);
-  int found = 0;
+  PhotonSum a;
   for (size_t i = 0; i < n; ++i) {
     const IndirectPhoton& ph = photons[s.indices[i]];
-    if (glm::dot(decodeOctahedral(ph.normal), frame.ng) <= kIndirectMinNormalCos) continue;
-    float w = 1.0f - s.dist2[i] * invR2;
-    if (w <= 0.0f) continue;
-    ++found;
-    if (lambertOnly) {
-      sum += w * ph.power.color();  // decoded once per photon on either path
+    const Vec3 normal = decodeOctahedral(ph.normal);
+    const float cos = glm::dot(normal, frame.ng);
+    if (cos <= kIndirectMinNormalCos) {
+      if (record) record->add(ph.position, normal, cos);
       continue;
     }
-    Vec3 wi = -decodeOctahedral(ph.direction);
-    float cosI = glm::dot(frame.ns, wi);
+    const float w = 1.0f - s.dist2[i] * invR2;
+    if (w <= 0.0f || (keep && !keep->keeps(ph.position))) continue;
+    ++a.found;
+    if (lambertOnly) {
+      a.sum += w * ph.power.color();  // decoded once per photon on either path
+      continue;
+    }
+    const Vec3 wi = -decodeOctahedral(ph.direction);
+    const float cosI = glm::dot(frame.ns, wi);
     if (cosI <= 1e-4f) continue;
-    sum += w * ph.power.color() * evaluateBsdf(bsdf, frame, wo, wi) / cosI;
+    a.sum += w * ph.power.color() * evaluateBsdf(bsdf, frame, wo, wi) / cosI;
   }
-  if (lambertOnly) sum *= (1.0f - bsdf.kr) * bsdf.diffuse * (1.0f / kPi);
-  e.found = found;
-  e.value = sum * (2.0f / kPi * invR2);
+  if (lambertOnly) a.sum *= (1.0f - bsdf.kr) * bsdf.diffuse * (1.0f / kPi);
+  return a;
+}
+
+}  // namespace
+
+RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, const BsdfFrame& frame,
+                                const Vec3& p, const Vec3& wo, const PhotonGather& gather, GatherScratch& s) {
+  RadianceEstimate e;
+  const float maxRadius = std::max(gather.maxRadius, 0.0f);
+  if (map.empty() || (maxRadius == 0.0f && gather.k <= 0)) return e;
+  size_t n;
+  float r2;
+  if (gather.k <= 0) {
+    n = map.within(p, maxRadius, s);
+    r2 = maxRadius * maxRadius;
+  } else {
+    // Sorted (canonical order) so the float sum is the same at any thread count.
+    n = map.knn(p, static_cast<size_t>(gather.k), maxRadius, s);
+    r2 = 0.0f;
+    for (size_t i = 0; i < n; ++i) r2 = std::max(r2, s.dist2[i]);
+    // Fewer than k inside the bound: the k-th lies beyond it, the disc is the bound's.
+    if (maxRadius > 0.0f && n < static_cast<size_t>(gather.k)) r2 = maxRadius * maxRadius;
+  }
+  if (n == 0 || !(r2 >= std::numeric_limits<float>::min())) return e;
+  e.radius = std::sqrt(r2);
+  const float invR2 = 1.0f / r2;
+  SurfaceCuts cuts(p, frame.ng, e.radius);
+  PhotonSum a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, &cuts, nullptr);
+  cuts.finish();
+  if (cuts.count() > 0) {
+    // Near an edge: only the photons on the query's side, over the kernel's mass there.
+    a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, nullptr, &cuts);
+    a.sum /= cuts.share();
+  }
+  e.found = a.found;
+  e.value = a.sum * (2.0f / kPi * invR2);
   return e;
 }
 
@@ -63,6 +97,17 @@ float typicalKnnRadius(const IndirectPhotonMap& map, int k, GatherScratch& s) {
   }
   std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
   return radii[radii.size() / 2];
+}
+
+double passRadiusShare(uint32_t pass, float alpha) {
+  // The product is Gamma(i + 1 + alpha) / (Gamma(1 + alpha) Gamma(i + 2)).
+  const double a = alpha, i = pass;
+  return std::exp(std::lgamma(i + 1.0 + a) - std::lgamma(1.0 + a) - std::lgamma(i + 2.0));
+}
+
+int passK(int k, uint32_t pass, float alpha) {
+  if (k <= kMinPassK) return k;
+  return std::max(kMinPassK, static_cast<int>(std::lround(k * passRadiusShare(pass, alpha))));
 }
 
 }  // namespace penumbra

@@ -25,11 +25,11 @@ const IndirectPhotonMap* lightMap(const ShadingContext& ctx, MapKind k) {
 }
 
 // photons.lookup = precomputed: the gate verdicts and the model's indirect estimate
-// (IndirectLookup), once per cell, from the maps just built. `radius` > 0 is a
-// progressive pass's fixed gather radius.
+// (IndirectLookup), once per cell, from the maps just built, with the pass's gathers
+// (passGathers) for the global map.
 void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& cache,
                  std::optional<LookupCacheParams>* cachedKey, double* builtSeconds, ShadingContext& ctx,
-                 float radius, RenderStats& stats, ProgressPhases* meter, const std::string& phaseName) {
+                 RenderStats& stats, ProgressPhases* meter, const std::string& phaseName) {
   const PhotonSettings& ps = scene.photons;
   Stopwatch phase;
   const IndirectLookup recipe = model.indirectLookup(ps);
@@ -39,10 +39,11 @@ void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& c
   params.gateParams = gateParamsFor(scene, ctx.choices.integrator->glass);
   if (map) params.indirect = recipe.kind;
   if (!params.gate && !map) return;  // nothing to precompute
-  params.k = recipe.k;
+  const bool global = recipe.map == MapKind::Global;
+  params.k = global ? ctx.globalK : recipe.k;
   params.maxRadius = recipe.maxRadius;
-  params.radius = radius;
-  params.cellSize = radius > 0.0f ? cacheCellSize(radius, params.k, ps.lookupCell)
+  params.radius = global ? ctx.globalRadius : 0.0f;
+  params.cellSize = params.k == 0 ? cacheCellSize(params.radius, recipe.k, ps.lookupCell)
                                   : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
   if (!cachedKey || !*cachedKey || !sameLookup(**cachedKey, params)) {
     if (cachedKey) cachedKey->reset();  // a build that throws leaves no key to a half-built cache
@@ -70,16 +71,24 @@ void addStage(const PhotonStage& s, RenderStats& stats) {
   stats.stored[MapKind::Global] += s.global.size();
 }
 
-// Progressive radii (Knaus & Zwicker 2011): r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1), so
-// the average of the passes converges. A radius still 0 (first pass, or every earlier
-// pass stored nothing) starts from this pass's photons; afterwards it only shrinks.
-void stepRadius(const PhotonSettings& ps, uint32_t pass, float& r, const IndirectPhotonMap& map, int k) {
-  if (r > 0.0f) {
-    r *= std::sqrt((pass + ps.alpha) / (pass + 1.0f));
-  } else {
-    GatherScratch scratch;
-    r = ps.radius > 0.0f ? ps.radius : typicalKnnRadius(map, k, scratch);
+// Progressive pass `pass` of a frame (Knaus & Zwicker 2011): each map gathers
+// k x passRadiusShare nearest photons, so every point's radius shrinks from its own
+// k-nearest one; photons.radius > 0 instead fixes one radius for all points, shrunk
+// by the same share. The stats keep the typical radius of the last pass.
+void passGathers(const PhotonSettings& ps, uint32_t pass, const PhotonStage& maps, ShadingContext& ctx,
+                 RenderStats& stats) {
+  if (ps.radius > 0.0f) {
+    ctx.causticK = ctx.globalK = 0;
+    ctx.causticRadius = ctx.globalRadius = static_cast<float>(ps.radius * std::sqrt(passRadiusShare(pass, ps.alpha)));
+    stats.causticRadius = stats.globalRadius = ctx.globalRadius;
+    return;
   }
+  ctx.causticK = passK(ps.kCaustic, pass, ps.alpha);
+  ctx.globalK = passK(ps.kGlobal, pass, ps.alpha);
+  ctx.causticRadius = ctx.globalRadius = 0.0f;
+  GatherScratch scratch;
+  stats.causticRadius = typicalKnnRadius(maps.caustic, ctx.causticK, scratch);
+  stats.globalRadius = typicalKnnRadius(maps.global, ctx.globalK, scratch);
 }
 
 // "render", or "render 2/4" in pass 2 of 4 progressive passes.
@@ -166,23 +175,16 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     ctx.causticMap = maps->caustic.empty() ? nullptr : &maps->caustic;
     ctx.globalMap = maps->global.empty() ? nullptr : &maps->global;
     ctx.pass = static_cast<uint32_t>(pass);
-    float radius = 0.0f;
-    if (passes > 1 && fresh) {
-      stepRadius(scene.photons, ctx.pass, ctx.causticRadius, maps->caustic, scene.photons.kCaustic);
-      stepRadius(scene.photons, ctx.pass, ctx.globalRadius, maps->global, scene.photons.kGlobal);
-      stats.causticRadius = ctx.causticRadius;
-      stats.globalRadius = ctx.globalRadius;
-      radius = ctx.globalRadius;
-    }
+    if (passes > 1 && fresh) passGathers(scene.photons, ctx.pass, *maps, ctx, stats);
     // Pass 0 keeps its lookups with its maps, for later frames on the same maps; a
     // pass on pass 0's maps reads pass 0's lookups.
     if (needsLight && precomputed && (pass == 0 || fresh)) {
       const std::string lookups = phaseName("lookups", pass, passes);
       if (pass == 0) {
-        buildLookup(scene, model, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, radius, stats, options.progress,
+        buildLookup(scene, model, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, stats, options.progress,
                     lookups);
       } else {
-        buildLookup(scene, model, cache, nullptr, nullptr, ctx, radius, stats, options.progress, lookups);
+        buildLookup(scene, model, cache, nullptr, nullptr, ctx, stats, options.progress, lookups);
       }
     }
     Stopwatch phase;

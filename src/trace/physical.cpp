@@ -53,7 +53,7 @@ Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k,
     return (1.0f - bsdf.kr) * bsdf.diffuse * ctx.lookup->lazyIndirect(*map, s.position, s.ng, *ts.scratch);
   }
   ++ts.counts.gatherQueries;
-  RadianceEstimate e = photonRadiance(*map, gatheredPart(bsdf), frame, s.position, wo, k, radius, *ts.scratch);
+  RadianceEstimate e = photonRadiance(*map, gatheredPart(bsdf), frame, s.position, wo, PhotonGather{k, radius}, *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
   return e.value;
 }
@@ -115,7 +115,6 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   }
   const BsdfFrame frame{s.ns, s.ng, s.frontFace};
   const Vec3 wo = -ray.dir;
-  const PhotonSettings& ps = ctx.scene.photons;
   std::string note;
   ts.currentRecord = recIndex;
 
@@ -126,10 +125,10 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
     if (terms & kTermDirect)
       color += directLight(ctx, s, bsdf, frame, wo, cached, ts, recIndex >= 0 ? &note : nullptr);
     if (terms & kTermCaustic)  // caustics are sharp: always the direct gather
-      color += photonTerm(ctx, ctx.causticMap, ps.kCaustic, ctx.causticRadius, s, bsdf, frame, wo,
+      color += photonTerm(ctx, ctx.causticMap, ctx.causticK, ctx.causticRadius, s, bsdf, frame, wo,
                           nullptr, ts);
     if (terms & kTermGlobal)
-      color += photonTerm(ctx, ctx.globalMap, ps.kGlobal, ctx.globalRadius, s, bsdf, frame, wo,
+      color += photonTerm(ctx, ctx.globalMap, ctx.globalK, ctx.globalRadius, s, bsdf, frame, wo,
                           cached, ts);
   }
 

@@ -44,11 +44,13 @@ struct ShadingContext {
   // photons.lookup = precomputed: gate verdicts and the indirect (classic) or global
   // (physical, Lambertian part) estimate read from here, one query per shading point.
   const LookupCache* lookup = nullptr;
-  // Physical model: caustic and global photon maps; radii > 0 make every estimate
-  // a fixed-radius one (a progressive pass), 0 gathers the k nearest.
+  // Physical model: caustic and global photon maps, each estimate's PhotonGather
+  // (gather/radiance_estimate.h): the k nearest (a progressive pass's k shrinks)
+  // within the radius (0: any distance), or with k = 0 every photon within it.
   const IndirectPhotonMap* causticMap = nullptr;
   const IndirectPhotonMap* globalMap = nullptr;
   float causticRadius = 0.0f, globalRadius = 0.0f;
+  int causticK = scene.photons.kCaustic, globalK = scene.photons.kGlobal;
   uint32_t pass = 0;  // progressive pass: sample streams continue after earlier passes'
   uint32_t passes = 1;  // of the frame: more than one draws camera samples from a sequence over all
   float classicScale = 1.0f;  // turns stored photon flux back into photon colour

@@ -81,11 +81,13 @@ TEST(HardLights, LightsInsideClosedObjectsLightNothingOutside) {
 // stray pixels per pass: a photon that hit within ulps of one of the box's edges and
 // started its next ray a rounding error outside the other face (each pass samples
 // new pixel positions, so each may catch its own; seen: up to 4 in 2 passes, 1 in the
-// one pass that sampled pixel centres); r = 0.04 lights the base's outline. The one-pass k-nearest
-// estimate has no radius: far from any photon it reaches through the walls (docs/
-// photon-maps.md); asserted only to stay on the floor near the box (<= 8% of the
-// pixels: 5.7% measured for the point light) and below 1e-4 elsewhere, the ~6e-6
-// residue of photons that start a rounding error outside a face at the box's edges.
+// one pass that sampled pixel centres). The inner bottom's photons stay out where the
+// disc also holds the box's inner walls' photons: they mark where the floor outside
+// ends (gather/surface_share.h). The one-pass k-nearest estimate has no radius: far
+// from any photon it reaches through the walls (docs/photon-maps.md), but there too
+// the walls' photons keep the inner bottom out; asserted to stay on the floor near
+// the box (<= 2% of the pixels) and below 1e-4 elsewhere, the ~6e-6 residue of
+// photons that start a rounding error outside a face at the box's edges.
 TEST(HardLights, PhotonsOfALightInsideAClosedObjectConvergeToDark) {
   const float kResidual = 1e-4f;
   for (const std::string& light : {pointAt(0, 0.5, 0), kQuadInBox}) {
@@ -95,7 +97,10 @@ TEST(HardLights, PhotonsOfALightInsideAClosedObjectConvergeToDark) {
       RenderResult fine = renderJson(closedJson("physical", light),
                                      {g, "photons.passes=2", "photons.radius=0.01", "photons.alpha=1"});
       dump(w + " r0.01", fine.image);
-      expectSane(fine, 10.0, w + ", radius 0.01");
+      // A stray photon's pixel: its power over r = 0.01's disc, rho / pi x Phi x 2 / (pi
+      // r^2) ~ 4.6, or up to 4x that beside the box, where the disc reaches past the
+      // floor's edge and the estimate divides by the kernel's mass on the floor's side.
+      expectSane(fine, 20.0, w + ", radius 0.01");
       int fineLit = 0;
       for (const Color& c : fine.image.pixels) fineLit += maxComponent(c) > 0.0f;
       EXPECT_LE(fineLit, 2 * 2) << w << ": radius 0.01 must converge to dark outside (2 passes)";
@@ -104,7 +109,7 @@ TEST(HardLights, PhotonsOfALightInsideAClosedObjectConvergeToDark) {
       expectSane(knn, 10.0, w);
       int lit = 0;
       for (const Color& c : knn.image.pixels) lit += maxComponent(c) > kResidual;
-      EXPECT_LE(lit, static_cast<int>(0.08 * knn.image.pixels.size())) << w << ": " << lit << " pixels lit";
+      EXPECT_LE(lit, static_cast<int>(0.02 * knn.image.pixels.size())) << w << ": " << lit << " pixels lit";
       // Above the box's base the room is dark: the top rows see walls and ceiling only.
       float top = 0.0f;
       for (int y = 0; y < 12; ++y)
