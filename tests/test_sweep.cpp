@@ -33,6 +33,7 @@ SweepRequest cornellSweep(const std::string& dir) {
                          namedKnob("spp", "1,2", physicalTransport())},
                         base);
   req.threads = 2;
+  req.referencePasses = 1;  // the highest run is the reference row
   return req;
 }
 
@@ -159,6 +160,37 @@ TEST(Sweep, RepeatsKeepTheFastestAndTheMedianAndEveryRunItsEstimate) {
   const std::string report = testing::readFile(dir / "report.md");
   EXPECT_NE(report.find("rendered 3 times"), std::string::npos) << report;
   EXPECT_NE(report.find("Its own error estimate"), std::string::npos) << report;
+}
+
+// Without --reference the sweep renders the highest run with 8x its passes, says
+// how far that render is from converged, and a rerun reloads it.
+TEST(Sweep, TheDefaultReferenceIsALongerProgressiveRenderWithItsOwnEstimate) {
+  testing::ScratchDir dir;
+  SweepRequest req;
+  req.scenePath = kCornell;
+  req.outDir = (dir / "out").string();
+  const std::vector<std::string> base = {"camera.width=24", "camera.height=24", "photons.global=2000",
+                                         "photons.caustic=2000", "photons.passes=2"};
+  req.spec = expandGrid({namedKnob("spp", "1,2", physicalTransport())}, base);
+  req.threads = 2;
+  const SweepOutcome out = runSweep(req);
+  for (const SweepRow& row : out.rows) EXPECT_FALSE(row.reference) << row.id;
+  std::vector<std::string> longer = req.spec.runs[req.spec.highest].overrides;
+  longer.push_back("photons.passes=16");
+  const Image alone = standalone(kCornell, longer, dir / "alone.exr");
+  const Image reference = readImage((dir / "out" / "reference.exr").string());
+  EXPECT_EQ(compareImages(reference, alone).maxError, 0.0);
+  EXPECT_NEAR(out.rows[1].rmse, compareImages(readImage((dir / "out" / out.rows[1].image).string()), alone).rmse,
+              1e-3 * out.rows[1].rmse);
+  const std::string report = testing::readFile(dir / "out" / "report.md");
+  EXPECT_NE(report.find("16 passes of the run at every knob's highest value (spp=2)"), std::string::npos) << report;
+  EXPECT_NE(report.find("Its own error estimate, how far it is from converged: ~"), std::string::npos) << report;
+  EXPECT_NE(report.find("from 16 passes"), std::string::npos) << report;
+  const auto written = fs::last_write_time(dir / "out" / "reference.exr");
+  const SweepOutcome again = runSweep(req);
+  EXPECT_EQ(fs::last_write_time(dir / "out" / "reference.exr"), written) << "reloaded, not rendered again";
+  EXPECT_NE(again.totals.referenceNote.find("reloaded"), std::string::npos) << again.totals.referenceNote;
+  EXPECT_NE(again.totals.referenceNote.find("from 16 passes"), std::string::npos) << again.totals.referenceNote;
 }
 
 // Two lights of equal power, one shut in a black box: the plan splits the global

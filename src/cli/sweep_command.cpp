@@ -21,7 +21,7 @@ struct SweepCommand::Options {
   std::vector<std::string> vary, overrides;
   PlanArgs plan;
   RenderBudget budget;  // --time-limit, --target-error: every run's
-  int repeat = 1;
+  int repeat = 1, referencePasses = 8;
   std::string maxMemory, metric = "relmse";
   int threads = 0;
   bool force = false, noGateCompare = false, quiet = false;
@@ -39,7 +39,9 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--spp", o.spp, "camera.spp values, e.g. 1,4");
   c->add_option("--vary", o.vary, "Any scene key and its values: --vary photons.shadow=1e5,1e6 (repeatable)");
   c->add_option("-D,--set", o.overrides, "Override a scene value in every run")->take_all()->allow_extra_args(false);
-  c->add_option("--reference", o.reference, "Reference image (EXR) for the error (default: the run at every knob's highest value)");
+  c->add_option("--reference", o.reference, "Reference image (EXR) for the error (default: the sweep renders its own, see --reference-passes)");
+  c->add_option("--reference-passes", o.referencePasses, "Without --reference: the reference is the run at every knob's highest value "
+                "with N times its progressive passes (default 8); 1 = that run itself")->check(CLI::Range(1, 4096));
   c->add_option("--metric", o.metric, "What the front, the plot and the best run rank by: relmse (default), rmse, psnr or rmse-clamped; results.csv keeps every one");
   c->add_option("--aov", o.aov, "View to render (default: the scene's render.aov)");
   c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
@@ -78,6 +80,7 @@ int SweepCommand::run() {
   req.outDir = o.out;
   req.spec = expandGrid(knobs, o.overrides);
   req.referencePath = o.reference;
+  req.referencePasses = o.referencePasses;
   req.metric = metric;
   req.aov = o.aov;
   req.threads = o.threads;

@@ -10,6 +10,7 @@
 #include "plan/cpu_report.h"
 #include "plan/render_session.h"
 #include "core/error.h"
+#include "core/error_estimate.h"
 #include "io/contact_sheet.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
@@ -117,7 +118,11 @@ class Sweep {
     for (Pass p : req_.plan.enable) id.plan.push_back(std::string("+") + passName(p));
     for (Pass p : req_.plan.disable) id.plan.push_back(std::string("-") + passName(p));
     if (!req_.load.defaults) id.plan.push_back("--no-defaults");  // another picture of a glTF scene
-    if (!req_.referencePath.empty()) id.reference = inputsStamp({req_.referencePath});
+    if (!req_.referencePath.empty()) {
+      id.reference = inputsStamp({req_.referencePath});
+    } else if (req_.referencePasses > 1) {
+      id.reference = fmt::format("its own, {}x the passes", req_.referencePasses);
+    }
     return id;
   }
 
@@ -127,15 +132,48 @@ class Sweep {
       totals_.referenceNote = "`" + req_.referencePath + "` (given with --reference)";
       return;
     }
+    const fs::path saved = fs::path(req_.outDir) / "reference.exr";
+    if (req_.referencePasses > 1) {
+      renderLongReference(saved);
+      return;
+    }
     referenceRun_ = spec_.highest;
     totals_.referenceNote = "the run at every knob's highest value (" + spec_.runs[referenceRun_].id +
                             "), rendered by this sweep, saved as `reference.exr`";
-    const fs::path saved = fs::path(req_.outDir) / "reference.exr";
     if (runs_[referenceRun_].done && fs::exists(saved)) {
       reference_ = readImage(saved.string());
     } else {
       runs_[referenceRun_].done = false;
     }
+  }
+
+  // The highest run with referencePasses x its passes, rendered before any run (or
+  // reloaded, with its note, from the folder an earlier sweep left it in).
+  void renderLongReference(const fs::path& saved) {
+    const PlannedRun& highest = runs_[spec_.highest];
+    const int passes = highest.job.scene.photons.passes * req_.referencePasses;
+    const std::string what = fmt::format("{} passes of the run at every knob's highest value ({})", passes,
+                                         spec_.runs[spec_.highest].id);
+    if (fs::exists(saved) && readImageAttribute(saved.string(), "penumbra:sweep_reference") == what) {
+      reference_ = readImage(saved.string());
+      totals_.referenceNote = what + ", reloaded from `reference.exr`. " +
+                              readImageAttribute(saved.string(), "penumbra:sweep_reference_note");
+      return;
+    }
+    std::vector<std::string> overrides = spec_.runs[spec_.highest].overrides;
+    overrides.push_back("photons.passes=" + std::to_string(passes));
+    PlannedJob job = session_.plan(JobRequest{req_.scenePath, overrides, req_.aov, {}, {}, {}});
+    session_.prepare(job);
+    status_ = "reference";
+    showProgress();
+    const CpuSpan clock;
+    const RenderResult r = session_.frame(job, session_.photons(job));
+    reference_ = r.image;
+    const std::string note = fmt::format("Rendered by this sweep in {:.1f} s. Its own error estimate, how far it is "
+                                         "from converged: {} (docs/accuracy.md)",
+                                         clock.wallSeconds(), describeError(r.stats.error));
+    totals_.referenceNote = what + ", saved as `reference.exr`. " + note;
+    writeImage(saved.string(), r.image, {{"penumbra:sweep_reference", what}, {"penumbra:sweep_reference_note", note}});
   }
 
   // Runs still to do, grouped by (geometry, photon key); the reference's group first.

@@ -19,7 +19,11 @@ struct SweepRequest {
   std::string scenePath;
   std::string outDir;
   SweepSpec spec;
-  std::string referencePath;  // an EXR; empty: the run at every knob's highest value
+  std::string referencePath;  // an EXR; empty: the sweep renders its own (below)
+  // Without referencePath: the run at every knob's highest value with this many times
+  // its progressive passes (a longer render by the same consistent estimator); 1 =
+  // that run itself, marked as the reference row.
+  int referencePasses = 8;
   std::string aov;            // empty: the scene's
   int threads = 0;
   bool force = false;         // redo every run, even those results.csv has
