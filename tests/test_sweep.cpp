@@ -77,6 +77,7 @@ TEST(Sweep, TheMetricDecidesTheFrontAndTheBestRun) {
   // blotchier one with the lower RMSE but ten times the relMSE and 15 dB less PSNR.
   auto row = [](double t, double rmse, double relMse, double psnr) {
     SweepRow r;
+    r.id = "run at " + std::to_string(t) + " s";  // the report lists finished rows, those with an id
     r.total = t;
     r.rmse = rmse;
     r.relMse = relMse;
@@ -191,6 +192,36 @@ TEST(Sweep, TheDefaultReferenceIsALongerProgressiveRenderWithItsOwnEstimate) {
   EXPECT_EQ(fs::last_write_time(dir / "out" / "reference.exr"), written) << "reloaded, not rendered again";
   EXPECT_NE(again.totals.referenceNote.find("reloaded"), std::string::npos) << again.totals.referenceNote;
   EXPECT_NE(again.totals.referenceNote.find("from 16 passes"), std::string::npos) << again.totals.referenceNote;
+}
+
+// --threads 1,2: every run at each count, in its own session; the images are the same
+// pixels (deterministic), each row's CPU share is of its own count, and the idle-knob
+// check leaves the thread count alone.
+TEST(Sweep, AThreadsListRendersEveryRunAtEachCountWithTheSamePixels) {
+  testing::ScratchDir dir;
+  SweepRequest req;
+  req.scenePath = kCornell;
+  req.outDir = dir.path().string();
+  req.referencePasses = 1;
+  req.spec = expandGrid({namedKnob("spp", "1,2", physicalTransport()), threadsKnob("1,2")},
+                        {"camera.width=24", "camera.height=24", "photons.global=2000", "photons.caustic=2000"});
+  EXPECT_EQ(threadCounts(req.spec), (std::vector<int>{2, 1}));
+  const SweepOutcome out = runSweep(req);
+  ASSERT_EQ(out.rows.size(), 4u);
+  EXPECT_EQ(out.rows[0].id, "spp=1 threads=1");
+  for (size_t i = 0; i < 4; i += 2) {
+    const Image one = readImage((dir / out.rows[i].image).string());
+    const Image two = readImage((dir / out.rows[i + 1].image).string());
+    EXPECT_EQ(compareImages(one, two).maxError, 0.0) << out.rows[i].id;
+    EXPECT_GT(out.rows[i].cpuShare, 0.0);
+  }
+  EXPECT_TRUE(out.rows[3].reference);
+  for (const std::string& n : out.notes) EXPECT_EQ(n.find("knob threads"), std::string::npos) << n;
+  EXPECT_EQ(out.totals.bvhBuilds, 2u) << "one session per thread count";
+  const std::string csv = testing::readFile(dir / "results.csv");
+  EXPECT_NE(csv.find("spp=1 threads=2"), std::string::npos);
+  EXPECT_THROW(threadsKnob("1,0"), InputError);
+  EXPECT_THROW(threadsKnob("2x"), InputError);
 }
 
 // Two lights of equal power, one shut in a black box: the plan splits the global

@@ -23,7 +23,7 @@ struct SweepCommand::Options {
   RenderBudget budget;  // --time-limit, --target-error: every run's
   int repeat = 1, referencePasses = 8;
   std::string maxMemory, metric = "relmse";
-  int threads = 0;
+  std::string threads;
   bool force = false, noGateCompare = false, quiet = false;
 };
 
@@ -44,7 +44,8 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
                 "with N times its progressive passes (default 8); 1 = that run itself")->check(CLI::Range(1, 4096));
   c->add_option("--metric", o.metric, "What the front, the plot and the best run rank by: relmse (default), rmse, psnr or rmse-clamped; results.csv keeps every one");
   c->add_option("--aov", o.aov, "View to render (default: the scene's render.aov)");
-  c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
+  c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores); a list, e.g. 1,2, is a "
+                "knob: every run at each count, each count in its own session");
   c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
   c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
   c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a run estimated to need more, e.g. 8G (default: the memory available)");
@@ -65,6 +66,8 @@ int SweepCommand::run() {
   const uint64_t maxMemory = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
   const SweepMetric metric = parseMetric(o.metric);  // before the scene is read
   const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before the scene is read
+  SweepKnob threadList = o.threads.empty() ? SweepKnob{} : threadsKnob(o.threads);
+  const int threads = threadList.values.size() == 1 ? std::atoi(threadList.values.front().c_str()) : 0;
   if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
   const Scene base = loadScene(o.scene, o.overrides, loadLimits(maxMemory), o.plan.load());
   std::vector<SweepKnob> knobs;
@@ -74,6 +77,7 @@ int SweepCommand::run() {
     if (!list->empty()) knobs.push_back(namedKnob(name, *list, transportOf(base)));
   }
   for (const std::string& v : o.vary) knobs.push_back(keyKnob(v));
+  if (threadList.values.size() > 1) knobs.push_back(std::move(threadList));
 
   SweepRequest req;
   req.scenePath = o.scene;
@@ -83,7 +87,7 @@ int SweepCommand::run() {
   req.referencePasses = o.referencePasses;
   req.metric = metric;
   req.aov = o.aov;
-  req.threads = o.threads;
+  req.threads = threads;
   req.force = o.force;
   req.compareGate = !o.noGateCompare;
   req.plan = passes;

@@ -28,7 +28,8 @@ std::vector<std::string> idleKnobNotes(const SweepSpec& spec, const std::vector<
                                        const std::filesystem::path& dir) {
   std::vector<std::string> notes;
   for (size_t k = 0; k < spec.knobs.size(); ++k) {
-    if (spec.knobs[k].values.size() < 2) continue;
+    // Thread counts render identical images by design (deterministic).
+    if (spec.knobs[k].values.size() < 2 || spec.knobs[k].name == kThreadsKnob) continue;
     std::map<std::vector<std::string>, std::vector<size_t>> groups;
     for (size_t i = 0; i < rows.size(); ++i) {
       if (rows[i].values.size() != spec.knobs.size() || rows[i].image.empty()) continue;

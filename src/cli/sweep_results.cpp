@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <algorithm>
+#include <iterator>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -254,8 +255,11 @@ std::string timeToReach(const SweepSpec& spec, const std::vector<SweepRow>& rows
 
 }  // namespace
 
-std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, const std::vector<SweepRow>& rows,
+std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, const std::vector<SweepRow>& grid,
                            const SweepTotals& t, SweepMetric metric) {
+  // Only finished rows (a --threads list's earlier sessions leave the others empty).
+  std::vector<SweepRow> rows;
+  std::copy_if(grid.begin(), grid.end(), std::back_inserter(rows), [](const SweepRow& r) { return !r.id.empty(); });
   std::string md = fmt::format("# Sweep of {}\n\n{} runs. Knobs (`--set` keys they write):\n\n{}\n", scene,
                                rows.size(), knobList(spec));
   md += fmt::format("**Reference:** {}", t.referenceNote);

@@ -31,12 +31,15 @@ struct PlannedRun {
   size_t index = 0;
   PlannedJob job;
   bool done = false;  // finished by an earlier sweep into the same folder
+  bool mine = true;   // rendered by this session (a --threads list: its thread count's runs)
 };
 
 class Sweep {
  public:
-  Sweep(const SweepRequest& request, RenderSession& session)
-      : req_(request), spec_(request.spec), session_(session) {}
+  // `threads` > 0: only the runs of that value of the threads knob, on `session`
+  // (which has that many workers); the other runs' rows are read back from results.csv.
+  Sweep(const SweepRequest& request, RenderSession& session, int threads = 0)
+      : req_(request), spec_(request.spec), session_(session), threads_(threads) {}
 
   SweepOutcome run() {
     const fs::path dir(req_.outDir);
@@ -54,13 +57,17 @@ class Sweep {
     for (PlannedRun& p : runs_) {
       auto f = finished.find(spec_.runs[p.index].id);
       p.done = f != finished.end() && fs::exists(dir / f->second.image);
+      p.mine = threads_ == 0 || runThreads(spec_, spec_.runs[p.index]) == threads_;
     }
     writeSweepFolder(req_.outDir, identity);
     loadReference();
     prepare();
     rows_.resize(spec_.runs.size());
     for (const PlannedRun& p : runs_) {
-      if (p.done) { rows_[p.index] = finished[spec_.runs[p.index].id]; ++totals_.resumed; }
+      if (p.done) {
+        rows_[p.index] = finished[spec_.runs[p.index].id];
+        if (p.mine) ++totals_.resumed;
+      }
     }
     writeCsv();
     for (const std::vector<size_t>& group : photonGroups()) renderGroup(group);
@@ -181,7 +188,7 @@ class Sweep {
     std::map<ReuseKeys, std::vector<size_t>> byKey;
     std::vector<ReuseKeys> order;
     for (const PlannedRun& p : runs_) {
-      if (p.done) continue;
+      if (p.done || !p.mine) continue;
       if (!byKey.count(p.job.keys)) order.push_back(p.job.keys);
       byKey[p.job.keys].push_back(p.index);
     }
@@ -198,7 +205,7 @@ class Sweep {
   // all before the first photon.
   void prepare() {
     for (PlannedRun& p : runs_) {
-      if (!p.done) session_.prepare(p.job);
+      if (!p.done && p.mine) session_.prepare(p.job);
     }
   }
 
@@ -335,9 +342,11 @@ class Sweep {
   void showProgress() {
     if (!req_.progress) return;
     size_t todo = 0, done = 0;
-    for (const PlannedRun& p : runs_) (p.done ? done : todo) += 1;
+    for (const PlannedRun& p : runs_) {
+      if (p.mine) (p.done ? done : todo) += 1;
+    }
     const std::string id = current_ < spec_.runs.size() ? spec_.runs[current_].id : "";
-    req_.progress(progressLine("sweep", done + finishedNow_, spec_.runs.size(), id, status_, clock_.wallSeconds(),
+    req_.progress(progressLine("sweep", done + finishedNow_, done + todo, id, status_, clock_.wallSeconds(),
                                finishedNow_, todo - finishedNow_));
   }
 
@@ -352,6 +361,7 @@ class Sweep {
   size_t referenceRun_ = SIZE_MAX;
   size_t current_ = SIZE_MAX;
   size_t finishedNow_ = 0;
+  const int threads_;
   std::string csvPath_, sceneName_, status_;
   std::vector<std::string> notes_;
   std::vector<CpuTiming> renderedCpu_;  // the runs rendered now (not resumed)
@@ -361,10 +371,39 @@ class Sweep {
 }  // namespace
 
 SweepOutcome runSweep(const SweepRequest& request) {
-  RenderSession session(
-      {request.maxMemoryBytes, request.plan, request.threads, request.phases, {}, kStageCacheBytes, request.load});
-  Sweep sweep(request, session);
-  return sweep.run();
+  const std::vector<int> counts = threadCounts(request.spec);
+  if (counts.empty()) {
+    RenderSession session(
+        {request.maxMemoryBytes, request.plan, request.threads, request.phases, {}, kStageCacheBytes, request.load});
+    return Sweep(request, session).run();
+  }
+  // A --threads list: one session per thread count, the most first (so the highest
+  // run, the default reference's, comes first); each measures every stage at its
+  // count, and later ones resume the rows the earlier wrote.
+  SweepRequest each = request;
+  SweepOutcome out;
+  size_t counters[5] = {0, 0, 0, 0, 0};
+  double seconds[2] = {0.0, 0.0};
+  const CpuSpan clock;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (i > 0) each.force = false;
+    RenderSession session(
+        {request.maxMemoryBytes, request.plan, counts[i], request.phases, {}, kStageCacheBytes, request.load});
+    out = Sweep(each, session, counts[i]).run();
+    SweepTotals& t = out.totals;
+    size_t* mine[5] = {&t.resumed, &t.emissions, &t.prefixCuts, &t.mapBuilds, &t.bvhBuilds};
+    for (int c = 0; c < 5; ++c) counters[c] += *mine[c];
+    seconds[0] += t.renderSeconds;
+    seconds[1] += t.photonSeconds;
+  }
+  SweepTotals& t = out.totals;
+  size_t* all[5] = {&t.resumed, &t.emissions, &t.prefixCuts, &t.mapBuilds, &t.bvhBuilds};
+  for (int c = 0; c < 5; ++c) *all[c] = counters[c];
+  t.renderSeconds = seconds[0];
+  t.photonSeconds = seconds[1];
+  t.cpu = clock.timing(counts.front());
+  t.wallSeconds = t.cpu.wallSeconds;
+  return out;
 }
 
 }  // namespace penumbra

@@ -1,8 +1,10 @@
 // Value lists, knob-to-key mapping and the grid's expansion.
 #include "cli/sweep_spec.h"
 #include "core/error.h"
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <fmt/format.h>
 
 namespace penumbra {
@@ -92,6 +94,38 @@ SweepKnob keyKnob(const std::string& arg) {
   knob.keys = {knob.name};
   knob.values = splitValues(arg.substr(eq + 1), "--vary " + knob.name);
   return knob;
+}
+
+SweepKnob threadsKnob(const std::string& list) {
+  SweepKnob knob;
+  knob.name = kThreadsKnob;
+  knob.values = splitValues(list, "--threads");
+  for (const std::string& v : knob.values) {
+    char* end = nullptr;
+    const long n = std::strtol(v.c_str(), &end, 10);
+    if (*end != '\0' || n < 1 || n > 1024) {
+      throw InputError("--threads: '" + v + "' is not a thread count in 1..1024");
+    }
+  }
+  return knob;
+}
+
+int runThreads(const SweepSpec& spec, const SweepRun& run) {
+  for (size_t k = 0; k < spec.knobs.size() && k < run.values.size(); ++k) {
+    if (spec.knobs[k].name == kThreadsKnob) return std::atoi(run.values[k].c_str());
+  }
+  return 0;
+}
+
+std::vector<int> threadCounts(const SweepSpec& spec) {
+  std::vector<int> counts;
+  for (const SweepKnob& k : spec.knobs) {
+    if (k.name != kThreadsKnob) continue;
+    for (const std::string& v : k.values) counts.push_back(std::atoi(v.c_str()));
+  }
+  std::sort(counts.begin(), counts.end(), std::greater<int>());
+  counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
+  return counts;
 }
 
 SweepSpec expandGrid(std::vector<SweepKnob> knobs, const std::vector<std::string>& baseOverrides,

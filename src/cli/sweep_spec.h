@@ -38,6 +38,15 @@ SweepKnob namedKnob(const std::string& name, const std::string& list, const Tran
 // --vary KEY=v1,v2: any scene key.
 SweepKnob keyKnob(const std::string& arg);
 
+// --threads 1,2: worker threads, a knob that writes no scene key (each count's runs
+// render in a session of that many workers). Throws InputError for a value outside 1..1024.
+inline constexpr const char* kThreadsKnob = "threads";
+SweepKnob threadsKnob(const std::string& list);
+// The run's value of the threads knob, 0 without one.
+int runThreads(const SweepSpec& spec, const SweepRun& run);
+// The threads knob's values, the most first; empty without one.
+std::vector<int> threadCounts(const SweepSpec& spec);
+
 // The grid. Throws InputError for no knob, a knob given twice, or over `maxRuns` runs.
 SweepSpec expandGrid(std::vector<SweepKnob> knobs, const std::vector<std::string>& baseOverrides,
                      size_t maxRuns = 4096);
