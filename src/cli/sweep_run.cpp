@@ -370,40 +370,10 @@ class Sweep {
 
 }  // namespace
 
-SweepOutcome runSweep(const SweepRequest& request) {
-  const std::vector<int> counts = threadCounts(request.spec);
-  if (counts.empty()) {
-    RenderSession session(
-        {request.maxMemoryBytes, request.plan, request.threads, request.phases, {}, kStageCacheBytes, request.load});
-    return Sweep(request, session).run();
-  }
-  // A --threads list: one session per thread count, the most first (so the highest
-  // run, the default reference's, comes first); each measures every stage at its
-  // count, and later ones resume the rows the earlier wrote.
-  SweepRequest each = request;
-  SweepOutcome out;
-  size_t counters[5] = {0, 0, 0, 0, 0};
-  double seconds[2] = {0.0, 0.0};
-  const CpuSpan clock;
-  for (size_t i = 0; i < counts.size(); ++i) {
-    if (i > 0) each.force = false;
-    RenderSession session(
-        {request.maxMemoryBytes, request.plan, counts[i], request.phases, {}, kStageCacheBytes, request.load});
-    out = Sweep(each, session, counts[i]).run();
-    SweepTotals& t = out.totals;
-    size_t* mine[5] = {&t.resumed, &t.emissions, &t.prefixCuts, &t.mapBuilds, &t.bvhBuilds};
-    for (int c = 0; c < 5; ++c) counters[c] += *mine[c];
-    seconds[0] += t.renderSeconds;
-    seconds[1] += t.photonSeconds;
-  }
-  SweepTotals& t = out.totals;
-  size_t* all[5] = {&t.resumed, &t.emissions, &t.prefixCuts, &t.mapBuilds, &t.bvhBuilds};
-  for (int c = 0; c < 5; ++c) *all[c] = counters[c];
-  t.renderSeconds = seconds[0];
-  t.photonSeconds = seconds[1];
-  t.cpu = clock.timing(counts.front());
-  t.wallSeconds = t.cpu.wallSeconds;
-  return out;
+SweepOutcome runSweepSession(const SweepRequest& request, int threads, bool onlyThatCount) {
+  RenderSession session(
+      {request.maxMemoryBytes, request.plan, threads, request.phases, {}, kStageCacheBytes, request.load});
+  return Sweep(request, session, onlyThatCount ? threads : 0).run();
 }
 
 }  // namespace penumbra

@@ -48,6 +48,10 @@ struct SweepOutcome {
 };
 
 // Every run is loaded and checked (InputError, naming the run) before the first renders.
+// A threads knob (--threads 1,2) runs one session per count (cli/sweep_sessions.cpp).
 SweepOutcome runSweep(const SweepRequest& request);
+// One session of `threads` workers; with `onlyThatCount`, just the runs of that value
+// of the threads knob (the others' rows are read back from results.csv).
+SweepOutcome runSweepSession(const SweepRequest& request, int threads, bool onlyThatCount);
 
 }  // namespace penumbra
