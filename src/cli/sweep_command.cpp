@@ -1,6 +1,8 @@
 // Options of `penumbra sweep`, the progress line, and the closing summary.
 #include "cli/sweep_command.h"
 #include "cli/sweep_run.h"
+#include "cli/sweep_scenes.h"
+#include "io/temp_file.h"
 #include "cli/plan_command.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
@@ -17,7 +19,8 @@ namespace penumbra {
 
 struct SweepCommand::Options {
   CLI::App* command = nullptr;
-  std::string scene, out, reference, aov, photons, k, depth, spp;
+  std::vector<std::string> scenes;
+  std::string out, reference, aov, photons, k, depth, spp;
   std::vector<std::string> vary, overrides;
   PlanArgs plan;
   RenderBudget budget;  // --time-limit, --target-error: every run's
@@ -31,7 +34,8 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   Options& o = *o_;
   o.command = app.add_subcommand("sweep", "Render every combination of settings and measure time against error");
   CLI::App* c = o.command;
-  c->add_option("scene", o.scene, "Scene file (JSON)")->required();
+  c->add_option("scenes", o.scenes, "Scene files (JSON); with several, each is swept into OUTPUT/<its name>/ and "
+                "OUTPUT/scenes.md sums them up")->required();
   c->add_option("-o,--output", o.out, "Folder for results.csv, report.md, tradeoff.png and the images")->required();
   c->add_option("--photons", o.photons, "Photon budgets, e.g. 1e4,1e5,1e6 (classic: photons.indirect; physical: photons.global and photons.caustic)");
   c->add_option("--k", o.k, "Photons per estimate, e.g. 10,50,200 (classic: k_indirect; physical: k_global and k_caustic)");
@@ -62,57 +66,82 @@ bool SweepCommand::selected() const { return o_->command->parsed(); }
 
 int SweepCommand::run() {
   Options& o = *o_;
-  // The knobs' keys depend on the model: load the scene once with the sweep's --set.
   const uint64_t maxMemory = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
   const SweepMetric metric = parseMetric(o.metric);  // before the scene is read
   const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before the scene is read
-  SweepKnob threadList = o.threads.empty() ? SweepKnob{} : threadsKnob(o.threads);
+  const SweepKnob threadList = o.threads.empty() ? SweepKnob{} : threadsKnob(o.threads);
   const int threads = threadList.values.size() == 1 ? std::atoi(threadList.values.front().c_str()) : 0;
+  if (o.scenes.size() > 1 && !o.reference.empty()) {
+    throw InputError("sweep: --reference is one image, for one scene; several scenes take their own references");
+  }
   if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
-  const Scene base = loadScene(o.scene, o.overrides, loadLimits(maxMemory), o.plan.load());
-  std::vector<SweepKnob> knobs;
-  const std::pair<const char*, const std::string*> named[] = {
-      {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
-  for (const auto& [name, list] : named) {
-    if (!list->empty()) knobs.push_back(namedKnob(name, *list, transportOf(base)));
-  }
-  for (const std::string& v : o.vary) knobs.push_back(keyKnob(v));
-  if (threadList.values.size() > 1) knobs.push_back(std::move(threadList));
+  const std::vector<std::string> folders = sceneFolders(o.scenes, o.out);
 
-  SweepRequest req;
-  req.scenePath = o.scene;
-  req.outDir = o.out;
-  req.spec = expandGrid(knobs, o.overrides);
-  req.referencePath = o.reference;
-  req.referencePasses = o.referencePasses;
-  req.metric = metric;
-  req.aov = o.aov;
-  req.threads = threads;
-  req.force = o.force;
-  req.compareGate = !o.noGateCompare;
-  req.plan = passes;
-  req.load = o.plan.load();
-  req.budget = o.budget;
-  req.repeat = o.repeat;
-  req.maxMemoryBytes = maxMemory;
-  const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
-  req.plotScript = std::filesystem::exists(script) ? script.string() : "";
-  std::optional<ItemProgress> progress;
-  if (!o.quiet) {
-    progress.emplace();
-    req.phases = progress->phases();
-    req.progress = [&](const std::string& line) { progress->line(line); };
+  std::vector<SweepRequest> requests;
+  for (size_t i = 0; i < o.scenes.size(); ++i) {
+    // The knobs' keys depend on the model: load the scene once with the sweep's --set.
+    const Scene base = loadScene(o.scenes[i], o.overrides, loadLimits(maxMemory), o.plan.load());
+    std::vector<SweepKnob> knobs;
+    const std::pair<const char*, const std::string*> named[] = {
+        {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
+    for (const auto& [name, list] : named) {
+      if (!list->empty()) knobs.push_back(namedKnob(name, *list, transportOf(base)));
+    }
+    for (const std::string& v : o.vary) knobs.push_back(keyKnob(v));
+    if (threadList.values.size() > 1) knobs.push_back(threadList);
+
+    SweepRequest req;
+    req.scenePath = o.scenes[i];
+    req.outDir = folders[i];
+    req.spec = expandGrid(knobs, o.overrides);
+    req.referencePath = o.reference;
+    req.referencePasses = o.referencePasses;
+    req.metric = metric;
+    req.aov = o.aov;
+    req.threads = threads;
+    req.force = o.force;
+    req.compareGate = !o.noGateCompare;
+    req.plan = passes;
+    req.load = o.plan.load();
+    req.budget = o.budget;
+    req.repeat = o.repeat;
+    req.maxMemoryBytes = maxMemory;
+    const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
+    req.plotScript = std::filesystem::exists(script) ? script.string() : "";
+    requests.push_back(std::move(req));
   }
-  SweepOutcome out = runSweep(req);
-  if (progress) progress->finish();
-  if (!o.quiet) {
-    for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
-    const SweepTotals& t = out.totals;
-    std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {}; {} emission(s), {} prefix cut(s), {} map "
-                             "build(s), {} BVH build(s)\n",
-                             out.rows.size(), t.resumed, t.wallSeconds, cpuLine(t.cpu), t.emissions, t.prefixCuts,
-                             t.mapBuilds, t.bvhBuilds);
-    std::cerr << "wrote " << (std::filesystem::path(o.out) / "report.md").string() << "\n";
+  // Every scene's every run is loaded and planned before the first renders.
+  if (requests.size() > 1) {
+    for (SweepRequest req : requests) {
+      req.planOnly = true;
+      runSweep(req);
+    }
+  }
+  std::vector<SceneSweep> done;
+  for (SweepRequest& req : requests) {
+    std::optional<ItemProgress> progress;
+    if (!o.quiet) {
+      progress.emplace();
+      req.phases = progress->phases();
+      req.progress = [&](const std::string& line) { progress->line(line); };
+    }
+    SweepOutcome out = runSweep(req);
+    if (progress) progress->finish();
+    if (!o.quiet) {
+      for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
+      const SweepTotals& t = out.totals;
+      std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {}; {} emission(s), {} prefix cut(s), {} map "
+                               "build(s), {} BVH build(s)\n",
+                               out.rows.size(), t.resumed, t.wallSeconds, cpuLine(t.cpu), t.emissions, t.prefixCuts,
+                               t.mapBuilds, t.bvhBuilds);
+      std::cerr << "wrote " << (std::filesystem::path(req.outDir) / "report.md").string() << "\n";
+    }
+    done.push_back({req.scenePath, req.outDir, std::move(out)});
+  }
+  if (requests.size() > 1) {
+    const std::string summary = (std::filesystem::path(o.out) / "scenes.md").string();
+    writeTextFileAtomic(summary, scenesMarkdown(done, metric));
+    if (!o.quiet) std::cerr << "wrote " << summary << "\n";
   }
   return 0;
 }

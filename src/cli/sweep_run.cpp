@@ -42,6 +42,10 @@ class Sweep {
       : req_(request), spec_(request.spec), session_(session), threads_(threads) {}
 
   SweepOutcome run() {
+    if (req_.planOnly) {
+      plan();
+      return {};
+    }
     const fs::path dir(req_.outDir);
     std::error_code ec;
     fs::create_directories(dir / "runs", ec);

@@ -39,6 +39,7 @@ struct SweepRequest {
   LoadOptions load;                  // --no-defaults, for every run
   RenderBudget budget;               // --time-limit, --target-error, for every run
   int repeat = 1;                    // --repeat: frames per run, the fastest and the median kept
+  bool planOnly = false;             // load and plan every run (InputError on a bad one), render nothing
 };
 
 struct SweepOutcome {
