@@ -64,8 +64,8 @@ class Sweep {
       p.mine = threads_ == 0 || runThreads(spec_, spec_.runs[p.index]) == threads_;
     }
     writeSweepFolder(req_.outDir, identity);
+    prepare();  // the runs first: a refusal names what a lone render of the run would
     loadReference();
-    prepare();
     rows_.resize(spec_.runs.size());
     for (const PlannedRun& p : runs_) {
       if (p.done) {
@@ -153,8 +153,9 @@ class Sweep {
                             "), rendered by this sweep, saved as `reference.exr`";
     if (runs_[referenceRun_].done && fs::exists(saved)) {
       reference_ = readImage(saved.string());
-    } else {
+    } else if (runs_[referenceRun_].done) {
       runs_[referenceRun_].done = false;
+      session_.prepare(runs_[referenceRun_].job);
     }
   }
 
