@@ -168,8 +168,8 @@ TEST(Passes, CornellDirectLightOfPassesIsSppsWithinSeedNoise) {
   const std::vector<std::string> small = {"camera.width=48", "camera.height=48"};
   std::vector<std::string> passes = small, spp = small, seed = small;
   passes.insert(passes.end(), {"camera.spp=2", "photons.passes=8"});
-  spp.insert(spp.end(), {"camera.spp=16"});
-  seed.insert(seed.end(), {"camera.spp=16", "render.seed=9"});
+  spp.insert(spp.end(), {"camera.spp=16", "photons.passes=1"});
+  seed.insert(seed.end(), {"camera.spp=16", "photons.passes=1", "render.seed=9"});
   const Image a = render(file, passes, "direct").image, b = render(file, spp, "direct").image;
   const Image c = render(file, seed, "direct").image;
   const double between = rmse(a, b), noise = rmse(b, c);

@@ -107,7 +107,7 @@ TEST(ErrorBudget, TheErrorViewIsThePerPixelStandardErrorOfTheEstimate) {
               1e-4 * beauty.stats.error.noiseRmse);
   EXPECT_DOUBLE_EQ(error.stats.error.noiseRmse, beauty.stats.error.noiseRmse) << "one thread or two";
   // One pass of one sample: no spread, an unknown estimate and a black error view.
-  req.overrides = with(kSmall, {"camera.spp=1"});
+  req.overrides = with(kSmall, {"camera.spp=1", "photons.passes=1"});
   const RenderResult one = runRender(req);
   EXPECT_FALSE(one.stats.error.known());
   for (const Color& c : one.image.pixels) ASSERT_EQ(c, Color(0.0f));

@@ -95,7 +95,7 @@ INSTANTIATE_TEST_SUITE_P(
         // Area lights: one verdict per light decides 16 samples.
         Case{"soft_shadows.json", with(kSmall, {"photons.shadow=500000"}), 0.002},
         // Physical model: the global map's irradiance and the gate (glass blocks).
-        Case{"cornell_physical.json", with(kSmall, {"camera.spp=1", "photons.gate=true"}), 0.03}),
+        Case{"cornell_physical.json", with(kSmall, {"camera.spp=1", "photons.passes=1", "photons.gate=true"}), 0.03}),
     [](const auto& tp) {
       std::string n = tp.param.scene.substr(0, tp.param.scene.find('.'));
       return n;
