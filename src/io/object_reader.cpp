@@ -113,7 +113,8 @@ TriangleMesh readBox(const JsonNode& node) {
 // What a mesh holds in memory: vertices with their normals, uvs and colours, and triangles.
 uint64_t bytesOf(const TriangleMesh& m) {
   return m.positions.size() * sizeof(Vec3) + m.normals.size() * sizeof(Vec3) + m.uvs.size() * sizeof(Vec2) +
-         m.colors.size() * sizeof(m.colors[0]) + m.triangles.size() * sizeof(m.triangles[0]);
+         m.tangents.size() * sizeof(m.tangents[0]) + m.colors.size() * sizeof(m.colors[0]) +
+         m.triangles.size() * sizeof(m.triangles[0]);
 }
 
 // The scene's meshes from index `first` on.
