@@ -27,10 +27,12 @@ inline uint8_t stratumOf(float u1, float u2) {
 
 // A sphere light's stratum at the unit outward normal n: uniformSphere's (u1, u2)
 // inverted, so cells have equal area and do not depend on who looks at the sphere.
+// Four bins of phi are its quadrants, read from the signs of x and y (no atan2 on
+// every sample of a mixed sphere light).
+static_assert(kStrataSide == 4, "sphereStratum's phi bins are the quadrants");
 inline uint8_t sphereStratum(const Vec3& n) {
-  float phi = std::atan2(n.y, n.x);
-  if (phi < 0.0f) phi += 2.0f * kPi;
-  return stratumOf(0.5f * (1.0f - n.z), phi / (2.0f * kPi));
+  const int quadrant = n.y >= 0.0f ? (n.x >= 0.0f ? 0 : 1) : (n.x < 0.0f ? 2 : 3);
+  return static_cast<uint8_t>(stratumOf(0.5f * (1.0f - n.z), 0.0f) + kStrataSide * quadrant);
 }
 
 // The stratum of one light sample drawn with numbers u that reached `point` on the
