@@ -74,6 +74,7 @@ bench: build
 	$(call run_bench,bench_gather,--benchmark_filter='$(GATHER_FILTER)')
 	$(call run_bench,bench_render,--benchmark_filter='BM_(Scene|Control)')
 	$(call run_bench,bench_load,)
+	$(call run_bench,bench_gate,--benchmark_repetitions=1)
 	@scripts/bench_table.py bench $(BENCH_OUT)
 	@echo "JSON and logs in $(BENCH_OUT)"
 

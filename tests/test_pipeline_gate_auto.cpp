@@ -1,7 +1,9 @@
 // photons.gate = auto: the cost model turns the gate off where a point light saves
 // one cheap ray per shading point, and on for 16-sample area lights; the decision
-// and its reason reach the stats, and an explicit on/off always wins.
+// and its reason reach the stats, and an explicit on/off always wins; cells that
+// vote per stratum of an area light are priced as answering more of its tests.
 #include "plan/gate_decision.h"
+#include "plan/cost_model.h"
 #include "plan/pipeline.h"
 #include "io/scene_loader.h"
 #include <gtest/gtest.h>
@@ -30,6 +32,22 @@ TEST(GateAuto, SoftShadowSceneDecidesOn) {
   EXPECT_LT(four.savedMs, d.savedMs / 3.9);
   EXPECT_DOUBLE_EQ(four.costMs, d.costMs);
   EXPECT_FALSE(decideGate(loadScene(kScenes + "soft_shadows.json", {"render.shadows=false"})).gate);
+}
+
+TEST(GateAuto, PricesVerdictsPerStratumWhereCellsKeepThem) {
+  // Precomputed cells vote per stratum of both area lights: a larger share of the
+  // 32 tests is answered, and the reason says why.
+  const GateDecision cells = decideGate(loadScene(kScenes + "soft_shadows.json", {}));
+  EXPECT_TRUE(cells.stratified);
+  EXPECT_NE(cells.reason.find("a verdict per stratum (16 a light) on 2 area lights"), std::string::npos)
+      << cells.reason;
+  // Exact votes keep one verdict per light: the saving is the unstratified share.
+  const GateDecision exact = decideGate(loadScene(kScenes + "soft_shadows.json", {"photons.lookup=exact"}));
+  EXPECT_FALSE(exact.stratified);
+  EXPECT_EQ(exact.reason.find("stratum"), std::string::npos) << exact.reason;
+  EXPECT_NEAR(cells.savedMs / exact.savedMs, cost::kAvoidableStratified / cost::kAvoidable, 1e-9);
+  // Point lights are one stratum each.
+  EXPECT_FALSE(decideGate(loadScene(kScenes + "fig11_gate_shadows.json", {"photons.gate=auto"})).stratified);
 }
 
 TEST(GateAuto, RenderSkipsTheShadowMapUnlessAskedFor) {

@@ -1,6 +1,7 @@
 // Point, directional, quad, sphere and mesh lights behind the light interface.
 #include "core/light_sample.h"
 #include "core/environment.h"
+#include "core/light_strata.h"
 #include "core/mesh_light.h"
 #include "core/sampling.h"
 #include <algorithm>
@@ -214,8 +215,10 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
       r.origin = light.position + u1 * light.edge1 + u2 * light.edge2;
       r.normal = unitCross(light.edge1, light.edge2);
       r.error = quadPointError(light);
+      r.stratum = stratumOf(u1, u2);
     } else {
       r = sphereLightStart(light, uniformSphere(u1, u2));
+      r.stratum = sphereStratum(r.normal);
     }
     r.dir = toWorld(cosineHemisphere(u3, u4), r.normal);
     return r;

@@ -92,6 +92,7 @@ struct PhotonRay {
   // Per channel, on the light's power / count: 1 but for an environment map's photons,
   // whose power follows the map's colour at the drawn direction (core/environment.h).
   Color weight{1.0f};
+  uint8_t stratum = 0;  // the part of the light it left from (core/light_strata.h)
 };
 
 // A light's share of the classic photon budget, in the units of a point light's

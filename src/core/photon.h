@@ -90,7 +90,7 @@ struct ShadowPhoton {
   uint32_t normal;  // octahedral geometric normal, flipped to face where the photon came from
   uint16_t light;   // index into Scene::lights
   uint8_t shadow;   // a ShadowKind: direct, behind something opaque, or behind glass only
-  uint8_t pad = 0;
+  uint8_t stratum = 0;  // which stratum of its light it left from (core/light_strata.h)
 };
 
 // An indirect-map photon: stored at every surface hit of a bouncing path.

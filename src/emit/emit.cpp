@@ -20,7 +20,7 @@ namespace {
 // Follows one line from the light through every surface: the first hit is
 // direct, all later ones are in shadow, opaque once anything opaque was crossed.
 void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& dir, uint16_t light,
-                     int maxHits, BatchAppender<ShadowPhoton>& out) {
+                     uint8_t stratum, int maxHits, BatchAppender<ShadowPhoton>& out) {
   const std::vector<Material>& materials = tracer.scene().materials;
   Ray ray{origin, dir};
   ShadowKind kind = kDirect;
@@ -28,7 +28,7 @@ void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& d
     Hit hit;
     if (!tracer.intersect(ray, hit)) return;
     SurfaceRecord s = tracer.surface(ray, hit, kSurfaceGeometric);
-    out.push_back({s.position, encodeOctahedral(s.ng), light, kind});
+    out.push_back({s.position, encodeOctahedral(s.ng), light, kind, stratum});
     if (kind != kShadowOpaque) kind = materials[s.material].transparent ? kShadowGlass : kShadowOpaque;
     ray.origin = spawnOrigin(s, dir);
   }
@@ -123,7 +123,7 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
                 rng = Rng(hashKey(seed, kShadowStream, batchStreamKey(batch)))](
                    BatchAppender<ShadowPhoton>& out) mutable {
           const PhotonRay r = startPhoton(light, bounds, rng);
-          traceShadowLine(tracer, r.origin, r.dir, index, options.maxHitsPerLine, out);
+          traceShadowLine(tracer, r.origin, r.dir, index, r.stratum, options.maxHitsPerLine, out);
         };
       });
 

@@ -26,6 +26,11 @@ struct Entry {
   }
 };
 
+// One cell's votes for one stratum of a light, saturating at 255.
+struct CellCounts {
+  uint8_t direct = 0, opaque = 0, glass = 0;
+};
+
 
 // Median k-th-neighbour distance at up to 256 photons of one shadow light.
 float typicalShadowRadius(const ShadowPhotonMap& map, int k, GatherScratch& s) {
@@ -153,10 +158,23 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   insertKeys(keys);
   progressExpect(params.progress, records_ * (1 + (numLights_ > 0) + useIndirect));
 
+  // A light's strata are those its photons name; a light's own verdict sums them.
+  strata_.assign(numLights_, 1);
+  strataStart_.assign(numLights_, 0);
+  size_t numStrata = 0;
+  for (uint32_t l = 0; l < numLights_; ++l) {
+    for (const ShadowPhoton& ph : shadow->photons(l))
+      strata_[l] = std::max<uint8_t>(strata_[l], static_cast<uint8_t>(ph.stratum + 1));
+    strataStart_[l] = static_cast<uint32_t>(numStrata);
+    numStrata += strata_[l];
+  }
+  rowWidth_ = numLights_ + numStrata;
+
   // Per record: where its photons are (centroid), which way they face (mean normal),
-  // and per light how many arrived direct, behind something opaque, behind glass.
+  // and per stratum of each light how many arrived direct, behind something opaque,
+  // behind glass (saturating bytes: the vote only asks zero or not, and >= minVoters).
   std::vector<Vec3> sites(records_), normals(records_);
-  std::vector<GateCounts> counts(records_ * numLights_);
+  std::vector<CellCounts> counts(records_ * numStrata);
   const float minCos = params.gateParams.minNormalCos;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 256), [&](const auto& range) {
     for (size_t r = range.begin(); r != range.end(); ++r) {
@@ -172,10 +190,9 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
         if (src == 0) continue;
         const ShadowPhoton& ph = shadow->photons(src - 1)[entries[e].index];
         if (glm::dot(decodeOctahedral(ph.normal), normals[r]) <= minCos) continue;
-        GateCounts& c = counts[r * numLights_ + (src - 1)];
-        if (ph.shadow == kDirect) ++c.direct;
-        else if (ph.shadow == kShadowGlass) ++c.glass;
-        else ++c.opaque;
+        CellCounts& c = counts[r * numStrata + strataStart_[src - 1] + ph.stratum];
+        uint8_t& n = ph.shadow == kDirect ? c.direct : ph.shadow == kShadowGlass ? c.glass : c.opaque;
+        if (n < 255) ++n;
       }
     }
     progressAdd(params.progress, range.size());
@@ -184,12 +201,14 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
 
   // The verdict of a cell is the gate's vote over its 3x3x3 neighbourhood (same
   // bucket): every photon within one cell of any point inside it votes, so a point
-  // near the cell's edge still sees the shadow boundary beyond it.
-  verdicts_.assign(records_ * numLights_, static_cast<uint8_t>(GateVerdict::Mixed));
+  // near the cell's edge still sees the shadow boundary beyond it. Each stratum of a
+  // light is voted on alone too (its own quorum), the light as the sum of its strata.
+  verdicts_.assign(records_ * rowWidth_, static_cast<uint8_t>(GateVerdict::Mixed));
   if (numLights_ > 0) {
     const GateParams& g = params.gateParams;
+    const GateParams stratum = g.forStratum();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 256), [&](const auto& range) {
-      std::vector<GateCounts> sum(numLights_);
+      std::vector<GateCounts> sum(numStrata);
       for (size_t r = range.begin(); r != range.end(); ++r) {
         const uint64_t key = keys[r];
         const int64_t x = int64_t(key >> 43), y = int64_t(key >> 23 & 0xFFFFF), z = int64_t(key >> 3 & 0xFFFFF);
@@ -200,15 +219,23 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
             for (int dx = -1; dx <= 1; ++dx) {
               int32_t n = recordOf(keyOf(x + dx, y + dy, z + dz, bucket));
               if (n < 0) continue;
-              for (size_t l = 0; l < numLights_; ++l) {
-                const GateCounts& c = counts[size_t(n) * numLights_ + l];
-                sum[l].direct += c.direct;
-                sum[l].opaque += c.opaque;
-                sum[l].glass += c.glass;
+              for (size_t i = 0; i < numStrata; ++i) {
+                const CellCounts& c = counts[size_t(n) * numStrata + i];
+                sum[i].direct += c.direct;
+                sum[i].opaque += c.opaque;
+                sum[i].glass += c.glass;
               }
             }
+        uint8_t* row = &verdicts_[r * rowWidth_];
         for (size_t l = 0; l < numLights_; ++l) {
-          verdicts_[r * numLights_ + l] = static_cast<uint8_t>(verdictOf(sum[l], g));
+          GateCounts all;
+          for (uint32_t i = strataStart_[l]; i < strataStart_[l] + strata_[l]; ++i) {
+            all.direct += sum[i].direct;
+            all.opaque += sum[i].opaque;
+            all.glass += sum[i].glass;
+            row[numLights_ + i] = static_cast<uint8_t>(verdictOf(sum[i], stratum));
+          }
+          row[l] = static_cast<uint8_t>(verdictOf(all, g));
         }
       }
       progressAdd(params.progress, range.size());
@@ -271,7 +298,7 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
   for (int i = 0; i < 3; ++i) own[i] = static_cast<int64_t>(std::floor(cellOf[i]));
   if (kind_ == CachedIndirect::None) {  // the gate alone reads only p's own cell
     const int32_t r = recordOf(keyOf(own[0], own[1], own[2], bucket));
-    if (r >= 0) a.verdicts = &verdicts_[size_t(r) * numLights_];
+    if (r >= 0) a.verdicts = &verdicts_[size_t(r) * rowWidth_];
     return a;
   }
   // The surface runs across the bucket's axis: blend bilinearly over the 2x2 cells
@@ -293,7 +320,7 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
     sum += w * slot->indirect;
     weight += w;
     if (c[t1] == own[t1] && c[t2] == own[t2] && numLights_ > 0)
-      a.verdicts = &verdicts_[size_t(slot->record) * numLights_];
+      a.verdicts = &verdicts_[size_t(slot->record) * rowWidth_];
   }
   if (weight > 1e-6f) {
     a.indirect = sum / weight;

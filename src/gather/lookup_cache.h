@@ -70,7 +70,8 @@ class LookupCache {
   struct Answer {
     Color indirect{0.0f};
     bool hasIndirect = false;           // false: no cell near p; use the exact estimate
-    const uint8_t* verdicts = nullptr;  // one GateVerdict per light
+    // One GateVerdict per light, then one per stratum of each light (strataVerdicts).
+    const uint8_t* verdicts = nullptr;
   };
   Answer find(const Vec3& p, const Vec3& n) const;
 
@@ -85,6 +86,13 @@ class LookupCache {
   size_t lazyCells() const { return lazy_ ? lazy_->count.load(std::memory_order_relaxed) : 0; }
 
   bool hasGate() const { return numLights_ > 0; }
+  // How many strata light l's photons name (core/light_strata.h), and the verdict
+  // of each in an Answer's row: only where the light's own verdict is mixed can
+  // they differ from it.
+  int strataOf(uint32_t light) const { return light < numLights_ ? strata_[light] : 1; }
+  const uint8_t* strataVerdicts(const uint8_t* row, uint32_t light) const {
+    return row + numLights_ + strataStart_[light];
+  }
   CachedIndirect indirectKind() const { return kind_; }
   size_t records() const { return records_; }
   size_t numLights() const { return numLights_; }
@@ -137,7 +145,10 @@ class LookupCache {
   size_t records_ = 0, numLights_ = 0;
   CachedIndirect kind_ = CachedIndirect::None;
   std::vector<Slot> slots_;        // open addressing, power-of-two size, linear probing
-  std::vector<uint8_t> verdicts_;  // per record x light: a GateVerdict
+  std::vector<uint8_t> verdicts_;  // per record: rowWidth_ GateVerdicts (lights, then strata)
+  std::vector<uint8_t> strata_;       // per light: its strata
+  std::vector<uint32_t> strataStart_;  // per light: its first stratum's place after the lights
+  size_t rowWidth_ = 0;
 };
 
 }  // namespace penumbra

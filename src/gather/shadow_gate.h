@@ -13,10 +13,20 @@ struct GateParams {
   float maxRadius = 0.0f;     // 0 = unlimited
   float minNormalCos = 0.5f;  // a photon votes only if its normal . n > this
   int minVoters = 8;          // fewer voters than this: not enough evidence -> Mixed
+  // The same for one stratum of an area light, asked only where the whole light's
+  // vote is mixed: a stratum gets a sixteenth of the light's photons, and two that
+  // agree, with none against, already separate its lit side from its shadowed one.
+  int minStratumVoters = 2;
   bool glassBlocks = false;   // physical model: behind glass counts as shadow, not Mixed
   bool operator==(const GateParams& o) const {
     return k == o.k && maxRadius == o.maxRadius && minNormalCos == o.minNormalCos && minVoters == o.minVoters &&
-           glassBlocks == o.glassBlocks;
+           minStratumVoters == o.minStratumVoters && glassBlocks == o.glassBlocks;
+  }
+  // The parameters a stratum's vote runs with.
+  GateParams forStratum() const {
+    GateParams p = *this;
+    p.minVoters = minStratumVoters < minVoters ? minStratumVoters : minVoters;
+    return p;
   }
 };
 

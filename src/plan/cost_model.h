@@ -24,6 +24,9 @@ constexpr double kMeshLightLevelNs = 12.0;    // ... plus per level of its searc
 
 // Shares.
 constexpr double kAvoidable = 0.85;  // shadow tests a gate answers without a ray (soft_shadows)
+// The same where precomputed cells keep a verdict per stratum of an area light: only
+// the samples in strata that are themselves mixed cast rays (soft_shadows, 16 samples).
+constexpr double kAvoidableStratified = 0.90;
 constexpr double kSpillSlowdown = 0.3;  // extra time per doubling of photon data past the caches
 
 // Bytes.

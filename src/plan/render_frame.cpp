@@ -45,6 +45,12 @@ void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& c
   params.radius = global ? ctx.globalRadius : 0.0f;
   params.cellSize = params.k == 0 ? cacheCellSize(params.radius, recipe.k, ps.lookupCell)
                                   : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
+  if (params.gate && map) {
+    // Gate verdicts need cells as fine as the shadow photons allow (a penumbra is
+    // narrower than a sparse light map's cells); the estimate is then kept per finer cell.
+    const float gateCell = cacheCellSize(nullptr, 0, ctx.shadowMap, ps.kShadow, ps.lookupCell);
+    if (gateCell > 0.0f && (!(params.cellSize > 0.0f) || gateCell < params.cellSize)) params.cellSize = gateCell;
+  }
   if (!cachedKey || !*cachedKey || !sameLookup(**cachedKey, params)) {
     if (cachedKey) cachedKey->reset();  // a build that throws leaves no key to a half-built cache
     params.progress = beginPhase(meter, phaseName);

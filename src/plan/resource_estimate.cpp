@@ -3,6 +3,7 @@
 #include "plan/resource_estimate.h"
 #include "plan/transport_model.h"
 #include "plan/cost_model.h"
+#include "plan/gate_decision.h"
 #include "geometry/trace_scene.h"
 #include "core/light_sample.h"
 #include "core/photon.h"
@@ -199,7 +200,8 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
       // An environment is never gated, and the physical model adds a BSDF sample to
       // each of its light samples (trace/environment_light.h): count both.
       if (l.type == LightType::Environment) raysPerPoint += 2.0 * count;
-      else raysPerPoint += gated && l.type != LightType::Mesh ? count * (1.0 - kAvoidable) : count;
+      else if (gated && l.type != LightType::Mesh) raysPerPoint += count * (1.0 - avoidableShare(l, options.precomputed));
+      else raysPerPoint += count;
     }
     if (gated) lookupNs += options.precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();
   }

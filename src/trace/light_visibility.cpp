@@ -123,6 +123,12 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
   return v;
 }
 
+const uint8_t* gateStrata(const ShadingContext& ctx, uint32_t li, const CachedAnswer* cached) {
+  if (!cached || !cached->verdicts || !ctx.choices.gate || !ctx.lookup->hasGate()) return nullptr;
+  if (ctx.lookup->strataOf(li) <= 1) return nullptr;
+  return ctx.lookup->strataVerdicts(cached->verdicts, li);
+}
+
 Color litClosedForm(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,
                     const LightSampler& sampler, const Bsdf& bsdf, bool asked,
                     const CachedAnswer* cached, ThreadState& ts, std::string* note) {

@@ -3,6 +3,7 @@
 #pragma once
 #include "core/bsdf.h"
 #include "core/light_sample.h"
+#include "core/light_strata.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "gather/lookup_cache.h"
@@ -17,6 +18,10 @@ GateParams gateParamsFor(const Scene& scene, GlassShadows glass);
 
 // A shading point's precomputed answer (null: ask the photon map).
 using CachedAnswer = LookupCache::Answer;
+
+// The precomputed verdicts of light li's strata at a shading point, or null where
+// there are none (no cell, no gate, an exact vote, a light of one stratum).
+const uint8_t* gateStrata(const ShadingContext& ctx, uint32_t li, const CachedAnswer* cached);
 
 // The gate's verdict for one light at a shading point (Mixed when the gate is off
 // or has no photons of that light): from the cache when there is one, else by the
@@ -47,8 +52,9 @@ Color litClosedForm(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t 
 // BSDF and `weigh(t, f, in)` one sample's contribution at transmittance t (each
 // model multiplies in the order its images were made with). The gate is asked once,
 // at the first sample that reaches the surface: shadowed -> nothing; mixed -> one
-// ray per sample; lit -> no ray at all, and the Lambertian part in closed form
-// (unoccludedIrradiance), so only a glossy lobe still takes the samples. When no
+// ray per sample whose stratum is mixed too (gateStrata); lit -> no ray at all,
+// and the Lambertian part in closed form (unoccludedIrradiance), so only a glossy
+// lobe still takes the samples. When no
 // sample reaches it (a light mostly below the horizon or facing away: a cube lamp's
 // far faces) but the closed form says some light does, the gate is asked after all
 // (litClosedForm): a lit verdict owes the closed form whatever the samples hit.
@@ -77,6 +83,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   const Bsdf* lobes = &bsdf;  // after a lit verdict: only what the closed form left out
   Bsdf glossy;
   GateVerdict v = shadows ? GateVerdict::Mixed : GateVerdict::Lit;
+  const uint8_t* strata = nullptr;  // per-stratum verdicts of a mixed light, if precomputed
   bool asked = !shadows, closedTried = !area;
   Color closed(0.0f), sum(0.0f);
   for (int j = 0; j < n; ++j) {
@@ -93,6 +100,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
         ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
         return Color(0.0f);
       }
+      if (v == GateVerdict::Mixed) strata = gateStrata(ctx, li, cached);
     }
     if (v == GateVerdict::Lit && !closedTried) {
       closedTried = true;
@@ -110,6 +118,16 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
       }
     }
     if (maxComponent(f) <= 0.0f) continue;
+    if (strata) {
+      // A mixed light whose sample falls in a stratum its cell calls lit or shadowed:
+      // that sample's ray is answered, only ambiguous strata still cast one.
+      const auto sv = static_cast<GateVerdict>(strata[sampleStratum(light, u, in.point)]);
+      if (sv != GateVerdict::Mixed) {
+        ++ts.counts.shadowRaysAvoided;
+        if (sv == GateVerdict::Lit) sum += weigh(Color(1.0f), f, in);
+        continue;
+      }
+    }
     if (v == GateVerdict::Lit) {
       if (shadows) ++ts.counts.shadowRaysAvoided;
       sum += weigh(Color(1.0f), f, in);

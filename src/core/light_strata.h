@@ -1,0 +1,46 @@
+// The strata of an area light that the shadow gate votes on separately: a quad's
+// 4x4 cells of its (u, v) parameters (the grid render.light_samples stratifies),
+// a sphere's 4x4 equal-area cells of its surface; every other light is one stratum.
+#pragma once
+#include "core/scene.h"
+#include <cmath>
+#include <cstdint>
+
+namespace penumbra {
+
+constexpr int kStrataSide = 4;
+constexpr int kMaxLightStrata = kStrataSide * kStrataSide;
+
+// How many strata the gate keeps for a light. Mesh lights pick a triangle and a
+// side from one number, so their (u, v) cells are not regions of the light: one.
+inline int lightStrata(const Light& light) {
+  return light.type == LightType::Quad || light.type == LightType::Sphere ? kMaxLightStrata : 1;
+}
+
+// The cell of (u1, u2) in [0, 1)^2 (NaN and out-of-range values clamp to an edge cell).
+inline uint8_t stratumOf(float u1, float u2) {
+  const float top = static_cast<float>(kStrataSide - 1), side = static_cast<float>(kStrataSide);
+  const int i = static_cast<int>(std::fmin(std::fmax(u1 * side, 0.0f), top));
+  const int j = static_cast<int>(std::fmin(std::fmax(u2 * side, 0.0f), top));
+  return static_cast<uint8_t>(i + kStrataSide * j);
+}
+
+// A sphere light's stratum at the unit outward normal n: uniformSphere's (u1, u2)
+// inverted, so cells have equal area and do not depend on who looks at the sphere.
+// Four bins of phi are its quadrants, read from the signs of x and y (no atan2 on
+// every sample of a mixed sphere light).
+static_assert(kStrataSide == 4, "sphereStratum's phi bins are the quadrants");
+inline uint8_t sphereStratum(const Vec3& n) {
+  const int quadrant = n.y >= 0.0f ? (n.x >= 0.0f ? 0 : 1) : (n.x < 0.0f ? 2 : 3);
+  return static_cast<uint8_t>(stratumOf(0.5f * (1.0f - n.z), 0.0f) + kStrataSide * quadrant);
+}
+
+// The stratum of one light sample drawn with numbers u that reached `point` on the
+// light: a quad's from u itself (u is its (u, v)), a sphere's from where it was met.
+inline uint8_t sampleStratum(const Light& light, const Vec2& u, const Vec3& point) {
+  if (light.type == LightType::Quad) return stratumOf(u.x, u.y);
+  if (light.type == LightType::Sphere) return sphereStratum(glm::normalize(point - light.position));
+  return 0;
+}
+
+}  // namespace penumbra
