@@ -224,35 +224,6 @@ TEST(Sweep, AThreadsListRendersEveryRunAtEachCountWithTheSamePixels) {
   EXPECT_THROW(threadsKnob("2x"), InputError);
 }
 
-// Several scenes: each into OUTPUT/<its name>/ with its own reference, scenes.md over
-// them; a bad second scene is refused before the first renders.
-TEST(Sweep, SeveralScenesSweepEachIntoItsOwnFolderAndABadOneFailsFirst) {
-  testing::ScratchDir dir;
-  const std::string scenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/";
-  const std::string small = " -q --spp 1,2 --set camera.width=24 --set camera.height=16";
-  const std::string out = testing::quote((dir / "s").string());
-  const testing::CliResult ok = testing::runCli("sweep " + testing::quote(scenes + "fig03_shadows.json") + " " +
-                                                testing::quote(scenes + "showcase.json") + " -o " + out + small);
-  ASSERT_EQ(ok.exitCode, 0) << ok.err;
-  for (const char* name : {"fig03_shadows", "showcase"}) {
-    EXPECT_TRUE(fs::exists(dir / "s" / name / "results.csv")) << name;
-    EXPECT_TRUE(fs::exists(dir / "s" / name / "reference.exr")) << name;
-  }
-  const std::string md = testing::readFile(dir / "s" / "scenes.md");
-  EXPECT_NE(md.find("fig03_shadows/report.md"), std::string::npos) << md;
-  EXPECT_NE(md.find("showcase/report.md"), std::string::npos) << md;
-  const testing::CliResult bad = testing::runCli("sweep " + testing::quote(scenes + "fig03_shadows.json") + " " +
-                                                 testing::quote((dir / "missing.json").string()) + " -o " +
-                                                 testing::quote((dir / "t").string()) + small);
-  EXPECT_EQ(bad.exitCode, 2) << bad.err;
-  EXPECT_NE(bad.err.find("missing.json"), std::string::npos) << bad.err;
-  EXPECT_FALSE(fs::exists(dir / "t" / "fig03_shadows" / "results.csv")) << "nothing rendered";
-  const testing::CliResult twice = testing::runCli("sweep " + testing::quote(scenes + "showcase.json") + " " +
-                                                   testing::quote(scenes + "showcase.json") + " -o " + out + small);
-  EXPECT_EQ(twice.exitCode, 2);
-  EXPECT_NE(twice.err.find("would share the folder"), std::string::npos) << twice.err;
-}
-
 // Two lights of equal power, one shut in a black box: the plan splits the global
 // photons by reach (all to the free light) in every progressive pass, in the sweep
 // as in a lone render.
