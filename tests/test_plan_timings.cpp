@@ -62,6 +62,21 @@ TEST(CpuTime, LoadAverageIsTheFirstFieldOfTheFile) {
   EXPECT_GE(loadAverage1m(), 0.0) << "/proc/loadavg on Linux";
 }
 
+// A command name holding spaces and ')' does not shift the start time's field; a
+// start time past now (or no start time) is unknown.
+TEST(CpuTime, ProcessAgeReadsTheStartTimeAfterTheCommandName) {
+  const testing::ScratchDir dir;
+  std::string fields = "1234 (pen umbra) x) S";
+  for (int field = 4; field <= 21; ++field) fields += " 7";
+  EXPECT_GT(processAgeSeconds(dir.write("old", fields + " 0 99 100\n").string()), 0.0) << "started at boot";
+  EXPECT_DOUBLE_EQ(processAgeSeconds(dir.write("future", fields + " 999999999999 99\n").string()), -1.0);
+  EXPECT_DOUBLE_EQ(processAgeSeconds(dir.write("short", "1234 (penumbra) S 1 2\n").string()), -1.0);
+  EXPECT_DOUBLE_EQ(processAgeSeconds((dir / "missing").string()), -1.0);
+  const double age = processAgeSeconds();
+  EXPECT_GT(age, 0.0) << "/proc/self/stat on Linux";
+  EXPECT_LT(age, processAgeSeconds("/proc/1/stat")) << "this test started after init";
+}
+
 // One thread burns 0.1 s of its own CPU clock: the span sees at least that much CPU,
 // and a single busy thread can hold at most its one core of the wall time.
 TEST(CpuTime, ASpanOverOneBusyThreadHasAShareOfAtMostOne) {

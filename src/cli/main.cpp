@@ -8,6 +8,7 @@
 #include "cli/bench_command.h"
 #include "cli/plan_command.h"
 #include "cli/sweep_command.h"
+#include "core/cpu_time.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/report_json.h"
@@ -95,6 +96,9 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
     meter->startTicker();
     req.progress = &*meter;
   }
+  // A time limit counts the whole process: its start-up (loading the shared
+  // libraries) and the image's write are the user's wait too.
+  if (processAgeSeconds() >= 0.0) req.jobClock = [] { return processAgeSeconds(); };
   RenderResult result = runRender(req);
   if (meter) meter->finish();
   if (req.tracePixel) {

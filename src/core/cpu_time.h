@@ -31,6 +31,10 @@ CpuTiming cpuTiming(double wall, double cpu, int threads, double load);
 // User + system seconds this process has used so far (getrusage, every thread).
 double processCpuSeconds();
 
+// Wall seconds since this process started, its loading and static set-up included
+// (Linux: /proc/self/stat's start time against the boot clock); -1 when unknown.
+double processAgeSeconds(const std::string& statPath = "/proc/self/stat");
+
 // The 1-minute load average, the first field of `path` (/proc/loadavg); -1 when it
 // cannot be read.
 double loadAverage1m(const std::string& path = "/proc/loadavg");

@@ -31,7 +31,7 @@ RenderResult runRender(const RenderRequest& request) {
 
   session.prepare(planned);
   PhotonStage& stage = session.photons(planned);
-  RenderResult result = session.frame(planned, stage);
+  RenderResult result = session.frame(planned, stage, request.jobClock);
   RenderStats& stats = result.stats;
   stats.time.buildBvh = session.assets(planned).bvhSeconds;
 

@@ -8,6 +8,7 @@
 #include "io/tone_map.h"
 #include "core/image.h"
 #include "core/ray_record.h"
+#include <functional>
 #include "core/stats.h"
 #include <functional>
 #include <optional>
@@ -35,6 +36,9 @@ struct RenderRequest {
   std::function<void(const std::string& note)> notice;
   LoadOptions load;  // --no-defaults
   RenderBudget budget;  // --time-limit, --target-error
+  // The job's wall seconds so far, for the budget's time limit (the render command:
+  // the process's age); empty: the session's own account from the job's load.
+  std::function<double()> jobClock;
 };
 
 struct RenderResult {
