@@ -1,6 +1,6 @@
 // The error estimate against synthetic passes of known spread: the noise RMSE of P
-// passes of per-pixel noise sigma is sigma / sqrt(P); Welford's update equals the
-// two-pass formula; a drift between the first and second half of the passes is
+// passes of per-pixel noise sigma is sigma / sqrt(P); the per-pixel figure is the
+// even and odd passes' formula; a drift between the first and second half of the passes is
 // measured as bias, and no drift as none; a samples' variance image gives its RMSE.
 #include "core/error_estimate.h"
 #include "core/rng.h"
@@ -39,8 +39,9 @@ PassSpread addPasses(int n, Image& sum, double drift = 0.0, int driftPasses = 0)
 }
 
 TEST(ErrorEstimate, NoiseOfPPassesIsSigmaOverRootP) {
-  // 12288 pixel channels: the estimated variance's relative sd is sqrt(2 / (12288 (P-1)))
-  // at most 1.3%, so the RMSE's is at most 0.7%; tolerance 4 sd.
+  // 12288 pixel channels, each with one difference of the even and odd passes' means:
+  // the estimated variance's relative sd is sqrt(2 / 12288) = 1.3%, so the RMSE's is
+  // 0.64%; tolerance 4 sd.
   for (int passes : {2, 8, 32}) {
     Image sum;
     const ErrorEstimate e = addPasses(passes, sum).estimate();
@@ -48,21 +49,23 @@ TEST(ErrorEstimate, NoiseOfPPassesIsSigmaOverRootP) {
     EXPECT_EQ(e.source, ErrorSource::Passes);
     EXPECT_EQ(e.count, passes);
     const double want = kSigma / std::sqrt(double(passes));
-    EXPECT_NEAR(e.noiseRmse, want, 4.0 * 0.0065 / std::sqrt(passes - 1.0) * want) << passes;
+    EXPECT_NEAR(e.noiseRmse, want, 4.0 * 0.0064 * want) << passes;
   }
 }
 
-TEST(ErrorEstimate, WelfordEqualsTheTwoPassFormula) {
+// Per pixel: with n_e even and n_o odd passes of P, the mean's variance is
+// n_e n_o / P^2 times the difference of their means, squared.
+TEST(ErrorEstimate, StandardErrorIsTheEvenAndOddPassesFormula) {
   constexpr int kPasses = 5;
   Image sum;
   const PassSpread spread = addPasses(kPasses, sum);
   const Image se = spread.standardError();
   for (size_t i = 0; i < se.pixels.size(); i += 97) {
     for (int c = 0; c < 3; ++c) {
-      double mean = 0.0, squares = 0.0;
-      for (int p = 0; p < kPasses; ++p) mean += noisyPass(p).pixels[i][c] / double(kPasses);
-      for (int p = 0; p < kPasses; ++p) squares += std::pow(noisyPass(p).pixels[i][c] - mean, 2);
-      EXPECT_NEAR(se.pixels[i][c], std::sqrt(squares / (kPasses - 1.0) / kPasses), 1e-5) << i;
+      double even = 0.0, odd = 0.0;
+      for (int p = 0; p < kPasses; p += 2) even += noisyPass(p).pixels[i][c] / 3.0;
+      for (int p = 1; p < kPasses; p += 2) odd += noisyPass(p).pixels[i][c] / 2.0;
+      EXPECT_NEAR(se.pixels[i][c], std::sqrt(3.0 * 2.0 / 25.0) * std::abs(even - odd), 1e-5) << i;
     }
   }
 }

@@ -1,5 +1,5 @@
-// Welford's per-pixel update from the frame's running sum, the noise RMSE of the mean
-// image, and the first-half/second-half bias check at 2, 4, 8, ... passes.
+// The noise RMSE of the mean image from its even and odd passes' means, and the
+// first-half/second-half bias check at 2, 4, 8, ... passes.
 #include "core/error_estimate.h"
 #include <fmt/format.h>
 #include <cmath>
@@ -36,35 +36,36 @@ std::string describeError(const ErrorEstimate& e) {
 }
 
 void PassSpread::add(const Image& sumBefore, const Image& image, int pass) {
+  Image& half = pass % 2 == 0 ? even_ : odd_;
+  if (half.pixels.empty()) half = image;
+  else for (size_t i = 0; i < image.pixels.size(); ++i) half.pixels[i] += image.pixels[i];
+  passes_ = pass + 1;
   if (pass == 0) {
-    m2_ = Image(image.width, image.height);
     snapshot_ = image;
     snapshotPasses_ = 1;
-    passes_ = 1;
     return;
   }
-  const float k = float(pass) + 1.0f;
-  for (size_t i = 0; i < image.pixels.size(); ++i) {
-    const Color x = image.pixels[i];
-    const Color before = sumBefore.pixels[i] / float(pass);
-    const Color after = (sumBefore.pixels[i] + x) / k;
-    m2_.pixels[i] += (x - before) * (x - after);
-  }
-  passes_ = pass + 1;
   if (passes_ != 2 * snapshotPasses_) return;
   // Passes 1..h against h+1..2h: their difference's mean square, less what noise
-  // alone gives it (2 sigma^2 / h per pixel and channel), is the bias that changed.
+  // alone gives it (each half's mean has twice the variance of the whole's), is the
+  // bias that changed.
   const double h = snapshotPasses_;
   const double meanSquare = meanOver(image, [&](size_t i, int c) {
     const double first = snapshot_.pixels[i][c] / h;
     const double second = (double(sumBefore.pixels[i][c]) + image.pixels[i][c] - snapshot_.pixels[i][c]) / h;
     return (first - second) * (first - second);
   });
-  const double noise = meanOver(image, [&](size_t i, int c) { return 2.0 * m2_.pixels[i][c] / (2.0 * h - 1.0) / h; });
+  const double noise = 4.0 * meanOver(image, [&](size_t i, int c) { return varianceOfMean(i, c); });
   biasRmse_ = std::sqrt(std::max(0.0, meanSquare - noise));
   biasHalf_ = snapshotPasses_;
   for (size_t i = 0; i < image.pixels.size(); ++i) snapshot_.pixels[i] = sumBefore.pixels[i] + image.pixels[i];
   snapshotPasses_ = passes_;
+}
+
+double PassSpread::varianceOfMean(size_t i, int c) const {
+  const double ne = (passes_ + 1) / 2, no = passes_ / 2;
+  const double d = double(even_.pixels[i][c]) / ne - double(odd_.pixels[i][c]) / no;
+  return ne * no / (double(passes_) * passes_) * d * d;
 }
 
 ErrorEstimate PassSpread::estimate() const {
@@ -72,18 +73,18 @@ ErrorEstimate PassSpread::estimate() const {
   if (passes_ < 2) return e;
   e.source = ErrorSource::Passes;
   e.count = passes_;
-  const double n = passes_;
-  e.noiseRmse = std::sqrt(meanOver(m2_, [&](size_t i, int c) { return m2_.pixels[i][c] / (n * (n - 1.0)); }));
+  e.noiseRmse = std::sqrt(meanOver(even_, [&](size_t i, int c) { return varianceOfMean(i, c); }));
   e.biasRmse = biasRmse_;
   e.biasHalf = biasHalf_;
   return e;
 }
 
 Image PassSpread::standardError() const {
-  Image out(m2_.width, m2_.height);
-  const float n = float(passes_);
+  Image out(even_.width, even_.height);
   if (passes_ < 2) return out;
-  for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = glm::sqrt(m2_.pixels[i] / (n * (n - 1.0f)));
+  for (size_t i = 0; i < out.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) out.pixels[i][c] = float(std::sqrt(varianceOfMean(i, c)));
+  }
   return out;
 }
 

@@ -28,8 +28,12 @@ struct ErrorEstimate {
 // "~0.012 RMSE (noise, from 8 passes)", or why there is no figure.
 std::string describeError(const ErrorEstimate& e);
 
-// Per-pixel spread of progressive passes, added one pass at a time (Welford's update
-// from the running sum the frame keeps), and the bias check at each power of two.
+// The noise of progressive passes' mean, and the bias check at each power of two.
+// Even and odd passes take their camera samples from two independently scrambled
+// sequences, each stratified in itself, so their means are independent estimates of
+// the pixel: with n_e and n_o passes, the mean's variance is n_e n_o / P^2 times
+// their difference squared. A spread over the passes would also count the strata's
+// differences, which the mean of a stratified sequence does not have.
 class PassSpread {
  public:
   // `sumBefore`: the sum of passes 0..pass-1 (unused at pass 0); `image`: pass `pass`.
@@ -43,7 +47,9 @@ class PassSpread {
   Image standardError() const;
 
  private:
-  Image m2_;        // per pixel and channel, the sum of squared deviations (Welford)
+  double varianceOfMean(size_t pixel, int channel) const;
+
+  Image even_, odd_;  // the sums of the even and of the odd passes
   Image snapshot_;  // the sum of the first `snapshotPasses_` passes
   int snapshotPasses_ = 0;
   int passes_ = 0;
@@ -51,7 +57,8 @@ class PassSpread {
   int biasHalf_ = 0;
 };
 
-// An estimate from one pass's per-pixel variance of the mean (from its samples).
+// An estimate from one pass's per-pixel variance of the mean (from its samples: its
+// even and odd samples' means, as passes' above).
 ErrorEstimate sampleError(const Image& varianceOfMean, int spp);
 // Per pixel, the square root of a variance image.
 Image standardErrorOf(const Image& varianceOfMean);

@@ -42,57 +42,72 @@ Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadStat
   return shadeTraced(ctx, ray, found ? &hit : nullptr, aov, ts);
 }
 
-// One sample into its pixel's running sum. A NaN or Inf sample would poison the pixel
-// (or be written as 0 and hide): drop it, count it, and let the pixel's other samples
-// stand. Geometric views average only the samples that hit: a miss is "no depth",
-// not 0 m, and its share of the pixel is the coverage.
-void addSample(const Color& c, Aov aov, glm::dvec3& sum, glm::dvec3& squares, int& counted, ThreadState& ts) {
-  if (!isFinite(c)) {
-    ++ts.counts.nonfiniteSamples;
-    return;
-  }
-  if (geometric(aov) && c.r == kNoHit) return;
-  sum += glm::dvec3(c);
-  squares += glm::dvec3(c) * glm::dvec3(c);
-  ++counted;
-}
+// A pixel's running sums: all its samples, and those of sequence B (odd samples of
+// one pass), in double: many finite samples near float's top cannot overflow.
+struct PixelSums {
+  glm::dvec3 sum{0.0}, oddSum{0.0};
+  int counted = 0, oddCounted = 0;
 
-// The variance of a pixel's mean from its samples' spread, s^2 / n (0 below 2 samples).
-Color varianceOfMean(const glm::dvec3& sum, const glm::dvec3& squares, int counted) {
-  if (counted < 2) return Color(0.0f);
-  const double n = counted;
-  const glm::dvec3 mean = sum / n;
-  return Color(glm::max((squares - n * mean * mean) / (n - 1.0) / n, glm::dvec3(0.0)));
-}
+  // One sample in. A NaN or Inf sample would poison the pixel (or be written as 0 and
+  // hide): drop it, count it, and let the pixel's other samples stand. Geometric views
+  // average only the samples that hit: a miss is "no depth", not 0 m, and its share
+  // of the pixel is the coverage.
+  void add(const Color& c, Aov aov, bool odd, ThreadState& ts) {
+    if (!isFinite(c)) {
+      ++ts.counts.nonfiniteSamples;
+      return;
+    }
+    if (geometric(aov) && c.r == kNoHit) return;
+    sum += glm::dvec3(c);
+    ++counted;
+    if (odd) {
+      oddSum += glm::dvec3(c);
+      ++oddCounted;
+    }
+  }
+
+  // The variance of the pixel's mean from its even and odd samples' means (two
+  // independent estimates): n_e n_o / n^2 times their difference squared.
+  Color varianceOfMean() const {
+    const int evenCounted = counted - oddCounted;
+    if (evenCounted < 1 || oddCounted < 1) return Color(0.0f);
+    const glm::dvec3 d = (sum - oddSum) / double(evenCounted) - oddSum / double(oddCounted);
+    return Color(double(evenCounted) * oddCounted / (double(counted) * counted) * d * d);
+  }
+};
 
 // A mean above float range is clamped to it (the writer clamps further). A pixel with
 // no sample counted is 0: black, or for a geometric view "no hit" (coverage 0).
-void storePixel(const glm::dvec3& sum, int counted, Aov aov, int spp, size_t index, Image& image) {
+void storePixel(const PixelSums& p, Aov aov, int spp, size_t index, Image& image, Image* variance) {
   const double top = std::numeric_limits<float>::max();
-  image.pixels[index] = counted > 0 ? Color(glm::min(sum / double(counted), glm::dvec3(top)))
-                                    : Color(0.0f);
-  if (geometric(aov)) image.coverage[index] = static_cast<float>(counted) / static_cast<float>(spp);
+  image.pixels[index] = p.counted > 0 ? Color(glm::min(p.sum / double(p.counted), glm::dvec3(top))) : Color(0.0f);
+  if (geometric(aov)) image.coverage[index] = static_cast<float>(p.counted) / static_cast<float>(spp);
+  if (variance) variance->pixels[index] = p.varianceOfMean();
 }
 
 // Camera sample `s` of this pass: its random stream and its offset in the pixel. One
-// pass keeps its spp jittered strata (the pixel centre at spp 1). Progressive passes
-// take point pass x spp + s of the pixel's own scrambled (0,2)-sequence: each pass
-// covers the pixel evenly, any number of passes adds up to strata (spp 1 x 16 passes
-// as stratified as spp 16), and a pass's samples do not depend on how many follow.
+// sample of one pass is the pixel centre. Otherwise samples come from two scrambled
+// (0,2)-sequences of the pixel's own, A and B, independent of each other: passes
+// alternate between them (pass p takes its spp points from p's sequence, after those
+// of earlier passes), and one pass alternates its samples. So spp 1 x 16 passes takes
+// the points spp 16 x 1 pass takes; each sequence's points add up to strata; a pass's
+// samples do not depend on how many follow; and the means of A and B are two
+// independent estimates of the pixel, whose difference is the error estimate's.
 struct CameraSample {
   uint64_t key;
   Vec2 offset;
 };
 CameraSample cameraSample(const ShadingContext& ctx, uint64_t pixel, int s) {
   const uint64_t seed = ctx.scene.render.seed;
-  const uint64_t index = static_cast<uint64_t>(ctx.pass) * ctx.scene.camera.spp + static_cast<uint64_t>(s);
+  const uint32_t spp = static_cast<uint32_t>(ctx.scene.camera.spp);
+  const uint64_t index = static_cast<uint64_t>(ctx.pass) * spp + static_cast<uint64_t>(s);
   const uint64_t key = hashKey(seed, pixel, index);
-  if (ctx.passes > 1) {
-    // The scramble's stream is a sample index no frame reaches (passes x spp < 2^32).
-    return {key, sobol02(static_cast<uint32_t>(index), hashKey(seed, pixel, ~uint64_t(0)))};
-  }
-  Rng rng(key);
-  return {key, stratified2D(s, ctx.scene.camera.spp, rng)};
+  if (ctx.passes <= 1 && spp == 1) return {key, {0.5f, 0.5f}};
+  const bool passes = ctx.passes > 1;
+  const uint32_t sequence = passes ? ctx.pass % 2 : static_cast<uint32_t>(s) % 2;
+  const uint32_t point = passes ? ctx.pass / 2 * spp + static_cast<uint32_t>(s) : static_cast<uint32_t>(s) / 2;
+  // The scrambles' streams are sample indices no frame reaches (passes x spp < 2^32).
+  return {key, sobol02(point, hashKey(seed, pixel, ~uint64_t(sequence)))};
 }
 
 // The packet path's per-thread buffers, sized for one tile on first use.
@@ -101,8 +116,7 @@ struct TileBuffers {
   std::vector<uint64_t> keys;
   std::vector<Ray> rays;
   std::vector<Hit> hits;
-  std::vector<glm::dvec3> sums, squares;
-  std::vector<int> counted;
+  std::vector<PixelSums> sums;
   std::vector<uint32_t> known, blocked;
   PrimaryShadowScratch shadows;
 };
@@ -117,8 +131,8 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
   const Camera& cam = ctx.scene.camera;
   const size_t cap = static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0);
   if (b.pixels.size() < cap) {
-    b.pixels.resize(cap); b.keys.resize(cap); b.rays.resize(cap); b.hits.resize(cap); b.sums.resize(cap); b.squares.resize(cap);
-    b.counted.resize(cap); b.known.resize(cap); b.blocked.resize(cap);
+    b.pixels.resize(cap); b.keys.resize(cap); b.rays.resize(cap); b.hits.resize(cap); b.sums.resize(cap);
+    b.known.resize(cap); b.blocked.resize(cap);
   }
   // Pixels in 4x4 blocks: a 16-ray packet covers a square of the film, not a row.
   int n = 0;
@@ -126,7 +140,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
     for (int bx = x0; bx < x1; bx += 4)
       for (int y = by; y < std::min(by + 4, y1); ++y)
         for (int x = bx; x < std::min(bx + 4, x1); ++x) b.pixels[static_cast<size_t>(n++)] = {x, y};
-  for (int i = 0; i < n; ++i) { b.sums[i] = b.squares[i] = glm::dvec3(0.0); b.counted[i] = 0; }
+  for (int i = 0; i < n; ++i) b.sums[i] = PixelSums();
   for (int s = 0; s < cam.spp; ++s) {
     for (int i = 0; i < n; ++i) {
       const glm::ivec2 p = b.pixels[i];
@@ -142,14 +156,13 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
       ts.knownShadows = b.known[i];
       ts.blockedShadows = b.blocked[i];
       const Hit* hit = b.hits[i].valid() ? &b.hits[i] : nullptr;
-      addSample(shadeTraced(ctx, b.rays[i], hit, aov, ts), aov, b.sums[i], b.squares[i], b.counted[i], ts);
+      b.sums[i].add(shadeTraced(ctx, b.rays[i], hit, aov, ts), aov, s % 2 == 1, ts);
     }
   }
   ts.knownShadows = ts.blockedShadows = 0;
   for (int i = 0; i < n; ++i) {
     const size_t index = static_cast<size_t>(b.pixels[i].y) * cam.width + b.pixels[i].x;
-    storePixel(b.sums[i], b.counted[i], aov, cam.spp, index, image);
-    if (variance) variance->pixels[index] = varianceOfMean(b.sums[i], b.squares[i], b.counted[i]);
+    storePixel(b.sums[i], aov, cam.spp, index, image, variance);
   }
 }
 
@@ -186,16 +199,14 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
         for (int y = y0; y < y1; ++y) {
           for (int x = x0; x < x1; ++x) {
             uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
-            glm::dvec3 sum(0.0), squares(0.0);  // double: many finite samples near float's top cannot overflow
-            int counted = 0;
+            PixelSums sums;
             for (int s = 0; s < cam.spp; ++s) {
               const CameraSample cs = cameraSample(ctx, pixel, s);
               beginSample(ts, cs.key);
               Color c = shadeSample(ctx, camera.generate(x + cs.offset.x, y + cs.offset.y), options.aov, ts);
-              addSample(c, options.aov, sum, squares, counted, ts);
+              sums.add(c, options.aov, s % 2 == 1, ts);
             }
-            storePixel(sum, counted, options.aov, cam.spp, static_cast<size_t>(pixel), image);
-            if (options.variance) options.variance->pixels[pixel] = varianceOfMean(sum, squares, counted);
+            storePixel(sums, options.aov, cam.spp, static_cast<size_t>(pixel), image, options.variance);
           }
         }
       }

@@ -17,8 +17,8 @@ struct RenderOptions {
   int tileSize = 16;
   // Expects every tile, then adds one per tile done (a relaxed atomic add); null: none.
   ProgressCounter* tiles = nullptr;
-  // Filled per pixel with the variance of its mean from its samples' spread (0 below
-  // two samples); null: not kept.
+  // Filled per pixel with the variance of its mean, from its even and odd samples'
+  // means (0 below two samples); null: not kept.
   Image* variance = nullptr;
 };
 
