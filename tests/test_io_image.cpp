@@ -1,6 +1,8 @@
-// Image I/O: exact sRGB encoding, half-precision EXR round trips, metadata, and
-// that failed or successful writes leave no temp files and no partial targets.
+// Image I/O: exact sRGB encoding, half-precision EXR round trips, metadata, that
+// failed or successful writes leave no temp files and no partial targets, and the
+// error metrics of one image against another.
 #include "core/error.h"
+#include "io/image_compare.h"
 #include "io/image_io.h"
 
 #include <OpenImageIO/imageio.h>
@@ -221,4 +223,19 @@ TEST_F(ImageIoTest, ReadingAMissingOrBrokenFileThrows) {
   std::fputs("not a png", f);
   std::fclose(f);
   EXPECT_THROW(readImage(file("broken.png")), InputError);
+}
+
+TEST(ImageCompare, KnownDifferences) {
+  Image ref(10, 10), img(10, 10);
+  for (Color& c : ref.pixels) c = Color(0.5f);
+  img = ref;
+  img.at(3, 4) = Color(1.5f);  // one pixel off by 1 in every channel
+  const ImageError e = compareImages(img, ref);
+  EXPECT_NEAR(e.rmse, std::sqrt(1.0 / 100.0), 1e-6);
+  EXPECT_NEAR(e.relMse, 1.0 / (0.25 + 0.01) / 100.0, 1e-5);
+  EXPECT_NEAR(e.worstRmse, 1.0, 1e-6);  // the worst 1% is that pixel
+  EXPECT_NEAR(e.maxError, 1.0, 1e-6);
+  // PSNR on display values: 1.5 clamps to 1, off by 0.5 in one pixel of 100.
+  EXPECT_NEAR(e.psnr, 20.0 * std::log10(1.0 / std::sqrt(0.25 / 100.0)), 1e-3);
+  EXPECT_THROW(compareImages(Image(3, 3), ref), InputError);
 }

@@ -1,9 +1,11 @@
 // The render plan against forced renders: for every shipped scene, forcing on every
 // pass the plan turned off gives a byte-identical image (it had nothing to add),
 // skipped passes cost no photons or rays, and the approximations the plan may pick
-// (the gate, precomputed lookups) stay within the noise of a second seed.
+// (the gate, precomputed lookups) stay within the noise of a second seed; and the
+// reuse keys change exactly with the inputs that matter.
 #include "plan/pipeline.h"
 #include "plan/render_plan.h"
+#include "plan/reuse_key.h"
 #include "io/image_compare.h"
 #include "io/scene_loader.h"
 #include <gtest/gtest.h>
@@ -13,6 +15,7 @@ namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
+const std::string kCornell = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell_physical.json";
 
 std::vector<std::string> shippedScenes() {
   std::vector<std::string> out;
@@ -154,6 +157,37 @@ TEST(Plan, LookupAutoPrecomputesWhereExactGathersWouldDominate) {
   scene.camera.height = 480;
   scene.photons.lookup = PhotonLookup::Exact;
   EXPECT_EQ(makePlan(scene, Aov::Beauty)[Pass::Precompute].reason, "photons.lookup is exact");
+}
+
+// The keys decide what runs share: each photon input changes the photon key,
+// camera and gather settings keep it, and only geometry inputs change the other.
+TEST(ReuseKey, ChangesExactlyWithTheInputsThatMatter) {
+  const std::vector<std::string> base = {"camera.width=32"};
+  const ReuseKeys keys = reuseKeys(kCornell, base);
+  auto with = [&](const std::string& o) {
+    std::vector<std::string> v = base;
+    v.push_back(o);
+    return reuseKeys(kCornell, v);
+  };
+  for (const char* same : {"camera.position=[0,1,3]", "camera.spp=16", "camera.fov=40", "render.max_depth=3",
+                           "photons.k_global=7", "photons.global=1000", "photons.caustic=10",
+                           "photons.gate=true", "photons.lookup=\"precomputed\"", "name=\"other\""}) {
+    const ReuseKeys k = with(same);
+    EXPECT_EQ(k.photons, keys.photons) << same;
+    EXPECT_EQ(k.geometry, keys.geometry) << same;
+  }
+  for (const char* photon : {"render.seed=2", "photons.max_bounces=3", "photons.passes=2",
+                             "photons.sampling=\"uniform\""}) {
+    const ReuseKeys k = with(photon);
+    EXPECT_NE(k.photons, keys.photons) << photon;
+    EXPECT_EQ(k.geometry, keys.geometry) << photon;
+  }
+  for (const char* geometry : {"objects[5].radius=0.3", "materials.white.diffuse=0.5", "lights[0].intensity=2",
+                               "render.model=\"classic\""}) {
+    const ReuseKeys k = with(geometry);
+    EXPECT_NE(k.photons, keys.photons) << geometry;
+    EXPECT_NE(k.geometry, keys.geometry) << geometry;
+  }
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 // within the power packing's rounding for prefix-cut budgets), a rerun resumes
 // without rendering, the gate's trade-off is measured, and bad runs fail first.
 #include "plan/pipeline.h"
-#include "plan/reuse_key.h"
 #include "cli/sweep_run.h"
 #include "core/error.h"
 #include "io/image_compare.h"
@@ -353,52 +352,6 @@ TEST(Sweep, AKnobThatChangesNothingIsSaidWithItsReason) {
   // The contact sheet: four 192-pixel tiles in a row, 6-pixel gaps.
   const Image sheet = readImage((dir / "runs.png").string());
   EXPECT_EQ(sheet.width, 4 * (192 + 6) + 6);
-}
-
-// The keys decide what runs share: each photon input changes the photon key,
-// camera and gather settings keep it, and only geometry inputs change the other.
-TEST(ReuseKey, ChangesExactlyWithTheInputsThatMatter) {
-  const std::vector<std::string> base = {"camera.width=32"};
-  const ReuseKeys keys = reuseKeys(kCornell, base);
-  auto with = [&](const std::string& o) {
-    std::vector<std::string> v = base;
-    v.push_back(o);
-    return reuseKeys(kCornell, v);
-  };
-  for (const char* same : {"camera.position=[0,1,3]", "camera.spp=16", "camera.fov=40", "render.max_depth=3",
-                           "photons.k_global=7", "photons.global=1000", "photons.caustic=10",
-                           "photons.gate=true", "photons.lookup=\"precomputed\"", "name=\"other\""}) {
-    const ReuseKeys k = with(same);
-    EXPECT_EQ(k.photons, keys.photons) << same;
-    EXPECT_EQ(k.geometry, keys.geometry) << same;
-  }
-  for (const char* photon : {"render.seed=2", "photons.max_bounces=3", "photons.passes=2",
-                             "photons.sampling=\"uniform\""}) {
-    const ReuseKeys k = with(photon);
-    EXPECT_NE(k.photons, keys.photons) << photon;
-    EXPECT_EQ(k.geometry, keys.geometry) << photon;
-  }
-  for (const char* geometry : {"objects[5].radius=0.3", "materials.white.diffuse=0.5", "lights[0].intensity=2",
-                               "render.model=\"classic\""}) {
-    const ReuseKeys k = with(geometry);
-    EXPECT_NE(k.photons, keys.photons) << geometry;
-    EXPECT_NE(k.geometry, keys.geometry) << geometry;
-  }
-}
-
-TEST(ImageCompare, KnownDifferences) {
-  Image ref(10, 10), img(10, 10);
-  for (Color& c : ref.pixels) c = Color(0.5f);
-  img = ref;
-  img.at(3, 4) = Color(1.5f);  // one pixel off by 1 in every channel
-  const ImageError e = compareImages(img, ref);
-  EXPECT_NEAR(e.rmse, std::sqrt(1.0 / 100.0), 1e-6);
-  EXPECT_NEAR(e.relMse, 1.0 / (0.25 + 0.01) / 100.0, 1e-5);
-  EXPECT_NEAR(e.worstRmse, 1.0, 1e-6);  // the worst 1% is that pixel
-  EXPECT_NEAR(e.maxError, 1.0, 1e-6);
-  // PSNR on display values: 1.5 clamps to 1, off by 0.5 in one pixel of 100.
-  EXPECT_NEAR(e.psnr, 20.0 * std::log10(1.0 / std::sqrt(0.25 / 100.0)), 1e-3);
-  EXPECT_THROW(compareImages(Image(3, 3), ref), InputError);
 }
 
 }  // namespace
