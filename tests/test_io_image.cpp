@@ -235,6 +235,7 @@ TEST(ImageCompare, KnownDifferences) {
   EXPECT_NEAR(e.relMse, 1.0 / (0.25 + 0.01) / 100.0, 1e-5);
   EXPECT_NEAR(e.worstRmse, 1.0, 1e-6);  // the worst 1% is that pixel
   EXPECT_NEAR(e.maxError, 1.0, 1e-6);
+  EXPECT_NEAR(e.referenceMean, 0.5, 1e-6);
   // PSNR on display values: 1.5 clamps to 1, off by 0.5 in one pixel of 100.
   EXPECT_NEAR(e.psnr, 20.0 * std::log10(1.0 / std::sqrt(0.25 / 100.0)), 1e-3);
   EXPECT_THROW(compareImages(Image(3, 3), ref), InputError);

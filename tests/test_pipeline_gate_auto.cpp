@@ -6,6 +6,7 @@
 #include "plan/cost_model.h"
 #include "plan/pipeline.h"
 #include "io/scene_loader.h"
+#include "io/image_compare.h"
 #include <gtest/gtest.h>
 
 using namespace penumbra;
@@ -83,15 +84,8 @@ TEST(GateAuto, SoftShadowsGatedMatchesUngatedAndSkipsMostRays) {
   RenderResult ungated = runRender(req);
   ASSERT_TRUE(gated.stats.gate);
   ASSERT_FALSE(ungated.stats.gate);
-  double mean = 0.0, se = 0.0;
-  for (size_t i = 0; i < gated.image.pixels.size(); ++i) {
-    const Color d = gated.image.pixels[i] - ungated.image.pixels[i];
-    se += glm::dot(d, d) / 3.0;
-    mean += (ungated.image.pixels[i].r + ungated.image.pixels[i].g + ungated.image.pixels[i].b) / 3.0;
-  }
-  const double n = double(gated.image.pixels.size()), rmse = std::sqrt(se / n);
-  mean /= n;
-  EXPECT_LE(rmse, 0.005 * mean) << "RMSE " << rmse << ", mean " << mean;
+  const ImageError e = compareImages(gated.image, ungated.image);
+  EXPECT_LE(e.rmse, 0.005 * e.referenceMean) << "RMSE " << e.rmse << ", mean " << e.referenceMean;
   // The gated render casts under a fifth of the ungated render's shadow rays.
   EXPECT_LT(5 * gated.stats.rays.shadow, ungated.stats.rays.shadow)
       << "cast " << gated.stats.rays.shadow << " of " << ungated.stats.rays.shadow;

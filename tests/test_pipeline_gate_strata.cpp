@@ -10,6 +10,7 @@
 #include "geometry/trace_scene.h"
 #include "io/scene_loader.h"
 #include "plan/pipeline.h"
+#include "io/image_compare.h"
 #include <gtest/gtest.h>
 #include <cmath>
 
@@ -142,16 +143,9 @@ void expectGatedNearUngated(const std::string& scene, int samples) {
   const RenderResult gated = runRender(req);
   req.overrides.back() = "photons.gate=off";
   const RenderResult ungated = runRender(req);
-  double mean = 0.0, se = 0.0;
-  for (size_t i = 0; i < gated.image.pixels.size(); ++i) {
-    const Color d = gated.image.pixels[i] - ungated.image.pixels[i];
-    se += glm::dot(d, d) / 3.0;
-    mean += (ungated.image.pixels[i].r + ungated.image.pixels[i].g + ungated.image.pixels[i].b) / 3.0;
-  }
-  const double n = double(gated.image.pixels.size()), rmse = std::sqrt(se / n);
-  mean /= n;
+  const ImageError e = compareImages(gated.image, ungated.image);
   const std::string what = scene + " at " + std::to_string(samples) + " samples";
-  EXPECT_LE(rmse, 0.005 * mean) << what << ": RMSE " << rmse << ", mean " << mean;
+  EXPECT_LE(e.rmse, 0.005 * e.referenceMean) << what << ": RMSE " << e.rmse << ", mean " << e.referenceMean;
   EXPECT_LT(8 * gated.stats.rays.shadow, ungated.stats.rays.shadow)
       << what << ": cast " << gated.stats.rays.shadow << " of " << ungated.stats.rays.shadow;
 }

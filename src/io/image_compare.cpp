@@ -46,6 +46,9 @@ ImageError compareImages(const Image& image, const Image& reference) {
   double sum = 0.0;
   for (float v : stats.avg) sum += v;
   e.relMse = sum / static_cast<double>(stats.avg.size());
+  double mean = 0.0;
+  for (float v : OIIO::ImageBufAlgo::computePixelStats(r).avg) mean += v;
+  e.referenceMean = mean / 3.0;
 
   // Worst pixels: squared error summed over channels, the top 1% by nth_element.
   std::vector<double> perPixel(image.pixels.size());

@@ -12,6 +12,8 @@ struct ImageError {
   double psnr = 0.0;      // 20 log10(1 / rmse) on values clamped to [0, 1]: display-referred
   double worstRmse = 0.0; // RMSE over the worst 1% of pixels (below)
   double maxError = 0.0;  // largest per-channel difference
+  double referenceMean = 0.0;  // the reference's mean over pixels and channels: the
+                               // scale "RMSE within x% of the image mean" is read against
 };
 
 // The worst pixels are the 1% (at least one) with the largest squared error summed
