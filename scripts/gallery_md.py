@@ -23,22 +23,31 @@ FIGURES = {
     "fig16_texture_add": "Fig. 16: texture added to the lit colour (the report's first attempt)",
     "fig17_texture_multiply": "Fig. 17: texture multiplying the lit colour (the report's fix)",
     "showcase": "Showcase: reflection, refraction, photon-mapped shadows and indirect light, teapot, textured planet",
+    "cornell_physical": "Physical model: caustic and global maps, progressive passes",
+    "environment_sky": "Physical model under an environment light",
+    "soft_shadows": "Area lights' soft shadows, the gate voting per light stratum",
+    "soft_shadows_physical": "The same in the physical model",
+    "soft_shadows_dense": "A quad and a sphere light over a dense occluder and a thin wall, 64 samples",
+    "teapot_1m": "A 1M-triangle teapot",
 }
+MAPS = ("shadow", "indirect", "caustic", "global")
 
 out = pathlib.Path(sys.argv[1])
 print("# Gallery\n")
 print("Every scene in `scenes/`, rendered by `make gallery` (which wrote this file) on the")
-print("project machine (2 cores). Times are wall-clock seconds for the whole run; the")
-print("contact sheet is `out/gallery/contact_sheet.png`.\n")
+print("project machine (2 cores). Times are wall-clock seconds for the whole render and")
+print("its CPU share of 2 threads; photons are those stored, per map (over every pass);")
+print("the contact sheet is `out/gallery/contact_sheet.png`.\n")
 print("![showcase](showcase.png)\n")
 print("![contact sheet](contact_sheet.png)\n")
-print("| scene | reproduces | size | time (s) | photons stored (shadow / indirect) | shadow rays cast / avoided |")
-print("|---|---|---|---|---|---|")
+print("| scene | shows | model | size | passes | time (s) | CPU share | photons stored | shadow rays cast / avoided |")
+print("|---|---|---|---|---:|---:|---:|---|---|")
 for stats_file in sorted(out.glob("*.json")):
     s = json.loads(stats_file.read_text())
     name = stats_file.stem
     p, g = s["photons"], s["gate"]
-    print(f"| {name} | {FIGURES.get(name, '')} | {s['image']['width']}x{s['image']['height']} "
-          f"spp {s['image']['spp']} | {s['time_s']['total']:.2f} | "
-          f"{p['stored_shadow']:,} / {p['stored_indirect']:,} | "
+    stored = ", ".join(f"{m} {p['stored_' + m]:,}" for m in MAPS if p.get("stored_" + m, 0) > 0) or "none"
+    print(f"| {name} | {FIGURES.get(name, '')} | {s['model']} | {s['image']['width']}x{s['image']['height']} "
+          f"spp {s['image']['spp']} | {s.get('passes', 1)} | {s['time_s']['total']:.2f} | "
+          f"{s.get('cpu_share', 0):.2f} | {stored} | "
           f"{g['shadow_rays_cast']:,} / {g['shadow_rays_avoided']:,} |")
