@@ -77,6 +77,8 @@ int SweepCommand::run() {
   if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
   const std::vector<std::string> folders = sceneFolders(o.scenes, o.out);
 
+  const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
+  const std::string plotScript = std::filesystem::exists(script) ? script.string() : "";
   std::vector<SweepRequest> requests;
   for (size_t i = 0; i < o.scenes.size(); ++i) {
     // The knobs' keys depend on the model: load the scene once with the sweep's --set.
@@ -106,8 +108,7 @@ int SweepCommand::run() {
     req.budget = o.budget;
     req.repeat = o.repeat;
     req.maxMemoryBytes = maxMemory;
-    const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
-    req.plotScript = std::filesystem::exists(script) ? script.string() : "";
+    req.plotScript = plotScript;
     requests.push_back(std::move(req));
   }
   // Every scene's every run is loaded and planned before the first renders.

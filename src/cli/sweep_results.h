@@ -74,6 +74,17 @@ struct SweepTotals {
   size_t emissions = 0, prefixCuts = 0, mapBuilds = 0, bvhBuilds = 0, resumed = 0;
   std::string referenceNote;    // which reference the errors are against
   int repeat = 1;               // frames rendered per run (--repeat)
+
+  // Adds another session's counts and stage seconds (a --threads list's sessions).
+  void addCounts(const SweepTotals& o) {
+    photonSeconds += o.photonSeconds;
+    renderSeconds += o.renderSeconds;
+    emissions += o.emissions;
+    prefixCuts += o.prefixCuts;
+    mapBuilds += o.mapBuilds;
+    bvhBuilds += o.bvhBuilds;
+    resumed += o.resumed;
+  }
 };
 
 std::string reportMarkdown(const std::string& scene, const SweepSpec& spec,

@@ -12,26 +12,19 @@ SweepOutcome runSweep(const SweepRequest& request) {
   // first; later sessions resume the rows the earlier wrote.
   SweepRequest each = request;
   SweepOutcome out;
-  size_t counters[5] = {0, 0, 0, 0, 0};
-  double seconds[2] = {0.0, 0.0};
+  SweepTotals sum;
   const CpuSpan clock;
   for (size_t i = 0; i < counts.size(); ++i) {
     if (i > 0) each.force = false;
     out = runSweepSession(each, counts[i], true);
-    SweepTotals& t = out.totals;
-    const size_t* mine[5] = {&t.resumed, &t.emissions, &t.prefixCuts, &t.mapBuilds, &t.bvhBuilds};
-    for (int c = 0; c < 5; ++c) counters[c] += *mine[c];
-    seconds[0] += t.renderSeconds;
-    seconds[1] += t.photonSeconds;
+    sum.addCounts(out.totals);
   }
   // The outcome's rows are the last session's (every row); its totals, all sessions'.
-  SweepTotals& t = out.totals;
-  size_t* all[5] = {&t.resumed, &t.emissions, &t.prefixCuts, &t.mapBuilds, &t.bvhBuilds};
-  for (int c = 0; c < 5; ++c) *all[c] = counters[c];
-  t.renderSeconds = seconds[0];
-  t.photonSeconds = seconds[1];
-  t.cpu = clock.timing(counts.front());
-  t.wallSeconds = t.cpu.wallSeconds;
+  sum.referenceNote = out.totals.referenceNote;
+  sum.repeat = out.totals.repeat;
+  sum.cpu = clock.timing(counts.front());
+  sum.wallSeconds = sum.cpu.wallSeconds;
+  out.totals = sum;
   return out;
 }
 

@@ -35,8 +35,7 @@ double processAgeSeconds(const std::string& statPath) {
   if (close == std::string::npos) return -1.0;
   std::istringstream fields(stat.substr(close + 1));
   std::string field;
-  for (int i = 3; i < 22 && (fields >> field); ++i) {
-  }
+  for (int i = 3; i < 22; ++i) fields >> field;
   unsigned long long ticks = 0;
   const long hz = sysconf(_SC_CLK_TCK);
   timespec now{};

@@ -31,9 +31,9 @@ struct MeshEmission {
   float meanLuminance = 0.0f;
 };
 
-// A texture averaging under 2% of full emission over its mesh is a mask of small
-// details (lit panels, printed labels): a light made of it would spend its samples and
-// photons on near-black texels for a negligible share of the scene's light.
+// A texture whose mean over its mesh is below this share of full emission is a mask
+// of small details (lit panels, printed labels): a light made of it would spend its
+// samples and photons on near-black texels for a negligible share of the light.
 inline constexpr float kDecorativeEmission = 0.02f;
 
 // The sampling tables for `map` over `triangles` (3 corners each) with `uvs` (3 per
