@@ -3,7 +3,7 @@
 // for byte; a time limit counts a deterministic clock; the error view writes the
 // per-pixel standard error whose RMS is the estimate; the classic model's passes
 // take new camera samples over one set of maps, the points its samples take; and the
-// estimate of 2 passes, or of 4 and 16 spp, against a render 16x as long.
+// estimate of 2, 8 and 32 passes, or of 4 and 16 spp, against a render 16x as long.
 #include "plan/pipeline.h"
 #include "plan/render_session.h"
 #include "support/scratch_dir.h"
@@ -12,6 +12,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,11 +33,12 @@ std::vector<std::string> with(std::vector<std::string> base, const std::vector<s
 struct SessionRender {
   RenderResult result;
   std::vector<ErrorEstimate> estimates;  // after 1, 2, ... passes
-  std::vector<Image> means;              // the mean image after each pass, when kept
+  std::map<int, Image> means;            // the mean image after the passes asked for
 };
 
 SessionRender renderInSession(const std::string& scene, const std::vector<std::string>& overrides,
-                              RenderBudget budget = {}, std::function<double()> clock = {}, bool keepMeans = false) {
+                              RenderBudget budget = {}, std::function<double()> clock = {},
+                              const std::set<int>& keepMeans = {}) {
   SessionOptions options;
   options.threads = 2;
   RenderSession session(options);
@@ -49,10 +52,10 @@ SessionRender renderInSession(const std::string& scene, const std::vector<std::s
   out.result = session.frame(job, session.photons(job), std::move(clock),
                              [&](int passes, const Image& sum, const ErrorEstimate& e) {
                                out.estimates.push_back(e);
-                               if (!keepMeans) return;
+                               if (!keepMeans.count(passes)) return;
                                Image mean = sum;
                                for (Color& c : mean.pixels) c /= float(passes);
-                               out.means.push_back(std::move(mean));
+                               out.means[passes] = std::move(mean);
                              });
   return out;
 }
@@ -155,17 +158,28 @@ double rmse(const Image& a, const Image& b) {
   return std::sqrt(squares / (3.0 * a.pixels.size()));
 }
 
-// The estimate of 2 passes against the render of 32 (the same seed, so its first 2
-// passes are these). Noise of variance s^2 per pass gives that RMSE s sqrt(15/32), so
-// the estimate s / sqrt(2) is 1.03x it. Even and odd passes take independent camera
-// sequences, so edges (antialiasing) are estimated as well as photon noise.
-TEST(ErrorBudget, EstimateOfTwoPassesIsWithinAQuarterOverTheImageOffAndAtEdges) {
-  const std::vector<std::string> settings = {"camera.width=128", "camera.height=128", "photons.passes=32"};
-  const SessionRender r = renderInSession(kCornell, settings, {}, {}, true);
-  ASSERT_EQ(r.means.size(), 32u);
-  const Image& first = r.means[0];
-  const Image& two = r.means[1];
-  const Image& ref = r.means[31];
+// The estimate of 2, 8 and 32 passes against the render of 16x as many: one render of
+// 512 passes (the same seed, so its first passes are those). Noise of variance s^2 per
+// pass gives n passes an RMSE of s sqrt(15 / 16n) against 16n, so the estimate
+// s / sqrt(n) is 1.03x it; the photon-map bias that later passes shrink lowers the
+// ratio. Even and odd passes take independent camera sequences, so edges
+// (antialiasing) are estimated as well as photon noise. The shipped 200k photons per
+// map would make 512 passes minutes long: 50k keep the same scene and estimator. On a
+// film this small a few caustic pixels hold most of the squared error, so the ratio
+// scatters from seed to seed; the scene's own seed is the one tested.
+TEST(ErrorBudget, EstimateOfTwoEightAndThirtyTwoPassesIsWithinAQuarterOfSixteenTimesAsMany) {
+  const std::vector<std::string> settings = {"camera.width=128", "camera.height=128", "photons.global=50000",
+                                             "photons.caustic=50000", "photons.passes=512"};
+  const SessionRender r = renderInSession(kCornell, settings, {}, {}, {1, 2, 8, 32, 128, 512});
+  ASSERT_EQ(r.estimates.size(), 512u);
+  for (int n : {2, 8, 32}) {
+    const double ratio = r.estimates[n - 1].noiseRmse / rmse(r.means.at(n), r.means.at(16 * n));
+    std::printf("cornell_physical 128x128, %d passes against %d: estimate/measured %.3f\n", n, 16 * n, ratio);
+    EXPECT_NEAR(ratio, 1.0, 0.25) << n << " passes";
+  }
+  // At 2 passes, over the image, off edges and at edges, from the two passes' images.
+  const Image& two = r.means.at(2);
+  const Image& ref = r.means.at(32);
   const std::vector<bool> edge = edgePixels(ref);
   double estimated[2] = {0.0, 0.0}, measured[2] = {0.0, 0.0};
   size_t count[2] = {0, 0};
@@ -173,21 +187,19 @@ TEST(ErrorBudget, EstimateOfTwoPassesIsWithinAQuarterOverTheImageOffAndAtEdges) 
     const int g = edge[i] ? 1 : 0;
     ++count[g];
     for (int c = 0; c < 3; ++c) {
-      // Per pixel, the standard error of two passes' mean is half their difference.
-      const double second = 2.0 * two.pixels[i][c] - first.pixels[i][c];
-      estimated[g] += 0.25 * std::pow(second - first.pixels[i][c], 2);
+      // Per pixel, the standard error of two passes' mean is half their difference,
+      // the mean's distance from either pass.
+      const double first = r.means.at(1).pixels[i][c];
+      estimated[g] += std::pow(double(two.pixels[i][c]) - first, 2);
       measured[g] += std::pow(double(two.pixels[i][c]) - ref.pixels[i][c], 2);
     }
   }
-  const double whole = std::sqrt((estimated[0] + estimated[1]) / (measured[0] + measured[1]));
   const double offEdges = std::sqrt(estimated[0] / measured[0]);
   const double atEdges = std::sqrt(estimated[1] / measured[1]);
-  std::printf("cornell_physical 128x128, 2 passes against 32: estimate/measured %.3f over the image, %.3f off edges "
-              "(%zu pixels), %.3f at edges (%zu)\n",
-              whole, offEdges, count[0], atEdges, count[1]);
+  std::printf("at 2 passes: %.3f off edges (%zu pixels), %.3f at edges (%zu)\n", offEdges, count[0], atEdges,
+              count[1]);
   EXPECT_NEAR(std::sqrt((estimated[0] + estimated[1]) / (3.0 * ref.pixels.size())), r.estimates[1].noiseRmse,
               1e-4 * r.estimates[1].noiseRmse);
-  EXPECT_NEAR(whole, 1.0, 0.25);
   EXPECT_NEAR(offEdges, 1.0, 0.25);
   EXPECT_NEAR(atEdges, 1.0, 0.25);
 }
@@ -227,6 +239,7 @@ TEST(ErrorBudget, ClassicSixteenPassesOfOneSampleAreSixteenSamplesOfOnePass) {
     for (int c = 0; c < 3; ++c) ASSERT_NEAR(passes.pixels[i][c], samples.pixels[i][c], 1e-5f) << i;
   }
 }
+
 
 }  // namespace
 }  // namespace penumbra
