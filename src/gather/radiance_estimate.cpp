@@ -23,14 +23,19 @@ PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_
   // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
   const bool lambertOnly = bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy);
   const PhotonArray<IndirectPhoton>& photons = map.photons();
+  // A photon stored on the query's own plane carries the query's normal code: its
+  // cosine is ~1, so the test below passes without decoding (the same answer).
+  const uint32_t ownCode = encodeOctahedral(frame.ng);
   PhotonSum a;
   for (size_t i = 0; i < n; ++i) {
     const IndirectPhoton& ph = photons[s.indices[i]];
-    const Vec3 normal = decodeOctahedral(ph.normal);
-    const float cos = glm::dot(normal, frame.ng);
-    if (cos <= kIndirectMinNormalCos) {
-      if (record) record->add(ph.position, normal, cos);
-      continue;
+    if (ph.normal != ownCode) {
+      const Vec3 normal = decodeOctahedral(ph.normal);
+      const float cos = glm::dot(normal, frame.ng);
+      if (cos <= kIndirectMinNormalCos) {
+        if (record) record->add(ph.position, normal, cos);
+        continue;
+      }
     }
     const float w = 1.0f - s.dist2[i] * invR2;
     if (w <= 0.0f || (keep && !keep->keeps(ph.position))) continue;
