@@ -35,6 +35,16 @@ PackedPower::PackedPower(const Color& c) {
   bits = q[0] | (q[1] << 8) | (q[2] << 16) | (static_cast<uint32_t>(e + 128) << 24);
 }
 
+NormalFilter::NormalFilter(const Vec3& n, float minCos) : n_(n), minCos_(minCos) {
+  // A degenerate n has no code: every photon decodes (ownCode_ 0 answers as decoded).
+  if (!isFinite(n) || !(std::abs(n.x) + std::abs(n.y) + std::abs(n.z) > 0.0f)) {
+    ownPasses_ = cosineOf(ownCode_) > minCos_;
+    return;
+  }
+  ownCode_ = encodeOctahedral(n);
+  ownPasses_ = cosineOf(ownCode_) > minCos_;
+}
+
 uint32_t encodeOctahedral(const Vec3& n) {
   Vec2 p = Vec2(n.x, n.y) * (1.0f / (std::abs(n.x) + std::abs(n.y) + std::abs(n.z)));
   if (n.z < 0.0f) p = (1.0f - glm::abs(Vec2(p.y, p.x))) * signNotZero(p);

@@ -18,6 +18,25 @@ namespace penumbra {
 uint32_t encodeOctahedral(const Vec3& unit);
 Vec3 decodeOctahedral(uint32_t code);
 
+// A gather's normal filter: whether a photon's stored normal faces within
+// acos(minCos) of the query's n. Photons on the query's own plane carry n's own code,
+// whose answer is found once instead of decoding each of them (equal codes decode
+// equal, so the answer is the same).
+class NormalFilter {
+ public:
+  NormalFilter(const Vec3& n, float minCos);
+  bool passes(uint32_t code) const { return code == ownCode_ ? ownPasses_ : cosineOf(code) > minCos_; }
+  float cosineOf(uint32_t code) const { return glm::dot(decodeOctahedral(code), n_); }
+  // Whether `code` is the query's own and passes: no decode needed.
+  bool passesAsOwn(uint32_t code) const { return code == ownCode_ && ownPasses_; }
+
+ private:
+  Vec3 n_;
+  float minCos_;
+  uint32_t ownCode_ = 0;
+  bool ownPasses_ = false;
+};
+
 // A photon's power in 32 bits: Ward's RGBE shared-exponent colour (Graphics Gems II,
 // "Real pixels"). Three 8-bit mantissas share the largest channel's exponent, so it
 // covers the float range without a per-map scale. Encoding rounds each channel to

@@ -13,8 +13,9 @@ Color coneSum(const IndirectPhoton* photons, GatherScratch& s, size_t count, con
               float minNormalCos, IndirectEstimate& e) {
   size_t kept = 0;
   float far2 = 0.0f;  // the photons come in any order: track the farthest kept one
+  const NormalFilter filter(n, minNormalCos);
   for (size_t i = 0; i < count; ++i) {
-    if (glm::dot(decodeOctahedral(photons[s.indices[i]].normal), n) <= minNormalCos) continue;
+    if (!filter.passes(photons[s.indices[i]].normal)) continue;
     s.indices[kept] = s.indices[i];
     s.dist2[kept] = s.dist2[i];
     far2 = std::max(far2, s.dist2[i]);

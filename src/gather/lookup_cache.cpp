@@ -185,11 +185,12 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
       }
       sites[r] = sum / static_cast<float>(starts[r + 1] - starts[r]);
       normals[r] = glm::length(nsum) > 0.0f ? glm::normalize(nsum) : photonNormal(entries[starts[r]].source, entries[starts[r]].index);
+      const NormalFilter filter(normals[r], minCos);
       for (uint32_t e = starts[r]; e < starts[r + 1]; ++e) {
         const uint32_t src = entries[e].source;
         if (src == 0) continue;
         const ShadowPhoton& ph = shadow->photons(src - 1)[entries[e].index];
-        if (glm::dot(decodeOctahedral(ph.normal), normals[r]) <= minCos) continue;
+        if (!filter.passes(ph.normal)) continue;
         CellCounts& c = counts[r * numStrata + strataStart_[src - 1] + ph.stratum];
         uint8_t& n = ph.shadow == kDirect ? c.direct : ph.shadow == kShadowGlass ? c.glass : c.opaque;
         if (n < 255) ++n;

@@ -23,13 +23,11 @@ PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_
   // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
   const bool lambertOnly = bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy);
   const PhotonArray<IndirectPhoton>& photons = map.photons();
-  // A photon stored on the query's own plane carries the query's normal code: its
-  // cosine is ~1, so the test below passes without decoding (the same answer).
-  const uint32_t ownCode = encodeOctahedral(frame.ng);
+  const NormalFilter filter(frame.ng, kIndirectMinNormalCos);
   PhotonSum a;
   for (size_t i = 0; i < n; ++i) {
     const IndirectPhoton& ph = photons[s.indices[i]];
-    if (ph.normal != ownCode) {
+    if (!filter.passesAsOwn(ph.normal)) {
       const Vec3 normal = decodeOctahedral(ph.normal);
       const float cos = glm::dot(normal, frame.ng);
       if (cos <= kIndirectMinNormalCos) {
