@@ -36,12 +36,8 @@ PackedPower::PackedPower(const Color& c) {
 }
 
 NormalFilter::NormalFilter(const Vec3& n, float minCos) : n_(n), minCos_(minCos) {
-  // A degenerate n has no code: every photon decodes (ownCode_ 0 answers as decoded).
-  if (!isFinite(n) || !(std::abs(n.x) + std::abs(n.y) + std::abs(n.z) > 0.0f)) {
-    ownPasses_ = cosineOf(ownCode_) > minCos_;
-    return;
-  }
-  ownCode_ = encodeOctahedral(n);
+  // A degenerate n has no code of its own: code 0 then answers as decoded, like any.
+  if (isFinite(n) && std::abs(n.x) + std::abs(n.y) + std::abs(n.z) > 0.0f) ownCode_ = encodeOctahedral(n);
   ownPasses_ = cosineOf(ownCode_) > minCos_;
 }
 
