@@ -1,12 +1,17 @@
-// The physical radiance estimate's shrinking gathers across progressive passes, and
-// its kernel near a surface's edge: against the recurrence, Gamma's asymptote, the
-// kernel's integral, and uniform photon grids that stop at a wall.
+// The physical radiance estimate's shrinking gathers across progressive passes, its
+// order-independent Lambertian sum, and its kernel near a surface's edge: against the
+// recurrence, Gamma's asymptote, brute force, the kernel's integral, and uniform
+// photon grids that stop at a wall.
 #include "gather/radiance_estimate.h"
 #include "gather/surface_share.h"
+#include "core/rng.h"
 #include <gtest/gtest.h>
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <functional>
+#include <utility>
+#include <vector>
 
 namespace penumbra {
 namespace {
@@ -100,6 +105,48 @@ double ratio(const IndirectPhotonMap& map, const Vec3& q, const Vec3& n, const P
 }
 
 const Vec3 kX(1, 0, 0), kY(0, 1, 0), kZ(0, 0, 1);
+
+// A Lambertian gather sums in fixed point, in whatever order the search returns the
+// photons: the same bits whatever the search's hint ball, and the double-precision
+// sum over the brute-force k nearest within float rounding. Powers span 2^-20..1, so
+// the fixed point's scale (the map's brightest photon) is tested on dim photons too.
+TEST(Radiance, ALambertianSumIsTheSameForAnySearchOrderAndMatchesBruteForce) {
+  Rng rng(11);
+  PhotonArray<IndirectPhoton> photons;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 p(rng.uniform(), rng.uniform(), 0.0f);
+    const float power = std::ldexp(0.5f + 0.5f * rng.uniform(), -static_cast<int>(rng.uniform() * 20.0f));
+    photons.push_back({p, Color(power, 0.5f * power, 0.25f * power), encodeOctahedral(-kZ), encodeOctahedral(kZ)});
+  }
+  IndirectPhotonMap map;
+  map.build(std::move(photons));
+  Bsdf white;
+  white.type = BsdfType::Opaque;
+  white.diffuse = Color(0.8f);
+  const int k = 60;
+  for (int q = 0; q < 50; ++q) {
+    const Vec3 at(0.2f + 0.6f * rng.uniform(), 0.2f + 0.6f * rng.uniform(), 0.0f);
+    GatherScratch plain, hinted;
+    plain.useHints = false;
+    hinted.forcedHintRadius = 0.08f;  // a ball the search may have to grow: another order
+    const BsdfFrame frame{kZ, kZ, true};
+    const RadianceEstimate a = photonRadiance(map, white, frame, at, kZ, PhotonGather{k, 0.0f}, plain);
+    const RadianceEstimate b = photonRadiance(map, white, frame, at, kZ, PhotonGather{k, 0.0f}, hinted);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(a.value[c], b.value[c]) << q;
+    std::vector<std::pair<float, size_t>> all;
+    for (size_t i = 0; i < map.size(); ++i) {
+      const Vec3 d = map.photons()[i].position - at;
+      all.push_back({glm::dot(d, d), i});
+    }
+    std::sort(all.begin(), all.end());
+    const double r2 = all[k - 1].first;
+    double sum = 0.0;
+    for (int i = 0; i < k; ++i) sum += (1.0 - all[i].first / r2) * map.photons()[all[i].second].power.color().r;
+    const double expected = sum * 0.8 / kPi * 2.0 / (kPi * r2);
+    EXPECT_NEAR(a.value.r / expected, 1.0, 1e-5) << q;
+  }
+}
+
 const PhotonGather kFixed{0, 0.2f}, kNearest{400, 0.0f};
 
 TEST(SurfaceShare, AConcaveEdgeLeavesTheFloorsDensityUnbiased) {

@@ -128,6 +128,19 @@ inline void sortKeys(uint64_t* keys, size_t n, uint64_t* tmp, std::vector<uint32
   }
 }
 
+// Orders a gather left unsorted (s.indices, s.dist2 [0..n)) as a sorted knn() would:
+// ascending (dist2, index).
+inline void sortGathered(GatherScratch& s, size_t n) {
+  if (s.keys.size() < 2 * n) s.keys.resize(2 * n);
+  uint64_t* keys = s.keys.data();
+  for (size_t i = 0; i < n; ++i) keys[i] = keyOf(s.dist2[i], s.indices[i]);
+  sortKeys(keys, n, keys + n, s.buckets);
+  for (size_t i = 0; i < n; ++i) {
+    s.indices[i] = static_cast<uint32_t>(keys[i]);
+    s.dist2[i] = distOf(keys[i]);
+  }
+}
+
 // nanoflann result set for a fixed-radius search into reusable buffers.
 class WithinResultSet {
  public:

@@ -3,6 +3,7 @@
 #include "gather/morton.h"
 #include "core/error.h"
 #include <fmt/format.h>
+#include <algorithm>
 #include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -103,6 +104,8 @@ void IndirectPhotonMap::build(PhotonBatches<IndirectPhoton> photons,
   }
   progressAdd(options.progress, photons_.size());
   tree_.build(photons_, options.leafSize, !options.mortonSort, options.progress);
+  topExponent_ = 0;
+  for (const IndirectPhoton& ph : photons_) topExponent_ = std::max(topExponent_, ph.power.bits >> 24);
 }
 
 size_t IndirectPhotonMap::knn(const Vec3& p, size_t k, float maxRadius, GatherScratch& scratch,

@@ -81,10 +81,14 @@ class IndirectPhotonMap {
   size_t size() const { return photons_.size(); }
   size_t memoryBytes() const;
   const PhotonArray<IndirectPhoton>& photons() const { return photons_; }
+  // The largest shared exponent byte among the photons' powers (0: all black), which
+  // bounds every photon's power: the scale of order-independent fixed-point sums.
+  uint32_t topPowerExponent() const { return topExponent_; }
 
  private:
   PhotonArray<IndirectPhoton> photons_;
   PhotonKdTree<IndirectPhoton> tree_;
+  uint32_t topExponent_ = 0;
 };
 
 }  // namespace penumbra

@@ -1,6 +1,7 @@
 // Photon radiance estimate; finite for any input (empty maps, coincident photons).
 #include "gather/radiance_estimate.h"
 #include "gather/indirect_estimate.h"
+#include "gather/knn_result_sets.h"
 #include "gather/surface_share.h"
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,9 @@
 namespace penumbra {
 
 namespace {
+
+bool lambertian(const Bsdf& bsdf) { return bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy); }
+Color lambertFactor(const Bsdf& bsdf) { return (1.0f - bsdf.kr) * bsdf.diffuse * (1.0f / kPi); }
 
 struct PhotonSum {
   Color sum{0.0f};
@@ -21,7 +25,7 @@ PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_
                      const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo, SurfaceCuts* record,
                      const SurfaceCuts* keep) {
   // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
-  const bool lambertOnly = bsdf.type == BsdfType::Opaque && !(bsdfFlags(bsdf) & kBsdfGlossy);
+  const bool lambertOnly = lambertian(bsdf);
   const PhotonArray<IndirectPhoton>& photons = map.photons();
   const NormalFilter filter(frame.ng, kIndirectMinNormalCos);
   PhotonSum a;
@@ -47,8 +51,34 @@ PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_
     if (cosI <= 1e-4f) continue;
     a.sum += w * ph.power.color() * evaluateBsdf(bsdf, frame, wo, wi) / cosI;
   }
-  if (lambertOnly) a.sum *= (1.0f - bsdf.kr) * bsdf.diffuse * (1.0f / kPi);
+  if (lambertOnly) a.sum *= lambertFactor(bsdf);
   return a;
+}
+
+// The Lambertian kernel-weighted power when every photon passes the normal filter, in
+// fixed point: integer additions do not depend on the order the search returned the
+// photons in, so the gather needs no sort. Each term is w <= 1 times a colour below
+// 2^8 x 2^(e - 136) (e: the map's largest exponent byte), scaled below 2^36: 2^27
+// terms stay inside int64. Returns false, having summed nothing, when a photon fails
+// the filter: the caller then sorts, and photons at an angle mark the surface's edges.
+bool sumOnPlane(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, float invR2,
+                const NormalFilter& filter, PhotonSum& a) {
+  const PhotonArray<IndirectPhoton>& photons = map.photons();
+  const double scale = std::ldexp(1.0, 136 + 28 - static_cast<int>(map.topPowerExponent()));
+  int64_t sum[3] = {0, 0, 0};
+  int found = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const IndirectPhoton& ph = photons[s.indices[i]];
+    if (!filter.passes(ph.normal)) return false;
+    const float w = 1.0f - s.dist2[i] * invR2;
+    if (w <= 0.0f) continue;
+    ++found;
+    const Color c = w * ph.power.color();
+    for (int ch = 0; ch < 3; ++ch) sum[ch] += static_cast<int64_t>(double(c[ch]) * scale + 0.5);
+  }
+  a.found = found;
+  for (int ch = 0; ch < 3; ++ch) a.sum[ch] = static_cast<float>(double(sum[ch]) / scale);
+  return true;
 }
 
 }  // namespace
@@ -64,8 +94,9 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, 
     n = map.within(p, maxRadius, s);
     r2 = maxRadius * maxRadius;
   } else {
-    // Sorted (canonical order) so the float sum is the same at any thread count.
-    n = map.knn(p, static_cast<size_t>(gather.k), maxRadius, s);
+    // Unsorted: its order depends on the search's hints (per thread), so a sum below
+    // is either order-independent or taken after sorting into the canonical order.
+    n = map.knn(p, static_cast<size_t>(gather.k), maxRadius, s, false);
     r2 = 0.0f;
     for (size_t i = 0; i < n; ++i) r2 = std::max(r2, s.dist2[i]);
     // Fewer than k inside the bound: the k-th lies beyond it, the disc is the bound's.
@@ -74,6 +105,13 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, 
   if (n == 0 || !(r2 >= std::numeric_limits<float>::min())) return e;
   e.radius = std::sqrt(r2);
   const float invR2 = 1.0f / r2;
+  PhotonSum plane;
+  if (lambertian(bsdf) && sumOnPlane(map, s, n, invR2, NormalFilter(frame.ng, kIndirectMinNormalCos), plane)) {
+    e.found = plane.found;
+    e.value = plane.sum * lambertFactor(bsdf) * (2.0f / kPi * invR2);
+    return e;
+  }
+  if (gather.k > 0) knn::sortGathered(s, n);
   SurfaceCuts cuts(p, frame.ng, e.radius);
   PhotonSum a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, &cuts, nullptr);
   cuts.finish();
