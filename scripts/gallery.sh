@@ -37,9 +37,11 @@ python3 "$root/scripts/gallery_md.py" "$out" > "$out/gallery.md"
 echo "gallery: $out/gallery.md" >&2
 [ "$docs" = "--docs" ] || exit 0
 
-# Small copies for the docs (the README shows the showcase); the scene file's
-# path is this machine's, so it stays out of committed images.
-oiiotool --nosoftwareattrib "$out/showcase.png" --eraseattrib "penumbra:scene_file" --resize 480x300 -o "$root/docs/showcase.png"
-oiiotool --nosoftwareattrib "$out/contact_sheet.png" --eraseattrib "penumbra:scene_file" --resize 50% -o "$root/docs/contact_sheet.png"
+# Small copies for the docs (the README shows the showcase). The scene file's path
+# and the command lines oiiotool recorded (with OUT's paths) are this machine's, so
+# they stay out of committed images.
+private=(--eraseattrib penumbra:scene_file --eraseattrib Software --eraseattrib Exif:ImageHistory)
+oiiotool --nosoftwareattrib "$out/showcase.png" --resize 480x300 "${private[@]}" -o "$root/docs/showcase.png"
+oiiotool --nosoftwareattrib "$out/contact_sheet.png" --resize 50% "${private[@]}" -o "$root/docs/contact_sheet.png"
 cp "$out/gallery.md" "$root/docs/gallery.md"
 echo "docs/showcase.png, docs/contact_sheet.png, docs/gallery.md updated" >&2
