@@ -22,12 +22,11 @@ struct PhotonSum {
 // whose normal agrees with frame.ng and, when `keep` is given, that lie on the
 // query's side of its cuts. Photons at an angle to the surface go to `record`.
 PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, float invR2,
-                     const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo, SurfaceCuts* record,
-                     const SurfaceCuts* keep) {
+                     const Bsdf& bsdf, const BsdfFrame& frame, const NormalFilter& filter, const Vec3& wo,
+                     SurfaceCuts* record, const SurfaceCuts* keep) {
   // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
   const bool lambertOnly = lambertian(bsdf);
   const PhotonArray<IndirectPhoton>& photons = map.photons();
-  const NormalFilter filter(frame.ng, kIndirectMinNormalCos);
   PhotonSum a;
   for (size_t i = 0; i < n; ++i) {
     const IndirectPhoton& ph = photons[s.indices[i]];
@@ -105,19 +104,20 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, 
   if (n == 0 || !(r2 >= std::numeric_limits<float>::min())) return e;
   e.radius = std::sqrt(r2);
   const float invR2 = 1.0f / r2;
+  const NormalFilter filter(frame.ng, kIndirectMinNormalCos);  // frame.ng's code, found once
   PhotonSum plane;
-  if (lambertian(bsdf) && sumOnPlane(map, s, n, invR2, NormalFilter(frame.ng, kIndirectMinNormalCos), plane)) {
+  if (lambertian(bsdf) && sumOnPlane(map, s, n, invR2, filter, plane)) {
     e.found = plane.found;
     e.value = plane.sum * lambertFactor(bsdf) * (2.0f / kPi * invR2);
     return e;
   }
   if (gather.k > 0) knn::sortGathered(s, n);
   SurfaceCuts cuts(p, frame.ng, e.radius);
-  PhotonSum a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, &cuts, nullptr);
+  PhotonSum a = sumPhotons(map, s, n, invR2, bsdf, frame, filter, wo, &cuts, nullptr);
   cuts.finish();
   if (cuts.count() > 0) {
     // Near an edge: only the photons on the query's side, over the kernel's mass there.
-    a = sumPhotons(map, s, n, invR2, bsdf, frame, wo, nullptr, &cuts);
+    a = sumPhotons(map, s, n, invR2, bsdf, frame, filter, wo, nullptr, &cuts);
     a.sum /= cuts.share();
   }
   e.found = a.found;
