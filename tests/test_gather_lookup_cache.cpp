@@ -136,6 +136,37 @@ TEST(LookupCache, GateNeverContradictsTheTruthAndIsConfidentAwayFromTheEdge) {
   EXPECT_GT(mixed, 0);
 }
 
+TEST(LookupCache, WhereThePhotonsAreSparseTheVoteLooksTwiceAsFar) {
+  // One photon per 0.05 x 0.05 and cells of 0.03: the 3 x 3 cells around a point hold
+  // ~3 voters, under the quorum of 8, and the 5 x 5 around it ~9, which vote where
+  // the nearer ones agree. (A point whose own cell holds no photon has no record: it
+  // casts rays.)
+  ShadowPhotonMap map;
+  map.build(halfShadow(20, 0.5f, kShadowOpaque, Vec3(0, 0, 1)), 1);
+  const float cellSize = 0.03f;
+  const LookupCache cache = gateCache(map, cellSize);
+  int decided = 0, far = 0;
+  for (int ix = 0; ix < 60; ++ix)
+    for (int iy = 0; iy < 60; ++iy) {
+      const Vec3 p(0.1f + 0.8f * (ix + 0.5f) / 60.0f, 0.1f + 0.8f * (iy + 0.5f) / 60.0f, 0.0f);
+      const LookupCache::Answer a = cache.find(p, Vec3(0, 0, 1));
+      if (!a.verdicts) continue;
+      const auto v = static_cast<GateVerdict>(a.verdicts[0]);
+      // Never against the truth: every voter lies within 2 cells of the point's cell.
+      if (v == GateVerdict::Lit) {
+        EXPECT_LT(p.x, 0.5f) << p.x;
+      }
+      if (v == GateVerdict::Shadowed) {
+        EXPECT_GE(p.x, 0.5f) << p.x;
+      }
+      if (std::abs(p.x - 0.5f) > 3.0f * cellSize) {
+        ++far;
+        if (v != GateVerdict::Mixed) ++decided;
+      }
+    }
+  EXPECT_GT(decided, 0.8 * far) << decided << " of " << far;
+}
+
 TEST(LookupCache, GlassShadowIsMixedUnlessGlassBlocks) {
   ShadowPhotonMap map;
   map.build(halfShadow(200, 0.5f, kShadowGlass, Vec3(0, 0, 1)), 1);

@@ -76,8 +76,9 @@ TEST(GateAuto, SoftShadowsGatedMatchesUngatedAndSkipsMostRays) {
   // image mean (the issue's), with most shadow tests answered by the gate.
   RenderRequest req;
   req.scenePath = kScenes + "soft_shadows.json";
-  // At this size auto would say off (too few shading points to repay the photons).
-  req.overrides = {"camera.width=160", "camera.height=100", "camera.spp=1", "photons.shadow=500000",
+  // At this size auto would say off (too few shading points to repay the photons). The
+  // scene's own 4 samples per pixel, as test_pipeline_gate_strata.cpp says why.
+  req.overrides = {"camera.width=160", "camera.height=100", "photons.shadow=500000",
                    "photons.gate=on"};
   RenderResult gated = runRender(req);
   req.overrides.back() = "photons.gate=off";

@@ -1,6 +1,7 @@
 // Building the lookup cache: bin photons into (cell, normal bucket) keys, count the
 // gate's photons per key, then vote and estimate once per key, in parallel.
 #include "gather/lookup_cache.h"
+#include "gather/lookup_cache_cells.h"
 #include "gather/radiance_estimate.h"
 #include "gather/morton.h"
 #include <tbb/blocked_range.h>
@@ -14,22 +15,6 @@ namespace penumbra {
 
 namespace {
 constexpr int64_t kAxisCells = int64_t(1) << 20;  // 20 bits per axis in a key
-
-
-// One photon's key and where it came from: source 0 is the indirect map, 1 + l light l.
-struct Entry {
-  uint64_t key;
-  uint32_t index;
-  uint32_t source;
-  bool operator<(const Entry& o) const {
-    return key != o.key ? key < o.key : (source != o.source ? source < o.source : index < o.index);
-  }
-};
-
-// One cell's votes for one stratum of a light, saturating at 255.
-struct CellCounts {
-  uint8_t direct = 0, opaque = 0, glass = 0;
-};
 
 
 // Median k-th-neighbour distance at up to 256 photons of one shadow light.
@@ -139,7 +124,9 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   // land mid-layer, not on a layer boundary a point could round across.
   origin_ = box.lo - Vec3(1.5f * cell_);
 
-  std::vector<Entry> entries(total);
+  CacheCells cells;
+  std::vector<CacheEntry>& entries = cells.entries;
+  entries.resize(total);
   for (size_t src = 0; src < sourceSize.size(); ++src) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, sourceSize[src], 1 << 14), [&](const auto& r) {
       for (size_t i = r.begin(); i != r.end(); ++i)
@@ -148,12 +135,13 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
     });
   }
   tbb::parallel_sort(entries.begin(), entries.end());
-  std::vector<uint32_t> starts;
+  std::vector<uint32_t>& starts = cells.starts;
   for (size_t i = 0; i < total; ++i)
     if (i == 0 || entries[i].key != entries[i - 1].key) starts.push_back(static_cast<uint32_t>(i));
   records_ = starts.size();
   starts.push_back(static_cast<uint32_t>(total));
-  std::vector<uint64_t> keys(records_);
+  std::vector<uint64_t>& keys = cells.keys;
+  keys.resize(records_);
   for (size_t r = 0; r < records_; ++r) keys[r] = entries[starts[r]].key;
   insertKeys(keys);
   progressExpect(params.progress, records_ * (1 + (numLights_ > 0) + useIndirect));
@@ -169,12 +157,16 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
     numStrata += strata_[l];
   }
   rowWidth_ = numLights_ + numStrata;
+  cells.numStrata = numStrata;
 
   // Per record: where its photons are (centroid), which way they face (mean normal),
   // and per stratum of each light how many arrived direct, behind something opaque,
   // behind glass (saturating bytes: the vote only asks zero or not, and >= minVoters).
-  std::vector<Vec3> sites(records_), normals(records_);
-  std::vector<CellCounts> counts(records_ * numStrata);
+  std::vector<Vec3> sites(records_);
+  std::vector<Vec3>& normals = cells.normals;
+  normals.resize(records_);
+  std::vector<CellCounts>& counts = cells.counts;
+  counts.resize(records_ * numStrata);
   const float minCos = params.gateParams.minNormalCos;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 256), [&](const auto& range) {
     for (size_t r = range.begin(); r != range.end(); ++r) {
@@ -198,50 +190,9 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
     }
     progressAdd(params.progress, range.size());
   });
-  entries = {};
-
-  // The verdict of a cell is the gate's vote over its 3x3x3 neighbourhood (same
-  // bucket): every photon within one cell of any point inside it votes, so a point
-  // near the cell's edge still sees the shadow boundary beyond it. Each stratum of a
-  // light is voted on alone too (its own quorum), the light as the sum of its strata.
-  verdicts_.assign(records_ * rowWidth_, static_cast<uint8_t>(GateVerdict::Mixed));
-  if (numLights_ > 0) {
-    const GateParams& g = params.gateParams;
-    const GateParams stratum = g.forStratum();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 256), [&](const auto& range) {
-      std::vector<GateCounts> sum(numStrata);
-      for (size_t r = range.begin(); r != range.end(); ++r) {
-        const uint64_t key = keys[r];
-        const int64_t x = int64_t(key >> 43), y = int64_t(key >> 23 & 0xFFFFF), z = int64_t(key >> 3 & 0xFFFFF);
-        const unsigned bucket = unsigned(key & 7);
-        std::fill(sum.begin(), sum.end(), GateCounts{});
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              int32_t n = recordOf(keyOf(x + dx, y + dy, z + dz, bucket));
-              if (n < 0) continue;
-              for (size_t i = 0; i < numStrata; ++i) {
-                const CellCounts& c = counts[size_t(n) * numStrata + i];
-                sum[i].direct += c.direct;
-                sum[i].opaque += c.opaque;
-                sum[i].glass += c.glass;
-              }
-            }
-        uint8_t* row = &verdicts_[r * rowWidth_];
-        for (size_t l = 0; l < numLights_; ++l) {
-          GateCounts all;
-          for (uint32_t i = strataStart_[l]; i < strataStart_[l] + strata_[l]; ++i) {
-            all.direct += sum[i].direct;
-            all.opaque += sum[i].opaque;
-            all.glass += sum[i].glass;
-            row[numLights_ + i] = static_cast<uint8_t>(verdictOf(sum[i], stratum));
-          }
-          row[l] = static_cast<uint8_t>(verdictOf(all, g));
-        }
-      }
-      progressAdd(params.progress, range.size());
-    });
-  }
+  if (numLights_ > 0) voteGate(cells, *shadow, params);
+  cells.entries = {};
+  cells.counts = {};
 
   // The indirect estimate, by the exact estimator, at each record's site.
   if (!useIndirect) return;
@@ -251,10 +202,8 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   // KD-tree's search hints and the caches serve them (keys order by x first).
   std::vector<std::pair<uint64_t, uint32_t>> order(records_);
   for (uint32_t r = 0; r < records_; ++r) {
-    const uint64_t key = keys[r];
-    order[r] = {spreadBits21(uint32_t(key >> 43)) << 2 | spreadBits21(uint32_t(key >> 23 & 0xFFFFF)) << 1 |
-                    spreadBits21(uint32_t(key >> 3 & 0xFFFFF)),
-                r};
+    const CellKey c = decodeCellKey(keys[r]);
+    order[r] = {spreadBits21(uint32_t(c.x)) << 2 | spreadBits21(uint32_t(c.y)) << 1 | spreadBits21(uint32_t(c.z)), r};
   }
   tbb::parallel_sort(order.begin(), order.end());
   k_ = params.k;
@@ -331,7 +280,8 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
 }
 
 size_t LookupCache::memoryBytes() const {
-  return slots_.capacity() * sizeof(Slot) + verdicts_.capacity() +
+  return slots_.capacity() * sizeof(Slot) + verdicts_.capacity() + splits_.capacity() * sizeof(StratumSplit) +
+         splitStart_.capacity() * sizeof(uint32_t) +
          (lazy_ ? (lazy_->mask + 1) * sizeof(LazySlot) : 0);
 }
 

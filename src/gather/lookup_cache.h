@@ -6,6 +6,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "gather/photon_map.h"
+#include "gather/stratum_split.h"
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +14,8 @@
 #include <vector>
 
 namespace penumbra {
+
+struct CacheCells;  // lookup_cache_cells.h: what building a cache knows of its photons
 
 // Which indirect estimate the cache holds (the exact estimators of indirect_estimate.h
 // and radiance_estimate.h, evaluated at the cell's photons' centroid).
@@ -70,7 +73,7 @@ class LookupCache {
   struct Answer {
     Color indirect{0.0f};
     bool hasIndirect = false;           // false: no cell near p; use the exact estimate
-    // One GateVerdict per light, then one per stratum of each light (strataVerdicts).
+    // One GateVerdict per light, then one per stratum of each light (stratumVerdict).
     const uint8_t* verdicts = nullptr;
   };
   Answer find(const Vec3& p, const Vec3& n) const;
@@ -87,11 +90,13 @@ class LookupCache {
 
   bool hasGate() const { return numLights_ > 0; }
   // How many strata light l's photons name (core/light_strata.h), and the verdict
-  // of each in an Answer's row: only where the light's own verdict is mixed can
-  // they differ from it.
+  // of one at p, from the row of p's cell (Answer::verdicts): only where the light's
+  // own verdict is mixed can they differ from it. A stratum whose photons around the
+  // cell disagree answers by p's side of the line between them (stratum_split.h).
   int strataOf(uint32_t light) const { return light < numLights_ ? strata_[light] : 1; }
-  const uint8_t* strataVerdicts(const uint8_t* row, uint32_t light) const {
-    return row + numLights_ + strataStart_[light];
+  GateVerdict stratumVerdict(const uint8_t* row, uint32_t light, int stratum, const Vec3& p) const {
+    const size_t column = numLights_ + strataStart_[light] + static_cast<size_t>(stratum);
+    return row[column] == kSplit ? splitAt(row, column).at(p) : static_cast<GateVerdict>(row[column]);
   }
   CachedIndirect indirectKind() const { return kind_; }
   size_t records() const { return records_; }
@@ -107,6 +112,10 @@ class LookupCache {
     uint32_t record = 0;
   };
   static constexpr uint64_t kEmpty = ~uint64_t(0);
+  // A stratum's byte in a row when its verdict is its split's (after the GateVerdicts).
+  static constexpr uint8_t kSplit = static_cast<uint8_t>(GateVerdict::Mixed) + 1;
+  const StratumSplit& splitAt(const uint8_t* row, size_t column) const;
+  void voteGate(const CacheCells& cells, const ShadowPhotonMap& shadow, const LookupCacheParams& params);
   // The dominant axis of n and its sign: 0..5 (axis = bucket / 2, negative if odd).
   static unsigned bucketOf(const Vec3& n) {
     const Vec3 a = glm::abs(n);
@@ -148,6 +157,8 @@ class LookupCache {
   std::vector<uint8_t> verdicts_;  // per record: rowWidth_ GateVerdicts (lights, then strata)
   std::vector<uint8_t> strata_;       // per light: its strata
   std::vector<uint32_t> strataStart_;  // per light: its first stratum's place after the lights
+  std::vector<StratumSplit> splits_;   // the split strata, by record, then place in the row
+  std::vector<uint32_t> splitStart_;   // per record and one past: its first split
   size_t rowWidth_ = 0;
 };
 

@@ -126,7 +126,7 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
 const uint8_t* gateStrata(const ShadingContext& ctx, uint32_t li, const CachedAnswer* cached) {
   if (!cached || !cached->verdicts || !ctx.choices.gate || !ctx.lookup->hasGate()) return nullptr;
   if (ctx.lookup->strataOf(li) <= 1) return nullptr;
-  return ctx.lookup->strataVerdicts(cached->verdicts, li);
+  return cached->verdicts;
 }
 
 Color litClosedForm(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li,

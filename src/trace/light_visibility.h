@@ -19,8 +19,9 @@ GateParams gateParamsFor(const Scene& scene, GlassShadows glass);
 // A shading point's precomputed answer (null: ask the photon map).
 using CachedAnswer = LookupCache::Answer;
 
-// The precomputed verdicts of light li's strata at a shading point, or null where
-// there are none (no cell, no gate, an exact vote, a light of one stratum).
+// The row of precomputed verdicts that answers light li's strata at a shading point
+// (LookupCache::stratumVerdict), or null where there is none (no cell, no gate, an
+// exact vote, a light of one stratum).
 const uint8_t* gateStrata(const ShadingContext& ctx, uint32_t li, const CachedAnswer* cached);
 
 // The gate's verdict for one light at a shading point (Mixed when the gate is off
@@ -83,7 +84,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   const Bsdf* lobes = &bsdf;  // after a lit verdict: only what the closed form left out
   Bsdf glossy;
   GateVerdict v = shadows ? GateVerdict::Mixed : GateVerdict::Lit;
-  const uint8_t* strata = nullptr;  // per-stratum verdicts of a mixed light, if precomputed
+  const uint8_t* strata = nullptr;  // the row with a mixed light's strata, if precomputed
   bool asked = !shadows, closedTried = !area;
   Color closed(0.0f), sum(0.0f);
   for (int j = 0; j < n; ++j) {
@@ -119,9 +120,9 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     }
     if (maxComponent(f) <= 0.0f) continue;
     if (strata) {
-      // A mixed light whose sample falls in a stratum its cell calls lit or shadowed:
-      // that sample's ray is answered, only ambiguous strata still cast one.
-      const auto sv = static_cast<GateVerdict>(strata[sampleStratum(light, u, in.point)]);
+      // A mixed light whose sample falls in a stratum its cell calls lit or shadowed
+      // here: that sample's ray is answered, only ambiguous strata still cast one.
+      const GateVerdict sv = ctx.lookup->stratumVerdict(strata, li, sampleStratum(light, u, in.point), s.position);
       if (sv != GateVerdict::Mixed) {
         ++ts.counts.shadowRaysAvoided;
         if (sv == GateVerdict::Lit) sum += weigh(Color(1.0f), f, in);
