@@ -148,6 +148,7 @@ void expectGatedNearUngated(const std::string& scene, int samples) {
   const ImageError e = compareImages(gated.image, ungated.image);
   const std::string what = scene + " at " + std::to_string(samples) + " samples";
   EXPECT_LE(e.rmse, 0.005 * e.referenceMean) << what << ": RMSE " << e.rmse << ", mean " << e.referenceMean;
+  EXPECT_GT(gated.stats.cacheSplits, 0u) << what << ": no stratum answered by a split line";
   EXPECT_LT(20 * gated.stats.rays.shadow, ungated.stats.rays.shadow)
       << what << ": cast " << gated.stats.rays.shadow << " of " << ungated.stats.rays.shadow;
 }

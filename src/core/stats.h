@@ -69,6 +69,7 @@ struct RenderStats {
   std::string gateReason;            // why (auto: the cost model's estimate)
   std::string plan;                  // the render plan as JSON (plan/render_plan.h)
   uint64_t cacheRecords = 0;         // precomputed: cells (last pass)
+  uint64_t cacheSplits = 0;          // precomputed: strata answered by a split line (last pass)
   uint64_t cacheLazyCells = 0;       // precomputed: cells the cache has computed on first use so far
   float cacheCell = 0.0f;            // precomputed: cell size (last pass)
   uint64_t cacheBytes = 0;

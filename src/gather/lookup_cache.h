@@ -100,6 +100,7 @@ class LookupCache {
   }
   CachedIndirect indirectKind() const { return kind_; }
   size_t records() const { return records_; }
+  size_t splitLines() const { return splits_.size(); }
   size_t numLights() const { return numLights_; }
   float cellSize() const { return cell_; }
   size_t memoryBytes() const;

@@ -48,7 +48,7 @@ std::string statsToJson(const RenderStats& s) {
   if (!s.plan.empty()) j["plan"] = nlohmann::json::parse(s.plan);
   j["gather"] = {{"queries", r.gatherQueries},
                  {"mean_neighbours", r.gatherQueries ? double(r.gatherNeighbours) / r.gatherQueries : 0.0}};
-  j["lookup"] = {{"mode", s.lookup}, {"cells", s.cacheRecords}, {"cell_size", s.cacheCell},
+  j["lookup"] = {{"mode", s.lookup}, {"cells", s.cacheRecords}, {"split_lines", s.cacheSplits}, {"cell_size", s.cacheCell},
                  {"queries", r.cacheLookups}, {"fallbacks", r.cacheFallbacks},
                  {"lazy_cells", s.cacheLazyCells}};
   j["memory"] = {{"photon_maps_bytes", s.photonMapBytes}, {"lookup_cache_bytes", s.cacheBytes}};
@@ -98,9 +98,10 @@ std::string statsSummary(const RenderStats& s, bool detail) {
                        r.nonfiniteSamples == 1 ? "was" : "were");
   }
   if (s.cacheRecords) {
-    out += fmt::format("  lookup: precomputed, {} cells of {:.4g}, {:.1f} MB; {} queries, {} with no cell near "
+    const std::string splits = s.cacheSplits ? fmt::format(" ({} strata answered by a split line)", s.cacheSplits) : "";
+    out += fmt::format("  lookup: precomputed, {} cells of {:.4g}{}, {:.1f} MB; {} queries, {} with no cell near "
                        "(answered by {} cells computed on first use)\n",
-                       s.cacheRecords, s.cacheCell, s.cacheBytes / 1e6, r.cacheLookups, r.cacheFallbacks,
+                       s.cacheRecords, s.cacheCell, splits, s.cacheBytes / 1e6, r.cacheLookups, r.cacheFallbacks,
                        s.cacheLazyCells);
   }
   if (detail && s.gateMode == "auto") out += fmt::format("  gate: {}\n", s.gateReason);

@@ -63,6 +63,7 @@ void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& c
   ctx.lookup = cache.empty() ? nullptr : &cache;
   stats.time.precompute += phase.seconds();
   stats.cacheRecords = cache.records();
+  stats.cacheSplits = cache.splitLines();
   stats.cacheCell = cache.cellSize();
   stats.cacheBytes = cache.memoryBytes();
 }
