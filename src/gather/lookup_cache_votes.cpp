@@ -21,8 +21,8 @@ namespace {
 // sparse.
 constexpr int kReach = 1, kSparseReach = 2;
 
-// The cells a reach spans along each axis: across the surface the reach, along the
-// normal's axis (bucket / 2) at most one layer, since a surface a cell or more
+// The cells a reach spans either side along each axis: across the surface the reach,
+// along the normal's axis (bucket / 2) at most one, since a surface a cell or more
 // behind this one (a teapot's body behind its handle) can be in a shadow it is not.
 struct Reach3 {
   int x, y, z;
