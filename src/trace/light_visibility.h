@@ -90,6 +90,13 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   for (int j = 0; j < n; ++j) {
     // One sample of an area light is uniform, not its centre (stratified2D's n = 1).
     const Vec2 u = !area ? deltaLightSample() : n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
+    // A quad's sample names its stratum by its numbers alone: where the cell calls
+    // that stratum shadowed at this point, the sample adds nothing and is not drawn.
+    if (strata && light.type == LightType::Quad &&
+        ctx.lookup->stratumVerdict(strata, li, stratumOf(u.x, u.y), s.position) == GateVerdict::Shadowed) {
+      ++ts.counts.shadowRaysAvoided;
+      continue;
+    }
     const LightIncidence in = sampleLight(sampler, u.x, u.y);
     if (!facesLight(s, in)) continue;
     Color f = evaluateBsdf(*lobes, frame, wo, in.wi);
