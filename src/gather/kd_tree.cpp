@@ -261,12 +261,7 @@ size_t PhotonKdTree<Photon>::knn(const Vec3& p, size_t k, float maxRadius,
 
   uint64_t* keys = scratch.keys.data();
   if (sorted) sortKeys(keys, n, keys + n, scratch.buckets);
-  float kth = 0.0f;
-  for (size_t i = 0; i < n; ++i) {
-    scratch.indices[i] = static_cast<uint32_t>(keys[i]);
-    scratch.dist2[i] = distOf(keys[i]);
-    kth = std::max(kth, scratch.dist2[i]);
-  }
+  const float kth = unpackKeys(keys, n, scratch);
   if (hint && n == k) {  // fewer than k (within maxRadius): nothing learnt
     hint->p[entry] = p;
     hint->r[entry] = std::sqrt(kth);

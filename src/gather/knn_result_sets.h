@@ -128,6 +128,17 @@ inline void sortKeys(uint64_t* keys, size_t n, uint64_t* tmp, std::vector<uint32
   }
 }
 
+// Writes keys[0..n) out as a gather (s.indices, s.dist2) and returns the largest dist2.
+inline float unpackKeys(const uint64_t* keys, size_t n, GatherScratch& s) {
+  float largest = 0.0f;
+  for (size_t i = 0; i < n; ++i) {
+    s.indices[i] = static_cast<uint32_t>(keys[i]);
+    s.dist2[i] = distOf(keys[i]);
+    largest = std::max(largest, s.dist2[i]);
+  }
+  return largest;
+}
+
 // Orders a gather left unsorted (s.indices, s.dist2 [0..n)) as a sorted knn() would:
 // ascending (dist2, index).
 inline void sortGathered(GatherScratch& s, size_t n) {
@@ -135,10 +146,7 @@ inline void sortGathered(GatherScratch& s, size_t n) {
   uint64_t* keys = s.keys.data();
   for (size_t i = 0; i < n; ++i) keys[i] = keyOf(s.dist2[i], s.indices[i]);
   sortKeys(keys, n, keys + n, s.buckets);
-  for (size_t i = 0; i < n; ++i) {
-    s.indices[i] = static_cast<uint32_t>(keys[i]);
-    s.dist2[i] = distOf(keys[i]);
-  }
+  unpackKeys(keys, n, s);
 }
 
 // nanoflann result set for a fixed-radius search into reusable buffers.

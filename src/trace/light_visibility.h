@@ -90,10 +90,12 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   for (int j = 0; j < n; ++j) {
     // One sample of an area light is uniform, not its centre (stratified2D's n = 1).
     const Vec2 u = !area ? deltaLightSample() : n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
-    // A quad's sample names its stratum by its numbers alone: where the cell calls
-    // that stratum shadowed at this point, the sample adds nothing and is not drawn.
-    if (strata && light.type == LightType::Quad &&
-        ctx.lookup->stratumVerdict(strata, li, stratumOf(u.x, u.y), s.position) == GateVerdict::Shadowed) {
+    // A quad's sample names its stratum by its numbers alone, so its verdict comes
+    // before the sample is drawn: in a stratum called shadowed it adds nothing.
+    const bool quadStrata = strata && light.type == LightType::Quad;
+    GateVerdict sv = quadStrata ? ctx.lookup->stratumVerdict(strata, li, stratumOf(u.x, u.y), s.position)
+                                : GateVerdict::Mixed;
+    if (sv == GateVerdict::Shadowed) {
       ++ts.counts.shadowRaysAvoided;
       continue;
     }
@@ -129,7 +131,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     if (strata) {
       // A mixed light whose sample falls in a stratum its cell calls lit or shadowed
       // here: that sample's ray is answered, only ambiguous strata still cast one.
-      const GateVerdict sv = ctx.lookup->stratumVerdict(strata, li, sampleStratum(light, u, in.point), s.position);
+      if (!quadStrata) sv = ctx.lookup->stratumVerdict(strata, li, sampleStratum(light, u, in.point), s.position);
       if (sv != GateVerdict::Mixed) {
         ++ts.counts.shadowRaysAvoided;
         if (sv == GateVerdict::Lit) sum += weigh(Color(1.0f), f, in);
