@@ -8,6 +8,14 @@
 
 namespace penumbra {
 
+namespace {
+// Rounding of position + u e1 + v e2: a few ulps of the largest terms.
+float quadPointError(const Light& light) {
+  return gammaBound(6) * (maxComponent(glm::abs(light.position)) + maxComponent(glm::abs(light.edge1)) +
+                          maxComponent(glm::abs(light.edge2)));
+}
+}  // namespace
+
 LightSampler prepareLight(const Light& light, const Vec3& p) {
   LightSampler s;
   s.light = &light;
@@ -15,6 +23,7 @@ LightSampler prepareLight(const Light& light, const Vec3& p) {
   if (light.type == LightType::Quad) {
     s.normal = unitCross(light.edge1, light.edge2);
     s.area = lightArea(light);
+    s.band = 2.0f * quadPointError(light);
   } else if (light.type == LightType::Mesh) {
     s.area = meshLightArea(light);
   } else if (light.type == LightType::Sphere) {
@@ -36,12 +45,6 @@ LightSampler prepareLight(const Light& light, const Vec3& p) {
 }
 
 namespace {
-// Rounding of position + u e1 + v e2: a few ulps of the largest terms.
-float quadPointError(const Light& light) {
-  return gammaBound(6) * (maxComponent(glm::abs(light.position)) + maxComponent(glm::abs(light.edge1)) +
-                          maxComponent(glm::abs(light.edge2)));
-}
-
 LightIncidence sampleQuad(const LightSampler& s, float u1, float u2) {
   const Light& light = *s.light;
   LightIncidence in;
@@ -56,9 +59,8 @@ LightIncidence sampleQuad(const LightSampler& s, float u1, float u2) {
   in.radiance = light.radiance() * (cosLight * s.area / d2);
   // The emitter's own triangles lie within rounding of y's plane: stop before that
   // band, measured along the ray (longer at grazing angles), but never before half-way.
-  const float band = 2.0f * quadPointError(light);
   in.point = y;
-  in.margin = std::min(0.5f * in.distance, in.distance * kShadowRayShortening + band / cosLight);
+  in.margin = std::min(0.5f * in.distance, in.distance * kShadowRayShortening + s.band / cosLight);
   in.valid = true;
   return in;
 }

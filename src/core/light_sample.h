@@ -36,6 +36,7 @@ struct LightSampler {
   Vec3 p{0.0f};
   Vec3 normal{0.0f};  // quad
   float area = 0.0f;
+  float band = 0.0f;  // quad: the rounding band about its plane a shadow ray stops short of
   Vec3 w{0.0f}, t{0.0f}, b{0.0f};  // sphere: towards the centre, and a frame about it
   float dc = 0.0f, dc2 = 0.0f, r2 = 0.0f, oneMinusCosMax = 0.0f;
   bool outside = false;

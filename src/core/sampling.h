@@ -40,17 +40,27 @@ inline Vec3 toWorld(const Vec3& local, const Vec3& n) {
 // Point s of n in the unit square, jittered within its stratum. A perfect square n
 // uses a sqrt(n) x sqrt(n) grid; any other n a rank-1 lattice (x stratum s, y
 // stratum s * g mod n with g coprime to n), so every row and column gets one point.
-inline Vec2 stratified2D(int s, int n, Rng& rng) {
-  if (n == 1) return {0.5f, 0.5f};
-  int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
-  if (side * side == n) {
-    return {(s % side + rng.uniform()) / side, (s / side + rng.uniform()) / side};
+// The layout is worked out once per n, not once per point.
+class Stratified2D {
+ public:
+  explicit Stratified2D(int n) : n_(n) {
+    if (n <= 1) return;
+    side_ = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
+    if (side_ * side_ == n) return;
+    side_ = 0;
+    g_ = std::max(1, static_cast<int>(std::lround(n * 0.618034)));
+    while (std::gcd(g_, n) != 1) ++g_;
   }
-  int g = std::max(1, static_cast<int>(std::lround(n * 0.618034)));
-  while (std::gcd(g, n) != 1) ++g;
-  int row = static_cast<int>((static_cast<int64_t>(s) * g) % n);
-  return {(s + rng.uniform()) / n, (row + rng.uniform()) / n};
-}
+  Vec2 operator()(int s, Rng& rng) const {
+    if (n_ <= 1) return {0.5f, 0.5f};
+    if (side_ > 0) return {(s % side_ + rng.uniform()) / side_, (s / side_ + rng.uniform()) / side_};
+    const int row = static_cast<int>((static_cast<int64_t>(s) * g_) % n_);
+    return {(s + rng.uniform()) / n_, (row + rng.uniform()) / n_};
+  }
+
+ private:
+  int n_, side_ = 0, g_ = 1;
+};
 
 // Point i of a (0,2)-sequence in base 2 (van der Corput, and Sobol's second
 // dimension), each coordinate's bits XORed with half of `scramble` (Kollig & Keller

@@ -36,8 +36,9 @@ Color directFromEnvironment(const ShadingContext& ctx, const SurfaceRecord& s, u
   Rng rng(hashKey(ts.sampleKey, ts.shadingPoint, li));
   Color lightSum(0.0f), bsdfSum(0.0f);
   int cast = 0, blocked = 0;  // shadow rays, for --trace-pixel's note
+  const Stratified2D lightStrata(n), bsdfStrata(nb);
   for (int j = 0; j < n; ++j) {
-    const Vec2 u = n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
+    const Vec2 u = n > 1 ? lightStrata(j, rng) : Vec2(rng.uniform(), rng.uniform());
     const EnvironmentSample e = sampleEnvironment(light, s.ns, u.x, u.y);
     const LightIncidence in = towards(e.wi, e.valid);
     if (!facesLight(s, in)) continue;
@@ -51,7 +52,7 @@ Color directFromEnvironment(const ShadingContext& ctx, const SurfaceRecord& s, u
   }
   for (int j = 0; j < nb; ++j) {
     const float uLobe = rng.uniform();
-    const Vec2 u = nb > 1 ? stratified2D(j, nb, rng) : Vec2(rng.uniform(), rng.uniform());
+    const Vec2 u = nb > 1 ? bsdfStrata(j, rng) : Vec2(rng.uniform(), rng.uniform());
     const BsdfSample bs = sampleBsdf(bsdf, frame, wo, uLobe, u.x, u.y);
     // A delta lobe's direction is followed as a reflection ray, which sees the
     // environment when it leaves the scene: not a sample of this estimate.

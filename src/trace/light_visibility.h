@@ -87,9 +87,10 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   const uint8_t* strata = nullptr;  // the row with a mixed light's strata, if precomputed
   bool asked = !shadows, closedTried = !area;
   Color closed(0.0f), sum(0.0f);
+  const Stratified2D stratified(n);
   for (int j = 0; j < n; ++j) {
-    // One sample of an area light is uniform, not its centre (stratified2D's n = 1).
-    const Vec2 u = !area ? deltaLightSample() : n > 1 ? stratified2D(j, n, rng) : Vec2(rng.uniform(), rng.uniform());
+    // One sample of an area light is uniform, not its centre (Stratified2D's n = 1).
+    const Vec2 u = !area ? deltaLightSample() : n > 1 ? stratified(j, rng) : Vec2(rng.uniform(), rng.uniform());
     // A quad's sample names its stratum by its numbers alone, so its verdict comes
     // before the sample is drawn: in a stratum called shadowed it adds nothing.
     const bool quadStrata = strata && light.type == LightType::Quad;
