@@ -8,6 +8,7 @@
 #include "core/sampling.h"
 #include "gather/lookup_cache.h"
 #include "trace/shading.h"
+#include <optional>
 #include <vector>
 
 namespace penumbra {
@@ -23,6 +24,30 @@ using CachedAnswer = LookupCache::Answer;
 // (LookupCache::stratumVerdict), or null where there is none (no cell, no gate, an
 // exact vote, a light of one stratum).
 const uint8_t* gateStrata(const ShadingContext& ctx, uint32_t li, const CachedAnswer* cached);
+
+// A mixed light's stratum verdicts at one shading point, each read from the cell's
+// row at most once: every sample in a stratum shares its verdict (a split line's
+// too, since the point does not move).
+class PointStrata {
+ public:
+  PointStrata(const LookupCache& cache, const uint8_t* row, uint32_t light, const Vec3& p)
+      : cache_(&cache), row_(row), light_(light), p_(p) {
+    for (uint8_t& v : known_) v = kUnknown;
+  }
+  GateVerdict operator()(int stratum) {
+    uint8_t& v = known_[stratum];
+    if (v == kUnknown) v = static_cast<uint8_t>(cache_->stratumVerdict(row_, light_, stratum, p_));
+    return static_cast<GateVerdict>(v);
+  }
+
+ private:
+  static constexpr uint8_t kUnknown = 0xff;
+  const LookupCache* cache_;
+  const uint8_t* row_;
+  uint32_t light_;
+  Vec3 p_;
+  uint8_t known_[kMaxLightStrata];
+};
 
 // The gate's verdict for one light at a shading point (Mixed when the gate is off
 // or has no photons of that light): from the cache when there is one, else by the
@@ -84,7 +109,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   const Bsdf* lobes = &bsdf;  // after a lit verdict: only what the closed form left out
   Bsdf glossy;
   GateVerdict v = shadows ? GateVerdict::Mixed : GateVerdict::Lit;
-  const uint8_t* strata = nullptr;  // the row with a mixed light's strata, if precomputed
+  std::optional<PointStrata> strata;  // a mixed light's strata, if precomputed
   bool asked = !shadows, closedTried = !area;
   Color closed(0.0f), sum(0.0f);
   const Stratified2D stratified(n);
@@ -94,8 +119,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     // A quad's sample names its stratum by its numbers alone, so its verdict comes
     // before the sample is drawn: in a stratum called shadowed it adds nothing.
     const bool quadStrata = strata && light.type == LightType::Quad;
-    GateVerdict sv = quadStrata ? ctx.lookup->stratumVerdict(strata, li, stratumOf(u.x, u.y), s.position)
-                                : GateVerdict::Mixed;
+    GateVerdict sv = quadStrata ? (*strata)(stratumOf(u.x, u.y)) : GateVerdict::Mixed;
     if (sv == GateVerdict::Shadowed) {
       ++ts.counts.shadowRaysAvoided;
       continue;
@@ -111,7 +135,9 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
         ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
         return Color(0.0f);
       }
-      if (v == GateVerdict::Mixed) strata = gateStrata(ctx, li, cached);
+      if (v == GateVerdict::Mixed) {
+        if (const uint8_t* row = gateStrata(ctx, li, cached)) strata.emplace(*ctx.lookup, row, li, s.position);
+      }
     }
     if (v == GateVerdict::Lit && !closedTried) {
       closedTried = true;
@@ -132,7 +158,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     if (strata) {
       // A mixed light whose sample falls in a stratum its cell calls lit or shadowed
       // here: that sample's ray is answered, only ambiguous strata still cast one.
-      if (!quadStrata) sv = ctx.lookup->stratumVerdict(strata, li, sampleStratum(light, u, in.point), s.position);
+      if (!quadStrata) sv = (*strata)(sampleStratum(light, u, in.point));
       if (sv != GateVerdict::Mixed) {
         ++ts.counts.shadowRaysAvoided;
         if (sv == GateVerdict::Lit) sum += weigh(Color(1.0f), f, in);
