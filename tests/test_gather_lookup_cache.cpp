@@ -139,8 +139,8 @@ TEST(LookupCache, GateNeverContradictsTheTruthAndIsConfidentAwayFromTheEdge) {
 TEST(LookupCache, WhereThePhotonsAreSparseTheVoteLooksTwiceAsFar) {
   // One photon per 0.05 x 0.05 and cells of 0.03: the 3 x 3 cells around a point hold
   // ~3 voters, under the quorum of 8, and the 5 x 5 around it ~9, which vote where
-  // the nearer ones agree. (A point whose own cell holds no photon has no record: it
-  // casts rays.)
+  // the nearer ones agree. A point whose own cell holds no photon (a third of them)
+  // answers from the nearest cell around it that does.
   ShadowPhotonMap map;
   map.build(halfShadow(20, 0.5f, kShadowOpaque, Vec3(0, 0, 1)), 1);
   const float cellSize = 0.03f;
@@ -150,7 +150,7 @@ TEST(LookupCache, WhereThePhotonsAreSparseTheVoteLooksTwiceAsFar) {
     for (int iy = 0; iy < 60; ++iy) {
       const Vec3 p(0.1f + 0.8f * (ix + 0.5f) / 60.0f, 0.1f + 0.8f * (iy + 0.5f) / 60.0f, 0.0f);
       const LookupCache::Answer a = cache.find(p, Vec3(0, 0, 1));
-      if (!a.verdicts) continue;
+      ASSERT_NE(a.verdicts, nullptr) << p.x << " " << p.y;
       const auto v = static_cast<GateVerdict>(a.verdicts[0]);
       // Never against the truth: every voter lies within 2 cells of the point's cell.
       if (v == GateVerdict::Lit) {
@@ -165,6 +165,34 @@ TEST(LookupCache, WhereThePhotonsAreSparseTheVoteLooksTwiceAsFar) {
       }
     }
   EXPECT_GT(decided, 0.8 * far) << decided << " of " << far;
+}
+
+TEST(LookupCache, AnEmptyCellAnswersFromTheNearestCellAroundIt) {
+  // Lit photons over the unit square but for a hole of 0.1 x 0.1 at its centre, with
+  // cells of 0.025: the hole's points answer from a cell at most one away, its middle
+  // (two cells from any photon) not at all, and the plane's far side never.
+  PhotonArray<ShadowPhoton> photons;
+  for (const ShadowPhoton& ph : halfShadow(120, 2.0f, kShadowOpaque, Vec3(0, 0, 1)))
+    if (std::abs(ph.position.x - 0.5f) > 0.05f || std::abs(ph.position.y - 0.5f) > 0.05f) photons.push_back(ph);
+  ShadowPhotonMap map;
+  map.build(std::move(photons), 1);
+  const float cellSize = 0.025f;
+  const LookupCache cache = gateCache(map, cellSize);
+  int inHole = 0, answered = 0;
+  for (int ix = 0; ix < 40; ++ix)
+    for (int iy = 0; iy < 40; ++iy) {
+      const Vec3 p(0.45f + 0.1f * (ix + 0.5f) / 40.0f, 0.45f + 0.1f * (iy + 0.5f) / 40.0f, 0.0f);
+      ++inHole;
+      const LookupCache::Answer a = cache.find(p, Vec3(0, 0, 1));
+      EXPECT_EQ(cache.find(p, Vec3(0, 0, -1)).verdicts, nullptr);
+      if (!a.verdicts) continue;
+      ++answered;
+      EXPECT_EQ(static_cast<GateVerdict>(a.verdicts[0]), GateVerdict::Lit) << p.x << " " << p.y;
+    }
+  // Cells of the hole one away from photons answer: all but its middle.
+  EXPECT_GT(answered, inHole / 2);
+  EXPECT_LT(answered, inHole);
+  EXPECT_EQ(cache.find(Vec3(0.5f, 0.5f, 0.0f), Vec3(0, 0, 1)).verdicts, nullptr);
 }
 
 TEST(LookupCache, GlassShadowIsMixedUnlessGlassBlocks) {

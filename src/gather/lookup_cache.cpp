@@ -249,6 +249,7 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
   if (kind_ == CachedIndirect::None) {  // the gate alone reads only p's own cell
     const int32_t r = recordOf(keyOf(own[0], own[1], own[2], bucket));
     if (r >= 0) a.verdicts = &verdicts_[size_t(r) * rowWidth_];
+    else if (numLights_ > 0) a.verdicts = verdictsAround(own, cellOf, bucket);
     return a;
   }
   // The surface runs across the bucket's axis: blend bilinearly over the 2x2 cells
@@ -276,7 +277,33 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
     a.indirect = sum / weight;
     a.hasIndirect = true;
   }
+  if (!a.verdicts && numLights_ > 0) a.verdicts = verdictsAround(own, cellOf, bucket);
   return a;
+}
+
+const uint8_t* LookupCache::verdictsAround(const int64_t* own, const Vec3& cellOf, unsigned bucket) const {
+  const unsigned axis = bucket / 2, t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
+  int32_t nearest = -1;
+  float best = kInf;
+  int64_t c[3] = {own[0], own[1], own[2]};
+  for (int d1 = -1; d1 <= 1; ++d1) {
+    for (int d2 = -1; d2 <= 1; ++d2) {
+      if (d1 == 0 && d2 == 0) continue;
+      c[t1] = own[t1] + d1;
+      c[t2] = own[t2] + d2;
+      const int32_t r = recordOf(keyOf(c[0], c[1], c[2], bucket));
+      if (r < 0) continue;
+      // Distance from p to the cell's centre; ties keep the first in this fixed order.
+      const float e1 = cellOf[t1] - (static_cast<float>(c[t1]) + 0.5f);
+      const float e2 = cellOf[t2] - (static_cast<float>(c[t2]) + 0.5f);
+      const float d = e1 * e1 + e2 * e2;
+      if (d < best) {
+        best = d;
+        nearest = r;
+      }
+    }
+  }
+  return nearest >= 0 ? &verdicts_[size_t(nearest) * rowWidth_] : nullptr;
 }
 
 size_t LookupCache::memoryBytes() const {

@@ -68,8 +68,10 @@ class LookupCache {
 
   // The answer at one shading point: the indirect estimate blended bilinearly from
   // the up to 4 cells around p (across the surface, in p's layer along the normal's
-  // axis) that share n's bucket, and the gate verdicts of p's own cell (nullptr when
-  // p's cell has no record: the caller casts shadow rays).
+  // axis) that share n's bucket, and the gate verdicts of p's own cell. Where the
+  // photons are sparse some cells hold none: p's verdicts are then those of the
+  // nearest of the 8 cells around it in its layer (whose vote spans p's cell too),
+  // and nullptr only when none of them has a record (the caller casts shadow rays).
   struct Answer {
     Color indirect{0.0f};
     bool hasIndirect = false;           // false: no cell near p; use the exact estimate
@@ -130,6 +132,9 @@ class LookupCache {
   uint64_t keyAt(const Vec3& p, unsigned bucket) const;
   const Slot* slotOf(uint64_t key) const;  // nullptr: none
   int32_t recordOf(uint64_t key) const { const Slot* s = slotOf(key); return s ? int32_t(s->record) : -1; }
+  // The verdict row of the record nearest p among the 8 cells around `own` across
+  // the surface (axis: the bucket's), or nullptr; `cellOf` is p in cell units.
+  const uint8_t* verdictsAround(const int64_t* own, const Vec3& cellOf, unsigned bucket) const;
   void insertKeys(const std::vector<uint64_t>& sortedKeys);
 
   // lazyIndirect's cells: open addressing, claimed by CAS on the key; `ready` publishes
