@@ -39,6 +39,13 @@ class PointStrata {
     if (v == kUnknown) v = static_cast<uint8_t>(cache_->stratumVerdict(row_, light_, stratum, p_));
     return static_cast<GateVerdict>(v);
   }
+  // The verdict strata 0..count share at the point, or Mixed where they differ.
+  GateVerdict common(int count) {
+    const GateVerdict first = (*this)(0);
+    for (int k = 1; k < count && first != GateVerdict::Mixed; ++k)
+      if ((*this)(k) != first) return GateVerdict::Mixed;
+    return first;
+  }
 
  private:
   static constexpr uint8_t kUnknown = 0xff;
@@ -136,7 +143,18 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
         return Color(0.0f);
       }
       if (v == GateVerdict::Mixed) {
-        if (const uint8_t* row = gateStrata(ctx, li, cached)) strata.emplace(*ctx.lookup, row, li, s.position);
+        if (const uint8_t* row = gateStrata(ctx, li, cached)) {
+          strata.emplace(*ctx.lookup, row, li, s.position);
+          // A quad whose every stratum its cell decides alike here is lit or shadowed
+          // here as a whole (a sphere's strata include its far side, which no sample meets).
+          if (light.type == LightType::Quad) v = strata->common(ctx.lookup->strataOf(li));
+          if (note && v != GateVerdict::Mixed) *note += v == GateVerdict::Lit ? "; every stratum lit here" : "; every stratum shadowed here";
+          if (v == GateVerdict::Shadowed) {
+            ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
+            return Color(0.0f);
+          }
+          if (v == GateVerdict::Lit) strata.reset();
+        }
       }
     }
     if (v == GateVerdict::Lit && !closedTried) {
