@@ -195,6 +195,38 @@ TEST(LookupCache, AnEmptyCellAnswersFromTheNearestCellAroundIt) {
   EXPECT_EQ(cache.find(Vec3(0.5f, 0.5f, 0.0f), Vec3(0, 0, 1)).verdicts, nullptr);
 }
 
+TEST(LookupCache, ACellWithNoVoterOfItsOwnIsNeverCalledShadowed) {
+  // Light 1's photons cover the plane; light 0's (all behind an occluder, or all
+  // direct) cover it but for a hole two 0.05 cells wide around (0.5, 0.5), which
+  // holds the cell of its centre whole. That cell has a record (light 1's photons)
+  // and no voter for light 0: its neighbours alone may call it lit, never shadowed.
+  for (uint8_t kind : {uint8_t(kShadowOpaque), uint8_t(kDirect)}) {
+    PhotonArray<ShadowPhoton> photons;
+    for (ShadowPhoton ph : halfShadow(200, -1.0f, kind, Vec3(0, 0, 1))) {
+      ph.light = 1;
+      photons.push_back(ph);
+      ph.light = 0;
+      const bool hole = std::abs(ph.position.x - 0.5f) < 0.05f && std::abs(ph.position.y - 0.5f) < 0.05f;
+      if (!hole) photons.push_back(ph);
+    }
+    ShadowPhotonMap map;
+    map.build(std::move(photons), 2);
+    LookupCacheParams params;
+    params.gate = true;
+    params.cellSize = 0.05f;
+    LookupCache cache;
+    cache.build(&map, nullptr, params);
+    const GateVerdict around = kind == kDirect ? GateVerdict::Lit : GateVerdict::Shadowed;
+    const LookupCache::Answer outside = cache.find(Vec3(0.3f, 0.3f, 0.0f), Vec3(0, 0, 1));
+    ASSERT_NE(outside.verdicts, nullptr);
+    EXPECT_EQ(static_cast<GateVerdict>(outside.verdicts[0]), around);
+    const LookupCache::Answer in = cache.find(Vec3(0.5f, 0.5f, 0.0f), Vec3(0, 0, 1));
+    ASSERT_NE(in.verdicts, nullptr);
+    EXPECT_EQ(static_cast<GateVerdict>(in.verdicts[1]), around);
+    EXPECT_EQ(static_cast<GateVerdict>(in.verdicts[0]), kind == kDirect ? GateVerdict::Lit : GateVerdict::Mixed);
+  }
+}
+
 TEST(LookupCache, GlassShadowIsMixedUnlessGlassBlocks) {
   ShadowPhotonMap map;
   map.build(halfShadow(200, 0.5f, kShadowGlass, Vec3(0, 0, 1)), 1);

@@ -114,6 +114,15 @@ void LookupCache::voteGate(const CacheCells& cells, const ShadowPhotonMap& shado
     });
   };
 
+  // Cell r's own voters among strata [first, last).
+  auto ownVoters = [&](size_t r, uint32_t first, uint32_t last) {
+    uint32_t n = 0;
+    for (uint32_t i = first; i < last; ++i) {
+      const CellCounts& k = cells.counts[r * numStrata + i];
+      n += uint32_t(k.direct) + k.opaque + k.glass;
+    }
+    return n;
+  };
   tbb::enumerable_thread_specific<VoteScratch> scratch([&] {
     VoteScratch s;
     s.near.resize(numStrata);
@@ -138,6 +147,11 @@ void LookupCache::voteGate(const CacheCells& cells, const ShadowPhotonMap& shado
           reach = kSparseReach;
           v = widenedVerdict(near, total(s.wide, first, last), g);
         }
+        // A shadow needs a voter in the cell itself: from its neighbours alone it can
+        // belong to a surface beside the cell's (a handle's lit inside beside its
+        // shadowed arc). A lit verdict may come from them alone: sparse lit ground
+        // (a far floor) is much of what the gate saves.
+        if (v == GateVerdict::Shadowed && ownVoters(r, first, last) == 0) v = GateVerdict::Mixed;
         row[l] = static_cast<uint8_t>(v);
         const bool mixed = strata_[l] > 1 && row[l] == uint8_t(GateVerdict::Mixed);
         // Per stratum: its own reach (further where its own voters are too few), its
