@@ -3,6 +3,7 @@
 #include "core/rng.h"
 #include "gather/photon_map.h"
 #include <gtest/gtest.h>
+#include <vector>
 
 namespace penumbra {
 namespace {
@@ -80,6 +81,38 @@ TEST(Gate, HalfAndHalfIsMixedOnlyNearTheBoundary) {
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.5f, 0.5f, 0.0f), kUp, 0), GateVerdict::Mixed);
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.3f, 0.5f, 0.0f), kUp, 0), GateVerdict::Lit);
   EXPECT_EQ(classifyAt(ph, 1, Vec3(0.7f, 0.5f, 0.0f), kUp, 0), GateVerdict::Shadowed);
+}
+
+// The map a photon stage builds leaves its trees out (precomputed lookups never read
+// them); built later, they keep the photons in their order and vote as trees built at once.
+TEST(Gate, TreesBuiltLaterKeepThePhotonsAndVoteAlike) {
+  PhotonArray<ShadowPhoton> ph;
+  addPlane(ph, 100, 0.0f, kUp, 0, [](int, float x) { return x > 0.5f; }, 3);
+  addPlane(ph, 60, 0.0f, kUp, 1, [](int i, float) { return i % 3 == 0; }, 5);
+  ShadowPhotonMap eager, later;
+  eager.build(ph, 2);
+  MapBuildOptions deferred;
+  deferred.shadowTrees = false;
+  later.build(ph, 2, deferred);
+  EXPECT_TRUE(eager.hasTrees());
+  EXPECT_FALSE(later.hasTrees());
+  std::vector<Vec3> before;
+  for (const ShadowPhoton& p : later.photons(0)) before.push_back(p.position);
+  later.buildTrees();
+  ASSERT_TRUE(later.hasTrees());
+  size_t i = 0;
+  for (const ShadowPhoton& p : later.photons(0)) ASSERT_EQ(p.position, before[i++]);
+  GatherScratch s;
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 10; ++x)
+      for (uint32_t light : {0u, 1u}) {
+        const Vec3 p((x + 0.5f) / 10.0f, (y + 0.5f) / 10.0f, 0.0f);
+        EXPECT_EQ(later.classify(p, kUp, light, {}, s), eager.classify(p, kUp, light, {}, s)) << p.x << " " << p.y;
+        const size_t n = later.knn(p, light, 20, 0.0f, s);
+        std::vector<float> d(s.dist2.begin(), s.dist2.begin() + static_cast<long>(n));
+        ASSERT_EQ(eager.knn(p, light, 20, 0.0f, s), n);
+        for (size_t j = 0; j < n; ++j) EXPECT_EQ(d[j], s.dist2[j]);
+      }
 }
 
 TEST(Gate, TooFewVotersIsMixed) {

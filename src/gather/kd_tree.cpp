@@ -152,7 +152,7 @@ PhotonKdTree<Photon>& PhotonKdTree<Photon>::operator=(PhotonKdTree&&) noexcept =
 
 template <class Photon>
 void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize, bool split,
-                                 ProgressCounter* progress) {
+                                 ProgressCounter* progress, bool reorder) {
   impl_.reset();
   if (count == 0) return;  // nanoflann throws on an empty bounding box
   auto impl = std::make_unique<Impl>();
@@ -164,8 +164,8 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
   // loads, where following the permutation's cycles in place waited on one cache
   // miss per photon, which dominated the build.
   const size_t largestPart = (count + parts - 1) / parts;
-  tbb::enumerable_thread_specific<PhotonArray<Photon>> reorder(
-      [&] { return PhotonArray<Photon>(largestPart); });
+  tbb::enumerable_thread_specific<PhotonArray<Photon>> leafOrder(
+      [&] { return PhotonArray<Photon>(reorder ? largestPart : 0); });
   tbb::parallel_for(size_t(0), parts, [&](size_t i) {
     typename Impl::Part& part = impl->parts[i];
     const size_t begin = count * i / parts, end = count * (i + 1) / parts;
@@ -184,8 +184,16 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
     // making vAcc the identity leaves the tree valid and every leaf contiguous.
     auto& vAcc = part.index->vAcc;
     Photon* local = photons + begin;
-    Photon* buffer = reorder.local().data();
     const size_t n = end - begin;
+    if (!reorder) {
+      for (size_t j = 0; j < n; ++j) {
+        part.lo = glm::min(part.lo, local[j].position);
+        part.hi = glm::max(part.hi, local[j].position);
+      }
+      progressAdd(progress, n);
+      return;
+    }
+    Photon* buffer = leafOrder.local().data();
     for (size_t j = 0; j < n; ++j) buffer[j] = local[vAcc[j]];
     for (size_t j = 0; j < n; ++j) {
       local[j] = buffer[j];
@@ -193,7 +201,7 @@ void PhotonKdTree<Photon>::build(Photon* photons, size_t count, size_t leafSize,
       part.hi = glm::max(part.hi, buffer[j].position);
       vAcc[j] = static_cast<uint32_t>(j);
     }
-    progressAdd(progress, end - begin);
+    progressAdd(progress, n);
   });
   // An exception in a task around this build (another light's tree, out of memory)
   // cancels the parts not yet started, and propagates from there: stay empty.

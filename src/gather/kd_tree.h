@@ -80,6 +80,9 @@ struct GatherScratch {
 struct MapBuildOptions {
   bool mortonSort = true;
   size_t leafSize = 48;
+  // Shadow map, in Morton order: false leaves out its KD-trees, which precomputed
+  // lookups never read, until ShadowPhotonMap::buildTrees (photons stay in order).
+  bool shadowTrees = true;
   // Counts 2 per photon: one when the map's photons are ordered, one as the part
   // holding it is built (one atomic add per map and per part); null: none.
   ProgressCounter* progress = nullptr;
@@ -108,9 +111,11 @@ class PhotonKdTree {
              ProgressCounter* progress = nullptr) {
     build(photons.data(), photons.size(), leafSize, split, progress);
   }
-  // The same over photons[0..count) of an array the caller keeps in place.
+  // The same over photons[0..count) of an array the caller keeps in place. With
+  // `reorder` false the photons keep their order (already spatial, so `split` must be
+  // false) and the tree reads them through its index permutation.
   void build(Photon* photons, size_t count, size_t leafSize, bool split = false,
-             ProgressCounter* progress = nullptr);
+             ProgressCounter* progress = nullptr, bool reorder = true);
   // The k nearest photons strictly closer than maxRadius (0 = unlimited) into
   // scratch.indices/dist2; returns how many (min(k, photons in range)). "Nearest" is
   // by (dist2, index): ties at the k-th distance keep the lower indices, so the

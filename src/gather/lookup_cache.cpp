@@ -2,6 +2,7 @@
 // gate's photons per key, then vote and estimate once per key, in parallel.
 #include "gather/lookup_cache.h"
 #include "gather/lookup_cache_cells.h"
+#include "gather/kth_distance.h"
 #include "gather/radiance_estimate.h"
 #include "gather/morton.h"
 #include <tbb/blocked_range.h>
@@ -17,21 +18,18 @@ namespace {
 constexpr int64_t kAxisCells = int64_t(1) << 20;  // 20 bits per axis in a key
 
 
-// Median k-th-neighbour distance at up to 256 photons of one shadow light.
-float typicalShadowRadius(const ShadowPhotonMap& map, int k, GatherScratch& s) {
+// Median k-th-neighbour distance at up to 256 photons of one shadow light (without
+// its KD-tree, which precomputed lookups leave unbuilt).
+float typicalShadowRadius(const ShadowPhotonMap& map, int k) {
   uint32_t best = 0;
   for (uint32_t l = 0; l < map.numLights(); ++l)
     if (map.photons(l).size() > map.photons(best).size()) best = l;
   const auto& photons = map.photons(best);
   if (photons.empty() || k <= 0) return 0.0f;
   const size_t probes = std::min<size_t>(256, photons.size()), step = photons.size() / probes;
-  std::vector<float> radii;
-  for (size_t i = 0; i < probes; ++i) {
-    size_t n = map.knn(photons[i * step].position, best, static_cast<size_t>(k), 0.0f, s);
-    float r2 = 0.0f;
-    for (size_t j = 0; j < n; ++j) r2 = std::max(r2, s.dist2[j]);
-    radii.push_back(std::sqrt(r2));
-  }
+  std::vector<Vec3> sites;
+  for (size_t i = 0; i < probes; ++i) sites.push_back(photons[i * step].position);
+  std::vector<float> radii = kthNearestDistances(photons.data(), photons.size(), sites, static_cast<size_t>(k));
   std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
   return radii[radii.size() / 2];
 }
@@ -42,7 +40,7 @@ float cacheCellSize(const IndirectPhotonMap* indirect, int k, const ShadowPhoton
   GatherScratch scratch;
   if (indirect && !indirect->empty() && k > 0) return cacheCellSize(typicalKnnRadius(*indirect, k, scratch), k, scale);
   if (shadow && shadow->size() > 0 && kShadow > 0) {
-    return cacheCellSize(typicalShadowRadius(*shadow, kShadow, scratch), kShadow, scale,
+    return cacheCellSize(typicalShadowRadius(*shadow, kShadow), kShadow, scale,
                          kMinPhotonsPerGateCell);
   }
   return 0.0f;

@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include <fmt/format.h>
 #include <algorithm>
+#include <cassert>
 #include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -50,11 +51,27 @@ void ShadowPhotonMap::build(PhotonBatches<ShadowPhoton> photons, size_t numLight
   }
   // Ordered, and the dropped photons' share of the parts: the trees count the rest.
   progressAdd(options.progress, given + (given - size_));
+  leafSize_ = options.leafSize;
+  treesBuilt_ = false;
+  if (!options.shadowTrees && options.mortonSort) {
+    progressAdd(options.progress, size_);  // the trees' share, not spent
+    return;
+  }
   // Lights are independent trees; each also builds its parts side by side.
   tbb::parallel_for(size_t(0), numLights, [&](size_t light) {
     PerLight& l = lights_[light];
     l.tree.build(photons_.data() + l.begin, l.count, options.leafSize, !options.mortonSort, options.progress);
   });
+  treesBuilt_ = true;
+}
+
+void ShadowPhotonMap::buildTrees(ProgressCounter* progress) {
+  if (treesBuilt_) return;
+  tbb::parallel_for(size_t(0), lights_.size(), [&](size_t light) {
+    PerLight& l = lights_[light];
+    l.tree.build(photons_.data() + l.begin, l.count, leafSize_, /*split=*/false, progress, /*reorder=*/false);
+  });
+  treesBuilt_ = true;
 }
 
 bool ShadowPhotonMap::hasPhotons(uint32_t light) const {
@@ -64,6 +81,7 @@ bool ShadowPhotonMap::hasPhotons(uint32_t light) const {
 size_t ShadowPhotonMap::knn(const Vec3& p, uint32_t light, size_t k, float maxRadius,
                             GatherScratch& scratch) const {
   if (light >= lights_.size()) return 0;
+  assert(treesBuilt_ && "ShadowPhotonMap::buildTrees first");
   return lights_[light].tree.knn(p, k, maxRadius, scratch);
 }
 
@@ -71,6 +89,7 @@ GateVerdict ShadowPhotonMap::classify(const Vec3& p, const Vec3& n, uint32_t lig
                                       const GateParams& params, GatherScratch& scratch) const {
   if (params.k <= 0) return GateVerdict::Mixed;
   if (light >= lights_.size()) return GateVerdict::Mixed;
+  assert(treesBuilt_ && "ShadowPhotonMap::buildTrees first");
   // The vote only counts kinds, so the k nearest need not be sorted.
   size_t found = lights_[light].tree.knn(p, static_cast<size_t>(params.k), params.maxRadius,
                                          scratch, /*sorted=*/false);

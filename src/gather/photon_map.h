@@ -30,9 +30,16 @@ class ShadowPhotonMap {
   // Takes ownership and orders the photons by light, then spatially (coarse Morton
   // cells, if options.mortonSort: a radix sort straight out of the batches), then builds
   // one KD-tree per light over its range, which leaves each range in its tree's leaf
-  // order (in place). Photons whose light is >= numLights are dropped.
+  // order (in place). Photons whose light is >= numLights are dropped. With
+  // options.shadowTrees false (and Morton order) the trees wait for buildTrees.
   void build(PhotonBatches<ShadowPhoton> photons, size_t numLights,
              const MapBuildOptions& options = {});
+  // The KD-trees that classify and knn read, if build left them out: built over the
+  // photons in their Morton order, which they keep, so whatever was computed from the
+  // photons before (a lookup cache, its cell size) is computed the same after. Not
+  // thread-safe: call it before the threads that query.
+  void buildTrees(ProgressCounter* progress = nullptr);
+  bool hasTrees() const { return treesBuilt_; }
   bool hasPhotons(uint32_t light) const;
   GateVerdict classify(const Vec3& p, const Vec3& n, uint32_t light, const GateParams& params,
                        GatherScratch& scratch) const;
@@ -54,6 +61,8 @@ class ShadowPhotonMap {
   PhotonArray<ShadowPhoton> photons_;  // every light's, by light
   std::vector<PerLight> lights_;
   size_t size_ = 0;
+  size_t leafSize_ = 48;
+  bool treesBuilt_ = false;
 };
 
 class IndirectPhotonMap {

@@ -105,6 +105,7 @@ bool buildStage(Emission& e, const MapCounts& wanted, bool consume, PhotonStage&
   Stopwatch clock;
   MapBuildOptions build;
   build.progress = progress;
+  build.shadowTrees = false;  // a frame that votes exactly builds them (renderFrame)
   const size_t photons = shadow.size() + indirect.size() + global.size() + caustic.size();
   progressExpect(progress, 2 * photons);
   auto buildShadow = [&] { stage.shadow.build(std::move(shadow), e.numLights, build); };

@@ -194,6 +194,14 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
         buildLookup(scene, model, cache, nullptr, nullptr, ctx, stats, options.progress, lookups);
       }
     }
+    // A gate with no precomputed verdicts votes over the shadow map's KD-trees, which
+    // the photon stage leaves out until a frame reads them.
+    if (pass == 0 && needsLight && ctx.choices.gate && ctx.shadowMap && !(ctx.lookup && ctx.lookup->hasGate()) &&
+        !stage.shadow.hasTrees()) {
+      Stopwatch trees;
+      stage.shadow.buildTrees();
+      stats.time.buildMaps += trees.seconds();
+    }
     Stopwatch phase;
     if (options.tracePixel) {
       result.rayTree = tracePixel(ctx, options.tracePixel->first, options.tracePixel->second);
