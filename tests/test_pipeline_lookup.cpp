@@ -51,8 +51,9 @@ TEST_P(PrecomputedLookup, WithinTheExactPathsOwnNoise) {
   RenderResult pre = render(c, {"photons.lookup=precomputed"});
   ASSERT_GT(pre.stats.cacheRecords, 0u);
   EXPECT_GT(pre.stats.rays.cacheLookups, 0u);
-  // Fallbacks to an exact gather are rare: a few points without a cell nearby.
-  EXPECT_LE(pre.stats.rays.cacheFallbacks * 100, pre.stats.rays.cacheLookups);
+  // Fallbacks to a cell computed on first use are rare: a few points without a cell
+  // of the light map nearby (2% on the showcase, with or without the gate's cells).
+  EXPECT_LE(pre.stats.rays.cacheFallbacks * 25, pre.stats.rays.cacheLookups);
   for (const Color& p : pre.image.pixels) ASSERT_TRUE(isFinite(p));
   const double error = rmse(pre.image, exact.image), noise = rmse(other.image, exact.image);
   RecordProperty("rmse", std::to_string(error));

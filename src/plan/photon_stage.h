@@ -86,12 +86,14 @@ struct PhotonStage {
   std::vector<std::string> notes;
   // Precomputed lookups built from these maps (camera-independent), and the
   // parameters they were built with: a later frame with equal ones reuses them.
-  LookupCache lookup;
-  std::optional<LookupCacheParams> lookupKey;
-  double lookupSeconds = 0.0;  // what building `lookup` took
+  // `lookup` holds the light map's estimate (and the gate's verdicts, where they share
+  // cells); `gateLookup` the gate's verdicts where they want finer cells than it.
+  LookupCache lookup, gateLookup;
+  std::optional<LookupCacheParams> lookupKey, gateLookupKey;
+  double lookupSeconds = 0.0;  // what building the lookups took
   size_t bytes() const {
     return shadow.memoryBytes() + indirect.memoryBytes() + caustic.memoryBytes() + global.memoryBytes() +
-           lookup.memoryBytes();
+           lookup.memoryBytes() + gateLookup.memoryBytes();
   }
 };
 

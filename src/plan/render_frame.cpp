@@ -26,46 +26,66 @@ const IndirectPhotonMap* lightMap(const ShadingContext& ctx, MapKind k) {
 
 // photons.lookup = precomputed: the gate verdicts and the model's indirect estimate
 // (IndirectLookup), once per cell, from the maps just built, with the pass's gathers
-// (passGathers) for the global map.
-void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& cache,
-                 std::optional<LookupCacheParams>* cachedKey, double* builtSeconds, ShadingContext& ctx,
-                 RenderStats& stats, ProgressPhases* meter, const std::string& phaseName) {
+// (passGathers) for the global map. The estimate keeps its own cells; where the gate
+// wants finer ones (a penumbra is narrower than a sparse light map's cells), its
+// verdicts get a cache of their own, so the estimate is the same with or without it.
+// A null key: build without keeping the parameters.
+void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& cache, LookupCache& gateCache,
+                 std::optional<LookupCacheParams>* cachedKey, std::optional<LookupCacheParams>* gateKey,
+                 double* builtSeconds, ShadingContext& ctx, RenderStats& stats, ProgressPhases* meter,
+                 const std::string& phaseName) {
   const PhotonSettings& ps = scene.photons;
   Stopwatch phase;
   const IndirectLookup recipe = model.indirectLookup(ps);
   const IndirectPhotonMap* map = lightMap(ctx, recipe.map);
+  const bool gate = ctx.choices.gate && ctx.choices.shadows && ctx.shadowMap;
+  if (!gate && !map) return;  // nothing to precompute
   LookupCacheParams params;
-  params.gate = ctx.choices.gate && ctx.choices.shadows && ctx.shadowMap;
+  params.gate = gate;
   params.gateParams = gateParamsFor(scene, ctx.choices.integrator->glass);
   if (map) params.indirect = recipe.kind;
-  if (!params.gate && !map) return;  // nothing to precompute
   const bool global = recipe.map == MapKind::Global;
   params.k = global ? ctx.globalK : recipe.k;
   params.maxRadius = recipe.maxRadius;
   params.radius = global ? ctx.globalRadius : 0.0f;
   params.cellSize = params.k == 0 ? cacheCellSize(params.radius, recipe.k, ps.lookupCell)
                                   : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
-  if (params.gate && map) {
-    // Gate verdicts need cells as fine as the shadow photons allow (a penumbra is
-    // narrower than a sparse light map's cells); the estimate is then kept per finer cell.
+  LookupCacheParams gateOnly;
+  bool split = false;
+  if (gate && map) {
     const float gateCell = cacheCellSize(nullptr, 0, ctx.shadowMap, ps.kShadow, ps.lookupCell);
-    if (gateCell > 0.0f && (!(params.cellSize > 0.0f) || gateCell < params.cellSize)) params.cellSize = gateCell;
+    if (gateCell > 0.0f && (!(params.cellSize > 0.0f) || gateCell < params.cellSize)) {
+      split = params.cellSize > 0.0f;
+      gateOnly = params;
+      gateOnly.indirect = CachedIndirect::None;
+      gateOnly.cellSize = gateCell;
+      if (split) params.gate = false;
+      else params.cellSize = gateCell;
+    }
   }
-  if (!cachedKey || !*cachedKey || !sameLookup(**cachedKey, params)) {
-    if (cachedKey) cachedKey->reset();  // a build that throws leaves no key to a half-built cache
-    params.progress = beginPhase(meter, phaseName);
-    cache.build(params.gate ? ctx.shadowMap : nullptr, map, params);
-    endPhase(meter);
-    params.progress = nullptr;
-    if (cachedKey) *cachedKey = params;
-    if (builtSeconds) *builtSeconds = phase.seconds();
-  }
+  const bool fresh = !(cachedKey && *cachedKey && sameLookup(**cachedKey, params));
+  const bool freshGate = split && !(gateKey && *gateKey && sameLookup(**gateKey, gateOnly));
+  ProgressCounter* progress = fresh || freshGate ? beginPhase(meter, phaseName) : nullptr;
+  auto build = [&](const LookupCacheParams& wanted, LookupCache& into, std::optional<LookupCacheParams>* key) {
+    if (key) key->reset();  // a build that throws leaves no key to a half-built cache
+    LookupCacheParams p = wanted;
+    p.progress = progress;
+    into.build(p.gate ? ctx.shadowMap : nullptr, p.indirect != CachedIndirect::None ? map : nullptr, p);
+    if (key) *key = wanted;
+  };
+  if (fresh) build(params, cache, cachedKey);
+  if (freshGate) build(gateOnly, gateCache, gateKey);
+  if (fresh || freshGate) endPhase(meter);
+  if (builtSeconds) *builtSeconds = phase.seconds();
   ctx.lookup = cache.empty() ? nullptr : &cache;
+  ctx.gateLookup = split ? (gateCache.empty() ? nullptr : &gateCache) : ctx.lookup;
+  if (!ctx.lookup) ctx.lookup = ctx.gateLookup;
   stats.time.precompute += phase.seconds();
-  stats.cacheRecords = cache.records();
-  stats.cacheSplits = cache.splitLines();
-  stats.cacheCell = cache.cellSize();
-  stats.cacheBytes = cache.memoryBytes();
+  const LookupCache* g = ctx.gateLookup ? ctx.gateLookup : ctx.lookup;
+  stats.cacheRecords = cache.records() + (split ? gateCache.records() : 0);
+  stats.cacheSplits = g ? g->splitLines() : 0;
+  stats.cacheCell = g ? g->cellSize() : cache.cellSize();
+  stats.cacheBytes = cache.memoryBytes() + (split ? gateCache.memoryBytes() : 0);
 }
 
 void addStage(const PhotonStage& s, RenderStats& stats) {
@@ -155,7 +175,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
   const Stopwatch wall;
   const std::function<double()> clock = options.clock ? options.clock : [&wall] { return wall.seconds(); };
 
-  LookupCache cache;
+  LookupCache cache, gateCache;
   PhotonStage later;  // the maps of physical passes >= 1 (fresh photons each)
   RenderOptions render;
   render.aov = aov;
@@ -188,15 +208,15 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     if (needsLight && precomputed && (pass == 0 || fresh)) {
       const std::string lookups = phaseName("lookups", pass, passes);
       if (pass == 0) {
-        buildLookup(scene, model, stage.lookup, &stage.lookupKey, &stage.lookupSeconds, ctx, stats, options.progress,
-                    lookups);
+        buildLookup(scene, model, stage.lookup, stage.gateLookup, &stage.lookupKey, &stage.gateLookupKey,
+                    &stage.lookupSeconds, ctx, stats, options.progress, lookups);
       } else {
-        buildLookup(scene, model, cache, nullptr, nullptr, ctx, stats, options.progress, lookups);
+        buildLookup(scene, model, cache, gateCache, nullptr, nullptr, nullptr, ctx, stats, options.progress, lookups);
       }
     }
     // A gate with no precomputed verdicts votes over the shadow map's KD-trees, which
     // the photon stage leaves out until a frame reads them.
-    if (pass == 0 && needsLight && ctx.choices.gate && ctx.shadowMap && !(ctx.lookup && ctx.lookup->hasGate()) &&
+    if (pass == 0 && needsLight && ctx.choices.gate && ctx.shadowMap && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
         !stage.shadow.hasTrees()) {
       Stopwatch trees;
       stage.shadow.buildTrees();

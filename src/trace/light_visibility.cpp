@@ -91,6 +91,7 @@ const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
   if (!ctx.lookup) return nullptr;
   ++ts.counts.cacheLookups;
   storage = ctx.lookup->find(s.position, s.ng);
+  if (ctx.gateLookup && ctx.gateLookup != ctx.lookup) storage.verdicts = ctx.gateLookup->find(s.position, s.ng).verdicts;
   return &storage;
 }
 
@@ -99,7 +100,7 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
   if (!ctx.choices.gate || !ctx.shadowMap || !ctx.shadowMap->hasPhotons(lightIndex)) return GateVerdict::Mixed;
   ++ts.counts.gateQueries;
   GateVerdict v;
-  const bool precomputed = cached && ctx.lookup->hasGate();
+  const bool precomputed = cached && ctx.gateLookup && ctx.gateLookup->hasGate();
   if (precomputed) {
     // The precomputed verdict of the point's cell; no cell there: a shadow ray.
     v = cached->verdicts ? static_cast<GateVerdict>(cached->verdicts[lightIndex]) : GateVerdict::Mixed;
@@ -124,8 +125,8 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
 }
 
 const uint8_t* gateStrata(const ShadingContext& ctx, uint32_t li, const CachedAnswer* cached) {
-  if (!cached || !cached->verdicts || !ctx.choices.gate || !ctx.lookup->hasGate()) return nullptr;
-  if (ctx.lookup->strataOf(li) <= 1) return nullptr;
+  if (!cached || !cached->verdicts || !ctx.choices.gate || !ctx.gateLookup || !ctx.gateLookup->hasGate()) return nullptr;
+  if (ctx.gateLookup->strataOf(li) <= 1) return nullptr;
   return cached->verdicts;
 }
 

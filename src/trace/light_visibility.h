@@ -144,10 +144,10 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
       }
       if (v == GateVerdict::Mixed) {
         if (const uint8_t* row = gateStrata(ctx, li, cached)) {
-          strata.emplace(*ctx.lookup, row, li, s.position);
+          strata.emplace(*ctx.gateLookup, row, li, s.position);
           // A quad whose every stratum its cell decides alike here is lit or shadowed
           // here as a whole (a sphere's strata include its far side, which no sample meets).
-          if (light.type == LightType::Quad) v = strata->common(ctx.lookup->strataOf(li));
+          if (light.type == LightType::Quad) v = strata->common(ctx.gateLookup->strataOf(li));
           if (note && v != GateVerdict::Mixed) *note += v == GateVerdict::Lit ? "; every stratum lit here" : "; every stratum shadowed here";
           if (v == GateVerdict::Shadowed) {
             ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);

@@ -41,9 +41,11 @@ struct ShadingContext {
   const ShadowPhotonMap* shadowMap = nullptr;      // null: every shadow test is a ray
   const IndirectPhotonMap* indirectMap = nullptr;  // null: the ambient term is used
   const TextureLookup* textures = nullptr;
-  // photons.lookup = precomputed: gate verdicts and the indirect (classic) or global
-  // (physical, Lambertian part) estimate read from here, one query per shading point.
+  // photons.lookup = precomputed: the indirect (classic) or global (physical,
+  // Lambertian part) estimate read from `lookup`, the gate verdicts from `gateLookup`
+  // (the same cache, or one of finer cells); one query of each per shading point.
   const LookupCache* lookup = nullptr;
+  const LookupCache* gateLookup = nullptr;
   // Physical model: caustic and global photon maps, each estimate's PhotonGather
   // (gather/radiance_estimate.h): the k nearest (a progressive pass's k shrinks)
   // within the radius (0: any distance), or with k = 0 every photon within it.
