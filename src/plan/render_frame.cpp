@@ -76,7 +76,7 @@ void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& c
   if (fresh) build(params, cache, cachedKey);
   if (freshGate) build(gateOnly, gateCache, gateKey);
   if (fresh || freshGate) endPhase(meter);
-  if (builtSeconds) *builtSeconds = phase.seconds();
+  if (builtSeconds && (fresh || freshGate)) *builtSeconds = phase.seconds();
   ctx.lookup = cache.empty() ? nullptr : &cache;
   ctx.gateLookup = split ? (gateCache.empty() ? nullptr : &gateCache) : ctx.lookup;
   if (!ctx.lookup) ctx.lookup = ctx.gateLookup;
@@ -175,7 +175,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
   const Stopwatch wall;
   const std::function<double()> clock = options.clock ? options.clock : [&wall] { return wall.seconds(); };
 
-  LookupCache cache, gateCache;
+  LookupCache cache;
   PhotonStage later;  // the maps of physical passes >= 1 (fresh photons each)
   RenderOptions render;
   render.aov = aov;
@@ -211,7 +211,9 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
         buildLookup(scene, model, stage.lookup, stage.gateLookup, &stage.lookupKey, &stage.gateLookupKey,
                     &stage.lookupSeconds, ctx, stats, options.progress, lookups);
       } else {
-        buildLookup(scene, model, cache, gateCache, nullptr, nullptr, nullptr, ctx, stats, options.progress, lookups);
+        // The gate's photons are pass 0's for every pass: so are its own cells.
+        buildLookup(scene, model, cache, stage.gateLookup, nullptr, &stage.gateLookupKey, nullptr, ctx, stats,
+                    options.progress, lookups);
       }
     }
     // A gate with no precomputed verdicts votes over the shadow map's KD-trees, which
