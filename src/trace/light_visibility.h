@@ -138,23 +138,18 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
       if (maxComponent(f) <= 0.0f) continue;
       asked = true;
       v = gateVerdict(ctx, s, li, cached, ts, note);
+      const uint8_t* row = v == GateVerdict::Mixed ? gateStrata(ctx, li, cached) : nullptr;
+      if (row) {
+        strata.emplace(*ctx.gateLookup, row, li, s.position);
+        // A quad whose every stratum its cell decides alike here is lit or shadowed
+        // here as a whole (a sphere's strata include its far side, which no sample meets).
+        if (light.type == LightType::Quad) v = strata->common(ctx.gateLookup->strataOf(li));
+        if (note && v != GateVerdict::Mixed) *note += v == GateVerdict::Lit ? "; every stratum lit here" : "; every stratum shadowed here";
+        if (v != GateVerdict::Mixed) strata.reset();
+      }
       if (v == GateVerdict::Shadowed) {
         ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
         return Color(0.0f);
-      }
-      if (v == GateVerdict::Mixed) {
-        if (const uint8_t* row = gateStrata(ctx, li, cached)) {
-          strata.emplace(*ctx.gateLookup, row, li, s.position);
-          // A quad whose every stratum its cell decides alike here is lit or shadowed
-          // here as a whole (a sphere's strata include its far side, which no sample meets).
-          if (light.type == LightType::Quad) v = strata->common(ctx.gateLookup->strataOf(li));
-          if (note && v != GateVerdict::Mixed) *note += v == GateVerdict::Lit ? "; every stratum lit here" : "; every stratum shadowed here";
-          if (v == GateVerdict::Shadowed) {
-            ts.counts.shadowRaysAvoided += static_cast<uint64_t>(n - j);
-            return Color(0.0f);
-          }
-          if (v == GateVerdict::Lit) strata.reset();
-        }
       }
     }
     if (v == GateVerdict::Lit && !closedTried) {
