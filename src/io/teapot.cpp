@@ -103,7 +103,9 @@ struct RawVertex {
 };
 
 // Groups positions within kWeldTolerance: hash on a fine grid, search the 27
-// neighbouring cells so points straddling a cell border still meet.
+// neighbouring cells so points straddling a cell border still meet. Only a patch's
+// border can meet another patch (a patch's own grid points lie far apart), so
+// inner points join as classes of their own without a search.
 class PositionWelder {
  public:
   int classOf(const DVec3& p) {
@@ -117,12 +119,16 @@ class PositionWelder {
           for (int id : it->second)
             if (glm::length(representatives_[id] - p) < kWeldTolerance) return id;
         }
-    int id = static_cast<int>(representatives_.size());
-    representatives_.push_back(p);
+    const int id = ownClass(p);
     cells_[hash(key[0], key[1], key[2])].push_back(id);
     return id;
   }
+  int ownClass(const DVec3& p) {
+    representatives_.push_back(p);
+    return static_cast<int>(representatives_.size()) - 1;
+  }
   const DVec3& representative(int id) const { return representatives_[id]; }
+  size_t classes() const { return representatives_.size(); }
 
  private:
   static uint64_t hash(int64_t x, int64_t y, int64_t z) {
@@ -131,6 +137,18 @@ class PositionWelder {
   }
   std::unordered_map<uint64_t, std::vector<int>> cells_;
   std::vector<DVec3> representatives_;
+};
+
+// The members of each class, as one array sorted by class (a class's members in
+// their order of appearance): offsets[c] .. offsets[c + 1] index into members.
+struct ClassMembers {
+  std::vector<uint32_t> offsets, members;
+  ClassMembers(const std::vector<int>& classOf, size_t classes) : offsets(classes + 1, 0), members(classOf.size()) {
+    for (int c : classOf) ++offsets[c + 1];
+    for (size_t c = 0; c < classes; ++c) offsets[c + 1] += offsets[c];
+    std::vector<uint32_t> next(offsets.begin(), offsets.end() - 1);
+    for (size_t r = 0; r < classOf.size(); ++r) members[next[classOf[r]]++] = static_cast<uint32_t>(r);
+  }
 };
 
 }  // namespace
@@ -159,32 +177,37 @@ TriangleMesh makeTeapot(int subdivisions) {
   // the agreeing normals in its group, so shared patch edges shade seamlessly.
   PositionWelder welder;
   std::vector<int> classOf(raw.size());
-  std::vector<std::vector<int>> members;
   for (size_t r = 0; r < raw.size(); ++r) {
-    classOf[r] = welder.classOf(raw[r].position);
-    if (classOf[r] >= static_cast<int>(members.size())) members.resize(classOf[r] + 1);
-    members[classOf[r]].push_back(static_cast<int>(r));
+    const bool border = raw[r].i == 0 || raw[r].j == 0 || raw[r].i == n || raw[r].j == n;
+    classOf[r] = border ? welder.classOf(raw[r].position) : welder.ownClass(raw[r].position);
   }
+  const ClassMembers groups(classOf, welder.classes());
   std::vector<DVec3> smoothNormal(raw.size());
   for (size_t r = 0; r < raw.size(); ++r) {
     DVec3 sum(0.0);
-    for (int other : members[classOf[r]])
-      if (glm::dot(raw[other].normal, raw[r].normal) > kSmoothCos) sum += raw[other].normal;
+    for (uint32_t m = groups.offsets[classOf[r]]; m < groups.offsets[classOf[r] + 1]; ++m) {
+      const DVec3& other = raw[groups.members[m]].normal;
+      if (glm::dot(other, raw[r].normal) > kSmoothCos) sum += other;
+    }
     smoothNormal[r] = glm::normalize(sum);  // includes raw[r] itself, so non-zero
   }
 
   // 3. Merge vertices that agree in position, uv and normal. Patch uvs differ
   // across patch edges, so those stay split (the texture must not wrap back
-  // across a triangle); the normals above already hide the split.
+  // across a triangle); the normals above already hide the split. A vertex is
+  // compared with the earlier members of its class that began a vertex.
   std::vector<uint32_t> vertexOf(raw.size());
-  std::vector<std::vector<uint32_t>> byClass(members.size());
   std::vector<int> firstRaw;
   for (size_t r = 0; r < raw.size(); ++r) {
     uint32_t found = UINT32_MAX;
-    for (uint32_t candidate : byClass[classOf[r]]) {
-      const RawVertex& c = raw[firstRaw[candidate]];
+    for (uint32_t m = groups.offsets[classOf[r]]; m < groups.offsets[classOf[r] + 1]; ++m) {
+      const uint32_t earlier = groups.members[m];
+      if (earlier >= r) break;
+      const uint32_t candidate = vertexOf[earlier];
+      if (static_cast<uint32_t>(firstRaw[candidate]) != earlier) continue;  // merged into another
+      const RawVertex& c = raw[earlier];
       if (c.i == raw[r].i && c.j == raw[r].j &&
-          glm::dot(smoothNormal[firstRaw[candidate]], smoothNormal[r]) > 1.0 - 1e-9) {
+          glm::dot(smoothNormal[earlier], smoothNormal[r]) > 1.0 - 1e-9) {
         found = candidate;
         break;
       }
@@ -192,7 +215,6 @@ TriangleMesh makeTeapot(int subdivisions) {
     if (found == UINT32_MAX) {
       found = static_cast<uint32_t>(firstRaw.size());
       firstRaw.push_back(static_cast<int>(r));
-      byClass[classOf[r]].push_back(found);
     }
     vertexOf[r] = found;
   }
