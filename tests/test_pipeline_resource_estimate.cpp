@@ -1,6 +1,7 @@
 // The resource estimate against what renders actually store: an upper bound on the
 // photon maps within 2x on the Cornell box, a closed many-bounce box and the
-// physical model; gallery scenes always admitted; sizes parsed; long jobs told.
+// physical model; the lookup cache within 0.8-2x; gallery scenes always admitted;
+// sizes parsed; long jobs told.
 #include "plan/job_admission.h"
 #include "plan/memory_limit.h"
 #include "plan/pipeline.h"
@@ -74,6 +75,24 @@ TEST(ResourceEstimate, PhotonBytesBoundThePhysicalMaps) {
   const RenderResult r = render(kScenes + "cornell_physical.json",
                                 {"camera.width=16", "camera.height=16", "photons.passes=1"});
   expectBounds(r, "cornell_physical");
+}
+
+// The lookup cache's records follow its cells (a multiple of the gather radius):
+// the estimate is within 0.8-2x of what the cache holds, with the gate's verdicts
+// per stratum and split lines, and with the physical model's two caches.
+void expectCacheNear(const RenderResult& r, const char* what) {
+  const double actual = double(r.stats.cacheBytes), estimate = r.estimate.cacheBytes;
+  ASSERT_GT(actual, 0.0) << what;
+  EXPECT_GE(estimate, 0.8 * actual) << what << ": " << estimate << " estimated, " << actual << " held";
+  EXPECT_LE(estimate, 2.0 * actual) << what << ": " << estimate << " estimated, " << actual << " held";
+}
+
+TEST(ResourceEstimate, LookupCacheBytesFollowItsCells) {
+  expectCacheNear(render(kScenes + "fig14_cornell.json",
+                         {"camera.width=32", "camera.height=32", "photons.gate=on", "photons.lookup=precomputed"}),
+                  "fig14, indirect and gate cells");
+  expectCacheNear(render(kScenes + "soft_shadows_physical.json", {"camera.width=32", "camera.height=20", "photons.gate=on"}),
+                  "soft_shadows_physical, global and gate caches");
 }
 
 TEST(ResourceEstimate, EveryGallerySceneIsAdmittedWithRoomToSpare) {

@@ -46,11 +46,23 @@ float cacheCellSize(const IndirectPhotonMap* indirect, int k, const ShadowPhoton
   return 0.0f;
 }
 
+namespace {
+// The cell in units of r: k photons within r put k h^2 / (pi r^2) of them in a cell
+// of h, so at least minPhotonsPerCell where h >= r sqrt(minPhotonsPerCell pi / k).
+float cellScale(int k, float scale, float minPhotonsPerCell) {
+  return std::max(scale, std::sqrt(minPhotonsPerCell * kPi / static_cast<float>(k)));
+}
+}  // namespace
+
 float cacheCellSize(float r, int k, float scale, float minPhotonsPerCell) {
   if (!(r > 0.0f) || k <= 0) return 0.0f;
-  // k photons within r: a cell of h holds k h^2 / (pi r^2) of them, >= minPhotonsPerCell.
-  const float minScale = std::sqrt(minPhotonsPerCell * kPi / static_cast<float>(k));
-  return r * std::max(scale, minScale);
+  return r * cellScale(k, scale, minPhotonsPerCell);
+}
+
+float photonsPerCacheCell(int k, float scale, float minPhotonsPerCell) {
+  if (k <= 0) return minPhotonsPerCell;
+  const float h = cellScale(k, scale, minPhotonsPerCell);
+  return static_cast<float>(k) * h * h / kPi;
 }
 
 uint64_t LookupCache::keyOf(int64_t x, int64_t y, int64_t z, unsigned bucket) const {
@@ -302,6 +314,16 @@ const uint8_t* LookupCache::verdictsAround(const int64_t* own, const Vec3& cellO
     }
   }
   return nearest >= 0 ? &verdicts_[size_t(nearest) * rowWidth_] : nullptr;
+}
+
+double LookupCache::estimateBytes(double records, size_t verdictColumns, double splitsPerRecord, bool indirect) {
+  // insertKeys: 2 to 4 slots a record (a power of two), about 2 / ln 2 on average.
+  double perRecord = 3.0 * sizeof(Slot);
+  if (verdictColumns > 0)
+    perRecord += static_cast<double>(verdictColumns) + sizeof(uint32_t) + splitsPerRecord * sizeof(StratumSplit);
+  // makeLazyTable: records / 8 slots, doubled up to a power of two, at least 4096.
+  const double lazy = indirect ? std::max(4096.0, records / 4.0) * sizeof(LazySlot) : 0.0;
+  return records * perRecord + lazy;
 }
 
 size_t LookupCache::memoryBytes() const {

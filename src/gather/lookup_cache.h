@@ -56,6 +56,9 @@ float cacheCellSize(const IndirectPhotonMap* indirect, int k, const ShadowPhoton
                     int kShadow, float scale);
 // The same from a known gather radius r holding about k photons.
 float cacheCellSize(float r, int k, float scale, float minPhotonsPerCell = kMinPhotonsPerCell);
+// How many photons such a cell holds where they lie on a plane, k h^2 / (pi r^2):
+// what a cache's record count follows (the resource estimate).
+float photonsPerCacheCell(int k, float scale, float minPhotonsPerCell = kMinPhotonsPerCell);
 
 class LookupCache {
  public:
@@ -106,6 +109,10 @@ class LookupCache {
   size_t numLights() const { return numLights_; }
   float cellSize() const { return cell_; }
   size_t memoryBytes() const;
+  // What a cache of `records` records costs: per record its hash slots (2 to 4), its
+  // row of verdicts (`verdictColumns`: a light's and each stratum's, 0 without the
+  // gate) with `splitsPerRecord` split lines; with an indirect estimate, the lazy table.
+  static double estimateBytes(double records, size_t verdictColumns, double splitsPerRecord, bool indirect);
 
  private:
   // A probe touches one slot: the indirect value lives in it, not behind the index.

@@ -6,6 +6,8 @@
 #include "plan/gate_decision.h"
 #include "geometry/trace_scene.h"
 #include "core/light_sample.h"
+#include "core/light_strata.h"
+#include "gather/lookup_cache.h"
 #include "core/photon.h"
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
@@ -142,8 +144,22 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   if (p.photonPasses > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
   const PhotonSettings& ps = scene.photons;
   if (options.precomputed) {
-    const double k = std::max(1, transportOf(scene).indirectLookup(ps).k);
-    e.cacheBytes = 2.0 * (indirect + global + shadow) / k * kCacheBytesPerRecord;
+    // A record per occupied cell, whose size is a multiple of the typical gather
+    // radius: the lookup map's cells and the gate's (finer ones get a cache of their
+    // own; summed, an upper bound either way), each with the gate's row of verdicts.
+    const IndirectLookup lookup = transportOf(scene).indirectLookup(ps);
+    const double lookupPhotons = n[lookup.map];
+    double records = lookupPhotons / (photonsPerCacheCell(std::max(1, lookup.k), ps.lookupCell) * kCacheCellFill);
+    size_t columns = 0, stratified = 0;
+    if (shadow > 0.0) {
+      records += shadow / (photonsPerCacheCell(ps.kShadow, ps.lookupCell, kMinPhotonsPerGateCell) * kGateCellFill);
+      for (const Light& l : scene.lights) {
+        columns += 1 + static_cast<size_t>(lightStrata(l));
+        stratified += lightStrata(l) > 1;
+      }
+    }
+    e.cacheBytes = LookupCache::estimateBytes(records, columns, kSplitsPerStratifiedLight * double(stratified),
+                                              lookupPhotons > 0.0);
   }
   const double pixels = double(scene.camera.width) * scene.camera.height;
   // The frame; with progressive passes a second one to sum them, their spread and the
