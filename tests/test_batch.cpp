@@ -1,7 +1,7 @@
 // penumbra batch against independent renders: every job's image equals a plain
 // runRender of the same scene and overrides, camera variants share one photon
 // build, layered EXRs hold every view, reruns skip up-to-date jobs, a failing job
-// does not stop the batch, and shards split jobs stably.
+// does not stop the batch, shards split jobs stably, and outputs carry a render's header.
 #include "cli/batch_jobs.h"
 #include "plan/batch_run.h"
 #include "plan/pipeline.h"
@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 #include <filesystem>
+#include <map>
 
 namespace penumbra {
 namespace {
@@ -22,6 +23,16 @@ const std::string kScenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/";
 fs::path writeJobs(const testing::ScratchDir& dir, const std::string& jobs) {
   return dir.write("jobs.json", "{\"set\": [\"camera.width=40\", \"camera.height=30\", \"photons.indirect=20000\"], "
                                 "\"jobs\": [" + jobs + "]}");
+}
+
+// Every penumbra:* attribute of an image's header.
+std::map<std::string, std::string> penumbraHeader(const std::string& path) {
+  std::map<std::string, std::string> keys;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return keys;
+  for (const OIIO::ParamValue& p : in->spec().extra_attribs)
+    if (p.name().string().rfind("penumbra:", 0) == 0) keys[p.name().string()] = p.get_string();
+  return keys;
 }
 
 TEST(Batch, CameraVariantsShareOnePhotonBuildAndMatchStandaloneRenders) {
@@ -48,6 +59,11 @@ TEST(Batch, CameraVariantsShareOnePhotonBuildAndMatchStandaloneRenders) {
     runRender(alone);
     const ImageError e = compareImages(readImage(job.outputs[0].path), readImage(alone.outputPath));
     EXPECT_EQ(e.maxError, 0.0) << job.name;
+    // Its header says what the render's does (every setting), and names the job.
+    std::map<std::string, std::string> header = penumbraHeader(job.outputs[0].path);
+    EXPECT_EQ(header.erase("penumbra:job"), 1u) << job.name;
+    EXPECT_EQ(header, penumbraHeader(alone.outputPath)) << job.name;
+    EXPECT_GT(header.count("penumbra:photons.indirect"), 0u) << job.name;
   }
   // Unchanged jobs are skipped; --force renders them again.
   const BatchOutcome again = runBatch(req);
@@ -79,6 +95,12 @@ TEST(Batch, SeveralViewsGoIntoOneLayeredExr) {
   alone.outputPath = (dir / "beauty.exr").string();
   runRender(alone);
   EXPECT_EQ(compareImages(readImage((dir / "all.exr").string()), readImage(alone.outputPath)).maxError, 0.0);
+  // One header for the three layers: the beauty's settings, the layers named in order.
+  const std::map<std::string, std::string> header = penumbraHeader((dir / "all.exr").string());
+  ASSERT_GT(header.count("penumbra:aov"), 0u);
+  EXPECT_EQ(header.at("penumbra:aov"), "beauty,depth,normal");
+  EXPECT_EQ(header.at("penumbra:spp"), penumbraHeader(alone.outputPath).at("penumbra:spp"));
+  EXPECT_EQ(header.at("penumbra:error"), penumbraHeader(alone.outputPath).at("penumbra:error"));
 }
 
 TEST(Batch, ABadJobIsNamedOrSkippedWithKeepGoing) {

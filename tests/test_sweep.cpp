@@ -123,6 +123,11 @@ TEST(Sweep, RunsEqualStandaloneRendersAndRerunsResume) {
     }
     EXPECT_NEAR(row.rmse, compareImages(swept, reference).rmse, 1e-3 * row.rmse + 1e-6) << row.id;
     EXPECT_EQ(row.reference, row.id == "photons=2e4 k=40 spp=2");
+    // Its header says what the lone render's does, and which run it is.
+    const std::string runPath = (dir / row.image).string(), alonePath = (dir / "alone.exr").string();
+    EXPECT_EQ(readImageAttribute(runPath, "penumbra:sweep_run"), row.id);
+    for (const char* key : {"penumbra:settings", "penumbra:spp", "penumbra:photons.global", "penumbra:plan"})
+      EXPECT_EQ(readImageAttribute(runPath, key), readImageAttribute(alonePath, key)) << row.id << ": " << key;
   }
   // More photons, k and samples: the cheapest run is the worst.
   EXPECT_GT(first.rows.front().rmse, first.rows[6].rmse);

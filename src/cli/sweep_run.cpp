@@ -8,6 +8,7 @@
 #include "cli/sweep_idle_knobs.h"
 #include "cli/progress_line.h"
 #include "plan/cpu_report.h"
+#include "plan/image_metadata.h"
 #include "plan/render_session.h"
 #include "core/error.h"
 #include "core/error_estimate.h"
@@ -302,10 +303,14 @@ class Sweep {
     row.worstRmse = err.worstRmse;
     row.noiseRmse = st.error.known() ? st.error.noiseRmse : -1.0;
     row.image = "runs/" + run.slug + ".exr";
-    const ImageMetadata meta = {{"penumbra:sweep_run", run.id}};
-    writeImage((fs::path(req_.outDir) / row.image).string(), result.image, meta);
+    // A run's image says what a render's would, and which run it is.
+    const std::string runPath = (fs::path(req_.outDir) / row.image).string();
+    ImageMetadata meta = renderMetadata(p.job.scene, p.job.plan, st, p.job.viewName, runPath);
+    meta.emplace_back("penumbra:sweep_run", run.id);
+    writeImage(runPath, result.image, meta);
     if (row.reference) {
-      writeImage((fs::path(req_.outDir) / "reference.exr").string(), result.image, {{"penumbra:sweep_reference", run.id}});
+      meta.back() = {"penumbra:sweep_reference", run.id};
+      writeImage((fs::path(req_.outDir) / "reference.exr").string(), result.image, meta);
     }
     const CpuTiming cpu = clock.timing(session_.options().threads, spentBefore, cpuBefore);
     row.spent = cpu.wallSeconds;

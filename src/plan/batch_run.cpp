@@ -3,6 +3,7 @@
 // rendered from the same maps.
 #include "plan/batch_run.h"
 #include "plan/cpu_report.h"
+#include "plan/image_metadata.h"
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
 #include "core/error.h"
@@ -129,22 +130,34 @@ BatchOutcome runBatch(const BatchRequest& req) {
           ++out.photonReuses;
         }
         std::map<std::string, std::vector<std::pair<std::string, Image>>> files;
-        ImageMetadata meta = {{"penumbra:job", p.stamp}, {"penumbra:scene_file", fs::path(p.job->scene).filename().string()}};
+        std::map<std::string, ImageMetadata> headers;
+        std::map<std::string, bool> headerReadsLight;
         for (size_t v = 0; v < p.views.size(); ++v) {
           RenderResult result = session.frame(p.views[v], stage);
-          // The first view that reads light says its error and, under a budget, its passes.
-          const RenderStats& st = result.stats;
-          if (meta.size() == 2 && st.error.source != ErrorSource::None) {
-            meta.emplace_back("penumbra:error", describeError(st.error));
-            if (!st.budget.empty()) {
-              meta.emplace_back("penumbra:budget", fmt::format("{}: {} after {} passes", st.budget, st.budgetStop, st.passes));
-            }
+          // A file's header is a render's (the same keys, error and budget), from its
+          // first view that reads light, else its first view; and the job's stamp.
+          const std::string& path = p.job->outputs[v].path;
+          const bool readsLight = result.stats.error.source != ErrorSource::None;
+          if (!headers.count(path) || (readsLight && !headerReadsLight[path])) {
+            ImageMetadata meta = renderMetadata(p.views[v].scene, p.views[v].plan, result.stats, p.views[v].viewName, path);
+            meta.emplace_back("penumbra:job", p.stamp);
+            headers[path] = std::move(meta);
+            headerReadsLight[path] = readsLight;
           }
-          files[p.job->outputs[v].path].push_back({p.views[v].viewName, std::move(result.image)});
+          files[path].push_back({p.views[v].viewName, std::move(result.image)});
         }
         for (auto& [path, layers] : files) {
-          if (layers.size() == 1) writeImage(path, layers.front().second, meta);
-          else writeLayeredExr(path, layers, meta);
+          ImageMetadata& meta = headers[path];
+          if (layers.size() == 1) {
+            writeImage(path, layers.front().second, meta);
+            continue;
+          }
+          // One header for several layers: its view is theirs, named in layer order.
+          std::vector<std::string> names;
+          for (const auto& layer : layers) names.push_back(layer.first);
+          for (auto& [key, value] : meta)
+            if (key == "penumbra:aov") value = fmt::format("{}", fmt::join(names, ","));
+          writeLayeredExr(path, layers, meta);
         }
         r.status = "rendered";
         r.reused = reused.empty() ? "-" : fmt::format("{}", fmt::join(reused, "+"));

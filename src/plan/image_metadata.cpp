@@ -80,7 +80,8 @@ ImageMetadata renderMetadata(const Scene& scene, const RenderPlan& plan, const R
                      {"penumbra:error", describeError(stats.error)}};
   if (stats.error.known()) m.emplace_back("penumbra:error.noise_rmse", fmt::format("{}", stats.error.noiseRmse));
   if (stats.error.biasRmse >= 0.0) m.emplace_back("penumbra:error.bias_rmse", fmt::format("{}", stats.error.biasRmse));
-  if (!stats.budget.empty()) m.emplace_back("penumbra:budget", stats.budget + ": " + stats.budgetStop);
+  if (!stats.budget.empty())
+    m.emplace_back("penumbra:budget", fmt::format("{}: {} after {} passes", stats.budget, stats.budgetStop, stats.passes));
   if (isExr(outputPath)) addSettings(scene, plan, stats, m);
   return m;
 }
