@@ -106,7 +106,8 @@ TEST(Passes, SixteenPassesAtOneSppAntialiasAsSixteenSpp) {
   std::ofstream(file) << kEdge;
   const Image passes = render(file, {"photons.passes=16"}).image;
   const Image spp = render(file, {"camera.spp=16"}).image;
-  const Image centre = render(file, {}).image;
+  const RenderResult one = render(file, {});
+  const Image& centre = one.image;
   const CameraRays camera(loadScene(file).camera);
   std::vector<double> shares;
   for (int y = 0; y < spp.height; ++y) {
@@ -133,9 +134,14 @@ TEST(Passes, SixteenPassesAtOneSppAntialiasAsSixteenSpp) {
   }
   EXPECT_LT(between, 0.118);
   EXPECT_GT(c.rms, 0.2) << "the pixel centre should not antialias";
+  // The centres' own estimate (probes beside them) against their exact error: the
+  // image's RMSE from the covered shares (grey, so every channel alike).
+  const double exact = c.rms * kL0 * std::sqrt(double(c.count) / double(shares.size()));
+  ASSERT_EQ(one.stats.error.source, ErrorSource::Probes);
+  EXPECT_NEAR(one.stats.error.noiseRmse / exact, 1.0, 0.1) << one.stats.error.noiseRmse << " against " << exact;
   std::printf("%d edge pixels, RMS of the covered share: %.4f (16 passes at 1 spp), %.4f (16 spp), %.4f (1 pass "
-              "at 1 spp); mean error %.4f, %.4f; RMS between the first two %.4f\n",
-              s.count, p.rms, s.rms, c.rms, p.mean, s.mean, between);
+              "at 1 spp); mean error %.4f, %.4f; RMS between the first two %.4f; the centres' estimate / exact %.3f\n",
+              s.count, p.rms, s.rms, c.rms, p.mean, s.mean, between, one.stats.error.noiseRmse / exact);
 }
 
 TEST(Passes, APassSamplesTheSameWhateverPassesFollow) {

@@ -22,7 +22,12 @@ double meanOver(const Image& like, F perChannel) {
 }  // namespace
 
 std::string describeError(const ErrorEstimate& e) {
-  if (!e.known()) return "unknown (one pass of one sample: use photons.passes or camera.spp >= 2)";
+  if (!e.known()) return "unknown (nothing was rendered that reads light)";
+  if (e.source == ErrorSource::Probes) {
+    return fmt::format("~{:.3g} RMSE (noise and aliasing of the pixel centres, from probes at {} pixels); "
+                       "probes share the photon map, so its noise is not in it",
+                       e.noiseRmse, e.count);
+  }
   std::string out = fmt::format("~{:.3g} RMSE (noise, from {} {})", e.noiseRmse, e.count,
                                 e.source == ErrorSource::Passes ? "passes" : "samples per pixel");
   if (e.source == ErrorSource::Samples) out += "; samples share one photon map, so its noise is not in it";

@@ -7,12 +7,14 @@
 
 namespace penumbra {
 
-// Where an image's noise figure comes from.
-enum class ErrorSource { None, Passes, Samples };
+// Where an image's noise figure comes from: the spread of progressive passes or of a
+// pixel's samples, or for one pass of one sample (the pixel centres) probes beside it
+// (trace/probe_error.h).
+enum class ErrorSource { None, Passes, Samples, Probes };
 
 struct ErrorEstimate {
   ErrorSource source = ErrorSource::None;
-  int count = 0;  // passes, or samples per pixel, the spread is taken over
+  int count = 0;  // passes, or samples per pixel, the spread is taken over; pixels probed
   // Standard error of the image: sqrt(mean over pixels and channels of SE^2), the
   // RMSE the image has against its own converged mean. < 0: unknown.
   double noiseRmse = -1.0;

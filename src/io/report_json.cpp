@@ -29,7 +29,10 @@ std::string statsToJson(const RenderStats& s) {
   j["model"] = s.model;
   j["passes"] = s.passes;
   const ErrorEstimate& e = s.error;
-  const char* source = e.source == ErrorSource::Passes ? "passes" : e.source == ErrorSource::Samples ? "samples" : "none";
+  const char* source = e.source == ErrorSource::Passes    ? "passes"
+                       : e.source == ErrorSource::Samples ? "samples"
+                       : e.source == ErrorSource::Probes  ? "probes"
+                                                          : "none";
   j["error"] = {{"noise_rmse", e.known() ? nlohmann::json(e.noiseRmse) : nlohmann::json(nullptr)},
                 {"source", source}, {"count", e.count},
                 {"bias_rmse", e.biasRmse >= 0.0 ? nlohmann::json(e.biasRmse) : nlohmann::json(nullptr)},

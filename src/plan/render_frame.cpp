@@ -6,6 +6,7 @@
 #include "gather/radiance_estimate.h"
 #include "trace/camera.h"
 #include "trace/light_visibility.h"
+#include "trace/probe_error.h"
 #include "trace/shading.h"
 #include "core/error_estimate.h"
 #include "io/texture_gen.h"
@@ -258,12 +259,18 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     for (Color& c : result.image.pixels) c /= static_cast<float>(done);
   }
   if (needsLight && !options.tracePixel) {
-    stats.error = done > 1 ? spread.estimate() : sampleError(variance, scene.camera.spp);
-    // One pass of one sample has no spread: its error view is 0 (and says unknown).
+    // One pass of one sample (the pixel centres) has no spread: probes beside it measure
+    // its error, at every pixel for the error view.
+    // Their samples are rendering time.
+    Image probed;
+    const bool probes = done == 1 && !render.variance;
+    Stopwatch probing;
+    stats.error = done > 1  ? spread.estimate()
+                  : probes ? probeError(ctx, result.image, render.aov, options.errorView ? &probed : nullptr)
+                           : sampleError(variance, scene.camera.spp);
+    if (probes) stats.time.render += probing.seconds();
     if (options.errorView) {
-      result.image = done > 1                ? spread.standardError()
-                     : render.variance       ? standardErrorOf(variance)
-                                             : Image(result.image.width, result.image.height);
+      result.image = done > 1 ? spread.standardError() : probes ? std::move(probed) : standardErrorOf(variance);
     }
   }
   stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, stage.bytes() + later.bytes());

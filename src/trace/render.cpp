@@ -36,11 +36,6 @@ Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov
   return ctx.tracer.surface(ray, *hit, kSurfaceShadingNormal).ns;
 }
 
-Color shadeSample(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
-  Hit hit;
-  const bool found = ctx.tracer.intersect(ray, hit);
-  return shadeTraced(ctx, ray, found ? &hit : nullptr, aov, ts);
-}
 
 // A pixel's running sums: all its samples, and those of sequence B (odd samples of
 // one pass), in double: many finite samples near float's top cannot overflow.
@@ -168,6 +163,12 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
 
 }  // namespace
 
+Color shadeCameraRay(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts) {
+  Hit hit;
+  const bool found = ctx.tracer.intersect(ray, hit);
+  return shadeTraced(ctx, ray, found ? &hit : nullptr, aov, ts);
+}
+
 Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCounts& counts) {
   const Camera& cam = ctx.scene.camera;
   CameraRays camera(cam);
@@ -203,7 +204,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
             for (int s = 0; s < cam.spp; ++s) {
               const CameraSample cs = cameraSample(ctx, pixel, s);
               beginSample(ts, cs.key);
-              Color c = shadeSample(ctx, camera.generate(x + cs.offset.x, y + cs.offset.y), options.aov, ts);
+              Color c = shadeCameraRay(ctx, camera.generate(x + cs.offset.x, y + cs.offset.y), options.aov, ts);
               sums.add(c, options.aov, s % 2 == 1, ts);
             }
             storePixel(sums, options.aov, cam.spp, static_cast<size_t>(pixel), image, options.variance);

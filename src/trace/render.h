@@ -22,6 +22,10 @@ struct RenderOptions {
   Image* variance = nullptr;
 };
 
+// One sample of view `aov` along a camera ray, its first hit traced here (the caller
+// has begun the sample: beginSample).
+Color shadeCameraRay(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts);
+
 // Renders the whole image; `counts` receives the sum of every thread's counters.
 Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCounts& counts);
 
