@@ -163,8 +163,9 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   }
   const double pixels = double(scene.camera.width) * scene.camera.height;
   // The frame; with progressive passes a second one to sum them, their spread and the
-  // bias check (core/error_estimate.h); else the samples' spread; the writer's copy.
-  const int frames = p.passes > 1 ? 4 : scene.camera.spp > 1 ? 2 : 1;
+  // bias check (core/error_estimate.h); else the samples' spread, or at one sample the
+  // probes' error view (trace/probe_error.h); the writer's copy.
+  const int frames = p.passes > 1 ? 4 : 2;
   if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * frames + 12 + 6);
   double meshBytes = 0.0, tracerBytes = 0.0;
   size_t triangles = 0;

@@ -21,22 +21,16 @@ constexpr uint64_t kProbeStream = uint64_t(1) << 40;
 // share of the mean so flat pixels (shading noise alone) are picked too.
 constexpr double kFlatShare = 0.1;
 
-std::vector<double> contrastWeights(const Image& image) {
+double contrastWeight(const Image& image, int x, int y) {
   const int w = image.width, h = image.height;
-  std::vector<double> weight(image.pixels.size());
-  tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < w; ++x) {
-      const Color& c = image.pixels[size_t(y) * w + x];
-      float most = 0.0f;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int xx = std::clamp(x + dx, 0, w - 1), yy = std::clamp(y + dy, 0, h - 1);
-          most = std::max(most, maxComponent(glm::abs(image.pixels[size_t(yy) * w + xx] - c)));
-        }
-      weight[size_t(y) * w + x] = std::isfinite(most) ? double(most) * most : 0.0;
+  const Color& c = image.pixels[size_t(y) * w + x];
+  float most = 0.0f;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int xx = std::clamp(x + dx, 0, w - 1), yy = std::clamp(y + dy, 0, h - 1);
+      most = std::max(most, maxComponent(glm::abs(image.pixels[size_t(yy) * w + xx] - c)));
     }
-  });
-  return weight;
+  return std::isfinite(most) ? double(most) * most : 0.0;
 }
 
 // The mean of one jittered m x m grid of samples in pixel (x, y), false if none was finite.
@@ -65,9 +59,14 @@ bool gridMean(const ShadingContext& ctx, const CameraRays& camera, Aov aov, int 
 ErrorEstimate probeError(const ShadingContext& ctx, const Image& image, Aov aov, Image* perPixel) {
   const int w = image.width, h = image.height;
   const size_t n = image.pixels.size();
-  const std::vector<double> weight = contrastWeights(image);
+  // The weights' sum by rows, in row order (the figure must not depend on the threads);
+  // each pixel's weight is read again when it is picked, so nothing per pixel is kept.
+  std::vector<double> rowWeight(h, 0.0);
+  tbb::parallel_for(0, h, [&](int y) {
+    for (int x = 0; x < w; ++x) rowWeight[y] += contrastWeight(image, x, y);
+  });
   double sum = 0.0;
-  for (double v : weight) sum += v;
+  for (double v : rowWeight) sum += v;
   const double floor = std::max(kFlatShare * sum / double(n), 1e-300);
   const double total = sum + floor * double(n);
   const double asked = std::min(double(n), std::max(double(kMinProbes), kProbeShare * double(n)));
@@ -84,7 +83,7 @@ ErrorEstimate probeError(const ShadingContext& ctx, const Image& image, Aov aov,
     ThreadState& ts = states.local();
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * w + x;
-      const double chance = std::min(1.0, asked * (weight[i] + floor) / total);
+      const double chance = std::min(1.0, asked * (contrastWeight(image, x, y) + floor) / total);
       Rng pick(hashKey(seed, i, kProbeStream));
       if (!perPixel && !(pick.uniform() < chance)) continue;
       const int m = chance >= 1.0 ? 4 : 2;
