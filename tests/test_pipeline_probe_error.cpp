@@ -1,7 +1,7 @@
 // The probes' estimate of a one-sample image's error against that error measured:
 // unbiased where the error is shading noise alone (one sample of an area light, the
 // estimate within 5% of the RMSE against 256 samples, where a probe's grids read
-// as one would be 10% high), and deterministic for any thread count.
+// as one would be 13% high), and deterministic for any thread count.
 #include "core/error_estimate.h"
 #include "plan/pipeline.h"
 #include "support/scratch_dir.h"
@@ -51,7 +51,7 @@ TEST(ProbeError, ShadingNoiseIsEstimatedWithoutBias) {
   const RenderResult reference = renderFloor(file, {"camera.spp=256"}, 2);
   ASSERT_EQ(one.stats.error.source, ErrorSource::Probes);
   // Every pixel probed (the error view's estimate): 4096 probes put the figure's own
-  // scatter near 1%, so 5% tells an unbiased estimate from one 10% high.
+  // scatter near 1%, so 5% tells an unbiased estimate from one 13% high.
   const RenderResult view = renderFloor(file, {}, 2, "error");
   ASSERT_EQ(view.stats.error.count, 64 * 64);
   const double measured = rmse(one.image, reference.image);
