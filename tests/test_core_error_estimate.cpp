@@ -97,5 +97,23 @@ TEST(ErrorEstimate, OnePassIsUnknownAndSamplesGiveTheirVariance) {
   EXPECT_NE(describeError(ErrorEstimate()).find("unknown"), std::string::npos);
 }
 
+TEST(ErrorEstimate, TheTextNamesAPhotonMapOnlyWhereTheSamplesShareOne) {
+  ErrorEstimate samples;
+  samples.source = ErrorSource::Samples;
+  samples.count = 4;
+  samples.noiseRmse = 0.01;
+  ErrorEstimate probes = samples;
+  probes.source = ErrorSource::Probes;
+  probes.count = 600;
+  for (const ErrorEstimate& e : {samples, probes}) {
+    EXPECT_EQ(describeError(e).find("photon map"), std::string::npos) << describeError(e);
+    ErrorEstimate withMap = e;
+    withMap.sharedMaps = true;
+    EXPECT_NE(describeError(withMap).find("photon map, so its noise is not in it"), std::string::npos)
+        << describeError(withMap);
+  }
+  EXPECT_NE(describeError(probes).find("from probes at 600 pixels"), std::string::npos) << describeError(probes);
+}
+
 }  // namespace
 }  // namespace penumbra

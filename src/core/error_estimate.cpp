@@ -24,13 +24,13 @@ double meanOver(const Image& like, F perChannel) {
 std::string describeError(const ErrorEstimate& e) {
   if (!e.known()) return "unknown (nothing was rendered that reads light)";
   if (e.source == ErrorSource::Probes) {
-    return fmt::format("~{:.3g} RMSE (noise and aliasing of the pixel centres, from probes at {} pixels); "
-                       "probes share the photon map, so its noise is not in it",
-                       e.noiseRmse, e.count);
+    return fmt::format("~{:.3g} RMSE (noise and aliasing of the pixel centres, from probes at {} pixels){}",
+                       e.noiseRmse, e.count,
+                       e.sharedMaps ? "; probes share the photon map, so its noise is not in it" : "");
   }
   std::string out = fmt::format("~{:.3g} RMSE (noise, from {} {})", e.noiseRmse, e.count,
                                 e.source == ErrorSource::Passes ? "passes" : "samples per pixel");
-  if (e.source == ErrorSource::Samples) out += "; samples share one photon map, so its noise is not in it";
+  if (e.source == ErrorSource::Samples && e.sharedMaps) out += "; samples share one photon map, so its noise is not in it";
   if (e.biasRmse < 0.0) return out;
   const std::string halves = e.biasHalf == 1 ? "passes 1 and 2"
                                              : fmt::format("passes 1-{} and {}-{}", e.biasHalf, e.biasHalf + 1,

@@ -23,6 +23,9 @@ struct ErrorEstimate {
   // away. A lower bound on what is left of it. < 0: not measured (fewer than 2 passes).
   double biasRmse = -1.0;
   int biasHalf = 0;
+  // Samples or probes of one pass read photon maps they all share, whose noise the
+  // figure then leaves out (and says so).
+  bool sharedMaps = false;
 
   bool known() const { return noiseRmse >= 0.0; }
 };

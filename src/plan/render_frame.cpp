@@ -269,6 +269,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
                   : probes ? probeError(ctx, result.image, render.aov, options.errorView ? &probed : nullptr)
                            : sampleError(variance, scene.camera.spp);
     if (probes) stats.time.render += probing.seconds();
+    for (MapKind k : kAllMaps) stats.error.sharedMaps = stats.error.sharedMaps || stats.stored[k] > 0;
     if (options.errorView) {
       result.image = done > 1 ? spread.standardError() : probes ? std::move(probed) : standardErrorOf(variance);
     }
