@@ -8,6 +8,7 @@
 #include "trace/camera.h"
 #include "support/render_fixtures.h"
 #include "support/scratch_dir.h"
+#include "support/render_file.h"
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cstdio>
@@ -33,12 +34,7 @@ double rmse(const Image& a, const Image& b) {
 }
 
 RenderResult render(const std::string& path, std::vector<std::string> overrides, const std::string& aov = "") {
-  RenderRequest req;
-  req.scenePath = path;
-  req.overrides = std::move(overrides);
-  req.threads = 2;
-  req.aov = aov;
-  return runRender(req);
+  return testing::renderFile(path, std::move(overrides), 2, aov);
 }
 
 // Seen from above by an orthographic camera (32 x 32 pixels of 1/16): a Lambert quad

@@ -7,6 +7,7 @@
 #include "plan/pipeline.h"
 #include "core/error.h"
 #include "support/scratch_dir.h"
+#include "support/render_file.h"
 #include <gtest/gtest.h>
 #include <unistd.h>
 #include <algorithm>
@@ -33,12 +34,7 @@ std::vector<std::string> smallOverrides() {
 
 RenderResult render(const std::string& path, std::vector<std::string> overrides, int threads,
                     const std::string& aov = "") {
-  RenderRequest req;
-  req.scenePath = path;
-  req.overrides = std::move(overrides);
-  req.threads = threads;
-  req.aov = aov;
-  return runRender(req);
+  return testing::renderFile(path, std::move(overrides), threads, aov);
 }
 
 // Number of pixels with a NaN or infinite channel.

@@ -5,6 +5,7 @@
 #include "core/error_estimate.h"
 #include "plan/pipeline.h"
 #include "support/scratch_dir.h"
+#include "support/render_file.h"
 #include <gtest/gtest.h>
 #include <cmath>
 #include <cstdio>
@@ -27,15 +28,7 @@ const char* kNoisyFloor = R"({
   "photons": {"gate": false, "global": 0, "caustic": 0}
 })";
 
-RenderResult renderFloor(const std::string& file, std::vector<std::string> overrides, int threads,
-                         const std::string& aov = "") {
-  RenderRequest req;
-  req.scenePath = file;
-  req.overrides = std::move(overrides);
-  req.threads = threads;
-  req.aov = aov;
-  return runRender(req);
-}
+using penumbra::testing::renderFile;
 
 double rmse(const Image& a, const Image& b) {
   double squares = 0.0;
@@ -47,12 +40,12 @@ double rmse(const Image& a, const Image& b) {
 TEST(ProbeError, ShadingNoiseIsEstimatedWithoutBias) {
   const penumbra::testing::ScratchDir dir;
   const std::string file = dir.write("floor.json", kNoisyFloor).string();
-  const RenderResult one = renderFloor(file, {}, 2);
-  const RenderResult reference = renderFloor(file, {"camera.spp=256"}, 2);
+  const RenderResult one = renderFile(file, {}, 2);
+  const RenderResult reference = renderFile(file, {"camera.spp=256"}, 2);
   ASSERT_EQ(one.stats.error.source, ErrorSource::Probes);
   // Every pixel probed (the error view's estimate): 4096 probes put the figure's own
   // scatter near 1%, so 5% tells an unbiased estimate from one 13% high.
-  const RenderResult view = renderFloor(file, {}, 2, "error");
+  const RenderResult view = renderFile(file, {}, 2, "error");
   ASSERT_EQ(view.stats.error.count, 64 * 64);
   const double measured = rmse(one.image, reference.image);
   std::printf("noisy floor: RMSE %.5f against 256 spp; estimate %.5f (every pixel), %.5f (%d probed)\n", measured,
@@ -64,7 +57,7 @@ TEST(ProbeError, ShadingNoiseIsEstimatedWithoutBias) {
 TEST(ProbeError, TheEstimateDoesNotDependOnTheThreads) {
   const penumbra::testing::ScratchDir dir;
   const std::string file = dir.write("floor.json", kNoisyFloor).string();
-  const ErrorEstimate a = renderFloor(file, {}, 1).stats.error, b = renderFloor(file, {}, 2).stats.error;
+  const ErrorEstimate a = renderFile(file, {}, 1).stats.error, b = renderFile(file, {}, 2).stats.error;
   EXPECT_EQ(a.count, b.count);
   EXPECT_EQ(a.noiseRmse, b.noiseRmse);
 }

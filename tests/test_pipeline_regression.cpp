@@ -3,6 +3,7 @@
 // rewrite the references after an intended change (and look at them first).
 #include "plan/pipeline.h"
 #include "io/image_io.h"
+#include "support/render_file.h"
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 #include <cstdlib>
@@ -16,10 +17,7 @@ namespace {
 const std::string kSource = PENUMBRA_SOURCE_DIR;
 
 RenderResult render(const std::string& scene, std::vector<std::string> overrides) {
-  RenderRequest req;
-  req.scenePath = kSource + "/scenes/" + scene;
-  req.overrides = std::move(overrides);
-  return runRender(req);
+  return penumbra::testing::renderFile(kSource + "/scenes/" + scene, std::move(overrides));
 }
 
 OIIO::ImageBuf toBuf(const Image& image) {

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "io/scene_loader.h"
 #include "support/scratch_dir.h"
+#include "support/render_file.h"
 #include <gtest/gtest.h>
 #include <filesystem>
 #include <fstream>
@@ -20,10 +21,7 @@ namespace {
 const std::string kScenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/";
 
 RenderResult render(const std::string& scene, std::vector<std::string> overrides) {
-  RenderRequest req;
-  req.scenePath = scene;
-  req.overrides = std::move(overrides);
-  return runRender(req);
+  return penumbra::testing::renderFile(scene, std::move(overrides));
 }
 
 void expectBounds(const RenderResult& r, const char* what) {

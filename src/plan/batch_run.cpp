@@ -130,24 +130,28 @@ BatchOutcome runBatch(const BatchRequest& req) {
           ++out.photonReuses;
         }
         std::map<std::string, std::vector<std::pair<std::string, Image>>> files;
-        std::map<std::string, ImageMetadata> headers;
-        std::map<std::string, bool> headerReadsLight;
+        struct Header {
+          ImageMetadata meta;
+          bool readsLight = false;
+        };
+        std::map<std::string, Header> headers;
         for (size_t v = 0; v < p.views.size(); ++v) {
           RenderResult result = session.frame(p.views[v], stage);
           // A file's header is a render's (the same keys, error and budget), from its
           // first view that reads light, else its first view; and the job's stamp.
           const std::string& path = p.job->outputs[v].path;
           const bool readsLight = result.stats.error.source != ErrorSource::None;
-          if (!headers.count(path) || (readsLight && !headerReadsLight[path])) {
-            ImageMetadata meta = renderMetadata(p.views[v].scene, p.views[v].plan, result.stats, p.views[v].viewName, path);
-            meta.emplace_back("penumbra:job", p.stamp);
-            headers[path] = std::move(meta);
-            headerReadsLight[path] = readsLight;
+          auto known = headers.find(path);
+          if (known == headers.end() || (readsLight && !known->second.readsLight)) {
+            Header& h = headers[path];
+            h.meta = renderMetadata(p.views[v].scene, p.views[v].plan, result.stats, p.views[v].viewName, path);
+            h.meta.emplace_back("penumbra:job", p.stamp);
+            h.readsLight = readsLight;
           }
           files[path].push_back({p.views[v].viewName, std::move(result.image)});
         }
         for (auto& [path, layers] : files) {
-          ImageMetadata& meta = headers[path];
+          ImageMetadata& meta = headers[path].meta;
           if (layers.size() == 1) {
             writeImage(path, layers.front().second, meta);
             continue;

@@ -260,8 +260,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
   }
   if (needsLight && !options.tracePixel) {
     // One pass of one sample (the pixel centres) has no spread: probes beside it measure
-    // its error, at every pixel for the error view.
-    // Their samples are rendering time.
+    // its error, at every pixel for the error view; their samples count as render time.
     Image probed;
     const bool probes = done == 1 && !render.variance;
     Stopwatch probing;
