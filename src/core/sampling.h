@@ -83,4 +83,24 @@ inline Vec2 sobol02(uint32_t i, uint64_t scramble) {
   return {static_cast<float>(x >> 8) * 0x1p-24f, static_cast<float>(y >> 8) * 0x1p-24f};
 }
 
+// Point i of the 4-D Kronecker sequence R_4 (Roberts 2018): frac(shift + i alpha),
+// alpha_k = phi^-k with phi the real root of x^5 = x + 1. Every prefix, of any length,
+// spreads evenly in 4-D and in each 2-D projection, and a random shift makes each point
+// uniform. Kept in 64-bit fixed point, so the sum wraps exactly instead of rounding.
+class Kronecker4 {
+ public:
+  explicit Kronecker4(Rng& rng) {
+    for (uint64_t& s : shift_) s = uint64_t(rng.nextU32()) << 32 | rng.nextU32();
+  }
+  // The top 24 bits of each coordinate: exact in float and below 1.
+  float operator()(uint64_t i, int k) const {
+    static constexpr uint64_t kAlpha[4] = {0xdb4f0b9175ae2165ull, 0xbbe0563303a4615full,
+                                           0xa0f2ec75a1fe1575ull, 0x89e182857d9ed688ull};
+    return static_cast<float>((shift_[k] + i * kAlpha[k]) >> 40) * 0x1p-24f;
+  }
+
+ private:
+  uint64_t shift_[4];
+};
+
 }  // namespace penumbra

@@ -77,6 +77,16 @@ PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
   return emitterPhoton(light, bounds, u1, u2, u3, u4);
 }
 
+// Where shadow photon i of a batch starts. Every light but a point light takes its four
+// numbers from point i of the batch's Kronecker sequence: a cell's vote per stratum
+// sees a sixteenth of a light's photons, and evenly spread ones decide it right more
+// often than as many independent ones. A point light keeps startPhoton's two.
+PhotonRay shadowPhotonStart(const Light& light, const SceneSphere& bounds, const Kronecker4& starts,
+                            uint64_t i, Rng& rng) {
+  if (light.type == LightType::Point && !light.isSpot()) return startPhoton(light, bounds, rng);
+  return emitterPhoton(light, bounds, starts(i, 0), starts(i, 1), starts(i, 2), starts(i, 3));
+}
+
 }  // namespace
 
 PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
@@ -119,10 +129,11 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
       weights, shadowCounts, options, cuts ? &cuts->shadow : nullptr, maps.emitted[MapKind::Shadow],
       [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
-        return [&light, &bounds, &tracer, &options, index = static_cast<uint16_t>(batch.light),
-                rng = Rng(hashKey(seed, kShadowStream, batchStreamKey(batch)))](
-                   BatchAppender<ShadowPhoton>& out) mutable {
-          const PhotonRay r = startPhoton(light, bounds, rng);
+        Rng rng(hashKey(seed, kShadowStream, batchStreamKey(batch)));
+        const Kronecker4 starts(rng);
+        return [&light, &bounds, &tracer, &options, index = static_cast<uint16_t>(batch.light), rng, starts,
+                i = uint64_t(0)](BatchAppender<ShadowPhoton>& out) mutable {
+          const PhotonRay r = shadowPhotonStart(light, bounds, starts, i++, rng);
           traceShadowLine(tracer, r.origin, r.dir, index, r.stratum, options.maxHitsPerLine, out);
         };
       });
