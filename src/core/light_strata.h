@@ -20,8 +20,12 @@ inline int lightStrata(const Light& light) {
 // The cell of (u1, u2) in [0, 1)^2 (NaN and out-of-range values clamp to an edge cell).
 inline uint8_t stratumOf(float u1, float u2) {
   const float top = static_cast<float>(kStrataSide - 1), side = static_cast<float>(kStrataSide);
-  const int i = static_cast<int>(std::fmin(std::fmax(u1 * side, 0.0f), top));
-  const int j = static_cast<int>(std::fmin(std::fmax(u2 * side, 0.0f), top));
+  // fmax/fmin's clamp (NaN to 0) written out, so no library call runs per photon.
+  auto cell = [&](float u) {
+    const float x = u * side > 0.0f ? u * side : 0.0f;
+    return static_cast<int>(x < top ? x : top);
+  };
+  const int i = cell(u1), j = cell(u2);
   return static_cast<uint8_t>(i + kStrataSide * j);
 }
 
