@@ -6,31 +6,19 @@
 #include "core/rng.h"
 #include <gtest/gtest.h>
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 namespace penumbra {
 namespace {
 
-uint32_t bitsOf(float v) {
-  uint32_t b;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
-}
-float fromBits(uint32_t b) {
-  float v;
-  std::memcpy(&v, &b, sizeof v);
-  return v;
-}
-
 void expectAsNextafter(float v) {
   const float up = nextFloatUp(v), down = nextFloatDown(v);
   if (std::isnan(v)) {
-    EXPECT_TRUE(std::isnan(up) && std::isnan(down)) << "bits " << bitsOf(v);
+    EXPECT_TRUE(std::isnan(up) && std::isnan(down)) << "bits " << floatBits(v);
     return;
   }
-  EXPECT_EQ(bitsOf(up), bitsOf(std::nextafter(v, kInf))) << "up from bits " << bitsOf(v);
-  EXPECT_EQ(bitsOf(down), bitsOf(std::nextafter(v, -kInf))) << "down from bits " << bitsOf(v);
+  EXPECT_EQ(floatBits(up), floatBits(std::nextafter(v, kInf))) << "up from bits " << floatBits(v);
+  EXPECT_EQ(floatBits(down), floatBits(std::nextafter(v, -kInf))) << "down from bits " << floatBits(v);
 }
 
 TEST(NextFloat, SpecialValuesStepAsNextafter) {
@@ -42,7 +30,7 @@ TEST(NextFloat, SpecialValuesStepAsNextafter) {
 
 TEST(NextFloat, RandomBitPatternsStepAsNextafter) {
   Rng rng(41);
-  for (int i = 0; i < 1000000; ++i) expectAsNextafter(fromBits(rng.nextU32()));
+  for (int i = 0; i < 1000000; ++i) expectAsNextafter(bitsToFloat(rng.nextU32()));
 }
 
 }  // namespace

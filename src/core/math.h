@@ -51,16 +51,25 @@ constexpr float gammaBound(int n) { return n * kUnitRoundoff / (1.0f - n * kUnit
 // Moves p by `error` along the geometric normal ng, to the side dir points to, then
 // rounds every moved coordinate one more ulp away, so the rounding of the addition
 // cannot pull the origin back into the error box.
+// A float's bits and back (C++17's std::bit_cast).
+inline uint32_t floatBits(float v) {
+  uint32_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+inline float bitsToFloat(uint32_t b) {
+  float v;
+  std::memcpy(&v, &b, sizeof v);
+  return v;
+}
+
 // The next float above v (nextFloatUp) or below it (nextFloatDown), as std::nextafter
 // towards +inf or -inf answers, without its library call on every spawned ray.
 inline float nextFloatUp(float v) {
   if (v == kInf || v != v) return v;
   if (v == 0.0f) v = 0.0f;  // -0 steps up to the smallest positive float
-  uint32_t bits;
-  std::memcpy(&bits, &v, sizeof bits);
-  bits = v > 0.0f || bits == 0u ? bits + 1u : bits - 1u;
-  std::memcpy(&v, &bits, sizeof bits);
-  return v;
+  const uint32_t bits = floatBits(v);
+  return bitsToFloat(v > 0.0f || bits == 0u ? bits + 1u : bits - 1u);
 }
 inline float nextFloatDown(float v) { return -nextFloatUp(-v); }
 

@@ -2,16 +2,10 @@
 // material has an alpha mode, before accepting the hit, and it drops the hits the
 // material's alpha cuts out. Camera rays, shadow rays and photons all go through it.
 #include "geometry/embree_impl.h"
-#include <cstring>
+#include "core/math.h"
 
 namespace penumbra {
 namespace {
-
-uint32_t bits(float f) {
-  uint32_t b;
-  std::memcpy(&b, &f, sizeof b);
-  return b;
-}
 
 // The hit's texture coordinates, as meshSurface computes them (its uvs, or the
 // spherical mapping about the mesh's centre), placed as the material's textures are.
@@ -40,9 +34,9 @@ bool keeps(const AlphaCut& cut, RTCRayN* ray, RTCHitN* hit, unsigned n, unsigned
   if (cut.mode != AlphaMode::Blend) return alphaKeeps(cut.mode, coverage, cut.cutoff, 0);
   if (coverage >= 1.0f) return true;
   if (coverage <= 0.0f) return false;
-  const uint64_t origin = hashKey(uint64_t(bits(RTCRayN_org_x(ray, n, i))) << 32 | bits(RTCRayN_org_y(ray, n, i)),
-                                  uint64_t(bits(RTCRayN_org_z(ray, n, i))) << 32 | bits(RTCRayN_dir_x(ray, n, i)));
-  const uint64_t key = hashKey(origin, uint64_t(bits(RTCRayN_dir_y(ray, n, i))) << 32 | bits(RTCRayN_dir_z(ray, n, i)),
+  const uint64_t origin = hashKey(uint64_t(floatBits(RTCRayN_org_x(ray, n, i))) << 32 | floatBits(RTCRayN_org_y(ray, n, i)),
+                                  uint64_t(floatBits(RTCRayN_org_z(ray, n, i))) << 32 | floatBits(RTCRayN_dir_x(ray, n, i)));
+  const uint64_t key = hashKey(origin, uint64_t(floatBits(RTCRayN_dir_y(ray, n, i))) << 32 | floatBits(RTCRayN_dir_z(ray, n, i)),
                                uint64_t(cut.geomId) << 32 | prim);
   return alphaKeeps(AlphaMode::Blend, coverage, cut.cutoff, key);
 }
