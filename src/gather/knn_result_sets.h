@@ -2,31 +2,21 @@
 // an exact bounded k-smallest selection keyed by (dist2, index), a fixed-radius
 // collector into reusable buffers, and the bucket sort that orders a selection.
 #pragma once
+#include "core/math.h"
 #include "gather/kd_tree.h"
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <vector>
 
 namespace penumbra::knn {
 
-inline uint32_t bitsOf(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
-inline float floatOf(uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
 // Squared distances are >= 0 (or +0), whose IEEE bit patterns order like the values:
 // (bits << 32 | index) orders by (dist2, index) with one integer compare.
 inline uint64_t keyOf(float d2, uint32_t index) {
-  return (static_cast<uint64_t>(bitsOf(d2)) << 32) | index;
+  return (static_cast<uint64_t>(floatBits(d2)) << 32) | index;
 }
-inline float distOf(uint64_t key) { return floatOf(static_cast<uint32_t>(key >> 32)); }
+inline float distOf(uint64_t key) { return bitsToFloat(static_cast<uint32_t>(key >> 32)); }
 
 // The k smallest (dist2, index) keys among the points nanoflann offers, with a
 // shrinking bound. Candidates go into a buffer of `cap` (>= 2k) slots; the first time
@@ -46,7 +36,7 @@ class SelectResultSet {
 
   // Accepts dist2 < limit (strict) until tightened.
   SelectResultSet(uint64_t* buf, size_t cap, size_t k, float limit)
-      : buf_(buf), cap_(cap), k_(k), limitKey_(static_cast<uint64_t>(bitsOf(limit)) << 32),
+      : buf_(buf), cap_(cap), k_(k), limitKey_(static_cast<uint64_t>(floatBits(limit)) << 32),
         worst_(limit) {}
 
   size_t size() const { return n_; }
