@@ -15,8 +15,20 @@ namespace penumbra {
 
 // Octahedral unit-vector encoding (Cigolle et al. 2014), 16 bits per axis:
 // worst-case angular error ~0.005 degrees, plenty for a "same side" test.
+// Decoding is inline: the gate's cells decode every shadow photon's normal.
 uint32_t encodeOctahedral(const Vec3& unit);
-Vec3 decodeOctahedral(uint32_t code);
+inline Vec2 octahedralSigns(Vec2 v) { return {v.x >= 0.0f ? 1.0f : -1.0f, v.y >= 0.0f ? 1.0f : -1.0f}; }
+inline Vec3 decodeOctahedral(uint32_t code) {
+  Vec2 p(static_cast<float>(code & 0xFFFFu) / 65535.0f * 2.0f - 1.0f,
+         static_cast<float>(code >> 16) / 65535.0f * 2.0f - 1.0f);
+  Vec3 n(p.x, p.y, 1.0f - std::abs(p.x) - std::abs(p.y));
+  if (n.z < 0.0f) {
+    Vec2 xy = (1.0f - glm::abs(Vec2(n.y, n.x))) * octahedralSigns(p);
+    n.x = xy.x;
+    n.y = xy.y;
+  }
+  return glm::normalize(n);
+}
 
 // A gather's normal filter: whether a photon's stored normal faces within
 // acos(minCos) of the query's n. Photons on the query's own plane carry n's own code,
