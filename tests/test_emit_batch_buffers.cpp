@@ -28,7 +28,7 @@ PhotonBatches<ShadowPhoton> fill(size_t batches, int threads) {
   tbb::parallel_for(size_t(0), batches, [&](size_t b) {
     buffers.fill(b, [&](BatchAppender<ShadowPhoton>& out) {
       for (size_t i = 0; i < sizeOf(b); ++i) {
-        out.push_back({Vec3(float(b), float(i), 0.0f), static_cast<uint32_t>(start[b] + i), 0, kDirect});
+        out.push_back({Vec3(float(b), float(i), 0.0f), static_cast<uint32_t>(start[b] + i), 0, kDirect, 0, 0});
         ASSERT_EQ(out.size(), i + 1);
       }
     });

@@ -101,6 +101,10 @@ TEST(EmitShadow, SphereShadowMatchesItsSolidAngle) {
   for (const ShadowPhoton& p : maps.shadow) {
     bool sphere = std::abs(glm::length(p.position - Vec3(1, 0, 0)) - 0.5f) < 1e-4f;
     onSphere += sphere;
+    // A line meets the sphere's near side from outside and leaves its far side from inside.
+    if (sphere) {
+      EXPECT_EQ(bool(p.backSide), p.shadow != kDirect);
+    }
     if (p.shadow) {
       ++shadow;
       // Every shadow photon is inside the sphere's shadow cone.

@@ -14,7 +14,7 @@ namespace {
 PhotonArray<ShadowPhoton> photonsAt(const std::vector<Vec3>& points) {
   PhotonArray<ShadowPhoton> out;
   for (const Vec3& p : points) {
-    ShadowPhoton ph;
+    ShadowPhoton ph{};
     ph.position = p;
     ph.normal = encodeOctahedral(Vec3(0, 0, 1));
     ph.light = 0;

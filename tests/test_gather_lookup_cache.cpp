@@ -1,6 +1,7 @@
 // The precomputed lookup cache against the exact estimators it replaces: a uniformly
 // lit plane (analytic irradiance), a half-shadowed plane (the gate never contradicts
-// the truth), a thin wall's two sides, and points far from any photon.
+// the truth), a thin wall's two sides, a thin box's exit hits, and points far from any
+// photon.
 #include "gather/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "core/rng.h"
@@ -35,7 +36,7 @@ PhotonArray<ShadowPhoton> halfShadow(int n, float edge, uint8_t beyond, const Ve
   Rng rng(11);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
-      ShadowPhoton p;
+      ShadowPhoton p{};
       p.position = Vec3((x + rng.uniform()) / n, (y + rng.uniform()) / n, 0.0f);
       p.normal = encodeOctahedral(normal);
       p.light = 0;
@@ -262,6 +263,43 @@ TEST(LookupCache, ThinWallSidesKeepTheirOwnAnswers) {
   EXPECT_NEAR(up.indirect.x / down.indirect.x, 10.0f, 2.5f);
   EXPECT_EQ(static_cast<GateVerdict>(up.verdicts[0]), GateVerdict::Lit);
   EXPECT_EQ(static_cast<GateVerdict>(down.verdicts[0]), GateVerdict::Shadowed);
+}
+
+// A box thinner than a cell, lit on its front face (z = 0, facing +z): every line that
+// meets the front face leaves through the back face 0.02 behind it, from behind, with
+// its normal turned to face the light, so +z too. Those exit hits vote only for points
+// seen from behind (inside the box); without the side they made the front face mixed.
+TEST(LookupCache, AThinBoxsExitHitsVoteOnlyOnTheSideTheyMet) {
+  auto box = [](bool markBackSide) {
+    PhotonArray<ShadowPhoton> photons = halfShadow(150, 2.0f, kShadowOpaque, Vec3(0, 0, 1));  // all direct
+    for (ShadowPhoton p : halfShadow(150, -1.0f, kShadowOpaque, Vec3(0, 0, 1))) {  // all behind
+      p.position.z = -0.02f;
+      p.backSide = markBackSide;
+      photons.push_back(p);
+    }
+    ShadowPhotonMap map;
+    map.build(std::move(photons), 1);
+    return map;
+  };
+  const ShadowPhotonMap sided = box(true), unsided = box(false);
+  const LookupCache cache = gateCache(sided, 0.1f), without = gateCache(unsided, 0.1f);
+  GateParams params;
+  GatherScratch scratch;
+  Rng rng(19);
+  for (int i = 0; i < 50; ++i) {
+    const Vec3 front(0.2f + 0.6f * rng.uniform(), 0.2f + 0.6f * rng.uniform(), 0.0f);
+    const Vec3 inside(front.x, front.y, -0.02f);
+    EXPECT_EQ(verdictAt(cache, front), GateVerdict::Lit) << "front " << i;
+    const LookupCache::Answer back = cache.find(inside, Vec3(0, 0, 1), /*backSide=*/true);
+    ASSERT_NE(back.verdicts, nullptr);
+    EXPECT_EQ(static_cast<GateVerdict>(back.verdicts[0]), GateVerdict::Shadowed) << "inside " << i;
+    EXPECT_EQ(sided.classify(front, Vec3(0, 0, 1), 0, params, scratch), GateVerdict::Lit) << "exact front " << i;
+    EXPECT_EQ(sided.classify(inside, Vec3(0, 0, 1), 0, params, scratch, true), GateVerdict::Shadowed)
+        << "exact inside " << i;
+    // The same photons without their side: the exit hits vote on the front face.
+    EXPECT_EQ(verdictAt(without, front), GateVerdict::Mixed) << "unsided " << i;
+    EXPECT_EQ(unsided.classify(front, Vec3(0, 0, 1), 0, params, scratch), GateVerdict::Mixed) << "unsided exact " << i;
+  }
 }
 
 TEST(LookupCache, NoCellFarFromThePhotons) {

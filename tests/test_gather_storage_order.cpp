@@ -19,7 +19,7 @@ PhotonArray<ShadowPhoton> randomShadowPhotons(size_t n, uint16_t lights, uint64_
     // Some duplicates on purpose: equal keys must keep their input order.
     const Vec3 pos = i % 7 == 0 && i > 0 ? p[i - 1].position
                                          : Vec3(rng.uniform(), rng.uniform() * 2.0f - 1.0f, rng.uniform() * 5.0f);
-    p[i] = {pos, static_cast<uint32_t>(i), static_cast<uint16_t>(rng.uniform() * lights), kDirect};
+    p[i] = {pos, static_cast<uint32_t>(i), static_cast<uint16_t>(rng.uniform() * lights), kDirect, 0, 0};
   }
   return p;
 }

@@ -116,12 +116,16 @@ using PhotonArray = std::vector<T, UninitialisedAllocator<T>>;
 enum ShadowKind : uint8_t { kDirect = 0, kShadowOpaque = 1, kShadowGlass = 2 };
 
 // A hit along a shadow photon's line: the first is direct, every later one a shadow.
+// backSide: the line met the surface's back (against its winding's normal), as a line
+// leaving a closed object does; only points seen on that side read its vote. Bit-fields
+// take no default member initialiser before C++20: brace-initialise ShadowPhoton{}.
 struct ShadowPhoton {
   Vec3 position;
   uint32_t normal;  // octahedral geometric normal, flipped to face where the photon came from
   uint16_t light;   // index into Scene::lights
   uint8_t shadow;   // a ShadowKind: direct, behind something opaque, or behind glass only
-  uint8_t stratum = 0;  // which stratum of its light it left from (core/light_strata.h)
+  uint8_t stratum : 7;   // which stratum of its light it left from (core/light_strata.h)
+  uint8_t backSide : 1;  // met the surface from behind
 };
 
 // An indirect-map photon: stored at every surface hit of a bouncing path.

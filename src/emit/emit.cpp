@@ -28,7 +28,7 @@ void traceShadowLine(const TraceScene& tracer, const Vec3& origin, const Vec3& d
     Hit hit;
     if (!tracer.intersect(ray, hit)) return;
     SurfaceRecord s = tracer.surface(ray, hit, kSurfaceGeometric);
-    out.push_back({s.position, encodeOctahedral(s.ng), light, kind, stratum});
+    out.push_back({s.position, encodeOctahedral(s.ng), light, kind, stratum, !s.frontFace});
     if (kind != kShadowOpaque) kind = materials[s.material].transparent ? kShadowGlass : kShadowOpaque;
     ray.origin = spawnOrigin(s, dir);
   }

@@ -68,7 +68,7 @@ float photonsPerCacheCell(int k, float scale, float minPhotonsPerCell) {
 uint64_t LookupCache::keyOf(int64_t x, int64_t y, int64_t z, unsigned bucket) const {
   if (x < 0 || y < 0 || z < 0 || x >= kAxisCells || y >= kAxisCells || z >= kAxisCells)
     return kEmpty;
-  return (uint64_t(x) << 43) | (uint64_t(y) << 23) | (uint64_t(z) << 3) | bucket;
+  return (uint64_t(x) << 44) | (uint64_t(y) << 24) | (uint64_t(z) << 4) | bucket;
 }
 
 uint64_t LookupCache::keyAt(const Vec3& p, unsigned bucket) const {
@@ -116,6 +116,12 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   auto photonPos = [&](size_t src, size_t i) -> const Vec3& {
     return src == 0 ? indirect->photons()[i].position : shadow->photons(src - 1)[i].position;
   };
+  // A shadow photon met from behind keys the back side's bucket; indirect photons
+  // carry no side (their estimate is read on the front side's keys).
+  auto photonBucket = [&](size_t src, size_t i, const Vec3& n) {
+    const bool back = src != 0 && shadow->photons(static_cast<uint32_t>(src - 1))[i].backSide;
+    return bucketOf(n) | (back ? kBackSideBucket : 0u);
+  };
   auto photonNormal = [&](size_t src, size_t i) {
     return decodeOctahedral(src == 0 ? indirect->photons()[i].normal
                                      : shadow->photons(static_cast<uint32_t>(src - 1))[i].normal);
@@ -140,7 +146,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   for (size_t src = 0; src < sourceSize.size(); ++src) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, sourceSize[src], 1 << 14), [&](const auto& r) {
       for (size_t i = r.begin(); i != r.end(); ++i)
-        entries[offsets[src] + i] = {keyAt(photonPos(src, i), bucketOf(photonNormal(src, i))),
+        entries[offsets[src] + i] = {keyAt(photonPos(src, i), photonBucket(src, i, photonNormal(src, i))),
                                      static_cast<uint32_t>(i), static_cast<uint32_t>(src)};
     });
   }
@@ -224,7 +230,8 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
     GatherScratch& s = scratch.local();
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const uint32_t r = order[i].second;
-      values[r] = estimateAt(*indirect, sites[r], normals[r], s);
+      // A back side's record holds shadow photons only: find reads no estimate there.
+      if (!(decodeCellKey(keys[r]).bucket & kBackSideBucket)) values[r] = estimateAt(*indirect, sites[r], normals[r], s);
     }
     progressAdd(params.progress, range.size());
   });
@@ -249,17 +256,18 @@ Color LookupCache::estimateAt(const IndirectPhotonMap& map, const Vec3& p, const
   return Color(0.0f);
 }
 
-LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
+LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n, bool backSide) const {
   Answer a;
   if (records_ == 0) return a;
   const unsigned bucket = bucketOf(n), axis = bucket / 2;
+  const unsigned gateBucket = bucket | (backSide ? kBackSideBucket : 0u);
   const Vec3 cellOf = (p - origin_) * invCell_;
   int64_t own[3];  // p's own cell
   for (int i = 0; i < 3; ++i) own[i] = static_cast<int64_t>(std::floor(cellOf[i]));
   if (kind_ == CachedIndirect::None) {  // the gate alone reads only p's own cell
-    const int32_t r = recordOf(keyOf(own[0], own[1], own[2], bucket));
+    const int32_t r = recordOf(keyOf(own[0], own[1], own[2], gateBucket));
     if (r >= 0) a.verdicts = &verdicts_[size_t(r) * rowWidth_];
-    else if (numLights_ > 0) a.verdicts = verdictsAround(own, cellOf, bucket);
+    else if (numLights_ > 0) a.verdicts = verdictsAround(own, cellOf, gateBucket);
     return a;
   }
   // The surface runs across the bucket's axis: blend bilinearly over the 2x2 cells
@@ -280,19 +288,23 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n) const {
     const float w = (d1 ? f1 : 1.0f - f1) * (d2 ? f2 : 1.0f - f2);
     sum += w * slot->indirect;
     weight += w;
-    if (c[t1] == own[t1] && c[t2] == own[t2] && numLights_ > 0)
+    if (c[t1] == own[t1] && c[t2] == own[t2] && numLights_ > 0 && !backSide)
       a.verdicts = &verdicts_[size_t(slot->record) * rowWidth_];
   }
   if (weight > 1e-6f) {
     a.indirect = sum / weight;
     a.hasIndirect = true;
   }
-  if (!a.verdicts && numLights_ > 0) a.verdicts = verdictsAround(own, cellOf, bucket);
+  if (backSide && numLights_ > 0) {
+    const int32_t r = recordOf(keyOf(own[0], own[1], own[2], gateBucket));
+    if (r >= 0) a.verdicts = &verdicts_[size_t(r) * rowWidth_];
+  }
+  if (!a.verdicts && numLights_ > 0) a.verdicts = verdictsAround(own, cellOf, gateBucket);
   return a;
 }
 
 const uint8_t* LookupCache::verdictsAround(const int64_t* own, const Vec3& cellOf, unsigned bucket) const {
-  const unsigned axis = bucket / 2, t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
+  const unsigned axis = (bucket & ~kBackSideBucket) / 2, t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
   int32_t nearest = -1;
   float best = kInf;
   int64_t c[3] = {own[0], own[1], own[2]};

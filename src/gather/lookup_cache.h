@@ -62,8 +62,14 @@ float photonsPerCacheCell(int k, float scale, float minPhotonsPerCell = kMinPhot
 
 class LookupCache {
  public:
+  // A key's bucket is 4 bits: the normal's bucket, plus kBackSideBucket for the shadow
+  // photons that met their surface from behind (a closed object's far wall, seen from
+  // inside): a thin wall's exit hits, a cell or less behind its front face and turned
+  // the same way, stay out of the front face's vote.
+  static constexpr unsigned kBackSideBucket = 8;
   // Cells are keyed by position and the dominant axis of the surface normal (six
-  // buckets), so a thin wall's two sides and a corner's two faces never share a cell.
+  // buckets), so a thin wall's two sides and a corner's two faces never share a cell,
+  // and a shadow photon's also by the side it met (kBackSideBucket).
   // Either map may be null or empty; a cell exists where either map has photons.
   void build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* indirect,
              const LookupCacheParams& params);
@@ -81,7 +87,9 @@ class LookupCache {
     // One GateVerdict per light, then one per stratum of each light (stratumVerdict).
     const uint8_t* verdicts = nullptr;
   };
-  Answer find(const Vec3& p, const Vec3& n) const;
+  // backSide: p was met from behind its surface's winding (SurfaceRecord::frontFace
+  // false); its verdicts come from the photons that met the surface from behind too.
+  Answer find(const Vec3& p, const Vec3& n, bool backSide = false) const;
 
   // Where find() has no cell near p (a surface no photon reached in that orientation:
   // the inside of a glass ball, a wall's far side), the estimate of p's own (cell,

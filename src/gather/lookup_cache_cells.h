@@ -30,7 +30,7 @@ struct CellKey {
   unsigned bucket;
 };
 inline CellKey decodeCellKey(uint64_t key) {
-  return {int64_t(key >> 43), int64_t(key >> 23 & 0xFFFFF), int64_t(key >> 3 & 0xFFFFF), unsigned(key & 7)};
+  return {int64_t(key >> 44), int64_t(key >> 24 & 0xFFFFF), int64_t(key >> 4 & 0xFFFFF), unsigned(key & 15)};
 }
 
 struct CacheCells {

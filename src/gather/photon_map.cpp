@@ -86,7 +86,7 @@ size_t ShadowPhotonMap::knn(const Vec3& p, uint32_t light, size_t k, float maxRa
 }
 
 GateVerdict ShadowPhotonMap::classify(const Vec3& p, const Vec3& n, uint32_t light,
-                                      const GateParams& params, GatherScratch& scratch) const {
+                                      const GateParams& params, GatherScratch& scratch, bool backSide) const {
   if (params.k <= 0) return GateVerdict::Mixed;
   if (light >= lights_.size()) return GateVerdict::Mixed;
   assert(treesBuilt_ && "ShadowPhotonMap::buildTrees first");
@@ -94,7 +94,7 @@ GateVerdict ShadowPhotonMap::classify(const Vec3& p, const Vec3& n, uint32_t lig
   size_t found = lights_[light].tree.knn(p, static_cast<size_t>(params.k), params.maxRadius,
                                          scratch, /*sorted=*/false);
   if (found == 0) return GateVerdict::Mixed;
-  return voteGate(photons_.data() + lights_[light].begin, scratch.indices.data(), found, n, params);
+  return voteGate(photons_.data() + lights_[light].begin, scratch.indices.data(), found, n, params, backSide);
 }
 
 size_t ShadowPhotonMap::size() const { return size_; }

@@ -41,8 +41,9 @@ class ShadowPhotonMap {
   void buildTrees(ProgressCounter* progress = nullptr);
   bool hasTrees() const { return treesBuilt_; }
   bool hasPhotons(uint32_t light) const;
+  // backSide: as voteGate's (the point met from behind its surface's winding).
   GateVerdict classify(const Vec3& p, const Vec3& n, uint32_t light, const GateParams& params,
-                       GatherScratch& scratch) const;
+                       GatherScratch& scratch, bool backSide = false) const;
   // Raw kNN for tests and benchmarks: up to k photons of `light` strictly closer than
   // maxRadius (0 = unlimited), nearest first, into scratch.indices (into photons(light))
   // and scratch.dist2 (squared distances). Returns how many.

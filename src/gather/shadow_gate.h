@@ -56,7 +56,9 @@ inline GateVerdict verdictOf(const GateCounts& c, const GateParams& params) {
 // Tallies the photons photons[indices[0..count)] against the shading normal n
 // (unit, facing the viewer). Stops decoding normals as soon as both kinds voted,
 // since nothing after that can change a Mixed verdict; then verdictOf decides.
+// backSide: the point was seen from behind its surface's winding (only photons that
+// met it from behind vote, ShadowPhoton::backSide).
 GateVerdict voteGate(const ShadowPhoton* photons, const uint32_t* indices, size_t count,
-                     const Vec3& n, const GateParams& params);
+                     const Vec3& n, const GateParams& params, bool backSide = false);
 
 }  // namespace penumbra

@@ -90,8 +90,8 @@ const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
                              CachedAnswer& storage, ThreadState& ts) {
   if (!ctx.lookup) return nullptr;
   ++ts.counts.cacheLookups;
-  storage = ctx.lookup->find(s.position, s.ng);
-  if (ctx.gateLookup && ctx.gateLookup != ctx.lookup) storage.verdicts = ctx.gateLookup->find(s.position, s.ng).verdicts;
+  storage = ctx.lookup->find(s.position, s.ng, !s.frontFace);
+  if (ctx.gateLookup && ctx.gateLookup != ctx.lookup) storage.verdicts = ctx.gateLookup->find(s.position, s.ng, !s.frontFace).verdicts;
   return &storage;
 }
 
@@ -106,7 +106,7 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
     v = cached->verdicts ? static_cast<GateVerdict>(cached->verdicts[lightIndex]) : GateVerdict::Mixed;
   } else {
     const GateParams params = gateParamsFor(ctx.scene, ctx.choices.integrator->glass);
-    v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch);
+    v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch, !s.frontFace);
   }
   // Shadowed means every voter sits behind something opaque; photons behind
   // glass alone make the vote Mixed, since only a ray can measure the tint.
