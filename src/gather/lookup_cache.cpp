@@ -120,7 +120,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   // carry no side (their estimate is read on the front side's keys).
   auto photonBucket = [&](size_t src, size_t i, const Vec3& n) {
     const bool back = src != 0 && shadow->photons(static_cast<uint32_t>(src - 1))[i].backSide;
-    return bucketOf(n) | (back ? kBackSideBucket : 0u);
+    return sidedBucket(bucketOf(n), back);
   };
   auto photonNormal = [&](size_t src, size_t i) {
     return decodeOctahedral(src == 0 ? indirect->photons()[i].normal
@@ -231,7 +231,8 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const uint32_t r = order[i].second;
       // A back side's record holds shadow photons only: find reads no estimate there.
-      if (!(decodeCellKey(keys[r]).bucket & kBackSideBucket)) values[r] = estimateAt(*indirect, sites[r], normals[r], s);
+      if (!(decodeCellKey(keys[r]).bucket & kBackSideBucket))
+        values[r] = estimateAt(*indirect, sites[r], normals[r], s);
     }
     progressAdd(params.progress, range.size());
   });
@@ -260,7 +261,7 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n, bool backSid
   Answer a;
   if (records_ == 0) return a;
   const unsigned bucket = bucketOf(n), axis = bucket / 2;
-  const unsigned gateBucket = bucket | (backSide ? kBackSideBucket : 0u);
+  const unsigned gateBucket = sidedBucket(bucket, backSide);
   const Vec3 cellOf = (p - origin_) * invCell_;
   int64_t own[3];  // p's own cell
   for (int i = 0; i < 3; ++i) own[i] = static_cast<int64_t>(std::floor(cellOf[i]));
@@ -304,7 +305,7 @@ LookupCache::Answer LookupCache::find(const Vec3& p, const Vec3& n, bool backSid
 }
 
 const uint8_t* LookupCache::verdictsAround(const int64_t* own, const Vec3& cellOf, unsigned bucket) const {
-  const unsigned axis = (bucket & ~kBackSideBucket) / 2, t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
+  const unsigned axis = bucketAxis(bucket), t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
   int32_t nearest = -1;
   float best = kInf;
   int64_t c[3] = {own[0], own[1], own[2]};

@@ -67,6 +67,11 @@ class LookupCache {
   // inside): a thin wall's exit hits, a cell or less behind its front face and turned
   // the same way, stay out of the front face's vote.
   static constexpr unsigned kBackSideBucket = 8;
+  // A key's bucket from the normal's and the side; the normal's axis back from a key's.
+  static unsigned sidedBucket(unsigned normalBucket, bool backSide) {
+    return normalBucket | (backSide ? kBackSideBucket : 0u);
+  }
+  static unsigned bucketAxis(unsigned bucket) { return (bucket & ~kBackSideBucket) / 2; }
   // Cells are keyed by position and the dominant axis of the surface normal (six
   // buckets), so a thin wall's two sides and a corner's two faces never share a cell,
   // and a shadow photon's also by the side it met (kBackSideBucket).

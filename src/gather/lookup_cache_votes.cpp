@@ -29,7 +29,7 @@ struct Reach3 {
 };
 Reach3 reachOf(const CellKey& c, int reach) {
   int r[3] = {reach, reach, reach};
-  r[(c.bucket & ~LookupCache::kBackSideBucket) / 2] = std::min(reach, 1);
+  r[LookupCache::bucketAxis(c.bucket)] = std::min(reach, 1);
   return {r[0], r[1], r[2]};
 }
 
