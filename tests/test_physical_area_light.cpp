@@ -1,6 +1,6 @@
 // Quad and sphere area lights against closed-form radiometry: the irradiance of a
 // Lambertian rectangle on a parallel plane (the point-to-rectangle form factor), of a
-// sphere straight above, the emitter seen by the camera on its emitting side only,
+// sphere straight above (and with a ball just below it), the emitter seen by the camera on its emitting side only,
 // photons that leave from the surface into its hemisphere, and byte-identical
 // renders at 1 and 2 threads in both models.
 #include "support/form_factor.h"
@@ -66,6 +66,30 @@ TEST(AreaLight, SphereAboveAPointGivesPiLSin2) {
   // The camera sees the sphere's own radiance; lightPower is pi A L.
   EXPECT_NEAR(trace(rig, makeRay(eye, s.position - eye), kTermAll).x, 4.0f, 1e-6f);
   EXPECT_NEAR(lightPower(s, SceneSphere{}).x, kPi * 4.0f * kPi * 0.25f * 4.0f, 1e-3f);
+}
+
+TEST(AreaLight, AnOccluderJustBelowASphereLightHidesItsCap) {
+  // A ball of radius 0.2 whose top is 2 cm below a sphere light of radius 0.5 at
+  // height 2 hides, from the point below both, the cap within asin(0.2 / 1.28) of
+  // the axis: E = pi L (sin^2 a_light - sin^2 a_ball). Shadow rays stop just short of
+  // where they enter the light, so the ball (and nothing past it) decides.
+  Scene scene = physicalScene();
+  scene.materials.push_back(lambert("plane", Color(0.8f)));
+  scene.meshes.push_back(makeQuad(Vec3(-50, 0, -50), Vec3(0, 0, 100), Vec3(100, 0, 0), 0));
+  scene.spheres.push_back(Sphere{Vec3(0.0f, 1.28f, 0.0f), 0.2f, 0});
+  Light s;
+  s.type = LightType::Sphere;
+  s.position = Vec3(0.0f, 2.0f, 0.0f);
+  s.radius = 0.5f;
+  s.intensity = 4.0f;
+  scene.lights.push_back(s);
+  scene.render.lightSamples = 1024;
+  addEmitters(scene);
+  Rig rig(scene);
+  const Vec3 eye(-1.5f, 1.0f, 1.0f);
+  const Color got = trace(rig, makeRay(eye, Vec3(0.0f) - eye), kTermDirect);
+  const double ball = 0.2 / 1.28;
+  EXPECT_LT(rel(got.x, 0.8 * 4.0 * (0.25 / 4.0 - ball * ball)), 0.01) << got.x;
 }
 
 TEST(AreaLight, ClosedFormIrradianceMatchesTheFormFactorAndSampling) {
