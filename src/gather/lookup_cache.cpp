@@ -150,7 +150,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
                                      static_cast<uint32_t>(i), static_cast<uint32_t>(src)};
     });
   }
-  tbb::parallel_sort(entries.begin(), entries.end());
+  sortCacheEntries(entries);
   std::vector<uint32_t>& starts = cells.starts;
   for (size_t i = 0; i < total; ++i)
     if (i == 0 || entries[i].key != entries[i - 1].key) starts.push_back(static_cast<uint32_t>(i));

@@ -14,10 +14,11 @@ struct CacheEntry {
   uint64_t key;
   uint32_t index;
   uint32_t source;
-  bool operator<(const CacheEntry& o) const {
-    return key != o.key ? key < o.key : (source != o.source ? source < o.source : index < o.index);
-  }
 };
+
+// Sorts entries by key, ties in their given order: made in (source, index) order, each
+// record's photons come out in that order. A radix sort over the bits the keys use.
+void sortCacheEntries(std::vector<CacheEntry>& entries);
 
 // One cell's votes for one stratum of a light, saturating at 255.
 struct CellCounts {

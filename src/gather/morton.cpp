@@ -1,5 +1,6 @@
 // Morton codes and the deterministic storage order (a coarse spatial counting sort).
 #include "gather/morton.h"
+#include "gather/radix_pass.h"
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -38,11 +39,6 @@ uint64_t mortonCode63(const Vec3& p, const Bounds& b) {
 }
 
 namespace {
-// Records per chunk of the radix passes: a chunk counts and scatters its records on
-// one thread; the chunk count depends only on the record count.
-constexpr size_t kChunk = size_t(1) << 16;
-constexpr int kMaxDigitBits = 11;  // 2048 buckets per pass: their write heads stay in cache
-
 // Bit i of a 6-bit value moved to bit 3i: a table, since a loop over the bits
 // cost more than the rest of the key.
 constexpr std::array<uint32_t, 64> kSpread6 = [] {
@@ -60,39 +56,18 @@ uint32_t coarseCell(const Vec3& p, const Bounds& bounds, int b) {
   return kSpread6[q[0] >> (21 - b)] | kSpread6[q[1] >> (21 - b)] << 1 | kSpread6[q[2] >> (21 - b)] << 2;
 }
 
-// One stable counting-sort pass on the digit (key >> shift) & mask, src -> dst. `src`
-// is anything with forRange(begin, end, f(i, photon)) in sequence order. Returns where
-// each digit's records start in dst, and n at the end.
+// One stable counting-sort pass on the digit (key >> shift) & mask, src -> dst,
+// carrying the keys along to dstKeys if given.
 template <class Photon, class Source>
 std::vector<size_t> scatterPass(const Source& src, const uint32_t* srcKeys, Photon* dst, uint32_t* dstKeys,
                                 size_t n, int shift, int digitBits) {
-  const size_t buckets = size_t(1) << digitBits, mask = buckets - 1;
-  const size_t chunks = (n + kChunk - 1) / kChunk;
-  std::vector<uint32_t> head(chunks * buckets, 0);
-  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
-    uint32_t* h = &head[c * buckets];
-    for (size_t i = c * kChunk, e = std::min(n, i + kChunk); i < e; ++i) ++h[srcKeys[i] >> shift & mask];
-  });
-  // Bucket-major, chunk-minor: chunk c's records of a digit follow those of chunks < c.
-  std::vector<size_t> starts(buckets + 1, n);
-  uint32_t running = 0;
-  for (size_t d = 0; d < buckets; ++d) {
-    starts[d] = running;
-    for (size_t c = 0; c < chunks; ++c) {
-      const uint32_t x = head[c * buckets + d];
-      head[c * buckets + d] = running;
-      running += x;
-    }
-  }
-  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
-    uint32_t* h = &head[c * buckets];
-    src.forRange(c * kChunk, std::min(n, (c + 1) * kChunk), [&](size_t i, const Photon& p) {
-      const uint32_t at = h[srcKeys[i] >> shift & mask]++;
-      dst[at] = p;
-      if (dstKeys) dstKeys[at] = srcKeys[i];
-    });
-  });
-  return starts;
+  const uint32_t mask = (uint32_t(1) << digitBits) - 1;
+  return radixScatter(
+      src, n, digitBits, [&](size_t i) { return srcKeys[i] >> shift & mask; },
+      [&](size_t at, size_t i, const Photon& p) {
+        dst[at] = p;
+        if (dstKeys) dstKeys[at] = srcKeys[i];
+      });
 }
 
 // The second digit, bucket by bucket: each first-digit bucket is sorted stably by
@@ -176,7 +151,7 @@ template <class Photon>
 PhotonArray<Photon> sortByKey(PhotonBatches<Photon>&& photons, StorageKeys&& keys) {
   const size_t n = photons.size();
   if (n < 2 || keys.bits == 0) return std::move(photons).takeArray();
-  const int passes = (keys.bits + kMaxDigitBits - 1) / kMaxDigitBits;
+  const int passes = (keys.bits + kMaxRadixDigitBits - 1) / kMaxRadixDigitBits;
   const int digitBits = (keys.bits + passes - 1) / passes;
   // storageKeys keeps keys within 22 bits: at most two passes of <= 11 bits each.
   PhotonArray<Photon> sorted(n);
