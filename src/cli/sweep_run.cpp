@@ -47,12 +47,12 @@ class Sweep {
       plan();
       return {};
     }
+    plan();  // a bad run refuses before the folder is made
     const fs::path dir(req_.outDir);
     std::error_code ec;
     fs::create_directories(dir / "runs", ec);
     if (ec) throw InputError(req_.outDir + ": cannot create the sweep folder (" + ec.message() + ")");
     csvPath_ = (dir / "results.csv").string();
-    plan();
     std::map<std::string, SweepRow> finished;
     const SweepIdentity identity = identityOf();
     if (!req_.force) {
