@@ -1,11 +1,15 @@
 // sweep.json holds one field per thing that changes a row, so a refusal can say
 // which one differs; the knob values are the rows' own keys in results.csv.
 #include "cli/sweep_folder.h"
+#include "cli/sweep_run.h"
+#include "plan/reuse_key.h"
 #include "core/error.h"
 #include "io/temp_file.h"
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 namespace penumbra {
 namespace {
@@ -36,6 +40,27 @@ bool hasFinishedRuns(const fs::path& csv) {
 }
 
 }  // namespace
+
+SweepIdentity sweepIdentity(const SweepRequest& req, const std::vector<std::string>& inputs) {
+  SweepIdentity id;
+  id.scene = req.scenePath;
+  id.sceneFiles = inputsStamp(inputs);
+  std::set<std::string> knobKeys;
+  for (const SweepKnob& k : req.spec.knobs) knobKeys.insert(k.keys.begin(), k.keys.end());
+  for (const std::string& o : req.spec.runs.front().overrides) {
+    if (!knobKeys.count(o.substr(0, o.find('=')))) id.overrides.push_back(o);
+  }
+  id.view = req.aov;
+  for (Pass p : req.plan.enable) id.plan.push_back(std::string("+") + passName(p));
+  for (Pass p : req.plan.disable) id.plan.push_back(std::string("-") + passName(p));
+  if (!req.load.defaults) id.plan.push_back("--no-defaults");  // another picture of a glTF scene
+  if (!req.referencePath.empty()) {
+    id.reference = inputsStamp({req.referencePath});
+  } else if (req.referencePasses > 1) {
+    id.reference = fmt::format("its own, {}x the passes", req.referencePasses);
+  }
+  return id;
+}
 
 void checkSweepFolder(const std::string& dir, const SweepIdentity& identity) {
   const fs::path file = fs::path(dir) / "sweep.json";

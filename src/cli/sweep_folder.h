@@ -6,6 +6,8 @@
 
 namespace penumbra {
 
+struct SweepRequest;  // cli/sweep_run.h
+
 struct SweepIdentity {
   std::string scene;                   // the scene path as given
   std::string sceneFiles;              // inputsStamp of every file the scene read
@@ -14,6 +16,10 @@ struct SweepIdentity {
   std::vector<std::string> plan;       // --enable / --disable, as "+gate" / "-packets"
   std::string reference;               // --reference path and stamp; empty: the sweep's own
 };
+
+// The identity of `req`'s sweep, whose first run read the files `inputs`: everything
+// but the knobs' own --set values.
+SweepIdentity sweepIdentity(const SweepRequest& req, const std::vector<std::string>& inputs);
 
 // Throws InputError naming the folder and what differs (the scene, its files, the
 // --set values, the view, the plan overrides or the reference) when the folder holds

@@ -6,12 +6,12 @@
 #include "cli/plot_script.h"
 #include "cli/sweep_folder.h"
 #include "cli/sweep_idle_knobs.h"
+#include "cli/sweep_reference.h"
 #include "cli/progress_line.h"
 #include "plan/cpu_report.h"
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
 #include "core/error.h"
-#include "core/error_estimate.h"
 #include "io/contact_sheet.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
@@ -54,7 +54,7 @@ class Sweep {
     if (ec) throw InputError(req_.outDir + ": cannot create the sweep folder (" + ec.message() + ")");
     csvPath_ = (dir / "results.csv").string();
     std::map<std::string, SweepRow> finished;
-    const SweepIdentity identity = identityOf();
+    const SweepIdentity identity = sweepIdentity(req_, runs_.front().job.inputs);
     if (!req_.force) {
       checkSweepFolder(req_.outDir, identity);
       finished = readFinishedRows(csvPath_, spec_.knobs);
@@ -116,28 +116,6 @@ class Sweep {
     }
   }
 
-  // What changes a row besides its knob values (cli/sweep_folder.h).
-  SweepIdentity identityOf() const {
-    SweepIdentity id;
-    id.scene = req_.scenePath;
-    id.sceneFiles = inputsStamp(runs_.front().job.inputs);
-    std::set<std::string> knobKeys;
-    for (const SweepKnob& k : spec_.knobs) knobKeys.insert(k.keys.begin(), k.keys.end());
-    for (const std::string& o : spec_.runs.front().overrides) {
-      if (!knobKeys.count(o.substr(0, o.find('=')))) id.overrides.push_back(o);
-    }
-    id.view = req_.aov;
-    for (Pass p : req_.plan.enable) id.plan.push_back(std::string("+") + passName(p));
-    for (Pass p : req_.plan.disable) id.plan.push_back(std::string("-") + passName(p));
-    if (!req_.load.defaults) id.plan.push_back("--no-defaults");  // another picture of a glTF scene
-    if (!req_.referencePath.empty()) {
-      id.reference = inputsStamp({req_.referencePath});
-    } else if (req_.referencePasses > 1) {
-      id.reference = fmt::format("its own, {}x the passes", req_.referencePasses);
-    }
-    return id;
-  }
-
   void loadReference() {
     if (!req_.referencePath.empty()) {
       reference_ = readImage(req_.referencePath);
@@ -146,7 +124,12 @@ class Sweep {
     }
     const fs::path saved = fs::path(req_.outDir) / "reference.exr";
     if (req_.referencePasses > 1) {
-      renderLongReference(saved);
+      LongReference r = longReference(session_, req_, runs_[spec_.highest].job, saved.string(), [&] {
+        status_ = "reference";
+        showProgress();
+      });
+      reference_ = std::move(r.image);
+      totals_.referenceNote = std::move(r.note);
       return;
     }
     referenceRun_ = spec_.highest;
@@ -158,35 +141,6 @@ class Sweep {
       runs_[referenceRun_].done = false;
       session_.prepare(runs_[referenceRun_].job);
     }
-  }
-
-  // The highest run with referencePasses x its passes, rendered before any run (or
-  // reloaded, with its note, from the folder an earlier sweep left it in).
-  void renderLongReference(const fs::path& saved) {
-    const PlannedRun& highest = runs_[spec_.highest];
-    const int passes = highest.job.scene.photons.passes * req_.referencePasses;
-    const std::string what = fmt::format("{} passes of the run at every knob's highest value ({})", passes,
-                                         spec_.runs[spec_.highest].id);
-    if (fs::exists(saved) && readImageAttribute(saved.string(), "penumbra:sweep_reference") == what) {
-      reference_ = readImage(saved.string());
-      totals_.referenceNote = what + ", reloaded from `reference.exr`. " +
-                              readImageAttribute(saved.string(), "penumbra:sweep_reference_note");
-      return;
-    }
-    std::vector<std::string> overrides = spec_.runs[spec_.highest].overrides;
-    overrides.push_back("photons.passes=" + std::to_string(passes));
-    PlannedJob job = session_.plan(JobRequest{req_.scenePath, overrides, req_.aov, {}, {}, {}});
-    session_.prepare(job);
-    status_ = "reference";
-    showProgress();
-    const CpuSpan clock;
-    const RenderResult r = session_.frame(job, session_.photons(job));
-    reference_ = r.image;
-    const std::string note = fmt::format("Rendered by this sweep in {:.1f} s. Its own error estimate, how far it is "
-                                         "from converged: {} (docs/accuracy.md)",
-                                         clock.wallSeconds(), describeError(r.stats.error));
-    totals_.referenceNote = what + ", saved as `reference.exr`. " + note;
-    writeImage(saved.string(), r.image, {{"penumbra:sweep_reference", what}, {"penumbra:sweep_reference_note", note}});
   }
 
   // Runs still to do, grouped by (geometry, photon key); the reference's group first.

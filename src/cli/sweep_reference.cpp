@@ -1,0 +1,41 @@
+// A sweep's own long reference: one longer render by the same consistent estimator,
+// kept beside the results with a note that says what it is, so a rerun reloads it.
+#include "cli/sweep_reference.h"
+#include "plan/cpu_report.h"
+#include "plan/render_session.h"
+#include "core/error_estimate.h"
+#include "io/image_io.h"
+#include <fmt/format.h>
+#include <filesystem>
+
+namespace penumbra {
+
+LongReference longReference(RenderSession& session, const SweepRequest& req, const PlannedJob& highest,
+                            const std::string& saved, const std::function<void()>& rendering) {
+  const SweepRun& run = req.spec.runs[req.spec.highest];
+  const int passes = highest.scene.photons.passes * req.referencePasses;
+  const std::string what =
+      fmt::format("{} passes of the run at every knob's highest value ({})", passes, run.id);
+  LongReference out;
+  if (std::filesystem::exists(saved) && readImageAttribute(saved, "penumbra:sweep_reference") == what) {
+    out.image = readImage(saved);
+    out.note = what + ", reloaded from `reference.exr`. " + readImageAttribute(saved, "penumbra:sweep_reference_note");
+    return out;
+  }
+  std::vector<std::string> overrides = run.overrides;
+  overrides.push_back("photons.passes=" + std::to_string(passes));
+  PlannedJob job = session.plan(JobRequest{req.scenePath, overrides, req.aov, {}, {}, {}});
+  session.prepare(job);
+  rendering();
+  const CpuSpan clock;
+  RenderResult r = session.frame(job, session.photons(job));
+  const std::string note = fmt::format("Rendered by this sweep in {:.1f} s. Its own error estimate, how far it is "
+                                       "from converged: {} (docs/accuracy.md)",
+                                       clock.wallSeconds(), describeError(r.stats.error));
+  out.note = what + ", saved as `reference.exr`. " + note;
+  writeImage(saved, r.image, {{"penumbra:sweep_reference", what}, {"penumbra:sweep_reference_note", note}});
+  out.image = std::move(r.image);
+  return out;
+}
+
+}  // namespace penumbra
