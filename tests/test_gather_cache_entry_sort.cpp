@@ -15,9 +15,9 @@ uint64_t cellKey(uint64_t x, uint64_t y, uint64_t z, uint64_t bucket) { return x
 
 // n entries in (source, index) order, as LookupCache::build makes them, whose cells
 // lie in a box `side` cells wide from `lo` on every axis.
-std::vector<CacheEntry> entriesIn(size_t n, uint64_t lo, uint64_t side, uint64_t seed) {
+PhotonArray<CacheEntry> entriesIn(size_t n, uint64_t lo, uint64_t side, uint64_t seed) {
   Rng rng(seed);
-  std::vector<CacheEntry> e(n);
+  PhotonArray<CacheEntry> e(n);
   auto axis = [&] { return lo + std::min<uint64_t>(side - 1, static_cast<uint64_t>(rng.uniform() * side)); };
   for (size_t i = 0; i < n; ++i) {
     const uint64_t bucket = std::min<uint64_t>(15, static_cast<uint64_t>(rng.uniform() * 16));
@@ -26,8 +26,8 @@ std::vector<CacheEntry> entriesIn(size_t n, uint64_t lo, uint64_t side, uint64_t
   return e;
 }
 
-void expectStableOrder(std::vector<CacheEntry> e) {
-  std::vector<CacheEntry> want = e;
+void expectStableOrder(PhotonArray<CacheEntry> e) {
+  PhotonArray<CacheEntry> want = e;
   std::stable_sort(want.begin(), want.end(), [](const CacheEntry& a, const CacheEntry& b) { return a.key < b.key; });
   sortCacheEntries(e);
   ASSERT_EQ(e.size(), want.size());
@@ -58,14 +58,14 @@ TEST(CacheEntrySort, OneKeyAndTinyInputsAreLeftInOrder) {
 }
 
 TEST(CacheEntrySort, OneThreadSortsAlike) {
-  const std::vector<CacheEntry> e = entriesIn(2 * kRadixChunk + 5, 0, 40, 7);
-  std::vector<CacheEntry> one = e, many = e;
+  const PhotonArray<CacheEntry> e = entriesIn(2 * kRadixChunk + 5, 0, 40, 7);
+  PhotonArray<CacheEntry> one = e, many = e;
   {
     tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
     sortCacheEntries(one);
   }
   sortCacheEntries(many);
-  for (size_t i = 0; i < e.size(); ++i) ASSERT_TRUE(one[i].key == many[i].key && one[i].index == many[i].index) << i;
+  for (size_t i = 0; i < e.size(); ++i) ASSERT_TRUE(one[i].key == many[i].key && one[i].source == many[i].source && one[i].index == many[i].index) << i;
 }
 
 }  // namespace

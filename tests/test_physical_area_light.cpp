@@ -1,8 +1,8 @@
 // Quad and sphere area lights against closed-form radiometry: the irradiance of a
 // Lambertian rectangle on a parallel plane (the point-to-rectangle form factor), of a
-// sphere straight above (and with a ball just below it), the emitter seen by the camera on its emitting side only,
-// photons that leave from the surface into its hemisphere, and byte-identical
-// renders at 1 and 2 threads in both models.
+// sphere straight above (bare, and with a ball just below it), the emitter seen by the
+// camera on its emitting side only, photons that leave from the surface into its
+// hemisphere, and byte-identical renders at 1 and 2 threads in both models.
 #include "support/form_factor.h"
 #include "plan/pipeline.h"
 #include "core/error.h"
@@ -71,8 +71,8 @@ TEST(AreaLight, SphereAboveAPointGivesPiLSin2) {
 TEST(AreaLight, AnOccluderJustBelowASphereLightHidesItsCap) {
   // A ball of radius 0.2 whose top is 2 cm below a sphere light of radius 0.5 at
   // height 2 hides, from the point below both, the cap within asin(0.2 / 1.28) of
-  // the axis: E = pi L (sin^2 a_light - sin^2 a_ball). Shadow rays stop just short of
-  // where they enter the light, so the ball (and nothing past it) decides.
+  // the axis: E = pi L (sin^2 a_light - sin^2 a_ball). The ball's cone lies inside the
+  // light's, and every ray in it meets the ball before the light.
   Scene scene = physicalScene();
   scene.materials.push_back(lambert("plane", Color(0.8f)));
   scene.meshes.push_back(makeQuad(Vec3(-50, 0, -50), Vec3(0, 0, 100), Vec3(100, 0, 0), 0));

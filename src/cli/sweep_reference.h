@@ -1,7 +1,6 @@
 // The image a sweep measures its runs against when it renders its own: the run at every
 // knob's highest value with --reference-passes times its progressive passes.
 #pragma once
-#include "cli/sweep_run.h"
 #include "core/image.h"
 #include <functional>
 #include <string>
@@ -10,6 +9,7 @@ namespace penumbra {
 
 class RenderSession;
 struct PlannedJob;
+struct SweepRequest;  // cli/sweep_run.h
 
 struct LongReference {
   Image image;

@@ -141,7 +141,7 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   origin_ = box.lo - Vec3(1.5f * cell_);
 
   CacheCells cells;
-  std::vector<CacheEntry>& entries = cells.entries;
+  PhotonArray<CacheEntry>& entries = cells.entries;
   entries.resize(total);
   for (size_t src = 0; src < sourceSize.size(); ++src) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, sourceSize[src], 1 << 14), [&](const auto& r) {

@@ -3,6 +3,7 @@
 // way they face, and per record and light stratum how the photons arrived.
 #pragma once
 #include "core/math.h"
+#include "core/photon.h"
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -18,7 +19,7 @@ struct CacheEntry {
 
 // Sorts entries by key, ties in their given order: made in (source, index) order, each
 // record's photons come out in that order. A radix sort over the bits the keys use.
-void sortCacheEntries(std::vector<CacheEntry>& entries);
+void sortCacheEntries(PhotonArray<CacheEntry>& entries);
 
 // One cell's votes for one stratum of a light, saturating at 255.
 struct CellCounts {
@@ -35,7 +36,7 @@ inline CellKey decodeCellKey(uint64_t key) {
 }
 
 struct CacheCells {
-  std::vector<CacheEntry> entries;  // sorted by key
+  PhotonArray<CacheEntry> entries;  // sorted by key
   std::vector<uint32_t> starts;     // record r's entries: [starts[r], starts[r + 1])
   std::vector<uint64_t> keys;       // record r's key
   std::vector<Vec3> normals;        // record r's photons' mean normal

@@ -24,7 +24,7 @@ int bitWidth(uint64_t v) { return v ? 64 - __builtin_clzll(v) : 0; }
 
 }  // namespace
 
-void sortCacheEntries(std::vector<CacheEntry>& entries) {
+void sortCacheEntries(PhotonArray<CacheEntry>& entries) {
   const size_t n = entries.size();
   if (n < 2) return;
   // Each field's width is that of the OR of all its values.
@@ -46,7 +46,7 @@ void sortCacheEntries(std::vector<CacheEntry>& entries) {
   const int passes = (bits + kMaxRadixDigitBits - 1) / kMaxRadixDigitBits;
   const int digitBits = (bits + passes - 1) / passes;
   const uint64_t mask = (uint64_t(1) << digitBits) - 1;
-  std::vector<CacheEntry> other(n);
+  PhotonArray<CacheEntry> other(n);  // every element written by the first pass
   for (int pass = 0; pass < passes; ++pass) {
     const int shift = pass * digitBits;
     const CacheEntry* src = entries.data();

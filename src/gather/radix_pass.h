@@ -3,6 +3,7 @@
 #pragma once
 #include <tbb/parallel_for.h>
 #include <algorithm>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -18,8 +19,10 @@ constexpr int kMaxRadixDigitBits = 11;
 // Records [0, n) of `src` (anything with forRange(begin, end, f(i, record)) in sequence
 // order), each to place(at, i, record) where `at` is its rank by digitOf(i) (< 2^digitBits),
 // ties in sequence order. Returns where each digit's records start, and n at the end.
+// Ranks are 32-bit, as photon indices are (checkIndexable): n < 2^32.
 template <class Source, class DigitOf, class Place>
 std::vector<size_t> radixScatter(const Source& src, size_t n, int digitBits, DigitOf&& digitOf, Place&& place) {
+  assert(n <= UINT32_MAX);
   const size_t buckets = size_t(1) << digitBits;
   const size_t chunks = (n + kRadixChunk - 1) / kRadixChunk;
   std::vector<uint32_t> head(chunks * buckets, 0);

@@ -8,6 +8,7 @@
 #include "core/light_sample.h"
 #include "core/light_strata.h"
 #include "gather/lookup_cache.h"
+#include "gather/lookup_cache_cells.h"
 #include "core/photon.h"
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
@@ -136,19 +137,21 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.storedPhotons = shadow + indirect + global + caustic;
   e.photonBytes = shadow * (sizeof(ShadowPhoton) + kIndexBytes) +
                   (indirect + global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
+  const PhotonSettings& ps = scene.photons;
+  const IndirectLookup lookup = transportOf(scene).indirectLookup(ps);
+  const double lookupPhotons = options.precomputed ? n[lookup.map] : 0.0;
   // The emitters' blocks and the sorted arrays each hold a copy while the maps build
-  // (one map after another, so this bounds the peak from above).
-  e.photonPeakBytes = e.photonBytes + shadow * sizeof(ShadowPhoton) +
-                      (indirect + global + caustic) * sizeof(IndirectPhoton);
+  // (one map after another, so this bounds the peak from above); then a lookup cache's
+  // build holds an entry per photon it bins, twice while it sorts them.
+  const double mapCopy = shadow * sizeof(ShadowPhoton) + (indirect + global + caustic) * sizeof(IndirectPhoton);
+  const double cacheSort = options.precomputed ? 2.0 * sizeof(CacheEntry) * (shadow + lookupPhotons) : 0.0;
+  e.photonPeakBytes = e.photonBytes + std::max(mapCopy, cacheSort);
   // A progressive pass emits its photons while the previous pass's maps still stand.
   if (p.photonPasses > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
-  const PhotonSettings& ps = scene.photons;
   if (options.precomputed) {
     // A record per occupied cell, whose size is a multiple of the typical gather
     // radius: the lookup map's cells and the gate's (finer ones get a cache of their
     // own; summed, an upper bound either way), each with the gate's row of verdicts.
-    const IndirectLookup lookup = transportOf(scene).indirectLookup(ps);
-    const double lookupPhotons = n[lookup.map];
     double records = lookupPhotons / (photonsPerCacheCell(std::max(1, lookup.k), ps.lookupCell) * kCacheCellFill);
     size_t columns = 0, stratified = 0;
     if (shadow > 0.0) {
