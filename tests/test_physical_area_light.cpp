@@ -44,20 +44,32 @@ TEST(AreaLight, QuadIrradianceOnAParallelPlaneMatchesTheFormFactor) {
   EXPECT_EQ(sampleLight(scene.lights[0], Vec3(0, 2, 0), 0.3f, 0.6f).valid, false);
 }
 
-TEST(AreaLight, SphereAboveAPointGivesPiLSin2) {
-  // A sphere light of radius R whose centre is at distance d straight above the
-  // point: E = pi L (R / d)^2, so L_out = rho L (R / d)^2. Cone sampling of the
-  // subtended directions; tolerance 1% with 256 samples.
-  Scene scene = physicalScene();
-  scene.materials.push_back(lambert("plane", Color(0.8f)));
-  scene.meshes.push_back(makeQuad(Vec3(-50, 0, -50), Vec3(0, 0, 100), Vec3(100, 0, 0), 0));
+// A sphere light of radius 0.5 and radiance 4 centred 2 above the origin.
+Light sphereAboveTheOrigin() {
   Light s;
   s.type = LightType::Sphere;
   s.position = Vec3(0.0f, 2.0f, 0.0f);
   s.radius = 0.5f;
   s.intensity = 4.0f;
-  scene.lights.push_back(s);
-  scene.render.lightSamples = 256;
+  return s;
+}
+
+// A Lambert plane (rho 0.8) at y = 0 under `light`, sampled `samples` times a point.
+Scene underASphereLight(const Light& light, int samples) {
+  Scene scene = physicalScene();
+  scene.materials.push_back(lambert("plane", Color(0.8f)));
+  scene.meshes.push_back(makeQuad(Vec3(-50, 0, -50), Vec3(0, 0, 100), Vec3(100, 0, 0), 0));
+  scene.lights.push_back(light);
+  scene.render.lightSamples = samples;
+  return scene;
+}
+
+TEST(AreaLight, SphereAboveAPointGivesPiLSin2) {
+  // A sphere light of radius R whose centre is at distance d straight above the
+  // point: E = pi L (R / d)^2, so L_out = rho L (R / d)^2. Cone sampling of the
+  // subtended directions; tolerance 1% with 256 samples.
+  const Light s = sphereAboveTheOrigin();
+  Scene scene = underASphereLight(s, 256);
   addEmitters(scene);
   Rig rig(scene);
   const Vec3 eye(-1.5f, 1.0f, 1.0f);
@@ -73,17 +85,8 @@ TEST(AreaLight, AnOccluderJustBelowASphereLightHidesItsCap) {
   // height 2 hides, from the point below both, the cap within asin(0.2 / 1.28) of
   // the axis: E = pi L (sin^2 a_light - sin^2 a_ball). The ball's cone lies inside the
   // light's, and every ray in it meets the ball before the light.
-  Scene scene = physicalScene();
-  scene.materials.push_back(lambert("plane", Color(0.8f)));
-  scene.meshes.push_back(makeQuad(Vec3(-50, 0, -50), Vec3(0, 0, 100), Vec3(100, 0, 0), 0));
+  Scene scene = underASphereLight(sphereAboveTheOrigin(), 1024);
   scene.spheres.push_back(Sphere{Vec3(0.0f, 1.28f, 0.0f), 0.2f, 0});
-  Light s;
-  s.type = LightType::Sphere;
-  s.position = Vec3(0.0f, 2.0f, 0.0f);
-  s.radius = 0.5f;
-  s.intensity = 4.0f;
-  scene.lights.push_back(s);
-  scene.render.lightSamples = 1024;
   addEmitters(scene);
   Rig rig(scene);
   const Vec3 eye(-1.5f, 1.0f, 1.0f);

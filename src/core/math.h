@@ -48,9 +48,6 @@ inline void orthonormalBasis(const Vec3& n, Vec3& t, Vec3& b) {
 constexpr float kUnitRoundoff = std::numeric_limits<float>::epsilon() * 0.5f;
 constexpr float gammaBound(int n) { return n * kUnitRoundoff / (1.0f - n * kUnitRoundoff); }
 
-// Moves p by `error` along the geometric normal ng, to the side dir points to, then
-// rounds every moved coordinate one more ulp away, so the rounding of the addition
-// cannot pull the origin back into the error box.
 // A float's bits and back (C++17's std::bit_cast).
 inline uint32_t floatBits(float v) {
   uint32_t b;
@@ -73,6 +70,9 @@ inline float nextFloatUp(float v) {
 }
 inline float nextFloatDown(float v) { return -nextFloatUp(-v); }
 
+// Moves p by `error` along the geometric normal ng, to the side dir points to, then
+// rounds every moved coordinate one more ulp away, so the rounding of the addition
+// cannot pull the origin back into the error box.
 inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& ng, float error, const Vec3& dir) {
   const Vec3 n = glm::dot(ng, dir) < 0.0f ? -ng : ng;
   Vec3 o = p + error * n;

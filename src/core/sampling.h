@@ -87,7 +87,8 @@ inline Vec2 sobol02(uint32_t i, uint64_t scramble) {
 // alpha_k = phi^-k with phi the real root of x^5 = x + 1. Every prefix, of any length,
 // spreads evenly over coordinates (0, 1) and over (2, 3), the pairs a photon uses
 // together (its point on the light, its direction); (0, 2) shows more lattice structure.
-// A random shift makes each point uniform. Kept in 64-bit fixed point, so the sum wraps exactly instead of rounding.
+// A random shift makes each point uniform. Kept in 64-bit fixed point, so the sum wraps
+// exactly instead of rounding.
 class Kronecker4 {
  public:
   explicit Kronecker4(Rng& rng) {

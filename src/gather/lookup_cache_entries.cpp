@@ -9,13 +9,13 @@ namespace penumbra {
 
 namespace {
 
-// A key (LookupCache::keyOf: x << 44 | y << 24 | z << 4 | bucket, 20 bits an axis)
-// packed densely, given each axis's width: the same order on the keys that occur.
+// A key's fields (decodeCellKey: x, y, z, then the 4-bit bucket) packed densely, given
+// each axis's width: the same order on the keys that occur.
 struct DenseKey {
   int yShift = 0, xShift = 0;
   uint64_t operator()(uint64_t key) const {
-    constexpr uint64_t kAxis = (uint64_t(1) << 20) - 1;
-    return (key >> 44) << xShift | (key >> 24 & kAxis) << yShift | (key & ((kAxis << 4) | 15u));
+    const CellKey c = decodeCellKey(key);
+    return uint64_t(c.x) << xShift | uint64_t(c.y) << yShift | uint64_t(c.z) << 4 | c.bucket;
   }
 };
 
@@ -27,7 +27,7 @@ int bitWidth(uint64_t v) { return v ? 64 - __builtin_clzll(v) : 0; }
 void sortCacheEntries(PhotonArray<CacheEntry>& entries) {
   const size_t n = entries.size();
   if (n < 2) return;
-  // Each field's width is that of the OR of all its values.
+  // Each field's width is that of the OR of all its values: the fields of the OR.
   const uint64_t used = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, n, kRadixChunk), uint64_t(0),
       [&](const tbb::blocked_range<size_t>& r, uint64_t acc) {
@@ -35,13 +35,11 @@ void sortCacheEntries(PhotonArray<CacheEntry>& entries) {
         return acc;
       },
       [](uint64_t a, uint64_t b) { return a | b; });
-  constexpr uint64_t kAxis = (uint64_t(1) << 20) - 1;
-  const int zBits = bitWidth(used >> 4 & kAxis), yBits = bitWidth(used >> 24 & kAxis);
-  const int xBits = bitWidth(used >> 44);
+  const CellKey widest = decodeCellKey(used);
   DenseKey dense;
-  dense.yShift = 4 + zBits;
-  dense.xShift = dense.yShift + yBits;
-  const int bits = dense.xShift + xBits;
+  dense.yShift = 4 + bitWidth(uint64_t(widest.z));
+  dense.xShift = dense.yShift + bitWidth(uint64_t(widest.y));
+  const int bits = dense.xShift + bitWidth(uint64_t(widest.x));
   // Balanced digits of at most kMaxRadixDigitBits, least significant first.
   const int passes = (bits + kMaxRadixDigitBits - 1) / kMaxRadixDigitBits;
   const int digitBits = (bits + passes - 1) / passes;
