@@ -231,17 +231,6 @@ std::vector<BatchJob> jobsForScenes(const std::vector<std::string>& scenes, cons
   return jobs;
 }
 
-std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count) {
-  std::vector<double> load(count, 0.0);
-  std::vector<size_t> mine;
-  for (size_t j = 0; j < costs.size(); ++j) {
-    const size_t s = static_cast<size_t>(std::min_element(load.begin(), load.end()) - load.begin());
-    load[s] += costs[j];
-    if (s == index) mine.push_back(j);
-  }
-  return mine;
-}
-
 std::pair<size_t, size_t> parseShard(const std::string& text) {
   size_t i = 0, n = 0;
   char slash = 0, extra = 0;

@@ -23,11 +23,6 @@ std::vector<BatchJob> jobsForScenes(const std::vector<std::string>& scenes, cons
                                     const std::vector<std::string>& overrides,
                                     const std::vector<std::string>& views, const std::string& ext);
 
-// The jobs of shard `index` (0-based) of `count`: jobs in order, each to the shard
-// with the least estimated cost so far (ties to the lowest index), so appending
-// jobs never moves an earlier one.
-std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count);
-
 // "2/4" -> {1, 4} (1-based on the command line); throws InputError.
 std::pair<size_t, size_t> parseShard(const std::string& text);
 

@@ -6,12 +6,14 @@
 #include "plan/image_metadata.h"
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
+#include "plan/resource_estimate.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include <fmt/format.h>
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <numeric>
 
 namespace penumbra {
 namespace {
@@ -28,6 +30,17 @@ struct PreparedJob {
 };
 
 }  // namespace
+
+std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count) {
+  std::vector<double> load(count, 0.0);
+  std::vector<size_t> mine;
+  for (size_t j = 0; j < costs.size(); ++j) {
+    const size_t s = static_cast<size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    load[s] += costs[j];
+    if (s == index) mine.push_back(j);
+  }
+  return mine;
+}
 
 BatchOutcome runBatch(const BatchRequest& req) {
   const CpuSpan clock;
@@ -76,15 +89,28 @@ BatchOutcome runBatch(const BatchRequest& req) {
     jobFiles.push_back({p.job->name, p.outputs, p.views.front().inputs});
   }
   checkJobsApart(jobFiles);
+  // Checked as a whole, the file is cut into shards; a job that failed validation costs
+  // nothing and is reported by the shard it falls to.
+  std::vector<size_t> order(prepared.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  if (req.shard) {
+    std::vector<double> costs;
+    for (const PreparedJob& p : prepared) {
+      costs.push_back(p.error.empty() ? shardCostNs(p.views.front().scene, p.job->outputs.size()) : 0.0);
+    }
+    order = shardJobs(costs, req.shard->index, req.shard->count);
+    out.shardJobs = order;
+    if (req.listShard) return out;
+  }
   // Up to date or not is decided once, before any job writes.
   std::vector<bool> current(prepared.size(), false);
-  for (size_t j = 0; j < prepared.size(); ++j) {
+  for (size_t j : order) {
     current[j] = prepared[j].error.empty() && !req.force && outputsUpToDate(prepared[j].outputs, prepared[j].stamp, prepared[j].inputs);
   }
   std::vector<bool> builtScene(prepared.size(), false);  // this job's prepare built its BVH
   // 2. The jobs to render prepared (BVH, light split, the photon estimate against the
   // memory limit) before the first photon of any of them.
-  for (size_t j = 0; j < prepared.size(); ++j) {
+  for (size_t j : order) {
     PreparedJob& p = prepared[j];
     if (!p.error.empty() || current[j]) continue;
     const size_t builds = session.sceneBuilds();
@@ -101,7 +127,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
 
   // 3. Render, sharing what the keys allow.
   size_t done = 0;
-  for (size_t j = 0; j < prepared.size(); ++j) {
+  for (size_t j : order) {
     PreparedJob& p = prepared[j];
     BatchJobResult r;
     r.name = p.job->name;
@@ -109,7 +135,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
     const CpuSpan jobClock;
     auto report = [&](const char* phase) {
       if (!req.progress) return;
-      req.progress({done, prepared.size(), p.job->name, phase, clock.wallSeconds()});
+      req.progress({done, order.size(), p.job->name, phase, clock.wallSeconds()});
     };
     if (!p.error.empty()) {
       r.status = "failed: " + p.error;

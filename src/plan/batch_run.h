@@ -7,6 +7,7 @@
 #include "plan/render_budget.h"
 #include "plan/render_session.h"
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,8 +35,17 @@ struct BatchProgress {
   double seconds = 0.0;
 };
 
+// Shard `index` (0-based) of `count`: the jobs this process renders out of the whole file.
+struct BatchShard {
+  size_t index = 0, count = 1;
+};
+
 struct BatchRequest {
-  std::vector<BatchJob> jobs;
+  std::vector<BatchJob> jobs;  // the whole jobs file, also when one shard renders
+  // Set: validate and clash-check every job, then render only this shard's; an unset
+  // shard renders every job.
+  std::optional<BatchShard> shard;
+  bool listShard = false;  // stop after choosing the shard's jobs (BatchOutcome::shardJobs)
   std::vector<std::string> extraInputs;  // the jobs file: its edits make every output stale
   int threads = 0;
   bool force = false;       // render even jobs whose outputs are up to date
@@ -59,7 +69,8 @@ struct BatchJobResult {
 };
 
 struct BatchOutcome {
-  std::vector<BatchJobResult> jobs;
+  std::vector<BatchJobResult> jobs;  // the jobs rendered or checked: the shard's, else all
+  std::vector<size_t> shardJobs;     // with a shard: indices into BatchRequest::jobs
   size_t failed = 0, rendered = 0, upToDate = 0;
   size_t sceneBuilds = 0, photonBuilds = 0, photonReuses = 0, evictions = 0;
   uint64_t peakCacheBytes = 0;
@@ -71,5 +82,10 @@ struct BatchOutcome {
 
 // Validates every job (InputError naming the job unless keepGoing), then renders.
 BatchOutcome runBatch(const BatchRequest& request);
+
+// The jobs of shard `index` (0-based) of `count`: jobs in order, each to the shard
+// with the least estimated cost so far (ties to the lowest index), so appending
+// jobs never moves an earlier one.
+std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count);
 
 }  // namespace penumbra
