@@ -7,8 +7,6 @@
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
-#include "plan/resource_estimate.h"
-#include "io/scene_loader.h"
 #include "cli/sweep_spec.h"
 #include "core/error.h"
 #include <fmt/format.h>
@@ -87,6 +85,7 @@ int BatchCommand::run() {
   Options& o = *o_;
   BatchRequest req;
   const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before any scene is read
+  checkBudget(o.budget);  // as render and sweep do: a bad budget is refused, never ignored
   if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
   const bool jobsFile = o.inputs.size() == 1 && isJobsFile(o.inputs[0]);
   if (jobsFile) {
@@ -109,18 +108,8 @@ int BatchCommand::run() {
   const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;
   if (!shardArg.empty()) {
     const auto [index, count] = parseShard(shardArg);
-    std::vector<double> costs;
-    for (const BatchJob& j : req.jobs) {
-      costs.push_back(shardCostNs(loadScene(j.scene, j.overrides, loadLimits(req.maxMemoryBytes), o.plan.load()),
-                                  j.outputs.size()));
-    }
-    std::vector<BatchJob> mine;
-    for (size_t j : shardJobs(costs, index, count)) mine.push_back(req.jobs[j]);
-    if (!o.listShard.empty()) {
-      for (const BatchJob& j : mine) std::cout << j.name << "\t" << j.outputs.front().path << "\n";
-      return 0;
-    }
-    req.jobs = std::move(mine);
+    req.shard = BatchShard{index, count};
+    req.listShard = !o.listShard.empty();
   }
   req.threads = o.threads;
   req.force = o.force;
@@ -138,6 +127,10 @@ int BatchCommand::run() {
   }
   const BatchOutcome out = runBatch(req);
   if (progress) progress->finish();
+  if (req.listShard) {
+    for (size_t j : out.shardJobs) std::cout << req.jobs[j].name << "\t" << req.jobs[j].outputs.front().path << "\n";
+    return 0;
+  }
   if (!o.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     std::cerr << batchSummary(out);

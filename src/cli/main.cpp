@@ -122,6 +122,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Exit codes: 0 done; 1 internal error (a bug: please report it); 2 bad input or a job refused "
              "before any work (one line says which file, JSON path and problem).");
+  // A bad option is bad input like any other: one line, exit 2.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string(e.what()) + " (see --help)\n"; });
   app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION);
 
   RenderRequest req;

@@ -9,6 +9,7 @@
 #include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <algorithm>
+#include <cstdlib>
 #include <iostream>
 
 namespace penumbra {
@@ -43,12 +44,35 @@ void addPlanOptions(CLI::App& command, PlanArgs& args) {
   addDefaultsOption(command, args.noDefaults);
 }
 
+namespace {
+// A budget value as checkBudget takes it; an empty one is a mistake, not "no budget".
+CLI::Validator budgetValue(double RenderBudget::*field) {
+  return CLI::Validator(
+      [field](std::string& text) -> std::string {
+        RenderBudget b;
+        char* end = nullptr;
+        b.*field = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0') return "'" + text + "' is not a number";
+        try {
+          checkBudget(b);
+        } catch (const InputError& e) {
+          const std::string why = e.what();  // "--time-limit: ...": CLI11 names the option itself
+          return why.substr(why.find(": ") + 2);
+        }
+        return "";
+      },
+      "NUMBER >= 0");
+}
+}  // namespace
+
 void addBudgetOptions(CLI::App& command, RenderBudget& budget) {
   command.add_option("--time-limit", budget.seconds,
                      "Run progressive passes (at least 2) until this many seconds of the job have passed, then "
-                     "write the image; --stats names the passes done");
+                     "write the image; --stats names the passes done")
+      ->check(budgetValue(&RenderBudget::seconds));
   command.add_option("--target-error", budget.targetError,
-                     "Run progressive passes (at least 2) until the estimated noise RMSE is at most this");
+                     "Run progressive passes (at least 2) until the estimated noise RMSE is at most this")
+      ->check(budgetValue(&RenderBudget::targetError));
 }
 
 void addDefaultsOption(CLI::App& command, bool& noDefaults) {

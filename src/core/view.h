@@ -18,6 +18,9 @@ inline constexpr std::array<const char*, 6> kViewNames = {"beauty", "depth", "no
 
 inline const char* viewName(Aov aov) { return kViewNames[static_cast<size_t>(aov)]; }
 
+// Depth and normals are geometry: they carry no light, so no photons, passes or budget.
+inline bool readsLight(Aov aov) { return aov != Aov::Depth && aov != Aov::Normal; }
+
 // The "error" view renders the beauty and writes its per-pixel standard error
 // (core/error_estimate.h) in its place.
 inline constexpr const char* kErrorView = "error";

@@ -6,6 +6,8 @@
 #include "plan/photon_stage.h"
 #include "plan/transport_model.h"
 #include <fmt/format.h>
+#include <algorithm>
+#include <cmath>
 
 namespace penumbra {
 
@@ -17,8 +19,9 @@ PhotonPlan photonPlanOf(const RenderPlan& plan, const Scene& scene, bool tracePi
 }
 
 Admission admitJob(const Scene& scene, const RenderPlan& plan, int threads, bool tracePixel,
-                   uint64_t maxMemoryBytes) {
+                   uint64_t maxMemoryBytes, const RenderBudget& budget) {
   Admission a;
+  if (!tracePixel && readsLight(plan.aov)) a.budget = budget;  // only views of light run passes
   a.options.photons = photonPlanOf(plan, scene, tracePixel);
   a.options.aov = plan.aov;
   a.options.threads = threads;
@@ -42,14 +45,37 @@ void confirmJob(Admission& a, const Scene& scene, const TraceScene& tracer,
     a.estimate = estimateResources(scene, a.options, measureStoreRates(scene, tracer, a.estimate.plan, a.bound));
   }
   checkMemory(a.estimate, a.limit, scene.file);
-  if (a.estimate.seconds() > kLongJobSeconds && notice) notice(longJobNote(a.estimate));
+  a.budgetSeconds = budgetBoundSeconds(a.budget, a.estimate);
+  const double seconds = a.budget.any() ? a.budgetSeconds : a.estimate.seconds();
+  if (seconds > kLongJobSeconds && notice) notice(longJobNote(a));
 }
 
-std::string longJobNote(const ResourceEstimate& e) {
-  return fmt::format("estimated ~{} on {} thread{} (photons {}, render {}; memory {})",
-                     formatDuration(e.seconds()), e.threads, e.threads == 1 ? "" : "s",
-                     formatDuration(e.photonSeconds), formatDuration(e.renderSeconds),
-                     formatBytes(e.totalBytes()));
+namespace {
+// One progressive pass as the estimate prices it: the whole render less the BVH build.
+double secondsPerPass(const ResourceEstimate& e) {
+  return (e.seconds() - e.bvhSeconds) / std::max(e.plan.passes, 1);
+}
+}  // namespace
+
+double budgetBoundSeconds(const RenderBudget& b, const ResourceEstimate& e) {
+  if (!b.any()) return 0.0;
+  const double pass = secondsPerPass(e);
+  double bound = e.bvhSeconds + kBudgetMaxPasses * pass;
+  if (b.seconds > 0.0) bound = std::min(bound, std::max(b.seconds * (1.0 + kTimeLimitOverrun), e.bvhSeconds + 2.0 * pass));
+  return bound;
+}
+
+std::string longJobNote(const Admission& a) {
+  const ResourceEstimate& e = a.estimate;
+  const std::string threads = fmt::format("{} thread{}", e.threads, e.threads == 1 ? "" : "s");
+  if (a.budget.any()) {
+    const double pass = secondsPerPass(e);
+    const double passes = std::min<double>(kBudgetMaxPasses, std::max(2.0, std::floor((a.budgetSeconds - e.bvhSeconds) / pass)));
+    return fmt::format("{} may run up to ~{} on {} (~{:.0f} passes of ~{} each; memory {})", describeBudget(a.budget),
+                       formatDuration(a.budgetSeconds), threads, passes, formatDuration(pass), formatBytes(e.totalBytes()));
+  }
+  return fmt::format("estimated ~{} on {} (photons {}, render {}; memory {})", formatDuration(e.seconds()), threads,
+                     formatDuration(e.photonSeconds), formatDuration(e.renderSeconds), formatBytes(e.totalBytes()));
 }
 
 }  // namespace penumbra

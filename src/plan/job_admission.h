@@ -3,6 +3,7 @@
 // if it would not fit in memory; then, with the BVH built, measured again.
 #pragma once
 #include "plan/memory_limit.h"
+#include "plan/render_budget.h"
 #include "plan/render_plan.h"
 #include "plan/resource_estimate.h"
 #include "geometry/trace_scene.h"
@@ -22,6 +23,8 @@ struct Admission {
   StoreRates bound;  // analytic store rates
   ResourceEstimate estimate;
   MemoryLimit limit;
+  RenderBudget budget;        // the job's --time-limit / --target-error, if any
+  double budgetSeconds = 0.0;  // the longest the budget may run (budgetBoundSeconds); 0: no budget
 };
 
 // The photons the plan emits per pass, and its passes.
@@ -30,14 +33,19 @@ PhotonPlan photonPlanOf(const RenderPlan& plan, const Scene& scene, bool tracePi
 // Step 1, before the BVH: everything but the photons against the limit (the photon
 // bound may still be refined by step 2). `scene` carries the job's settings.
 Admission admitJob(const Scene& scene, const RenderPlan& plan, int threads, bool tracePixel,
-                   uint64_t maxMemoryBytes);
+                   uint64_t maxMemoryBytes, const RenderBudget& budget = {});
 
 // Step 2, with the BVH built and before any photon: the pilot if the photon bound
 // is large, the whole estimate against the limit, and the long-job note.
 void confirmJob(Admission& admission, const Scene& scene, const TraceScene& tracer,
                 const std::function<void(const std::string&)>& notice);
 
-// "estimated ~64 h on 2 threads (photons 3 min, render 64 h; 1.2 GiB)".
-std::string longJobNote(const ResourceEstimate& e);
+// The longest a budgeted render may run: its time limit with the overrun a pass may
+// add (and never under two passes), else the pass limit, at the estimate's cost per pass.
+double budgetBoundSeconds(const RenderBudget& budget, const ResourceEstimate& e);
+
+// "estimated ~64 h on 2 threads (photons 3 min, render 64 h; 1.2 GiB)"; a budgeted
+// job's note gives its bound instead, with the passes and the cost of one.
+std::string longJobNote(const Admission& a);
 
 }  // namespace penumbra

@@ -165,7 +165,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
                            "using the ambient term");
   }
-  const bool needsLight = aov != Aov::Depth && aov != Aov::Normal;
+  const bool needsLight = readsLight(aov);
   const bool budgeted = options.budget.any() && needsLight && !options.tracePixel;
   const bool fresh = model.freshPhotonsEachPass();
   // --trace-pixel traces the first sample of the render's own sequence, in one pass.

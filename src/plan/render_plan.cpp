@@ -50,8 +50,6 @@ SceneFacts factsOf(const Scene& scene, const TransportModel& model) {
   return f;
 }
 
-bool readsLight(Aov aov) { return aov != Aov::Depth && aov != Aov::Normal; }
-
 void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
   const TransportModel& model = *plan.model;
   const SceneFacts f = factsOf(scene, model);

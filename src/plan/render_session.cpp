@@ -87,7 +87,8 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
   for (const PassDecision& d : job.plan.passes) {
     if (d.overridden && d.changesImage) job.notes.push_back("plan override: " + d.reason);
   }
-  job.admission = admitJob(scene, job.plan, options_.threads, request.tracePixel.has_value(), options_.maxMemoryBytes);
+  job.admission = admitJob(scene, job.plan, options_.threads, request.tracePixel.has_value(), options_.maxMemoryBytes,
+                          request.budget);
 }
 
 RenderSession::Geometry& RenderSession::geometryOf(const PlannedJob& job) {
