@@ -2,6 +2,7 @@
 // Russian-roulette probabilities, the textures materials reference, normal maps and
 // alpha cut-outs.
 #include "io/scene_sections.h"
+#include "io/input_file.h"
 #include "core/color.h"
 #include "io/alpha_mask_reader.h"
 #include "io/float_checks.h"
@@ -61,8 +62,7 @@ int textureIndex(const JsonNode& fileNode, bool data, Scene& scene, TextureIndex
     path = file;
   } else {
     path = resolvePath(fileNode, file);
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) fileNode.fail("texture file not found: " + path);
+    if (const std::string why = unreadableFileReason(path); !why.empty()) fileNode.fail("texture file " + path + ": " + why);
   }
   auto [it, inserted] = index.try_emplace({path, data}, static_cast<int>(scene.textures.size()));
   if (inserted) {
@@ -90,8 +90,7 @@ void readNormalAndAlpha(const JsonNode& node, Material& m, Scene& scene, Texture
     const JsonNode file = node.child("alpha_texture");
     if (file.asString().empty()) file.fail("must not be empty");
     const std::string path = resolvePath(file, file.asString());
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) file.fail("texture file not found: " + path);
+    if (const std::string why = unreadableFileReason(path); !why.empty()) file.fail("texture file " + path + ": " + why);
     m.alphaMask = addAlphaMask(file, path, scene, true);
   }
 }

@@ -1,6 +1,7 @@
 // Model files into the scene: their materials made valid for the shading model,
 // their textures checked, their meshes transformed and bound to materials.
 #include "io/model_import.h"
+#include "io/input_file.h"
 
 #include "core/color.h"
 #include "io/alpha_mask_reader.h"
@@ -72,8 +73,7 @@ int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene,
   for (size_t i = 0; i < scene.textures.size(); ++i) {
     if (scene.textures[i] == Texture{path, data}) return static_cast<int>(i);
   }
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) where.fail("texture file not found: " + path);
+  if (const std::string why = unreadableFileReason(path); !why.empty()) where.fail("texture file " + path + ": " + why);
   const std::string problem = textureFileProblem(path);
   if (!problem.empty()) where.fail(problem);
   scene.textures.push_back(Texture{path, data});

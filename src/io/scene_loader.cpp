@@ -2,6 +2,7 @@
 // (io/json_parse.h), applies --set overrides, then validates. A glTF file is a
 // scene too: its meshes, camera and lights, with an optional JSON of the same stem.
 #include "io/scene_loader.h"
+#include "io/input_file.h"
 
 #include "core/error.h"
 #include "io/float_checks.h"
@@ -154,8 +155,7 @@ std::string readSceneText(std::istream& in, const std::string& name) {
 }
 
 std::string readText(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throwInputError(path + ": cannot open scene file");
+  if (const std::string why = unreadableFileReason(path); !why.empty()) throwInputError(path + ": cannot open scene file: " + why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throwInputError(path + ": cannot open scene file");
   return readSceneText(in, path);
@@ -206,8 +206,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     return parseScene(readSceneText(std::cin, "<stdin>"), "<stdin>", overrides, limits);
   }
   if (!isGltfPath(path)) return parseScene(readText(path), path, overrides, limits);
+  if (const std::string why = unreadableFileReason(path); !why.empty()) throwInputError(path + ": cannot open scene file: " + why);
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throwInputError(path + ": cannot open scene file");
   // model.glb renders with model.json's settings when there is one.
   const std::string sidecar = fs::path(path).replace_extension(".json").string();
   const bool hasSidecar = fs::is_regular_file(sidecar, ec);
