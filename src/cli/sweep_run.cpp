@@ -12,6 +12,7 @@
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
 #include "core/error.h"
+#include <fmt/format.h>
 #include "io/contact_sheet.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
@@ -48,6 +49,7 @@ class Sweep {
       return {};
     }
     plan();  // a bad run refuses before the folder is made
+    readGivenReference();
     const fs::path dir(req_.outDir);
     std::error_code ec;
     fs::create_directories(dir / "runs", ec);
@@ -116,9 +118,22 @@ class Sweep {
     }
   }
 
+  // --reference is read and measured against every run before the folder is made,
+  // so a wrong one leaves nothing behind.
+  void readGivenReference() {
+    if (req_.referencePath.empty()) return;
+    reference_ = readImage(req_.referencePath);
+    for (const PlannedRun& p : runs_) {
+      const Camera& c = p.job.scene.camera;
+      if (c.width == reference_.width && c.height == reference_.height) continue;
+      throw InputError(fmt::format("--reference {} is {}x{}, but {} renders {}x{} (sweep run '{}')", req_.referencePath,
+                                   reference_.width, reference_.height, req_.scenePath, c.width, c.height,
+                                   spec_.runs[p.index].id));
+    }
+  }
+
   void loadReference() {
     if (!req_.referencePath.empty()) {
-      reference_ = readImage(req_.referencePath);
       totals_.referenceNote = "`" + req_.referencePath + "` (given with --reference)";
       return;
     }
