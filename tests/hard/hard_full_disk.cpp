@@ -1,0 +1,284 @@
+// A full disk and long names, through the binary: every command and output format
+// exits with its failure code, keeps the old file byte for byte and leaves no temp
+// file; an image cut short is never up to date; names the system allows are written,
+// and names it does not are refused before any photon.
+#include "hard/hard_cli.h"
+#include "io/image_io.h"
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/mount.h>
+#include <unistd.h>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <vector>
+
+namespace penumbra::hard {
+namespace {
+
+using testing::readFile;
+
+// Sets an environment variable for the commands a test runs (system() passes it
+// on), and puts it back afterwards.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    ::setenv(name, value.c_str(), 1);
+  }
+  ~ScopedEnv() {
+    if (old_) ::setenv(name_, old_->c_str(), 1);
+    else ::unsetenv(name_);
+  }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+// How a test fills the disk: a small tmpfs with a filler file taking its every
+// block (root only, where mount works), or the binary's deterministic hook
+// (PENUMBRA_TEST_DISK_FULL_AT: ENOSPC after half the bytes of a named write), which
+// runs everywhere, so the suite never passes by skipping.
+enum class Fill { Tmpfs, Hook };
+
+class FullDisk {
+ public:
+  explicit FullDisk(Fill how) : how_(how), dir_(scratch_ / "disk") {
+    fs::create_directory(dir_);
+    if (how_ == Fill::Tmpfs) mounted_ = ::mount("tmpfs", dir_.c_str(), "tmpfs", 0, "size=2m") == 0;
+  }
+  ~FullDisk() {
+    free();
+    if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
+  }
+  FullDisk(const FullDisk&) = delete;
+  FullDisk& operator=(const FullDisk&) = delete;
+
+  bool ready() const { return how_ == Fill::Hook || mounted_; }
+  // The folder that fills up; `off()` is a folder beside it that never does.
+  const fs::path& dir() const { return dir_; }
+  const testing::ScratchDir& off() const { return scratch_; }
+
+  // From here every write into dir() fails: the filler takes every free block, or the
+  // hook fails each temp file whose name starts with `prefix` ("" any).
+  void fill(const std::string& prefix) {
+    if (how_ == Fill::Hook) {
+      env_.emplace("PENUMBRA_TEST_DISK_FULL_AT", "write:" + prefix + ":*");
+      return;
+    }
+    const int fd = ::open((dir_ / "filler").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ASSERT_GE(fd, 0);
+    const std::vector<char> block(4096, 'x');
+    while (::write(fd, block.data(), block.size()) > 0) {
+    }
+    EXPECT_EQ(errno, ENOSPC);
+    ::close(fd);
+  }
+  void free() {
+    env_.reset();
+    std::error_code ec;
+    fs::remove(dir_ / "filler", ec);
+  }
+
+ private:
+  Fill how_;
+  testing::ScratchDir scratch_;
+  fs::path dir_;
+  bool mounted_ = false;
+  std::optional<ScopedEnv> env_;
+};
+
+// Every regular file under `root` and its bytes: what a failed command must leave.
+std::map<std::string, std::string> snapshot(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = readFile(e.path());
+  }
+  return files;
+}
+
+// Files under `root` whose name holds ".tmp": what a failed write would leave behind.
+int tempFilesUnder(const fs::path& root) {
+  int n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    n += e.path().filename().string().find(".tmp") != std::string::npos;
+  return n;
+}
+
+class FullDiskTest : public ::testing::TestWithParam<Fill> {
+ protected:
+  void SetUp() override {
+    disk_.emplace(GetParam());
+    if (!disk_->ready()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root); the Hook cases cover the same writes";
+    scene_ = disk_->off().write("floor.json", kFloorScene).string();
+  }
+  FullDisk& disk() { return *disk_; }
+  std::string render(const std::string& args) const { return "render " + quote(scene_) + " " + args; }
+
+  std::optional<FullDisk> disk_;
+  std::string scene_;
+};
+
+std::string fillName(const ::testing::TestParamInfo<Fill>& info) {
+  return info.param == Fill::Tmpfs ? "Tmpfs" : "Hook";
+}
+
+}  // namespace
+
+// The image is encoded in memory and written by a checked loop: a short write is
+// an error (OIIO's PNG writer alone reported none), and the old image stays.
+TEST_P(FullDiskTest, RenderKeepsTheOldImageInEveryFormat) {
+  for (const std::string ext : {"png", "exr"}) {
+    const fs::path out = disk().dir() / ("a." + ext);
+    ASSERT_EQ(runCli(render("-q -o " + quote(out.string()))).exitCode, 0);
+    const auto before = snapshot(disk().dir());
+    disk().fill("a.tmp");
+    const CliResult r = runCli(render("-q --set camera.width=20 -o " + quote(out.string())));
+    disk().free();
+    EXPECT_EQ(r.exitCode, 2) << ext << ": " << r.err;
+    EXPECT_NE(r.err.find(out.string() + ": cannot write image: No space left on device; the old file is kept"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(occurrences(r.err, "\n"), 1u) << r.err;
+    EXPECT_EQ(snapshot(disk().dir()), before) << ext;
+    EXPECT_EQ(tempFilesUnder(disk().dir()), 0) << ext;
+  }
+}
+
+TEST_P(FullDiskTest, StatsKeepTheOldReport) {
+  const fs::path stats = disk().dir() / "s.json";
+  std::ofstream(stats) << "{\"the previous stats\": 1}\n";
+  const auto before = snapshot(disk().dir());
+  disk().fill("s.tmp");
+  const CliResult r =
+      runCli(render("-q -o " + quote((disk().off() / "img.png").string()) + " --stats " + quote(stats.string())));
+  disk().free();
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("s.json: cannot write file: No space left on device"), std::string::npos) << r.err;
+  EXPECT_EQ(snapshot(disk().dir()), before);
+  EXPECT_EQ(tempFilesUnder(disk().dir()), 0);
+}
+
+// A PNG job and a layered EXR job: on the full disk both fail (batch's exit 1), their
+// old outputs stay whole, and with room again the rerun renders both (an edited job's
+// outputs are stale; nothing cut short carries the new stamp).
+TEST_P(FullDiskTest, BatchJobsFailKeepTheirOldOutputsAndRenderOnTheRerun) {
+  const fs::path jobs = disk().off() / "jobs.json";
+  auto writeJobs = [&](int width) {
+    std::ofstream(jobs) << "{\"set\": [\"camera.width=" << width << "\"], \"jobs\": ["
+                        << "{\"name\": \"p\", \"scene\": \"" << scene_ << "\", \"output\": \""
+                        << (disk().dir() / "p.png").string() << "\"},"
+                        << "{\"name\": \"l\", \"scene\": \"" << scene_ << "\", \"views\": [\"beauty\", \"depth\"], "
+                        << "\"output\": \"" << (disk().dir() / "l.exr").string() << "\"}]}";
+  };
+  writeJobs(16);
+  const std::string batch = "batch " + quote(jobs.string());
+  CliResult r = runCli(batch);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  ASSERT_NE(r.err.find("2 jobs: 2 rendered, 0 up to date, 0 failed"), std::string::npos) << r.err;
+  const auto before = snapshot(disk().dir());
+  writeJobs(20);
+  disk().fill("");
+  r = runCli(batch);
+  disk().free();
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_NE(r.err.find("2 jobs: 0 rendered, 0 up to date, 2 failed"), std::string::npos) << r.err;
+  EXPECT_EQ(snapshot(disk().dir()), before);
+  EXPECT_EQ(tempFilesUnder(disk().dir()), 0);
+  r = runCli(batch);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("2 jobs: 2 rendered, 0 up to date, 0 failed"), std::string::npos) << r.err;
+}
+
+// A sweep that adds a run: on the full disk it exits 2 with the finished runs'
+// images whole and no row for the new run; with room again the rerun renders it.
+TEST_P(FullDiskTest, SweepKeepsItsFinishedRunsAndResumes) {
+  const fs::path out = disk().dir() / "sweep";
+  const std::string sweep = "sweep " + quote(scene_) + " -q -o " + quote(out.string()) + " --spp ";
+  ASSERT_EQ(runCli(sweep + "1,2").exitCode, 0);
+  const auto before = snapshot(out / "runs");
+  disk().fill("spp-3.tmp");  // the hook: the new run's image, after the folder's own files
+  CliResult r = runCli(sweep + "1,2,3");
+  disk().free();
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_EQ(snapshot(out / "runs"), before);
+  EXPECT_EQ(readFile(out / "results.csv").find("spp=3"), std::string::npos);
+  EXPECT_EQ(tempFilesUnder(out), 0);
+  r = runCli(sweep + "1,2,3");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(imageComplete((out / "runs" / "spp-3.exr").string()));
+}
+
+INSTANTIATE_TEST_SUITE_P(FullDisk, FullDiskTest, ::testing::Values(Fill::Tmpfs, Fill::Hook), fillName);
+
+// A PNG and an EXR cut to half their bytes keep the job's stamp in their header; the
+// rerun renders them again rather than call them up to date.
+TEST(FullDisk, AnImageCutShortIsNeverUpToDate) {
+  ScratchDir dir;
+  const std::string scene = dir.write("floor.json", kFloorScene).string();
+  // Large enough that the pixels, not the header, are most of each file.
+  const fs::path jobs = dir.write("jobs.json", "{\"set\": [\"camera.width=160\", \"camera.height=120\"], "
+                                               "\"jobs\": [{\"name\": \"p\", \"scene\": \"" + scene +
+                                                   "\", \"output\": \"p.png\"}, {\"name\": \"e\", \"scene\": \"" +
+                                                   scene + "\", \"output\": \"e.exr\"}]}");
+  const std::string batch = "batch " + quote(jobs.string());
+  ASSERT_EQ(runCli(batch).exitCode, 0);
+  EXPECT_NE(runCli(batch).err.find("2 jobs: 0 rendered, 2 up to date"), std::string::npos);
+  for (const char* name : {"p.png", "e.exr"}) {
+    const fs::path file = dir / name;
+    const std::string stamp = readImageAttribute(file.string(), "penumbra:job");
+    ASSERT_FALSE(stamp.empty()) << name;
+    EXPECT_TRUE(imageComplete(file.string())) << name;
+    fs::resize_file(file, fs::file_size(file) / 2);
+    EXPECT_EQ(readImageAttribute(file.string(), "penumbra:job"), stamp) << name << ": the header survives the cut";
+    EXPECT_FALSE(imageComplete(file.string())) << name;
+  }
+  const CliResult r = runCli(batch);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("2 jobs: 2 rendered, 0 up to date"), std::string::npos) << r.err;
+}
+
+// 250-byte names are legal: the temp file gives up the end of its stem to fit,
+// and the image and the stats are written (they failed after the whole render).
+TEST(FullDisk, LongLegalNamesAreWritten) {
+  ScratchDir dir;
+  const std::string scene = dir.write("floor.json", kFloorScene).string();
+  const fs::path image = dir / (std::string(246, 'i') + ".png"), stats = dir / (std::string(245, 's') + ".json");
+  const CliResult r = runCli("render " + quote(scene) + " -q -o " + quote(image.string()) + " --stats " +
+                             quote(stats.string()));
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(imageComplete(image.string()));
+  EXPECT_NE(readFile(stats).find("\"image\""), std::string::npos);
+  EXPECT_EQ(dir.tempFiles(), 0);
+}
+
+// A name longer than the directory allows is one line and exit 2 before any work:
+// with every phase's progress shown, a render would print more than that line.
+TEST(FullDisk, NamesTooLongAreRefusedBeforeAnyPhoton) {
+  ScratchDir dir;
+  const ScopedEnv everyPhase("PENUMBRA_PROGRESS_AFTER", "0");
+  const std::string scene = dir.write("floor.json", kFloorScene).string();
+  const std::string image = (dir / (std::string(252, 'i') + ".png")).string();
+  const std::string stats = (dir / (std::string(251, 's') + ".json")).string();
+  const fs::path jobs = dir.write("jobs.json", "{\"jobs\": [{\"scene\": \"" + scene + "\", \"output\": \"" +
+                                                   image + "\"}]}");
+  const std::string ok = quote((dir / "ok.png").string());
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"render " + quote(scene) + " -o " + quote(image), image + ": cannot write image: its name is 256 bytes"},
+      {"render " + quote(scene) + " -o " + ok + " --stats " + quote(stats),
+       "--stats " + stats + ": cannot write: its name is 256 bytes"},
+      {"batch " + quote(jobs.string()), image + ": cannot write image: its name is 256 bytes"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CliResult r = runCli(args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_EQ(occurrences(r.err, "\n"), 1u) << "more than the refusal: something ran\n" << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "ok.png"));
+  EXPECT_EQ(dir.tempFiles(), 0);
+}
+
+}  // namespace penumbra::hard
