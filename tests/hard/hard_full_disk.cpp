@@ -213,6 +213,18 @@ TEST_P(FullDiskTest, SweepKeepsItsFinishedRunsAndResumes) {
 
 INSTANTIATE_TEST_SUITE_P(FullDisk, FullDiskTest, ::testing::Values(Fill::Tmpfs, Fill::Hook), fillName);
 
+// Statistics sent to stdout redirected onto a full device: exit 2, not 0 with half a report.
+TEST(FullDisk, StdoutOntoAFullDeviceIsAnError) {
+  ASSERT_TRUE(fs::exists("/dev/full"));
+  ScratchDir dir;
+  const std::string scene = dir.write("floor.json", kFloorScene).string();
+  const std::string cmd = quote(PENUMBRA_BINARY) + " render " + quote(scene) + " -q -o " +
+                          quote((dir / "a.png").string()) + " --stats - >/dev/full 2>" + quote((dir / "err").string());
+  const int status = std::system(cmd.c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << status;
+  EXPECT_EQ(readFile(dir / "err"), "penumbra: cannot write to standard output: No space left on device\n");
+}
+
 // A PNG and an EXR cut to half their bytes keep the job's stamp in their header; the
 // rerun renders them again rather than call them up to date.
 TEST(FullDisk, AnImageCutShortIsNeverUpToDate) {
