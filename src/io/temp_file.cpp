@@ -199,7 +199,8 @@ std::string outputPathProblem(const std::string& path) {
   const fs::path target(path);
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   const std::string name = target.filename().string();
-  if (path.size() >= PATH_MAX) return fmt::format("its path is {} bytes, the system's limit is {}", path.size(), PATH_MAX - 1);
+  if (path.size() >= PATH_MAX)
+    return fmt::format("its path is {} bytes, the system's limit is {}", path.size(), PATH_MAX - 1);
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return "directory '" + dir.string() + "' does not exist";
   if (::access(dir.c_str(), W_OK) != 0) return "directory '" + dir.string() + "' is not writable";
