@@ -4,6 +4,7 @@
 #include "io/temp_file.h"
 #include "core/error.h"
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <fmt/format.h>
 #include <unistd.h>
 #include <algorithm>
@@ -205,6 +206,13 @@ std::string outputPathProblem(const std::string& path) {
   if (!fs::is_directory(dir, ec)) return "directory '" + dir.string() + "' does not exist";
   if (::access(dir.c_str(), W_OK) != 0) return "directory '" + dir.string() + "' is not writable";
   if (fs::is_directory(target, ec)) return "it is a directory";
+  // Not one free block: the write would fail, so the work before it is not begun.
+  // (A file system that reports no blocks at all is taken at its word: unknown.)
+  struct statvfs fsInfo;
+  if (::statvfs(dir.c_str(), &fsInfo) == 0 && fsInfo.f_blocks > 0 &&
+      (::geteuid() == 0 ? fsInfo.f_bfree : fsInfo.f_bavail) == 0) {
+    return std::string(std::strerror(ENOSPC)) + " (its file system is full)";
+  }
   const size_t limit = nameMax(dir);
   if (name.size() > limit) return fmt::format("its name is {} bytes, the directory allows {}", name.size(), limit);
   const size_t tempPath = path.size() - name.size() + std::min(limit, name.size() + kTempTagMax);

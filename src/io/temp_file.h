@@ -40,9 +40,10 @@ void writeFileAtomic(const std::string& path, const void* data, size_t size, con
 void writeTextFileAtomic(const std::string& path, const std::string& text);
 
 // Why `path` cannot be written as an output, "" when it can: its directory is missing
-// or not writable, it is a directory, its name is longer than the directory allows
-// (NAME_MAX), or it or its temp file's path is longer than PATH_MAX. Run before any
-// work, so nothing the write-and-rename needs is refused after a render.
+// or not writable, it is a directory, its file system has not one block free, its
+// name is longer than the directory allows (NAME_MAX), or it or its temp file's path
+// is longer than PATH_MAX. Run before any work, so nothing the write-and-rename needs
+// is refused after a render.
 std::string outputPathProblem(const std::string& path);
 
 }  // namespace penumbra
