@@ -132,7 +132,11 @@ void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO:
   auto out = OIIO::ImageOutput::create(path);
   if (!out) writeFailed(path, OIIO::geterror());
   if (!out->supports("ioproxy")) writeFailed(path, std::string(out->format_name()) + " cannot be encoded in memory");
+  // Room for the file uncompressed (zip's worst case adds < 1/64), so the buffer never
+  // grows by copying; pages it leaves untouched cost no memory.
   std::vector<unsigned char> bytes;
+  const size_t raw = spec.image_bytes(/*native=*/true);
+  bytes.reserve(raw + raw / 64 + 65536);
   OIIO::Filesystem::IOVecOutput proxy(bytes);
   if (!out->set_ioproxy(&proxy) || !out->open(path, spec)) writeFailed(path, out->geterror());
   if (!out->write_image(pixelType, pixels)) {
