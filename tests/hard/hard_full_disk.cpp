@@ -358,4 +358,16 @@ TEST(FullDisk, NamesTooLongAreRefusedBeforeAnyPhoton) {
   EXPECT_EQ(dir.tempFiles(), 0);
 }
 
+// batch -o DIR makes its folder: when it cannot (a full disk, a file in the way),
+// one line and exit 2, not an internal error.
+TEST(FullDisk, ABatchFolderThatCannotBeMadeIsOneLine) {
+  ScratchDir dir;
+  const std::string scene = dir.write("floor.json", kFloorScene).string();
+  const fs::path folder = dir.write("file", "") / "out";
+  const CliResult r = runCli("batch " + quote(scene) + " -q -o " + quote(folder.string()));
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("penumbra: " + folder.string() + ": cannot create the output folder (", 0), 0u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "\n"), 1u) << r.err;
+}
+
 }  // namespace penumbra::hard
