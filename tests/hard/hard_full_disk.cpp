@@ -1,8 +1,8 @@
-// A full disk and long names, through the binary: every command and output format
-// exits with its failure code, keeps the old file byte for byte and leaves no temp
-// file; an image cut short is never up to date; names the system allows are written,
-// and names it does not are refused before any photon.
+// A full disk, through the binary: every command and output format exits with its
+// failure code, keeps the old file byte for byte and leaves no temp file; a full disk
+// is refused before the work; an image cut short is never up to date.
 #include "hard/hard_cli.h"
+#include "support/scoped_env.h"
 #include "io/image_io.h"
 #include <gtest/gtest.h>
 #include <fcntl.h>
@@ -17,24 +17,6 @@ namespace penumbra::hard {
 namespace {
 
 using testing::readFile;
-
-// Sets an environment variable for the commands a test runs (system() passes it
-// on), and puts it back afterwards.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const std::string& value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    ::setenv(name, value.c_str(), 1);
-  }
-  ~ScopedEnv() {
-    if (old_) ::setenv(name_, old_->c_str(), 1);
-    else ::unsetenv(name_);
-  }
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
 
 // How a test fills the disk: a small tmpfs with a filler file taking its every
 // block (root only, where mount works), or the binary's deterministic hook
@@ -91,7 +73,7 @@ class FullDisk {
   testing::ScratchDir scratch_;
   fs::path dir_;
   bool mounted_ = false;
-  std::optional<ScopedEnv> env_;
+  std::optional<testing::ScopedEnv> env_;
 };
 
 // Every regular file under `root` and its bytes: what a failed command must leave.
@@ -315,47 +297,6 @@ TEST(FullDisk, AnImageCutShortIsNeverUpToDate) {
   const CliResult r = runCli(batch);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("2 jobs: 2 rendered, 0 up to date"), std::string::npos) << r.err;
-}
-
-// 250-byte names are legal: the temp file gives up the end of its stem to fit,
-// and the image and the stats are written (they failed after the whole render).
-TEST(FullDisk, LongLegalNamesAreWritten) {
-  ScratchDir dir;
-  const std::string scene = dir.write("floor.json", kFloorScene).string();
-  const fs::path image = dir / (std::string(246, 'i') + ".png"), stats = dir / (std::string(245, 's') + ".json");
-  const CliResult r = runCli("render " + quote(scene) + " -q -o " + quote(image.string()) + " --stats " +
-                             quote(stats.string()));
-  EXPECT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_TRUE(imageComplete(image.string()));
-  EXPECT_NE(readFile(stats).find("\"image\""), std::string::npos);
-  EXPECT_EQ(dir.tempFiles(), 0);
-}
-
-// A name longer than the directory allows is one line and exit 2 before any work:
-// with every phase's progress shown, a render would print more than that line.
-TEST(FullDisk, NamesTooLongAreRefusedBeforeAnyPhoton) {
-  ScratchDir dir;
-  const ScopedEnv everyPhase("PENUMBRA_PROGRESS_AFTER", "0");
-  const std::string scene = dir.write("floor.json", kFloorScene).string();
-  const std::string image = (dir / (std::string(252, 'i') + ".png")).string();
-  const std::string stats = (dir / (std::string(251, 's') + ".json")).string();
-  const fs::path jobs = dir.write("jobs.json", "{\"jobs\": [{\"scene\": \"" + scene + "\", \"output\": \"" +
-                                                   image + "\"}]}");
-  const std::string ok = quote((dir / "ok.png").string());
-  const std::vector<std::pair<std::string, std::string>> cases = {
-      {"render " + quote(scene) + " -o " + quote(image), image + ": cannot write image: its name is 256 bytes"},
-      {"render " + quote(scene) + " -o " + ok + " --stats " + quote(stats),
-       "--stats " + stats + ": cannot write: its name is 256 bytes"},
-      {"batch " + quote(jobs.string()), image + ": cannot write image: its name is 256 bytes"},
-  };
-  for (const auto& [args, message] : cases) {
-    const CliResult r = runCli(args);
-    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
-    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
-    EXPECT_EQ(occurrences(r.err, "\n"), 1u) << "more than the refusal: something ran\n" << r.err;
-  }
-  EXPECT_FALSE(fs::exists(dir / "ok.png"));
-  EXPECT_EQ(dir.tempFiles(), 0);
 }
 
 // batch -o DIR makes its folder: when it cannot (a full disk, a file in the way),
