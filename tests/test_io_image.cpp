@@ -1,6 +1,6 @@
 // Image I/O: exact sRGB encoding, half-precision EXR round trips, metadata, that
-// failed or successful writes leave no temp files and no partial targets, and the
-// error metrics of one image against another.
+// failed or successful writes leave no temp files and no partial targets, that a
+// file cut short is not whole, and the error metrics of one image against another.
 #include "core/error.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
@@ -223,6 +223,26 @@ TEST_F(ImageIoTest, ReadingAMissingOrBrokenFileThrows) {
   std::fputs("not a png", f);
   std::fclose(f);
   EXPECT_THROW(readImage(file("broken.png")), InputError);
+}
+
+// The up-to-date test's rule: a file missing any of its last bytes is not whole.
+TEST_F(ImageIoTest, ImageCompleteNeedsEveryByte) {
+  Image image(64, 48);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = Color(float(i % 97) / 97.0f, 0.5f, float(i % 13) / 13.0f);
+  for (const std::string ext : {".png", ".exr"}) {
+    const std::string whole = file("whole" + ext);
+    writeImage(whole, image, {{"penumbra:job", "0123456789abcdef"}});
+    EXPECT_TRUE(imageComplete(whole)) << ext;
+    const auto size = fs::file_size(whole);
+    for (const auto cut : {size - 1, size / 2}) {
+      const std::string part = file("part" + ext);
+      fs::copy_file(whole, part, fs::copy_options::overwrite_existing);
+      fs::resize_file(part, cut);
+      EXPECT_FALSE(imageComplete(part)) << ext << " cut to " << cut << " of " << size << " bytes";
+    }
+    EXPECT_FALSE(imageComplete(file("missing" + ext)));
+  }
 }
 
 TEST(ImageCompare, KnownDifferences) {

@@ -1,5 +1,6 @@
 // Temp files: the SIGINT/SIGTERM cleanup removes registered temp files and only
-// them, then the process still dies of the signal; text writes are all or nothing.
+// them, then the process still dies of the signal; text writes are all or nothing,
+// every legal name can be written, and the up-front path rule names each limit.
 #include "core/error.h"
 #include "io/temp_file.h"
 #include <gtest/gtest.h>
@@ -94,4 +95,35 @@ TEST_F(TempFileTest, TextWritesReplaceWholeOrNotAtAll) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
   }
   EXPECT_EQ(entries, 2u);
+}
+
+// Every name the directory allows can be written: the temp name gives up the end
+// of a long stem (a 250-byte target plus ".tmpPID-N" would pass NAME_MAX).
+TEST_F(TempFileTest, LongestLegalNamesAreWritten) {
+  for (const std::string name :
+       {std::string(250, 'n') + ".json", std::string(255, 'x'), std::string(251, 'e') + ".exr"}) {
+    const std::string path = (dir / name).string();
+    EXPECT_EQ(outputPathProblem(path), "") << name.size();
+    writeTextFileAtomic(path, "whole");
+    EXPECT_EQ(read(path), "whole");
+  }
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos);
+}
+
+// The up-front rule names each limit; a path that passes it is written.
+TEST_F(TempFileTest, OutputPathProblemNamesEachLimit) {
+  auto problem = [](const fs::path& p) { return outputPathProblem(p.string()); };
+  EXPECT_EQ(problem(dir / "fine.json"), "");
+  EXPECT_EQ(problem(dir / std::string(256, 'n')), "its name is 256 bytes, the directory allows 255");
+  EXPECT_EQ(problem(dir / "missing" / "a.json"), "directory '" + (dir / "missing").string() + "' does not exist");
+  EXPECT_EQ(problem(dir), "it is a directory");
+  EXPECT_EQ(problem(""), "empty path");
+  EXPECT_NE(problem(dir / std::string(5000, 'p')).find("its path is"), std::string::npos);
+  // A folder whose path leaves room for a short name but not for its temp file's.
+  fs::path deep = dir;
+  while (deep.string().size() < 4060) deep /= std::string(std::min<size_t>(200, 4060 - deep.string().size()), 'd');
+  fs::create_directories(deep);
+  const fs::path target = deep / std::string(4080 - deep.string().size(), 't');
+  EXPECT_NE(problem(target).find("its temp file's path would be"), std::string::npos) << problem(target);
 }

@@ -287,8 +287,8 @@ TEST(Sweep, SigintLeavesEveryFinishedRowAndNoPartialFile) {
   const fs::path out = dir / "sweep";
   const std::string scene = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/fig01_depth.json";
   const int status = testing::runCliSignalledAt(
-      "temp-file:results.csv.tmp:4", {"sweep", scene, "-o", out.string(), "-q", "--spp", "1,2,3,4,5,6", "--set",
-                                      "camera.width=96", "--set", "camera.height=96"});
+      "temp-file:results.tmp:4", {"sweep", scene, "-o", out.string(), "-q", "--spp", "1,2,3,4,5,6", "--set",
+                                  "camera.width=96", "--set", "camera.height=96"});
   ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT)
       << "status " << status << ": the hook did not interrupt the sweep";
   for (const auto& e : fs::recursive_directory_iterator(out)) {

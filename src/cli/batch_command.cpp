@@ -96,7 +96,9 @@ int BatchCommand::run() {
     req.extraInputs.push_back(o.inputs[0]);
   } else {
     if (o.out.empty()) throw InputError("batch: -o DIR is required when scene files are given directly");
-    std::filesystem::create_directories(o.out);
+    std::error_code ec;
+    std::filesystem::create_directories(o.out, ec);
+    if (ec) throw InputError(o.out + ": cannot create the output folder (" + ec.message() + ")");
     req.jobs = jobsForScenes(o.inputs, o.out, o.overrides, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
   }
   // The command line's budget wins over a job's own, as its gate does.

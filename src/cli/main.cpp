@@ -18,7 +18,10 @@
 #include <algorithm>
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <filesystem>
 #include <iostream>
@@ -115,9 +118,24 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   return 0;
 }
 
+// What went to stdout (--stats -, --trace-pixel, plan, --list-shard) is checked like
+// a file: redirected onto a full disk, the command must not exit 0 with half of it.
+int checkedStdout(int code) {
+  std::cout.flush();
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout) && std::cout.good()) return code;
+  std::cerr << "penumbra: cannot write to standard output: " << std::strerror(errno) << "\n";
+  return code == 0 ? 2 : code;
+}
+
+int runCommandLine(int argc, char** argv);
+
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) { return checkedStdout(runCommandLine(argc, argv)); }
+
+namespace {
+
+int runCommandLine(int argc, char** argv) {
   CLI::App app{"penumbra: a CPU photon-mapping renderer (Whitted core + shadow and indirect photon maps)"};
   app.require_subcommand(1);
   app.footer("Exit codes: 0 done; 1 internal error (a bug: please report it); 2 bad input or a job refused "
@@ -239,3 +257,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace

@@ -92,6 +92,17 @@ void checkSweepFolder(const std::string& dir, const SweepIdentity& identity) {
   }
 }
 
+void checkSweepFiles(const std::string& dir, const SweepSpec& spec) {
+  std::vector<fs::path> files = {"results.csv",   "report.md", "sweep.json",
+                                 "reference.exr", "runs.png",  "tradeoff.png"};
+  for (const SweepRun& run : spec.runs) files.push_back(fs::path("runs") / (run.slug + ".exr"));
+  for (const fs::path& f : files) {
+    const std::string path = (fs::path(dir) / f).string();
+    const std::string problem = outputPathProblem(path);
+    if (!problem.empty()) throw InputError(path + ": cannot write: " + problem);
+  }
+}
+
 void writeSweepFolder(const std::string& dir, const SweepIdentity& identity) {
   writeTextFileAtomic((fs::path(dir) / "sweep.json").string(), toJson(identity).dump(2) + "\n");
 }

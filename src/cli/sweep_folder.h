@@ -7,6 +7,7 @@
 namespace penumbra {
 
 struct SweepRequest;  // cli/sweep_run.h
+struct SweepSpec;     // cli/sweep_spec.h
 
 struct SweepIdentity {
   std::string scene;                   // the scene path as given
@@ -25,6 +26,10 @@ SweepIdentity sweepIdentity(const SweepRequest& req, const std::vector<std::stri
 // --set values, the view, the plan overrides or the reference) when the folder holds
 // another sweep's results, or results.csv without a sweep.json. Nothing there: fine.
 void checkSweepFolder(const std::string& dir, const SweepIdentity& identity);
+
+// Throws InputError naming the first file of the folder the sweep could not write
+// (outputPathProblem: a run's name grows with its knobs), before any render.
+void checkSweepFiles(const std::string& dir, const SweepSpec& spec);
 
 // Writes sweep.json (atomically), before the first row.
 void writeSweepFolder(const std::string& dir, const SweepIdentity& identity);

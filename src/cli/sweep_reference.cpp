@@ -18,7 +18,7 @@ LongReference longReference(RenderSession& session, const SweepRequest& req, con
   const std::string what =
       fmt::format("{} passes of the run at every knob's highest value ({})", passes, run.id);
   LongReference out;
-  if (std::filesystem::exists(saved) && readImageAttribute(saved, "penumbra:sweep_reference") == what) {
+  if (imageComplete(saved) && readImageAttribute(saved, "penumbra:sweep_reference") == what) {
     out.image = readImage(saved);
     out.note = what + ", reloaded from `reference.exr`. " + readImageAttribute(saved, "penumbra:sweep_reference_note");
     return out;

@@ -54,6 +54,7 @@ class Sweep {
     std::error_code ec;
     fs::create_directories(dir / "runs", ec);
     if (ec) throw InputError(req_.outDir + ": cannot create the sweep folder (" + ec.message() + ")");
+    checkSweepFiles(req_.outDir, spec_);
     csvPath_ = (dir / "results.csv").string();
     std::map<std::string, SweepRow> finished;
     const SweepIdentity identity = sweepIdentity(req_, runs_.front().job.inputs);
@@ -63,7 +64,8 @@ class Sweep {
     }
     for (PlannedRun& p : runs_) {
       auto f = finished.find(spec_.runs[p.index].id);
-      p.done = f != finished.end() && fs::exists(dir / f->second.image);
+      // A run's image cut short (a full disk under an older penumbra) is rendered again.
+      p.done = f != finished.end() && imageComplete((dir / f->second.image).string());
       p.mine = threads_ == 0 || runThreads(spec_, spec_.runs[p.index]) == threads_;
     }
     writeSweepFolder(req_.outDir, identity);
@@ -150,7 +152,7 @@ class Sweep {
     referenceRun_ = spec_.highest;
     totals_.referenceNote = "the run at every knob's highest value (" + spec_.runs[referenceRun_].id +
                             "), rendered by this sweep, saved as `reference.exr`";
-    if (runs_[referenceRun_].done && fs::exists(saved)) {
+    if (runs_[referenceRun_].done && imageComplete(saved.string())) {
       reference_ = readImage(saved.string());
     } else if (runs_[referenceRun_].done) {
       runs_[referenceRun_].done = false;

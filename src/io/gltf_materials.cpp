@@ -4,12 +4,12 @@
 #include "io/gltf_materials.h"
 
 #include "io/gltf_files.h"
+#include "io/temp_file.h"
 #include "io/texture_gen.h"
+#include "core/error.h"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <unistd.h>
 
 namespace penumbra {
 
@@ -66,14 +66,11 @@ std::string writeEmbedded(const tinygltf::Image& image, const std::string& path)
   fs::create_directories(dir, ec);
   const fs::path file = dir / name;
   if (fs::is_regular_file(file, ec) && fs::file_size(file, ec) == image.image.size()) return file.string();
-  const fs::path temp = dir / (std::string(name) + ".tmp" + std::to_string(::getpid()));
-  {
-    std::ofstream out(temp, std::ios::binary);
-    out.write(reinterpret_cast<const char*>(image.image.data()), static_cast<std::streamsize>(image.image.size()));
-    if (!out) throw ModelError("glTF file " + path + ": cannot write its embedded image to " + dir.string());
+  try {
+    writeFileAtomic(file.string(), image.image.data(), image.image.size(), "embedded image");
+  } catch (const InputError& e) {
+    throw ModelError("glTF file " + path + ": cannot write its embedded image to " + dir.string() + " (" + e.what() + ")");
   }
-  fs::rename(temp, file, ec);
-  if (ec) throw ModelError("glTF file " + path + ": cannot write its embedded image to " + dir.string());
   return file.string();
 }
 

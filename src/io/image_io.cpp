@@ -1,5 +1,6 @@
 // Image file I/O through OpenImageIO: the sRGB transfer curve, the choice of
-// writer by extension, and the write-to-temp-then-rename that keeps targets whole.
+// writer by extension, encoding in memory for the checked write-and-rename that
+// keeps targets whole, and the cheap test that a file on disk is whole.
 #include "io/image_io.h"
 #include "core/color.h"
 
@@ -7,16 +8,19 @@
 #include "io/aov_display.h"
 #include "io/temp_file.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/strutil.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
@@ -116,53 +120,49 @@ std::string oneLine(std::string text) {
   return text.empty() ? "unknown error" : text;
 }
 
-// Same directory (so the rename is atomic on one filesystem), real extension
-// last (so OIIO picks the right writer), pid + counter (so neither two processes
-// nor two threads writing the same target share a temp name).
-fs::path tempPathFor(const fs::path& target) {
-  static std::atomic<unsigned> counter{0};
-  std::string name = target.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
-                     std::to_string(counter++) + target.extension().string();
-  return target.parent_path() / name;
-}
-
 [[noreturn]] void writeFailed(const std::string& path, const std::string& reason) {
   throw InputError(path + ": cannot write image: " + oneLine(reason));
 }
 
-void writeFile(const fs::path& file, const std::string& target, const OIIO::ImageSpec& spec,
-               OIIO::TypeDesc pixelType, const void* pixels) {
-  auto out = OIIO::ImageOutput::create(file.string());
-  if (!out) writeFailed(target, OIIO::geterror());
-  if (!out->open(file.string(), spec)) writeFailed(target, out->geterror());
+// Encodes the image in memory (the writer chosen by the target's extension), then
+// writes the bytes through the one checked write-and-rename (temp_file.h): OIIO's
+// PNG writer does not report a short write, so it never touches the disk itself.
+void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc pixelType,
+                     const void* pixels) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) writeFailed(path, OIIO::geterror());
+  if (!out->supports("ioproxy")) writeFailed(path, std::string(out->format_name()) + " cannot be encoded in memory");
+  // Room for the file uncompressed (zip's worst case adds < 1/64), so the buffer never
+  // grows by copying; pages it leaves untouched cost no memory.
+  std::vector<unsigned char> bytes;
+  const size_t raw = spec.image_bytes(/*native=*/true);
+  bytes.reserve(raw + raw / 64 + 65536);
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  if (!out->set_ioproxy(&proxy) || !out->open(path, spec)) writeFailed(path, out->geterror());
   if (!out->write_image(pixelType, pixels)) {
-    std::string reason = out->geterror();
+    const std::string reason = out->geterror();
     out->close();
-    writeFailed(target, reason);
+    writeFailed(path, reason);
   }
-  if (!out->close()) writeFailed(target, out->geterror());
+  if (!out->close()) writeFailed(path, out->geterror());
+  out.reset();  // the writer may still hold the proxy until it is destroyed
+  writeFileAtomic(path, bytes.data(), bytes.size(), "image");
 }
 
-// Writes to a temp file beside the target, then renames it into place.
-void writeAtomically(const fs::path& target, const std::string& path, const OIIO::ImageSpec& spec,
-                     OIIO::TypeDesc pixelType, const void* pixels) {
-  fs::path temp = tempPathFor(target);
-  // Registered before it exists: a SIGINT during the write removes it (temp_file.h).
-  TempFileGuard guard(temp.string());
-  try {
-    writeFile(temp, path, spec, pixelType, pixels);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw;
-  }
-  std::error_code ec;
-  fs::rename(temp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    writeFailed(path, ec.message());
-  }
+// A PNG's last chunk: length 0, "IEND", its CRC.
+constexpr unsigned char kPngEnd[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+
+bool pngEndsWhole(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  struct stat st;
+  unsigned char tail[sizeof kPngEnd];
+  const bool ok = ::fstat(fd, &st) == 0 && st.st_size >= static_cast<off_t>(8 + sizeof tail) &&
+                  ::pread(fd, tail, sizeof tail, st.st_size - static_cast<off_t>(sizeof tail)) ==
+                      static_cast<ssize_t>(sizeof tail) &&
+                  std::memcmp(tail, kPngEnd, sizeof tail) == 0;
+  ::close(fd);
+  return ok;
 }
 
 }  // namespace
@@ -174,11 +174,8 @@ void checkImageOutputPath(const std::string& path) {
     throw InputError(path + ": unsupported image extension '" + target.extension().string() +
                      "' (use .png or .exr)");
   }
-  fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) writeFailed(path, "directory '" + dir.string() + "' does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) writeFailed(path, "directory '" + dir.string() + "' is not writable");
-  if (fs::is_directory(target, ec)) writeFailed(path, "it is a directory");
+  const std::string problem = outputPathProblem(path);
+  if (!problem.empty()) writeFailed(path, problem);
 }
 
 void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata,
@@ -223,7 +220,7 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
   spec.attribute("Software", "penumbra");
   for (const auto& [key, value] : metadata) spec.attribute(key, value);
 
-  writeAtomically(target, path, spec, pixelType, pixels);
+  writeAtomically(path, spec, pixelType, pixels);
 }
 
 void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::string, Image>>& layers,
@@ -245,7 +242,25 @@ void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::s
   spec.attribute("oiio:ColorSpace", "Linear");
   spec.attribute("Software", "penumbra");
   for (const auto& [key, value] : metadata) spec.attribute(key, value);
-  writeAtomically(fs::path(path), path, spec, OIIO::TypeDesc::FLOAT, floats.data());
+  writeAtomically(path, spec, OIIO::TypeDesc::FLOAT, floats.data());
+}
+
+bool imageComplete(const std::string& path) {
+  if (OIIO::Strutil::iends_with(path, ".png")) return pngEndsWhole(path);
+  // EXR and the rest: the header opens and the last scanline (its chunk is the
+  // file's last, or past a truncated file's end) decodes.
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    (void)OIIO::geterror();
+    return false;
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> row(static_cast<size_t>(std::max(spec.width, 0)) * std::max(spec.nchannels, 0));
+  const bool ok = !row.empty() && in->read_scanlines(0, 0, spec.y + spec.height - 1, spec.y + spec.height, 0, 0,
+                                                     spec.nchannels, OIIO::TypeDesc::FLOAT, row.data());
+  (void)in->geterror();
+  in->close();
+  return ok;
 }
 
 std::string readImageAttribute(const std::string& path, const std::string& name) {

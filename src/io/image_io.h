@@ -1,5 +1,6 @@
 // Writes framebuffers through OpenImageIO: PNG (8-bit sRGB) or EXR (linear half;
-// depth and normals 32-bit float), chosen by extension, via a temp file renamed into place.
+// depth and normals 32-bit float), chosen by extension, encoded in memory and written
+// by the checked write-and-rename of io/temp_file.h; tells whether a file is whole.
 #pragma once
 #include "core/image.h"
 #include "io/tone_map.h"
@@ -11,8 +12,8 @@ namespace penumbra {
 
 using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
 
-// Throws InputError unless `path` has a supported extension and names a file in
-// an existing, writable directory: lets a render fail before it starts.
+// Throws InputError unless `path` has a supported extension and can be written
+// (outputPathProblem, io/temp_file.h): lets a render fail before it starts.
 void checkImageOutputPath(const std::string& path);
 
 // Throws InputError for an unsupported extension or an unwritable path. PNG shows a
@@ -27,6 +28,10 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
 // checks and temp-file write as writeImage.
 void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::string, Image>>& layers,
                      const ImageMetadata& metadata = {});
+
+// True when the image file at `path` is whole, cheaply: a PNG ends in its IEND chunk;
+// an EXR (or another format) opens and its last scanline decodes. False if missing.
+bool imageComplete(const std::string& path);
 
 // A string attribute of an image file's header ("" if the file or attribute is missing).
 std::string readImageAttribute(const std::string& path, const std::string& name);

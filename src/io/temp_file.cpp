@@ -4,9 +4,13 @@
 #include "io/temp_file.h"
 #include "core/error.h"
 #include <fcntl.h>
+#include <sys/statvfs.h>
+#include <fmt/format.h>
 #include <unistd.h>
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -19,7 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kSlots = 16;
-constexpr size_t kPathMax = 4096;
+constexpr size_t kPathMax = PATH_MAX;
 enum : int { kFree = 0, kFilling = 1, kArmed = 2 };
 
 struct Slot {
@@ -29,40 +33,48 @@ struct Slot {
 Slot gSlots[kSlots];
 static_assert(std::atomic<int>::is_always_lock_free, "the handler needs lock-free atomics");
 
-// Test-only hook: PENUMBRA_TEST_SIGNAL_AT=temp-file[:PREFIX[:N]] in the environment
-// when the cleanup is installed makes the Nth (default first) registered temp file
-// whose name starts with PREFIX (default any) exist at once and then raises SIGINT,
-// as if Ctrl-C arrived mid-write. Tests interrupt a write at a known point this way
-// instead of polling for the file. Read once; unset, a guard costs one relaxed load.
-struct SignalHook {
+// Test-only hooks, read once when the cleanup is installed: VARIABLE=PHASE[:PREFIX[:N]]
+// acts on the Nth (default first; "*": every) temp file whose name starts with PREFIX
+// (default any), so a test interrupts or fails a write at a known point instead of
+// racing it. Unset, a hook costs one relaxed load.
+struct TempFileHook {
   std::atomic<bool> armed{false};
   std::string prefix;
   int nth = 1;
+  bool every = false;
   std::atomic<int> seen{0};
-};
-SignalHook gHook;
 
-void readSignalHook() {
-  const char* env = std::getenv("PENUMBRA_TEST_SIGNAL_AT");
-  if (!env) return;
-  const std::string spec(env), phase = "temp-file";
-  if (spec.compare(0, phase.size(), phase) != 0) return;
-  std::string rest = spec.substr(phase.size());
-  if (!rest.empty() && rest[0] != ':') return;
-  if (!rest.empty()) rest.erase(0, 1);
-  const size_t colon = rest.rfind(':');
-  if (colon != std::string::npos) {
-    gHook.nth = std::atoi(rest.c_str() + colon + 1);
-    rest.erase(colon);
+  void read(const char* variable, const std::string& phase) {
+    const char* env = std::getenv(variable);
+    if (!env) return;
+    const std::string spec(env);
+    if (spec.compare(0, phase.size(), phase) != 0) return;
+    std::string rest = spec.substr(phase.size());
+    if (!rest.empty() && rest[0] != ':') return;
+    if (!rest.empty()) rest.erase(0, 1);
+    const size_t colon = rest.rfind(':');
+    if (colon != std::string::npos) {
+      every = rest.compare(colon + 1, std::string::npos, "*") == 0;
+      nth = every ? 1 : std::atoi(rest.c_str() + colon + 1);
+      rest.erase(colon);
+    }
+    prefix = rest;
+    armed.store(nth > 0);
   }
-  gHook.prefix = rest;
-  gHook.armed.store(gHook.nth > 0);
-}
+  // True for the one temp file the hook names.
+  bool fires(const std::string& path) {
+    if (!armed.load(std::memory_order_relaxed)) return false;
+    if (fs::path(path).filename().string().compare(0, prefix.size(), prefix) != 0) return false;
+    return every || seen.fetch_add(1) + 1 == nth;
+  }
+};
+// The temp file exists, then SIGINT arrives, as if Ctrl-C came mid-write.
+TempFileHook gSignalHook;
+// The temp file's write stops with ENOSPC after half its bytes, as on a full disk.
+TempFileHook gDiskFullHook;
 
 void signalHook(const std::string& path) {
-  if (!gHook.armed.load(std::memory_order_relaxed)) return;
-  if (fs::path(path).filename().string().compare(0, gHook.prefix.size(), gHook.prefix) != 0) return;
-  if (gHook.seen.fetch_add(1) + 1 != gHook.nth) return;
+  if (!gSignalHook.fires(path)) return;
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT, 0644);
   if (fd >= 0) ::close(fd);
   std::raise(SIGINT);
@@ -72,6 +84,47 @@ extern "C" void onTerminatingSignal(int sig) {
   removeRegisteredTempFiles();
   // SA_RESETHAND restored the default action; SA_NODEFER lets this raise take it now.
   std::raise(sig);
+}
+
+// The longest file name `dir` allows (NAME_MAX, 255 on Linux file systems).
+size_t nameMax(const fs::path& dir) {
+  const long n = ::pathconf(dir.empty() ? "." : dir.c_str(), _PC_NAME_MAX);
+  return n > 0 ? static_cast<size_t>(n) : NAME_MAX;
+}
+
+// What a temp name adds at most: ".tmp", the pid and "-" and the counter at full width.
+constexpr size_t kTempTagMax = 4 + 10 + 1 + 10;
+
+// Same directory (so the rename is atomic on one filesystem), pid + counter (so
+// neither two processes nor two threads share a name), the target's extension last
+// (a leftover shows what it was). A long name gives up the end of its stem, so
+// every name the target may have has a temp name the directory allows.
+fs::path tempPathFor(const fs::path& target) {
+  static std::atomic<unsigned> counter{0};
+  const std::string tag = ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  std::string stem = target.stem().string(), ext = target.extension().string();
+  const size_t limit = nameMax(target.parent_path());
+  if (tag.size() + ext.size() > limit) ext.clear();
+  if (stem.size() + tag.size() + ext.size() > limit) {
+    size_t keep = limit - tag.size() - ext.size();
+    while (keep > 0 && (static_cast<unsigned char>(stem[keep]) & 0xC0) == 0x80) --keep;  // whole UTF-8 characters
+    stem.resize(keep);
+  }
+  return target.parent_path() / (stem + tag + ext);
+}
+
+// Writes all `size` bytes (write(2) may take fewer, or be interrupted); 0 or the errno.
+// `failAfter` < SIZE_MAX: the disk-full hook's ENOSPC once that many bytes are written.
+int writeAll(int fd, const unsigned char* data, size_t size, size_t failAfter) {
+  const size_t end = std::min(size, failAfter);
+  for (size_t done = 0; done < end;) {
+    const ssize_t n = ::write(fd, data + done, std::min<size_t>(end - done, size_t{1} << 30));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errno;
+    if (n == 0) return EIO;
+    done += static_cast<size_t>(n);
+  }
+  return failAfter < SIZE_MAX ? ENOSPC : 0;
 }
 
 }  // namespace
@@ -108,29 +161,66 @@ void installTempFileCleanup() {
   action.sa_flags = SA_RESETHAND | SA_NODEFER;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-  readSignalHook();
+  gSignalHook.read("PENUMBRA_TEST_SIGNAL_AT", "temp-file");
+  gDiskFullHook.read("PENUMBRA_TEST_DISK_FULL_AT", "write");
+}
+
+void writeFileAtomic(const std::string& path, const void* data, size_t size, const std::string& what) {
+  const fs::path target(path);
+  const fs::path temp = tempPathFor(target);
+  auto fail = [&](int err) {
+    std::error_code ec;
+    const bool kept = fs::exists(target, ec);
+    throw InputError(fmt::format("{}: cannot write {}: {}{}", path, what, std::strerror(err),
+                                 kept ? "; the old file is kept" : ""));
+  };
+  // Registered before it exists: a SIGINT during the write removes it.
+  TempFileGuard guard(temp.string());
+  // O_EXCL: the temp name is this write's alone, never a file (or link) already there.
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) fail(errno);
+  const size_t failAfter = gDiskFullHook.fires(temp.string()) ? size / 2 : SIZE_MAX;
+  int err = writeAll(fd, static_cast<const unsigned char*>(data), size, failAfter);
+  // A network or delayed-allocation file system may report the lost bytes only here.
+  if (err == 0 && ::fsync(fd) != 0) err = errno;
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err == 0 && ::rename(temp.c_str(), target.c_str()) != 0) err = errno;
+  if (err != 0) {
+    ::unlink(temp.c_str());
+    fail(err);
+  }
 }
 
 void writeTextFileAtomic(const std::string& path, const std::string& text) {
+  writeFileAtomic(path, text.data(), text.size(), "file");
+}
+
+std::string outputPathProblem(const std::string& path) {
+  if (path.empty()) return "empty path";
   const fs::path target(path);
-  const fs::path temp = target.parent_path() /
-                        (target.filename().string() + ".tmp" + std::to_string(::getpid()));
-  TempFileGuard guard(temp.string());
-  std::FILE* f = std::fopen(temp.c_str(), "wb");
-  if (!f) throw InputError(path + ": cannot write file: " + std::strerror(errno));
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  const bool closed = std::fclose(f) == 0;
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  const std::string name = target.filename().string();
+  if (path.size() >= PATH_MAX)
+    return fmt::format("its path is {} bytes, the system's limit is {}", path.size(), PATH_MAX - 1);
   std::error_code ec;
-  if (!written || !closed) {
-    fs::remove(temp, ec);
-    throw InputError(path + ": cannot write file");
+  if (!fs::is_directory(dir, ec)) return "directory '" + dir.string() + "' does not exist";
+  if (::access(dir.c_str(), W_OK) != 0) return "directory '" + dir.string() + "' is not writable";
+  if (fs::is_directory(target, ec)) return "it is a directory";
+  // Not one free block: the write would fail, so the work before it is not begun.
+  // (A file system that reports no blocks at all is taken at its word: unknown.)
+  struct statvfs fsInfo;
+  if (::statvfs(dir.c_str(), &fsInfo) == 0 && fsInfo.f_blocks > 0 &&
+      (::geteuid() == 0 ? fsInfo.f_bfree : fsInfo.f_bavail) == 0) {
+    return std::string(std::strerror(ENOSPC)) + " (its file system is full)";
   }
-  fs::rename(temp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw InputError(path + ": cannot write file: " + ec.message());
+  const size_t limit = nameMax(dir);
+  if (name.size() > limit) return fmt::format("its name is {} bytes, the directory allows {}", name.size(), limit);
+  const size_t tempPath = path.size() - name.size() + std::min(limit, name.size() + kTempTagMax);
+  if (tempPath >= PATH_MAX) {
+    return fmt::format("its temp file's path would be {} bytes, the system's limit is {}; use a shorter path",
+                       tempPath, PATH_MAX - 1);
   }
+  return "";
 }
 
 }  // namespace penumbra

@@ -1,7 +1,8 @@
-// Temporary files that stand in for an output until it is renamed into place, and
-// the SIGINT/SIGTERM cleanup that removes them so an interrupted write leaves
-// only the old output behind.
+// Temporary files that stand in for an output until it is renamed into place, the
+// one checked write-and-rename every output goes through, and the SIGINT/SIGTERM
+// cleanup that removes them so an interrupted or failed write leaves only the old output.
 #pragma once
+#include <cstddef>
 #include <string>
 
 namespace penumbra {
@@ -21,15 +22,28 @@ class TempFileGuard {
 
 // SIGINT and SIGTERM remove every registered temp file, then die of the signal as
 // before (default action, so the parent sees the usual exit status). Also reads the
-// test-only PENUMBRA_TEST_SIGNAL_AT=temp-file[:PREFIX[:N]] (temp_file.cpp): SIGINT
-// raised as soon as the Nth temp file named PREFIX... is registered and exists.
+// test-only hooks (temp_file.cpp), each of the form PHASE[:PREFIX[:N]] and acting on
+// the Nth (default first; "*": every) temp file whose name starts with PREFIX:
+//   PENUMBRA_TEST_SIGNAL_AT=temp-file[:PREFIX[:N]]  SIGINT as soon as it exists;
+//   PENUMBRA_TEST_DISK_FULL_AT=write[:PREFIX[:N]]   its write fails with ENOSPC
+//                                                   after half its bytes.
 void installTempFileCleanup();
 
 // The handler's body: unlinks every registered temp file. Async-signal-safe.
 void removeRegisteredTempFiles() noexcept;
 
-// Writes `text` to `path` through a registered temp file in the same directory and
-// a rename, so `path` is either the old file or the whole new one. Throws InputError.
+// Writes `size` bytes to `path` through a registered temp file in the same directory:
+// a checked write(2) loop, fsync and close, then a rename, so `path` is either the
+// old file or the whole new one and no temp file is left. Throws InputError
+// "PATH: cannot write WHAT: REASON" (a full disk, an I/O error, a missing directory).
+void writeFileAtomic(const std::string& path, const void* data, size_t size, const std::string& what = "file");
 void writeTextFileAtomic(const std::string& path, const std::string& text);
+
+// Why `path` cannot be written as an output, "" when it can: its directory is missing
+// or not writable, it is a directory, its file system has not one block free, its
+// name is longer than the directory allows (NAME_MAX), or it or its temp file's path
+// is longer than PATH_MAX. Run before any work, so nothing the write-and-rename needs
+// is refused after a render.
+std::string outputPathProblem(const std::string& path);
 
 }  // namespace penumbra

@@ -144,6 +144,9 @@ BatchOutcome runBatch(const BatchRequest& req) {
       ++out.upToDate;
     } else {
       try {
+        // The disk may have filled (or the folder gone) since the jobs were checked:
+        // fail now rather than after the render.
+        for (const std::string& path : p.outputs) checkImageOutputPath(path);
         report("render");
         std::vector<std::string> reused;
         std::vector<const PlannedJob*> views;

@@ -4,9 +4,9 @@
 #include "plan/output_safety.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/temp_file.h"
 #include <fmt/format.h>
 #include <sys/stat.h>
-#include <unistd.h>
 #include <unordered_map>
 #include <algorithm>
 #include <filesystem>
@@ -25,18 +25,10 @@ bool sameFile(const std::string& a, const std::string& b) {
   return !ec && ca == cb;
 }
 
-// A report (JSON) file: any name, in a writable directory, not a directory itself.
+// A report (JSON) file: any name the write-and-rename can write (io/temp_file.h).
 void checkReportPath(const OutputPath& out) {
-  const fs::path target(out.path);
-  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  std::error_code ec;
-  auto fail = [&](const std::string& why) {
-    throw InputError(out.what + " " + out.path + ": cannot write: " + why);
-  };
-  if (out.path.empty()) fail("empty path");
-  if (!fs::is_directory(dir, ec)) fail("directory '" + dir.string() + "' does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) fail("directory '" + dir.string() + "' is not writable");
-  if (fs::is_directory(target, ec)) fail("it is a directory");
+  const std::string problem = outputPathProblem(out.path);
+  if (!problem.empty()) throw InputError(out.what + " " + out.path + ": cannot write: " + problem);
 }
 
 // What names a file whatever the spelling: its device and inode when it exists (hard
@@ -110,6 +102,8 @@ bool outputsUpToDate(const std::vector<std::string>& outputs, const std::string&
   std::error_code ec;
   for (const std::string& out : outputs) {
     if (!fs::exists(out, ec) || readImageAttribute(out, "penumbra:job") != stamp) return false;
+    // The stamp sits in the header: a file cut short after it is no render of the job.
+    if (!imageComplete(out)) return false;
     const auto written = fs::last_write_time(out, ec);
     for (const std::string& in : inputs) {
       if (fs::exists(in, ec) && fs::last_write_time(in, ec) >= written) return false;

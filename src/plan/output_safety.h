@@ -17,9 +17,10 @@ struct OutputPath {
 // file, its sidecar, buffers, images, meshes, MTLs, textures) and `scenePath` itself.
 std::vector<std::string> sceneInputs(const Scene& scene, const std::string& scenePath);
 
-// Throws InputError naming the option unless every output's directory exists and
-// is writable, it is not a directory, no two outputs name the same file and none
-// names an input (compared canonically, and by inode where both exist).
+// Throws InputError naming the option unless every output can be written
+// (outputPathProblem: its directory, its name's and temp file's lengths), no two
+// outputs name the same file and none names an input (compared canonically, and by
+// inode where both exist).
 void checkOutputs(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
 
 // One job of several (a batch): its name for messages, the files it writes and reads.
@@ -35,7 +36,8 @@ void checkJobsApart(const std::vector<JobFiles>& jobs);
 // every view and file, hashed, so an edited job makes its outputs stale.
 std::string jobStamp(const std::string& scenePath, const std::vector<std::string>& overrides,
                      const std::vector<std::pair<std::string, std::string>>& viewFiles);
-// True when every output exists, carries `stamp` and is newer than every input.
+// True when every output exists whole (imageComplete), carries `stamp` and is newer
+// than every input.
 bool outputsUpToDate(const std::vector<std::string>& outputs, const std::string& stamp,
                      const std::vector<std::string>& inputs);
 

@@ -167,9 +167,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const double pixels = double(scene.camera.width) * scene.camera.height;
   // The frame; with progressive passes a second one to sum them, their spread and the
   // bias check (core/error_estimate.h); else the samples' spread, or at one sample the
-  // probes' error view (trace/probe_error.h); the writer's copy.
+  // probes' error view (trace/probe_error.h); the writer's copy, its conversion to half,
+  // and the encoded file, which is written from memory (io/image_io.cpp).
   const int frames = p.passes > 1 ? 4 : 2;
-  if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * frames + 12 + 6);
+  if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * frames + 12 + 6 + 6);
   double meshBytes = 0.0, tracerBytes = 0.0;
   size_t triangles = 0;
   for (const TriangleMesh& m : scene.meshes) {
