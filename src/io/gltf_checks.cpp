@@ -34,18 +34,6 @@ std::string num(double v) {
   return buf;
 }
 
-// A number an extension object holds under `key`: absent = `fallback`; present and
-// not a finite number = refused.
-double extensionNumber(const tinygltf::ExtensionMap& ext, const char* name, const char* key, double fallback,
-                       const std::string& where, const std::string& path) {
-  auto it = ext.find(name);
-  if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
-  const tinygltf::Value& v = it->second.Get(key);
-  const double d = v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : NAN;
-  if (!std::isfinite(d)) gltfFail(path, where + ".extensions." + name + "." + key, "must be a finite number");
-  return d;
-}
-
 void checkNode(const tinygltf::Model& m, size_t i, const std::string& path) {
   const tinygltf::Node& n = m.nodes[i];
   const std::string where = at("nodes", i);
@@ -182,21 +170,6 @@ void checkPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, cons
   }
 }
 
-void checkMaterial(const tinygltf::Material& g, const std::string& where, const std::string& path) {
-  const double ior = extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5, where, path);
-  if (!(ior >= 1.0 && ior <= 100.0)) {
-    gltfFail(path, where + ".extensions.KHR_materials_ior.ior", "must be 1..100 (the spec's minimum is 1), got " + num(ior));
-  }
-  const double strength = extensionNumber(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0, where, path);
-  if (!(strength >= 0.0 && strength <= 1e30)) {
-    gltfFail(path, where + ".extensions.KHR_materials_emissive_strength.emissiveStrength", "must be 0..1e30, got " + num(strength));
-  }
-  const double transmission = extensionNumber(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, where, path);
-  if (!(transmission >= 0.0 && transmission <= 1.0)) {
-    gltfFail(path, where + ".extensions.KHR_materials_transmission.transmissionFactor", "must be 0..1");
-  }
-}
-
 void checkCameraValues(const tinygltf::Camera& c, const std::string& where, const std::string& path,
                        std::vector<std::string>& warnings) {
   if (c.type != "perspective") {
@@ -305,7 +278,7 @@ std::vector<int> checkGltfModel(const tinygltf::Model& m, const std::string& pat
                "must be \"directional\", \"point\" or \"spot\", got \"" + type + "\"");
     }
   }
-  for (size_t i = 0; i < m.materials.size(); ++i) checkMaterial(m.materials[i], at("materials", i), path);
+  for (size_t i = 0; i < m.materials.size(); ++i) checkGltfMaterial(m.materials[i], at("materials", i), path);
   for (size_t i = 0; i < m.cameras.size(); ++i) checkCameraValues(m.cameras[i], at("cameras", i), path, warnings);
   return roots;
 }
