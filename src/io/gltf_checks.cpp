@@ -34,6 +34,33 @@ std::string num(double v) {
   return buf;
 }
 
+// What a JSON value is, for a message: "\"0\"", "0.5", "an array".
+std::string shown(const tinygltf::Value& v) {
+  if (v.IsString()) return "\"" + v.Get<std::string>() + "\"";
+  if (v.IsNumber() || v.IsInt()) return num(v.GetNumberAsDouble());
+  return v.IsArray() ? "an array" : v.IsObject() ? "an object" : v.IsBool() ? "a boolean" : "null";
+}
+
+// The camera and light a node names exist, checked with the nodes, before any mesh
+// is read: a wrong index is refused before the heavy work, not after it.
+void checkNodeRefs(const tinygltf::Model& m, const tinygltf::Node& n, const std::string& where, const std::string& path) {
+  if (n.camera >= 0 && static_cast<size_t>(n.camera) >= m.cameras.size()) {
+    gltfFail(path, where + ".camera", "camera " + std::to_string(n.camera) + " does not exist");
+  }
+  auto ext = n.extensions.find("KHR_lights_punctual");
+  if (ext == n.extensions.end()) return;
+  const std::string key = where + ".extensions.KHR_lights_punctual";
+  if (!ext->second.IsObject() || !ext->second.Has("light")) gltfFail(path, key, "must be an object with a \"light\" index");
+  // tinygltf would read a string or a fraction as some integer: "0" was light 0.
+  const tinygltf::Value& v = ext->second.Get("light");
+  const double index = v.IsInt() || v.IsNumber() ? v.GetNumberAsDouble() : NAN;
+  if (!(index == std::floor(index))) gltfFail(path, key + ".light", "must be the integer index of a light, got " + shown(v));
+  if (index < 0.0 || index >= static_cast<double>(m.lights.size())) {
+    gltfFail(path, key + ".light", "light " + num(index) + " does not exist (the file has " +
+                                       std::to_string(m.lights.size()) + " in extensions.KHR_lights_punctual.lights)");
+  }
+}
+
 void checkNode(const tinygltf::Model& m, size_t i, const std::string& path) {
   const tinygltf::Node& n = m.nodes[i];
   const std::string where = at("nodes", i);
@@ -62,6 +89,7 @@ void checkNode(const tinygltf::Model& m, size_t i, const std::string& path) {
   if (!(std::fabs(det) > 1e-9 * scale) || !(scale > 1e-300)) {
     gltfFail(path, key, "the node's transform is singular (a zero scale, or axes that coincide)");
   }
+  checkNodeRefs(m, n, where, path);
 }
 
 // Each node at most one parent, no cycles, the scene's nodes roots: then every node
