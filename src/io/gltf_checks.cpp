@@ -200,8 +200,9 @@ void checkPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, cons
 
 void checkCameraValues(const tinygltf::Camera& c, const std::string& where, const std::string& path,
                        std::vector<std::string>& warnings) {
+  if (c.type == "orthographic") return;  // xmag and ymag: addCamera, with the node's placement
   if (c.type != "perspective") {
-    warnings.push_back(where + ": only perspective cameras are used; \"" + c.type + "\" skipped");
+    warnings.push_back(where + ": only perspective and orthographic cameras are used; \"" + c.type + "\" skipped");
     return;
   }
   const double yfov = c.perspective.yfov;

@@ -33,7 +33,7 @@ glm::dmat4 nodeMatrix(const tinygltf::Node& n);
 
 // Structure and values: the node forest (returns the root nodes to load), node
 // transforms, primitives, lights, materials' extensions and cameras. Things skipped
-// (points and lines, orthographic cameras) are appended to `warnings`.
+// (points and lines, cameras neither perspective nor orthographic) are appended to `warnings`.
 std::vector<int> checkGltfModel(const tinygltf::Model& m, const std::string& path, std::vector<std::string>& warnings);
 
 // A material's values (gltf_material_checks.cpp): its extensions' numbers, alphaMode,

@@ -210,7 +210,9 @@ void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const st
   // The node's transform places the camera: the JSON camera's checks apply here too.
   const CameraProblem problem = cameraProblem(c);
   if (!problem.message.empty()) {
-    gltfFail(path, "cameras[" + std::to_string(index) + "] (as placed by its node)", problem.key + ": " + problem.message);
+    const std::string camera = "cameras[" + std::to_string(index) + "]";
+    if (problem.key == "ortho_height") gltfFail(path, camera + ".orthographic.ymag (as placed by its node)", problem.message);
+    gltfFail(path, camera + " (as placed by its node)", problem.key + ": " + problem.message);
   }
   out.camera = c;
 }
