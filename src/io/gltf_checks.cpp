@@ -200,7 +200,13 @@ void checkPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, cons
 
 void checkCameraValues(const tinygltf::Camera& c, const std::string& where, const std::string& path,
                        std::vector<std::string>& warnings) {
-  if (c.type == "orthographic") return;  // xmag and ymag: addCamera, with the node's placement
+  if (c.type == "orthographic") {  // half width and height; their pixel step: addCamera, once placed
+    const double x = c.orthographic.xmag, y = c.orthographic.ymag;
+    if (!(x > 0.0 && y > 0.0 && x / y >= 0.01 && x / y <= 100.0)) {
+      gltfFail(path, where + ".orthographic", "xmag and ymag must be positive, their ratio 0.01..100");
+    }
+    return;
+  }
   if (c.type != "perspective") {
     warnings.push_back(where + ": only perspective and orthographic cameras are used; \"" + c.type + "\" skipped");
     return;
