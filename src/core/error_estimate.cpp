@@ -23,10 +23,15 @@ double meanOver(const Image& like, F perChannel) {
 
 std::string describeError(const ErrorEstimate& e) {
   if (!e.known()) return "unknown (nothing was rendered that reads light)";
+  const char* shared = e.sharedMaps ? "; probes share the photon map, so its noise is not in it" : "";
+  if (e.source == ErrorSource::Probes && e.lowerBound) {
+    return fmt::format("at least {:.3g} RMSE (noise and aliasing of the pixel centres: probes at {} pixels found none, "
+                       "pixels they missed may hold some; --aov error probes every pixel){}",
+                       e.noiseRmse, e.count, shared);
+  }
   if (e.source == ErrorSource::Probes) {
     return fmt::format("~{:.3g} RMSE (noise and aliasing of the pixel centres, from probes at {} pixels){}",
-                       e.noiseRmse, e.count,
-                       e.sharedMaps ? "; probes share the photon map, so its noise is not in it" : "");
+                       e.noiseRmse, e.count, shared);
   }
   std::string out = fmt::format("~{:.3g} RMSE (noise, from {} {})", e.noiseRmse, e.count,
                                 e.source == ErrorSource::Passes ? "passes" : "samples per pixel");
@@ -93,19 +98,16 @@ Image PassSpread::standardError() const {
   return out;
 }
 
-ErrorEstimate sampleError(const Image& varianceOfMean, int spp) {
+ErrorEstimate sampleError(const Image& standardError, int spp) {
   ErrorEstimate e;
-  if (spp < 2 || varianceOfMean.pixels.empty()) return e;
+  if (spp < 2 || standardError.pixels.empty()) return e;
   e.source = ErrorSource::Samples;
   e.count = spp;
-  e.noiseRmse = std::sqrt(meanOver(varianceOfMean, [&](size_t i, int c) { return varianceOfMean.pixels[i][c]; }));
+  e.noiseRmse = std::sqrt(meanOver(standardError, [&](size_t i, int c) {
+    const double se = standardError.pixels[i][c];
+    return se * se;  // in double: a float square of 1e20 is inf
+  }));
   return e;
-}
-
-Image standardErrorOf(const Image& varianceOfMean) {
-  Image out(varianceOfMean.width, varianceOfMean.height);
-  for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = glm::sqrt(varianceOfMean.pixels[i]);
-  return out;
 }
 
 }  // namespace penumbra

@@ -26,6 +26,9 @@ struct ErrorEstimate {
   // Samples or probes of one pass read photon maps they all share, whose noise the
   // figure then leaves out (and says so).
   bool sharedMaps = false;
+  // Probes only: none of them found an error, so the figure (0) is a lower bound:
+  // pixels they did not reach may hold some. Shown as "at least", never "~".
+  bool lowerBound = false;
 
   bool known() const { return noiseRmse >= 0.0; }
 };
@@ -62,10 +65,8 @@ class PassSpread {
   int biasHalf_ = 0;
 };
 
-// An estimate from one pass's per-pixel variance of the mean (from its samples: its
-// even and odd samples' means, as passes' above).
-ErrorEstimate sampleError(const Image& varianceOfMean, int spp);
-// Per pixel, the square root of a variance image.
-Image standardErrorOf(const Image& varianceOfMean);
+// An estimate from one pass's per-pixel standard error of the mean (from its samples:
+// its even and odd samples' means, as passes' above), squared and averaged in double.
+ErrorEstimate sampleError(const Image& standardError, int spp);
 
 }  // namespace penumbra

@@ -49,6 +49,15 @@ CameraProblem cameraProblem(const Camera& c) {
   if (c.width < 1 || c.width > 16384) return {"width", "must be 1..16384 pixels, got " + std::to_string(c.width)};
   if (c.height < 1 || c.height > 16384) return {"height", "must be 1..16384 pixels, got " + std::to_string(c.height)};
   if (c.spp < 1 || c.spp > 4096) return {"spp", "must be 1..4096, got " + std::to_string(c.spp)};
+  // The film's rays start at position + offsets, in float as CameraRays makes them.
+  const float step = c.orthoHeight / static_cast<float>(c.height);
+  const float reach = std::max({std::fabs(c.position.x), std::fabs(c.position.y), std::fabs(c.position.z)});
+  if (c.orthoHeight > 0.0f && !(step >= static_cast<float>(kMinPixelStepRatio) * reach)) {
+    return {"ortho_height", "a pixel (ortho_height / height = " + shown(c.orthoHeight) + " / " + std::to_string(c.height) +
+                                " = " + shown(step) + ") must be >= 2^-21 x the camera position's largest coordinate (" +
+                                shown(reach) + ") = " + shown(kMinPixelStepRatio * reach) +
+                                ": finer, single precision puts neighbouring pixels' rays on one point"};
+  }
   // The frame the tracer will build, in float: a length of 1e-30 is fine in double
   // but its square underflows in float: NaN.
   const CameraFrame frame = cameraFrame(c);

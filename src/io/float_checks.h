@@ -41,6 +41,13 @@ inline constexpr float kMaxPower = 1e30f;
 // are taken in double from o + t d. The bound is about representing the sphere.)
 inline constexpr double kMinRadiusRatio = 1.0 / 262144.0;
 
+// Smallest step between an orthographic film's pixels (ortho_height / height)
+// relative to the camera position's largest coordinate m. The rays start at
+// position + offsets rounded to the float grid at m (one step <= 2^-23 m): a pixel
+// of >= 2^-21 m keeps neighbours >= 4 steps apart; finer, whole rows of pixels start
+// on one point and one surface point fills the film.
+inline constexpr double kMinPixelStepRatio = 1.0 / 2097152.0;
+
 // Index of refraction. Real media are 1..4; ratios below 1 (a bubble in glass)
 // are valid. Fresnel and Snell work with ior^2 and 1 - ior^2 sin^2: [0.01, 100]
 // keeps those well inside float and every refraction direction finite.

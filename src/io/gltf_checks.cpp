@@ -34,16 +34,31 @@ std::string num(double v) {
   return buf;
 }
 
-// A number an extension object holds under `key`: absent = `fallback`; present and
-// not a finite number = refused.
-double extensionNumber(const tinygltf::ExtensionMap& ext, const char* name, const char* key, double fallback,
-                       const std::string& where, const std::string& path) {
-  auto it = ext.find(name);
-  if (it == ext.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
-  const tinygltf::Value& v = it->second.Get(key);
-  const double d = v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : NAN;
-  if (!std::isfinite(d)) gltfFail(path, where + ".extensions." + name + "." + key, "must be a finite number");
-  return d;
+// What a JSON value is, for a message: "\"0\"", "0.5", "an array".
+std::string shown(const tinygltf::Value& v) {
+  if (v.IsString()) return "\"" + v.Get<std::string>() + "\"";
+  if (v.IsNumber() || v.IsInt()) return num(v.GetNumberAsDouble());
+  return v.IsArray() ? "an array" : v.IsObject() ? "an object" : v.IsBool() ? "a boolean" : "null";
+}
+
+// The camera and light a node names exist, checked with the nodes, before any mesh
+// is read: a wrong index is refused before the heavy work, not after it.
+void checkNodeRefs(const tinygltf::Model& m, const tinygltf::Node& n, const std::string& where, const std::string& path) {
+  if (n.camera >= 0 && static_cast<size_t>(n.camera) >= m.cameras.size()) {
+    gltfFail(path, where + ".camera", "camera " + std::to_string(n.camera) + " does not exist");
+  }
+  auto ext = n.extensions.find("KHR_lights_punctual");
+  if (ext == n.extensions.end()) return;
+  const std::string key = where + ".extensions.KHR_lights_punctual";
+  if (!ext->second.IsObject() || !ext->second.Has("light")) gltfFail(path, key, "must be an object with a \"light\" index");
+  // tinygltf would read a string or a fraction as some integer: "0" was light 0.
+  const tinygltf::Value& v = ext->second.Get("light");
+  const double index = v.IsInt() || v.IsNumber() ? v.GetNumberAsDouble() : NAN;
+  if (!(index == std::floor(index))) gltfFail(path, key + ".light", "must be the integer index of a light, got " + shown(v));
+  if (index < 0.0 || index >= static_cast<double>(m.lights.size())) {
+    gltfFail(path, key + ".light", "light " + num(index) + " does not exist (the file has " +
+                                       std::to_string(m.lights.size()) + " in extensions.KHR_lights_punctual.lights)");
+  }
 }
 
 void checkNode(const tinygltf::Model& m, size_t i, const std::string& path) {
@@ -74,6 +89,7 @@ void checkNode(const tinygltf::Model& m, size_t i, const std::string& path) {
   if (!(std::fabs(det) > 1e-9 * scale) || !(scale > 1e-300)) {
     gltfFail(path, key, "the node's transform is singular (a zero scale, or axes that coincide)");
   }
+  checkNodeRefs(m, n, where, path);
 }
 
 // Each node at most one parent, no cycles, the scene's nodes roots: then every node
@@ -182,25 +198,17 @@ void checkPrimitive(const tinygltf::Model& m, const tinygltf::Primitive& p, cons
   }
 }
 
-void checkMaterial(const tinygltf::Material& g, const std::string& where, const std::string& path) {
-  const double ior = extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5, where, path);
-  if (!(ior >= 1.0 && ior <= 100.0)) {
-    gltfFail(path, where + ".extensions.KHR_materials_ior.ior", "must be 1..100 (the spec's minimum is 1), got " + num(ior));
-  }
-  const double strength = extensionNumber(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0, where, path);
-  if (!(strength >= 0.0 && strength <= 1e30)) {
-    gltfFail(path, where + ".extensions.KHR_materials_emissive_strength.emissiveStrength", "must be 0..1e30, got " + num(strength));
-  }
-  const double transmission = extensionNumber(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0, where, path);
-  if (!(transmission >= 0.0 && transmission <= 1.0)) {
-    gltfFail(path, where + ".extensions.KHR_materials_transmission.transmissionFactor", "must be 0..1");
-  }
-}
-
 void checkCameraValues(const tinygltf::Camera& c, const std::string& where, const std::string& path,
                        std::vector<std::string>& warnings) {
+  if (c.type == "orthographic") {  // half width and height; their pixel step: addCamera, once placed
+    const double x = c.orthographic.xmag, y = c.orthographic.ymag;
+    if (!(x > 0.0 && y > 0.0 && x / y >= 0.01 && x / y <= 100.0)) {
+      gltfFail(path, where + ".orthographic", "xmag and ymag must be positive, their ratio 0.01..100");
+    }
+    return;
+  }
   if (c.type != "perspective") {
-    warnings.push_back(where + ": only perspective cameras are used; \"" + c.type + "\" skipped");
+    warnings.push_back(where + ": only perspective and orthographic cameras are used; \"" + c.type + "\" skipped");
     return;
   }
   const double yfov = c.perspective.yfov;
@@ -305,7 +313,7 @@ std::vector<int> checkGltfModel(const tinygltf::Model& m, const std::string& pat
                "must be \"directional\", \"point\" or \"spot\", got \"" + type + "\"");
     }
   }
-  for (size_t i = 0; i < m.materials.size(); ++i) checkMaterial(m.materials[i], at("materials", i), path);
+  for (size_t i = 0; i < m.materials.size(); ++i) checkGltfMaterial(m.materials[i], at("materials", i), path);
   for (size_t i = 0; i < m.cameras.size(); ++i) checkCameraValues(m.cameras[i], at("cameras", i), path, warnings);
   return roots;
 }

@@ -33,8 +33,12 @@ glm::dmat4 nodeMatrix(const tinygltf::Node& n);
 
 // Structure and values: the node forest (returns the root nodes to load), node
 // transforms, primitives, lights, materials' extensions and cameras. Things skipped
-// (points and lines, orthographic cameras) are appended to `warnings`.
+// (points and lines, cameras neither perspective nor orthographic) are appended to `warnings`.
 std::vector<int> checkGltfModel(const tinygltf::Model& m, const std::string& path, std::vector<std::string>& warnings);
+
+// A material's values (gltf_material_checks.cpp): its extensions' numbers, alphaMode,
+// and every texture's KHR_texture_transform bounded as TEXCOORD_0 is.
+void checkGltfMaterial(const tinygltf::Material& g, const std::string& where, const std::string& path);
 
 // Refuses the model when the meshes it makes (every primitive under every node that
 // instances it) with the buffers already held would need more than limits.maxBytes.

@@ -191,12 +191,7 @@ void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const st
   c.up = Vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0.0, 1.0, 0.0)));
   double aspect = 0.0;
   if (g.type == "orthographic") {
-    // xmag and ymag are half the view's width and height.
-    if (!(g.orthographic.xmag > 0.0 && g.orthographic.ymag > 0.0) ||
-        !(g.orthographic.xmag / g.orthographic.ymag >= 0.01 && g.orthographic.xmag / g.orthographic.ymag <= 100.0)) {
-      gltfFail(path, "cameras[" + std::to_string(index) + "].orthographic",
-               "xmag and ymag must be positive, their ratio 0.01..100");
-    }
+    // xmag and ymag are half the view's width and height (positive: checkGltfModel).
     c.orthoHeight = static_cast<float>(2.0 * g.orthographic.ymag);
     aspect = g.orthographic.xmag / g.orthographic.ymag;
   } else {
@@ -210,7 +205,9 @@ void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const st
   // The node's transform places the camera: the JSON camera's checks apply here too.
   const CameraProblem problem = cameraProblem(c);
   if (!problem.message.empty()) {
-    gltfFail(path, "cameras[" + std::to_string(index) + "] (as placed by its node)", problem.key + ": " + problem.message);
+    const std::string camera = "cameras[" + std::to_string(index) + "]";
+    if (problem.key == "ortho_height") gltfFail(path, camera + ".orthographic.ymag (as placed by its node)", problem.message);
+    gltfFail(path, camera + " (as placed by its node)", problem.key + ": " + problem.message);
   }
   out.camera = c;
 }

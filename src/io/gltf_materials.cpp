@@ -46,7 +46,9 @@ void readTextureTransform(const tinygltf::TextureInfo& info, Material& m) {
   const std::vector<double> offset = extensionNumbers(info.extensions, ext, "offset", {0.0, 0.0});
   m.uvScale = Vec2(float(scale[0]), float(scale[1]));
   m.uvOffset = Vec2(float(offset[0]), float(offset[1]));
-  m.uvRotation = float(extensionNumber(info.extensions, ext, "rotation", 0.0));
+  // Any finite angle is valid (checkGltfMaterial bounded the rest): reduced in double,
+  // as a float 1e39 would be inf and its cosine NaN.
+  m.uvRotation = float(std::remainder(extensionNumber(info.extensions, ext, "rotation", 0.0), 2.0 * M_PI));
 }
 
 Color colour(const std::vector<double>& c, const Color& fallback) {

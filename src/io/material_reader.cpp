@@ -43,7 +43,9 @@ int readTexture(const JsonNode& node, Material& material, Scene& scene, TextureI
     } else {
       scale.fail("must be a number or [u, v]");
     }
-    if (material.uvScale.x > 1e6f || material.uvScale.y > 1e6f) scale.fail("must be <= 1e6");
+    // Bounded as texture coordinates are, so uv x uv_scale stays a finite float.
+    const float most = static_cast<float>(kMaxTexCoord);
+    if (material.uvScale.x > most || material.uvScale.y > most) scale.fail("must be <= 1e6");
   }
   size_t blend = node.enumOr("blend", 0, {"multiply", "add"});
   material.textureBlend = blend == 0 ? TextureBlend::Multiply : TextureBlend::Add;

@@ -36,7 +36,7 @@ std::string statsToJson(const RenderStats& s) {
   j["error"] = {{"noise_rmse", e.known() ? nlohmann::json(e.noiseRmse) : nlohmann::json(nullptr)},
                 {"source", source}, {"count", e.count},
                 {"bias_rmse", e.biasRmse >= 0.0 ? nlohmann::json(e.biasRmse) : nlohmann::json(nullptr)},
-                {"bias_half", e.biasHalf}, {"text", describeError(e)}};
+                {"bias_half", e.biasHalf}, {"lower_bound", e.lowerBound}, {"text", describeError(e)}};
   if (!s.budget.empty()) j["budget"] = {{"given", s.budget}, {"stopped", s.budgetStop}, {"passes", s.passes}};
   j["photons"] = {{"final_radius_caustic", s.causticRadius}, {"final_radius_global", s.globalRadius}};
   for (MapKind k : kAllMaps) {

@@ -91,12 +91,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   }
   static const json kNoCamera = json::object();
   if (root.has("camera")) {
-    readCamera(root.child("camera"), scene.camera);  // overrides the model's camera key by key
-    const JsonNode camera = root.child("camera");
-    if (model.aspect > 0.0 && camera.has("width") && !camera.has("height")) {
-      // A new width keeps the file's aspect ratio.
-      scene.camera.height = std::clamp(static_cast<int>(std::lround(scene.camera.width / model.aspect)), 1, 16384);
-    }
+    readCamera(root.child("camera"), scene.camera, model.aspect);  // overrides the model's camera key by key
   } else if (!modelPath.empty()) {
     readCamera(JsonNode(kNoCamera, "camera", context), scene.camera);  // checks the model's camera
   }

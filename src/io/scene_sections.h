@@ -6,7 +6,8 @@
 
 namespace penumbra {
 
-void readCamera(const JsonNode& camera, Camera& out);
+// `modelAspect` > 0: the model file's aspect ratio, which a new width alone keeps.
+void readCamera(const JsonNode& camera, Camera& out, double modelAspect = 0.0);
 void readLights(const JsonNode& lights, std::vector<Light>& out);
 void readRender(const JsonNode& render, RenderSettings& out);
 void readPhotons(const JsonNode& photons, PhotonSettings& out);

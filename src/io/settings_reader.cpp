@@ -5,6 +5,7 @@
 #include "io/camera_checks.h"
 #include "io/float_checks.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -31,7 +32,7 @@ float gatherRadius(const JsonNode& node, const char* key, float fallback) {
 
 }  // namespace
 
-void readCamera(const JsonNode& node, Camera& out) {
+void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
   node.allowKeys({"position", "look_at", "up", "fov", "width", "height", "spp", "ortho_height"});
   if (node.has("position")) out.position = readPosition(node.child("position"));
   if (node.has("look_at")) out.lookAt = readPosition(node.child("look_at"));
@@ -42,6 +43,11 @@ void readCamera(const JsonNode& node, Camera& out) {
   out.spp = node.intOr("spp", out.spp, 1, 4096);
   // An orthographic camera: the view's height in scene units.
   out.orthoHeight = node.floatOr("ortho_height", out.orthoHeight, Range::atLeast(0.0));
+  // A new width keeps a model file's aspect ratio; checked below with the rest (the
+  // height sets an orthographic camera's pixel step).
+  if (modelAspect > 0.0 && node.has("width") && !node.has("height")) {
+    out.height = std::clamp(static_cast<int>(std::lround(out.width / modelAspect)), 1, 16384);
+  }
 
   // The checks every camera meets (io/camera_checks.h), failing at the key at fault.
   const CameraProblem problem = cameraProblem(out);

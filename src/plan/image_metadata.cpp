@@ -79,6 +79,8 @@ ImageMetadata renderMetadata(const Scene& scene, const RenderPlan& plan, const R
                      {"penumbra:settings", summary(scene, plan, stats)},
                      {"penumbra:error", describeError(stats.error)}};
   if (stats.error.known()) m.emplace_back("penumbra:error.noise_rmse", fmt::format("{}", stats.error.noiseRmse));
+  // noise_rmse is then a lower bound (probes that found no error), not an estimate.
+  if (stats.error.lowerBound) m.emplace_back("penumbra:error.lower_bound", "1");
   if (stats.error.biasRmse >= 0.0) m.emplace_back("penumbra:error.bias_rmse", fmt::format("{}", stats.error.biasRmse));
   if (!stats.budget.empty())
     m.emplace_back("penumbra:budget", fmt::format("{}: {} after {} passes", stats.budget, stats.budgetStop, stats.passes));

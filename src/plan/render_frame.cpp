@@ -181,8 +181,8 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
   RenderOptions render;
   render.aov = aov;
   PassSpread spread;
-  Image variance;  // one pass: its samples' spread
-  if (needsLight && passes == 1 && scene.camera.spp > 1) render.variance = &variance;
+  Image sampleSpread;  // one pass: its samples' standard error per pixel
+  if (needsLight && passes == 1 && scene.camera.spp > 1) render.standardError = &sampleSpread;
   int done = 0;
   double passStart = clock();
   for (int pass = 0; pass < passes; ++pass) {
@@ -262,15 +262,15 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
     // One pass of one sample (the pixel centres) has no spread: probes beside it measure
     // its error, at every pixel for the error view; their samples count as render time.
     Image probed;
-    const bool probes = done == 1 && !render.variance;
+    const bool probes = done == 1 && !render.standardError;
     Stopwatch probing;
     stats.error = done > 1  ? spread.estimate()
                   : probes ? probeError(ctx, result.image, render.aov, options.errorView ? &probed : nullptr)
-                           : sampleError(variance, scene.camera.spp);
+                           : sampleError(sampleSpread, scene.camera.spp);
     if (probes) stats.time.render += probing.seconds();
     for (MapKind k : kAllMaps) stats.error.sharedMaps = stats.error.sharedMaps || stats.stored[k] > 0;
     if (options.errorView) {
-      result.image = done > 1 ? spread.standardError() : probes ? std::move(probed) : standardErrorOf(variance);
+      result.image = done > 1 ? spread.standardError() : probes ? std::move(probed) : std::move(sampleSpread);
     }
   }
   stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, stage.bytes() + later.bytes());

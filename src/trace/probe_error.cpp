@@ -107,6 +107,9 @@ ErrorEstimate probeError(const ShadingContext& ctx, const Image& image, Aov aov,
   e.source = ErrorSource::Probes;
   e.count = probed;
   e.noiseRmse = std::sqrt(std::max(0.0, mse / double(n)));
+  // Probes that found no error (all centres agreed with their grids, or the estimates
+  // summed to <= 0) prove none: the pixels they did not reach may hold some.
+  e.lowerBound = !(mse > 0.0);
   return e;
 }
 

@@ -9,6 +9,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <atomic>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -61,23 +62,25 @@ struct PixelSums {
     }
   }
 
-  // The variance of the pixel's mean from its even and odd samples' means (two
-  // independent estimates): n_e n_o / n^2 times their difference squared.
-  Color varianceOfMean() const {
+  // The standard error of the pixel's mean from its even and odd samples' means (two
+  // independent estimates): the root of n_e n_o / n^2 times their difference squared,
+  // in double. At most the larger mean: finite (clamped as the pixel is).
+  Color standardError() const {
     const int evenCounted = counted - oddCounted;
     if (evenCounted < 1 || oddCounted < 1) return Color(0.0f);
     const glm::dvec3 d = (sum - oddSum) / double(evenCounted) - oddSum / double(oddCounted);
-    return Color(double(evenCounted) * oddCounted / (double(counted) * counted) * d * d);
+    const double share = std::sqrt(double(evenCounted) * oddCounted) / double(counted);
+    return Color(glm::min(share * glm::abs(d), glm::dvec3(std::numeric_limits<float>::max())));
   }
 };
 
 // A mean above float range is clamped to it (the writer clamps further). A pixel with
 // no sample counted is 0: black, or for a geometric view "no hit" (coverage 0).
-void storePixel(const PixelSums& p, Aov aov, int spp, size_t index, Image& image, Image* variance) {
+void storePixel(const PixelSums& p, Aov aov, int spp, size_t index, Image& image, Image* standardError) {
   const double top = std::numeric_limits<float>::max();
   image.pixels[index] = p.counted > 0 ? Color(glm::min(p.sum / double(p.counted), glm::dvec3(top))) : Color(0.0f);
   if (geometric(aov)) image.coverage[index] = static_cast<float>(p.counted) / static_cast<float>(spp);
-  if (variance) variance->pixels[index] = p.varianceOfMean();
+  if (standardError) standardError->pixels[index] = p.standardError();
 }
 
 // Camera sample `s` of this pass: its random stream and its offset in the pixel. One
@@ -122,7 +125,7 @@ struct TileBuffers {
 // Each pixel still adds its samples in sample order, so the sums equal the single path's.
 void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov aov,
                        uint32_t shadowLights, int x0, int y0, int x1, int y1, TileBuffers& b,
-                       ThreadState& ts, Image& image, Image* variance) {
+                       ThreadState& ts, Image& image, Image* standardError) {
   const Camera& cam = ctx.scene.camera;
   const size_t cap = static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0);
   if (b.pixels.size() < cap) {
@@ -157,7 +160,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
   ts.knownShadows = ts.blockedShadows = 0;
   for (int i = 0; i < n; ++i) {
     const size_t index = static_cast<size_t>(b.pixels[i].y) * cam.width + b.pixels[i].x;
-    storePixel(b.sums[i], aov, cam.spp, index, image, variance);
+    storePixel(b.sums[i], aov, cam.spp, index, image, standardError);
   }
 }
 
@@ -173,7 +176,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   const Camera& cam = ctx.scene.camera;
   CameraRays camera(cam);
   Image image(cam.width, cam.height);
-  if (options.variance) *options.variance = Image(cam.width, cam.height);
+  if (options.standardError) *options.standardError = Image(cam.width, cam.height);
   if (geometric(options.aov)) {
     image.content = options.aov == Aov::Depth ? ImageContent::Depth : ImageContent::Normal;
     image.coverage.assign(image.pixels.size(), 0.0f);
@@ -195,7 +198,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
       int x1 = std::min(x0 + tile, cam.width), y1 = std::min(y0 + tile, cam.height);
       if (packets) {
         renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, buffers.local(), ts, image,
-                            options.variance);
+                            options.standardError);
       } else {
         for (int y = y0; y < y1; ++y) {
           for (int x = x0; x < x1; ++x) {
@@ -207,7 +210,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
               Color c = shadeCameraRay(ctx, camera.generate(x + cs.offset.x, y + cs.offset.y), options.aov, ts);
               sums.add(c, options.aov, s % 2 == 1, ts);
             }
-            storePixel(sums, options.aov, cam.spp, static_cast<size_t>(pixel), image, options.variance);
+            storePixel(sums, options.aov, cam.spp, static_cast<size_t>(pixel), image, options.standardError);
           }
         }
       }

@@ -17,9 +17,10 @@ struct RenderOptions {
   int tileSize = 16;
   // Expects every tile, then adds one per tile done (a relaxed atomic add); null: none.
   ProgressCounter* tiles = nullptr;
-  // Filled per pixel with the variance of its mean, from its even and odd samples'
-  // means (0 below two samples); null: not kept.
-  Image* variance = nullptr;
+  // Filled per pixel with the standard error of its mean, from its even and odd
+  // samples' means (0 below two samples); null: not kept. The root, not the variance:
+  // a variance of finite pixels (1e20 squared) can overflow float, their error cannot.
+  Image* standardError = nullptr;
 };
 
 // One sample of view `aov` along a camera ray, its first hit traced here (the caller
