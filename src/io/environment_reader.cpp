@@ -35,8 +35,9 @@ std::string decodeMap(const std::string& path, const LoadLimits& limits, int& wi
   if (fs::file_size(path, ec) > kMaxTextureFileBytes && !ec) {
     return path + " is larger than " + formatBytes(static_cast<double>(kMaxTextureFileBytes));
   }
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return "cannot read " + path + ": " + firstLine(OIIO::geterror());
+  std::string problem;
+  auto in = openImage(path, path, problem);
+  if (!in) return problem;
   // What the decoder found, not the name: an 8-bit PNG called sky.exr holds display
   // values, not radiance.
   const std::string format = in->format_name();
@@ -48,7 +49,10 @@ std::string decodeMap(const std::string& path, const LoadLimits& limits, int& wi
                                                 {kMaxEnvironmentPixels, "the 8192x4096 an environment map may have"});
   if (!header.empty()) return header;
   const OIIO::ImageSpec spec = in->spec();
-  if (spec.width < 2) return path + " is " + std::to_string(spec.width) + " pixel wide: a lat-long map needs 2";
+  if (spec.width < 2) {
+    return path + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+           " pixels: a lat-long map needs at least 2x1";
+  }
   const double bytes = environmentMapBytes(spec.width, spec.height);
   const double held = static_cast<double>(limits.heldBytes);
   if (limits.maxBytes > 0 && held + bytes > static_cast<double>(limits.maxBytes)) {

@@ -4,6 +4,8 @@
 #include "io/image_header.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <vector>
 
 namespace penumbra {
@@ -13,11 +15,63 @@ namespace {
 // Tiled files are read a row of tiles at a time: a tile's side bounds that band.
 constexpr int kMaxTileSide = 1024;
 
+// "" when every attribute of the OpenEXR header(s) at `in` (past the magic and version)
+// claims no more bytes than the file has left, else the problem. OpenEXR 3.1 sizes a
+// string attribute's buffer from its claim: a 529-byte file claiming 1.9 GB made it
+// allocate 2 GB before failing on the end of the file.
+std::string exrAttributeProblem(std::ifstream& in, uint64_t fileBytes, bool multipart) {
+  const auto token = [&in](std::string& text) {  // a name or type: at most 255 characters
+    text.clear();
+    for (char c; in.get(c) && c != '\0';) {
+      if (text.size() == 255) return false;
+      text += c;
+    }
+    return bool(in);
+  };
+  std::string name, type;
+  for (bool first = true;; first = false) {  // each header, then (multipart) an empty one ends the list
+    if (!token(name)) return "its OpenEXR header ends early";
+    if (name.empty() && (!first || !multipart)) return "";
+    while (!name.empty()) {
+      int32_t size = 0;
+      if (!token(type) || !in.read(reinterpret_cast<char*>(&size), 4)) return "its OpenEXR header ends early";
+      const uint64_t left = fileBytes - uint64_t(in.tellg());
+      if (size < 0 || uint64_t(size) > left) {
+        return "an attribute of its OpenEXR header claims " + std::to_string(size) + " bytes, more than the " +
+               std::to_string(left) + " the file has left";
+      }
+      in.seekg(size, std::ios::cur);
+      if (!token(name)) return "its OpenEXR header ends early";
+    }
+    if (!multipart) return "";
+  }
+}
+
 std::string sizeText(const OIIO::ImageSpec& spec) {
   return std::to_string(spec.width) + "x" + std::to_string(spec.height);
 }
 
 }  // namespace
+
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const std::string& label, std::string& problem) {
+  std::error_code ec;
+  const uint64_t fileBytes = std::filesystem::file_size(path, ec);
+  std::ifstream file(path, std::ios::binary);
+  unsigned char head[8] = {};
+  // OpenEXR's magic, whatever the name: OIIO asks every reader when the name's refuses.
+  if (!ec && file.read(reinterpret_cast<char*>(head), 8) && head[0] == 0x76 && head[1] == 0x2f && head[2] == 0x31 &&
+      head[3] == 0x01) {
+    const bool multipart = (head[5] & 0x10) != 0;  // version bit 12
+    const std::string exr = exrAttributeProblem(file, fileBytes, multipart);
+    if (!exr.empty()) {
+      problem = label + " is corrupt: " + exr;
+      return nullptr;
+    }
+  }
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) problem = "cannot read " + label + ": " + firstLine(OIIO::geterror());
+  return in;
+}
 
 std::string firstLine(const std::string& s) {
   std::string line = s.substr(0, s.find('\n'));

@@ -1,9 +1,11 @@
 // The one rule for an image penumbra decodes itself, judged from its header before
-// any pixel buffer is allocated: each side and the pixel count bounded, and a file
-// that really holds the rows its header claims. Also the band reader both decoders use.
+// any pixel buffer is allocated: an OpenEXR header's sizes checked before OpenEXR
+// reads it, each side and the pixel count bounded, and a file that really holds the
+// rows its header claims. Also the band reader both decoders use.
 #pragma once
 #include <OpenImageIO/imageio.h>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 namespace penumbra {
@@ -11,6 +13,11 @@ namespace penumbra {
 // The widest or tallest image: a row is one buffer, whole, in penumbra's bands and in
 // the decoder (OpenEXR allocates a chunk of rows), so a side is bounded on its own.
 inline constexpr int kMaxImageSide = 16384;
+
+// OIIO::ImageInput::open after the checks a decoder skips (an OpenEXR header's
+// attribute sizes against the file: OpenEXR allocates what one claims before reading
+// it). Null with the problem, one line naming `label`, in `problem`.
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const std::string& label, std::string& problem);
 
 // What an image may claim: at most `maxPixels`, spelled `maxText` in a refusal
 // ("the 8192x4096 an environment map may have").

@@ -73,8 +73,9 @@ std::string textureFileProblem(const std::string& path) {
     return "texture " + path + " is larger than " + std::to_string(kMaxTextureFileBytes >> 30) + " GB";
   }
   MutedStderr muted;
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return "cannot read texture " + path + ": " + firstLine(OIIO::geterror());
+  std::string problem;
+  auto in = openImage(path, "texture " + path, problem);
+  if (!in) return problem;
   // The header's size, before a pixel is decoded: a small file may claim billions.
   // The bands read below hold a few rows, so a file shorter than its header costs nothing.
   const std::string header =

@@ -125,6 +125,14 @@ std::string hdrClaiming(int width, int height, int pixels) {
          std::string(size_t(pixels) * 4, '\x80');
 }
 
+// The reference for a refusal's peak: the render of a real 16 x 8 map, the same
+// process but the map.
+MeasuredRun smallMapRender(const ScratchDir& dir) {
+  writeMap(dir / "small.exr", "openexr", 16, 8, OIIO::TypeDesc::HALF, 0.5f);
+  dir.write("small.json", skyScene("small.exr"));
+  return renderMeasured(dir, "small.json");
+}
+
 // What OIIO found decides, not the name: 8-bit display values are not radiance
 // (today's loader read them as linear and rendered).
 TEST(HardEnvironmentMaps, APngNamedExrIsRefusedAsNotHighDynamicRange) {
@@ -137,13 +145,10 @@ TEST(HardEnvironmentMaps, APngNamedExrIsRefusedAsNotHighDynamicRange) {
 
 // A header claiming 8192 x 4096 over a few bytes: the last row is read first,
 // through a buffer of one row, so the refusal comes before the 512 MB the map would
-// take. The peak is compared with a render of a real 16 x 8 map (the same process
-// but the map): within 64 MB of it.
+// take: the peak is within 64 MB of a 16 x 8 map's render.
 TEST(HardEnvironmentMaps, AHeaderThatLiesAboutItsSizeIsRefusedBeforeAllocating) {
   ScratchDir dir;
-  writeMap(dir / "small.hdr", "hdr", 16, 8, OIIO::TypeDesc::FLOAT, 0.5f);
-  dir.write("small.json", skyScene("small.hdr"));
-  const MeasuredRun reference = renderMeasured(dir, "small.json");
+  const MeasuredRun reference = smallMapRender(dir);
   ASSERT_EQ(reference.exitCode, 0) << reference.err;
   dir.write("liar.hdr", hdrClaiming(8192, 4096, 64));
   dir.write("liar.exr", exrClaiming(8192, 4096, 3));
@@ -154,6 +159,25 @@ TEST(HardEnvironmentMaps, AHeaderThatLiesAboutItsSizeIsRefusedBeforeAllocating) 
     std::printf("%s: peak %ld KB (a 16 x 8 map's render: %ld KB)\n", map.c_str(), r.peakKb, reference.peakKb);
     EXPECT_LT(r.peakKb, reference.peakKb + 64 * 1024) << map;
   }
+}
+
+// OpenEXR 3.1 allocates what an attribute claims before reading it: 13 bytes of
+// header claiming a 1.9 GB string made it allocate 2 GB (found by fuzz_environment_map),
+// under any file name, as OIIO asks every reader when the name's refuses. The sizes
+// are checked against the file first, for textures too (io/image_header openImage).
+TEST(HardEnvironmentMaps, AnExrAttributeClaimingGigabytesIsRefusedUnallocated) {
+  ScratchDir dir;
+  const MeasuredRun reference = smallMapRender(dir);
+  ASSERT_EQ(reference.exitCode, 0) << reference.err;
+  dir.write("claim.exr", std::string("\x76\x2f\x31\x01", 4) + le32(2) + "comment" + '\0' + "string" + '\0' +
+                             le32(1946157119) + "abc");
+  const std::string scene = dir.write("claim.json", skyScene("claim.exr")).string();
+  const MeasuredRun r = renderMeasured(dir, "claim.json");
+  expectOneLineRefusal(r, scene,
+                       (dir / "claim.exr").string() +
+                           " is corrupt: an attribute of its OpenEXR header claims 1946157119 bytes");
+  std::printf("claim.exr: peak %ld KB (a 16 x 8 map's render: %ld KB)\n", r.peakKb, reference.peakKb);
+  EXPECT_LT(r.peakKb, reference.peakKb + 64 * 1024);
 }
 
 // A row wider than any decoder buffer: 33554432 x 1 is within the pixel count, but
