@@ -71,6 +71,11 @@ float mapPdf(const EnvironmentMap& map, int row, int col, float sinTheta) {
 
 }  // namespace
 
+double environmentMapBytes(int width, int height) {
+  const double w = width, h = height;
+  return w * h * sizeof(Color) + (h * (w + 1) + (h + 1)) * sizeof(float);
+}
+
 std::shared_ptr<const EnvironmentMap> makeEnvironmentMap(int width, int height, std::vector<Color> texels,
                                                          float rotationDegrees) {
   auto map = std::make_shared<EnvironmentMap>();

@@ -29,6 +29,10 @@ struct EnvironmentMap {
   Color integral{0.0f};  // per channel, the integral of the map's radiance over the sphere
 };
 
+// The bytes a width x height map holds once built: its texels and both tables. The
+// loader judges a map by it before decoding one, and the resource estimate counts it.
+double environmentMapBytes(int width, int height);
+
 // Builds the sampling tables from `texels` (width x height, every value finite and
 // >= 0: the loader checks). `rotationDegrees` turns the map about +y.
 std::shared_ptr<const EnvironmentMap> makeEnvironmentMap(int width, int height, std::vector<Color> texels,

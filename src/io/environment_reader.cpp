@@ -1,7 +1,8 @@
-// The "environment" section: a constant sky or an HDR lat-long map (EXR or Radiance
-// .hdr through OpenImageIO), decoded and checked whole at load, appended as the last light.
+// The "environment" section: a constant sky or an HDR lat-long map (OpenEXR or Radiance
+// HDR, as OpenImageIO finds it), decoded and checked whole at load, appended as the last light.
 #include "core/environment.h"
 #include "core/byte_size.h"
+#include "io/image_header.h"
 #include "io/scene_sections.h"
 #include "io/texture_check.h"
 #include <OpenImageIO/imageio.h>
@@ -15,10 +16,9 @@ namespace penumbra {
 
 namespace {
 
-// The largest map: 8192 x 4096 (a "8k" sky) is 32M pixels, 16 bytes each once decoded
-// with its sampling tables (512 MB): enough for any sky, and still a load of seconds.
+// The largest map: 8192 x 4096 (a "8k" sky) is 32M pixels, 512 MB once decoded with
+// its sampling tables: enough for any sky, and still a load of seconds.
 constexpr uint64_t kMaxEnvironmentPixels = 8192ull * 4096ull;
-constexpr double kEnvironmentBytesPerPixel = sizeof(Color) + sizeof(float);
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -27,51 +27,62 @@ std::string lowerExtension(const std::string& path) {
 }
 
 // The map's pixels as linear RGB, or the problem in one line. Grey maps (one
-// channel) light in grey; a second channel (alpha) is ignored.
+// channel) light in grey; a second channel (alpha) is ignored. Bands of rows are
+// decoded straight into the texels: the map and its tables are the load's peak.
 std::string decodeMap(const std::string& path, const LoadLimits& limits, int& width, int& height,
                       std::vector<Color>& texels) {
   std::error_code ec;
   if (fs::file_size(path, ec) > kMaxTextureFileBytes && !ec) {
     return path + " is larger than " + formatBytes(static_cast<double>(kMaxTextureFileBytes));
   }
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    std::string error = OIIO::geterror();
-    return "cannot read " + path + ": " + error.substr(0, error.find('\n'));
+  std::string problem;
+  auto in = openImage(path, path, problem);
+  if (!in) return problem;
+  // What the decoder found, not the name: an 8-bit PNG called sky.exr holds display
+  // values, not radiance.
+  const std::string format = in->format_name();
+  if (format != "openexr" && format != "hdr") {
+    return path + " is a " + format + " image of " + in->spec().format.c_str() +
+           " values, not high dynamic range: an environment map must be OpenEXR or Radiance HDR";
   }
+  const std::string header = imageHeaderProblem(*in, path,
+                                                {kMaxEnvironmentPixels, "the 8192x4096 an environment map may have"});
+  if (!header.empty()) return header;
   const OIIO::ImageSpec spec = in->spec();
-  if (spec.width < 2 || spec.height < 1 || spec.nchannels <= 0 || spec.depth > 1) {
+  if (spec.width < 2) {
     return path + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
            " pixels: a lat-long map needs at least 2x1";
   }
-  const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
-  if (pixels > kMaxEnvironmentPixels) {
-    return path + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-           " pixels, more than the 8192x4096 an environment map may have";
-  }
-  const double bytes = static_cast<double>(pixels) * kEnvironmentBytesPerPixel;
-  if (limits.maxBytes > 0 && bytes > static_cast<double>(limits.maxBytes)) {
-    return path + " needs " + formatBytes(bytes) + " decoded, more than the " + limits.budgetName + " (" +
+  const double bytes = environmentMapBytes(spec.width, spec.height);
+  const double held = static_cast<double>(limits.heldBytes);
+  if (limits.maxBytes > 0 && held + bytes > static_cast<double>(limits.maxBytes)) {
+    return path + " needs " + formatBytes(bytes) + " decoded with its sampling tables, beside the process's " +
+           formatBytes(held) + ": more than the " + limits.budgetName + " (" +
            formatBytes(static_cast<double>(limits.maxBytes)) + ")";
   }
-  const int channels = spec.nchannels;
-  std::vector<float> raw(pixels * size_t(channels));
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()) || in->has_error()) {
-    const std::string error = in->geterror();
-    return path + " is truncated or corrupt: " + error.substr(0, error.find('\n'));
-  }
+  const std::string lastRow = lastRowProblem(*in, path);
+  if (!lastRow.empty()) return lastRow;
   width = spec.width;
   height = spec.height;
-  texels.resize(pixels);
-  for (size_t i = 0; i < pixels; ++i) {
-    const float* p = &raw[i * size_t(channels)];
-    const Color c = channels >= 3 ? Color(p[0], p[1], p[2]) : Color(p[0]);
-    if (!isFinite(c) || c.r < 0.0f || c.g < 0.0f || c.b < 0.0f) {
-      return path + " has a " + (isFinite(c) ? "negative" : "non-finite") + " value at row " +
-             std::to_string(i / size_t(width)) + ", column " + std::to_string(i % size_t(width)) +
-             " (radiance must be finite and >= 0)";
+  texels.resize(size_t(width) * size_t(height));
+  const int channels = spec.nchannels >= 3 ? 3 : 1;
+  const int band = bandRows(spec);
+  const OIIO::stride_t rowBytes = OIIO::stride_t(width) * OIIO::stride_t(sizeof(Color));
+  for (int row = 0; row < height; row += band) {
+    const int rows = std::min(band, height - row);
+    Color* first = &texels[size_t(row) * size_t(width)];
+    if (!readRows(*in, spec.y + row, rows, 0, channels, &first->r, sizeof(Color), rowBytes)) {
+      return path + " is truncated or corrupt: " + firstLine(in->geterror());
     }
-    texels[i] = c;
+    for (size_t i = 0; i < size_t(rows) * size_t(width); ++i) {
+      Color& c = first[i];
+      if (channels == 1) c = Color(c.r);
+      if (!isFinite(c) || c.r < 0.0f || c.g < 0.0f || c.b < 0.0f) {
+        return path + " has a " + (isFinite(c) ? "negative" : "non-finite") + " value at row " +
+               std::to_string(size_t(row) + i / size_t(width)) + ", column " + std::to_string(i % size_t(width)) +
+               " (radiance must be finite and >= 0)";
+      }
+    }
   }
   return "";
 }

@@ -11,6 +11,9 @@ struct LoadLimits {
   // render's --max-memory or the memory available; 0: not checked.
   uint64_t maxBytes = 0;
   std::string budgetName = "available memory";  // named in a refusal: "--max-memory"
+  // What the process holds before any scene data (the resource estimate's base): a
+  // reader that allocates one large block (an environment map) counts it too.
+  uint64_t heldBytes = 0;
 };
 
 }  // namespace penumbra

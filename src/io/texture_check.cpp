@@ -3,6 +3,7 @@
 // matched against the generator's list.
 #include "io/texture_check.h"
 
+#include "io/image_header.h"
 #include "io/texture_gen.h"
 
 #include <OpenImageIO/imageio.h>
@@ -38,13 +39,6 @@ namespace penumbra {
 
 namespace {
 
-// OIIO stacks one line per layer ("Read error: hit end of file", "PNG read
-// error: ...", "PNG library error"); the first says what happened.
-std::string firstLine(const std::string& s) {
-  std::string line = s.substr(0, s.find('\n'));
-  return line.empty() ? "unknown error" : line;
-}
-
 // libpng prints its own "libpng error: ..." to stderr before OIIO sees the
 // error; the one-line InputError says it all, so stderr is muted while decoding.
 // The loader runs before any worker prints, so nothing else is lost.
@@ -79,32 +73,25 @@ std::string textureFileProblem(const std::string& path) {
     return "texture " + path + " is larger than " + std::to_string(kMaxTextureFileBytes >> 30) + " GB";
   }
   MutedStderr muted;
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return "cannot read texture " + path + ": " + firstLine(OIIO::geterror());
-  const OIIO::ImageSpec spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
-    return "texture " + path + " has no pixels";
-  }
+  std::string problem;
+  auto in = openImage(path, "texture " + path, problem);
+  if (!in) return problem;
   // The header's size, before a pixel is decoded: a small file may claim billions.
-  if (uint64_t(spec.width) * uint64_t(spec.height) > kMaxTexturePixels) {
-    return "texture " + path + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-           " pixels, more than the 16384x16384 penumbra reads";
-  }
-  // Tiled files are read a row of tiles at a time, scanline files 64 rows at a time.
-  const bool tiled = spec.tile_width > 0 && spec.tile_height > 0;
-  const int band = tiled ? spec.tile_height : 64;
+  // The bands read below hold a few rows, so a file shorter than its header costs nothing.
+  const std::string header =
+      imageHeaderProblem(*in, "texture " + path, {kMaxTexturePixels, "the 16384x16384 penumbra reads"});
+  if (!header.empty()) return header;
+  const OIIO::ImageSpec spec = in->spec();
+  const int band = bandRows(spec);
   std::vector<float> pixels(size_t(spec.width) * size_t(band) * size_t(spec.nchannels));
   const int yEnd = spec.y + spec.height;
   for (int y = spec.y; y < yEnd; y += band) {
     const int rows = std::min(band, yEnd - y);
     PENUMBRA_THIRD_PARTY_LEAKS_BEGIN;
     const bool read =
-        tiled ? in->read_tiles(0, 0, spec.x, spec.x + spec.width, y, y + rows, spec.z, spec.z + 1, 0,
-                               spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())
-              : in->read_scanlines(0, 0, y, y + rows, spec.z, 0, spec.nchannels,
-                                   OIIO::TypeDesc::FLOAT, pixels.data());
+        readRows(*in, y, rows, 0, spec.nchannels, pixels.data(), OIIO::AutoStride, OIIO::AutoStride);
     PENUMBRA_THIRD_PARTY_LEAKS_END;
-    if (!read || in->has_error()) {
+    if (!read) {
       return "texture " + path + " is truncated or corrupt: " + firstLine(in->geterror());
     }
     const size_t count = size_t(spec.width) * size_t(rows) * size_t(spec.nchannels);

@@ -2,6 +2,7 @@
 // other jobs on the machine count, and a render that starts swapping (or, with no
 // swap, is killed) after minutes is worse than one refused up front.
 #include "plan/memory_limit.h"
+#include "plan/cost_model.h"
 #include "core/error.h"
 #include <unistd.h>
 #include <cctype>
@@ -65,7 +66,7 @@ MemoryLimit memoryLimit(uint64_t requested) {
 
 LoadLimits loadLimits(uint64_t requested) {
   const MemoryLimit limit = memoryLimit(requested);
-  return {limit.bytes, limit.name};
+  return {limit.bytes, limit.name, static_cast<uint64_t>(cost::kBaseBytes)};
 }
 
 void checkMemory(const ResourceEstimate& estimate, const MemoryLimit& limit,

@@ -5,6 +5,7 @@
 #include "plan/cost_model.h"
 #include "plan/gate_decision.h"
 #include "geometry/trace_scene.h"
+#include "core/environment.h"
 #include "core/light_sample.h"
 #include "core/light_strata.h"
 #include "gather/lookup_cache.h"
@@ -191,7 +192,12 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // Alpha masks are decoded bytes the scene holds (one per texel), beside the cache.
   double maskBytes = 0.0;
   for (const AlphaMask& mask : scene.alphaMasks) maskBytes += double(mask.bytes());
-  e.sceneBytes = meshBytes + textureBytes(scene) + maskBytes;
+  // An environment map's texels and sampling tables, as the loader judged them.
+  const Light* sky = environmentOf(scene);
+  const double mapBytes = sky && sky->environment
+                              ? environmentMapBytes(sky->environment->width, sky->environment->height)
+                              : 0.0;
+  e.sceneBytes = meshBytes + textureBytes(scene) + maskBytes + mapBytes;
   e.baseBytes = kBaseBytes;
 
   // Time: each stored photon is one traced segment, plus the one that escapes.

@@ -1,0 +1,136 @@
+// An image header judged before its pixels: its sizes, and its last row read through
+// a buffer of one row (one tile for tiled files), which fails on a file that ends
+// before the pixels its header claims. Decoding then reads bands of rows.
+#include "io/image_header.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+namespace penumbra {
+
+namespace {
+
+// Tiled files are read a row of tiles at a time: a tile's side bounds that band.
+constexpr int kMaxTileSide = 1024;
+
+// "" when every attribute of the OpenEXR header(s) at `in` (past the magic and version)
+// claims no more bytes than the file has left, else the problem. OpenEXR 3.1 sizes a
+// string attribute's buffer from its claim: a 529-byte file claiming 1.9 GB made it
+// allocate 2 GB before failing on the end of the file.
+std::string exrAttributeProblem(std::ifstream& in, uint64_t fileBytes, bool multipart) {
+  const auto token = [&in](std::string& text) {  // a name or type: at most 255 characters
+    text.clear();
+    for (char c; in.get(c) && c != '\0';) {
+      if (text.size() == 255) return false;
+      text += c;
+    }
+    return bool(in);
+  };
+  std::string name, type;
+  for (bool first = true;; first = false) {  // each header, then (multipart) an empty one ends the list
+    if (!token(name)) return "its OpenEXR header ends early";
+    if (name.empty() && (!first || !multipart)) return "";
+    while (!name.empty()) {
+      int32_t size = 0;
+      if (!token(type) || !in.read(reinterpret_cast<char*>(&size), 4)) return "its OpenEXR header ends early";
+      const uint64_t left = fileBytes - uint64_t(in.tellg());
+      if (size < 0 || uint64_t(size) > left) {
+        return "an attribute of its OpenEXR header claims " + std::to_string(size) + " bytes, more than the " +
+               std::to_string(left) + " the file has left";
+      }
+      in.seekg(size, std::ios::cur);
+      if (!token(name)) return "its OpenEXR header ends early";
+    }
+    if (!multipart) return "";
+  }
+}
+
+std::string sizeText(const OIIO::ImageSpec& spec) {
+  return std::to_string(spec.width) + "x" + std::to_string(spec.height);
+}
+
+}  // namespace
+
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const std::string& label, std::string& problem) {
+  std::error_code ec;
+  const uint64_t fileBytes = std::filesystem::file_size(path, ec);
+  std::ifstream file(path, std::ios::binary);
+  unsigned char head[8] = {};
+  // OpenEXR's magic, whatever the name: OIIO asks every reader when the name's refuses.
+  if (!ec && file.read(reinterpret_cast<char*>(head), 8) && head[0] == 0x76 && head[1] == 0x2f && head[2] == 0x31 &&
+      head[3] == 0x01) {
+    const bool multipart = (head[5] & 0x10) != 0;  // version bit 12
+    const std::string exr = exrAttributeProblem(file, fileBytes, multipart);
+    if (!exr.empty()) {
+      problem = label + " is corrupt: " + exr;
+      return nullptr;
+    }
+  }
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) problem = "cannot read " + label + ": " + firstLine(OIIO::geterror());
+  return in;
+}
+
+std::string firstLine(const std::string& s) {
+  std::string line = s.substr(0, s.find('\n'));
+  return line.empty() ? "unknown error" : line;
+}
+
+int bandRows(const OIIO::ImageSpec& spec) { return spec.tile_width > 0 ? spec.tile_height : 64; }
+
+bool readRows(OIIO::ImageInput& in, int y, int rows, int chbegin, int chend, float* data, OIIO::stride_t xstride,
+              OIIO::stride_t ystride) {
+  const OIIO::ImageSpec& spec = in.spec();
+  const bool read = spec.tile_width > 0
+                        ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, y, y + rows, spec.z, spec.z + 1, chbegin,
+                                        chend, OIIO::TypeDesc::FLOAT, data, xstride, ystride)
+                        : in.read_scanlines(0, 0, y, y + rows, spec.z, chbegin, chend, OIIO::TypeDesc::FLOAT, data,
+                                            xstride, ystride);
+  return read && !in.has_error();
+}
+
+std::string imageHeaderProblem(OIIO::ImageInput& in, const std::string& label, const ImageBound& bound) {
+  const OIIO::ImageSpec spec = in.spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1) {
+    return label + " has no pixels (a flat image needs at least 1x1)";
+  }
+  if (spec.width > kMaxImageSide || spec.height > kMaxImageSide) {
+    return label + " is " + sizeText(spec) + " pixels: " + (spec.width > kMaxImageSide ? "wider" : "taller") +
+           " than the " + std::to_string(kMaxImageSide) + " pixels penumbra reads in a row or column";
+  }
+  if (uint64_t(spec.width) * uint64_t(spec.height) > bound.maxPixels) {
+    return label + " is " + sizeText(spec) + " pixels, more than " + bound.maxText;
+  }
+  const bool tiled = spec.tile_width > 0;
+  if (tiled && (spec.tile_width > kMaxTileSide || spec.tile_height > kMaxTileSide || spec.tile_height <= 0)) {
+    return label + " has " + std::to_string(spec.tile_width) + "x" + std::to_string(spec.tile_height) +
+           " pixel tiles, larger than the " + std::to_string(kMaxTileSide) + "x" + std::to_string(kMaxTileSide) +
+           " penumbra reads";
+  }
+  return "";
+}
+
+std::string lastRowProblem(OIIO::ImageInput& in, const std::string& label) {
+  const OIIO::ImageSpec spec = in.spec();
+  const bool tiled = spec.tile_width > 0;
+  // The last row (the last tile of a tiled file): a decoder reaches it only through
+  // what the file really holds.
+  const int yEnd = spec.y + spec.height;
+  const int last = tiled ? spec.y + (spec.height - 1) / spec.tile_height * spec.tile_height : yEnd - 1;
+  const size_t values = tiled ? size_t(spec.tile_width) * size_t(spec.tile_height) : size_t(spec.width);
+  std::vector<float> row(values * size_t(spec.nchannels));
+  const bool read = tiled ? in.read_tiles(0, 0, spec.x, std::min(spec.x + spec.tile_width, spec.x + spec.width), last,
+                                          yEnd, spec.z, spec.z + 1, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
+                                          row.data()) &&
+                                !in.has_error()
+                          : readRows(in, last, 1, 0, spec.nchannels, row.data(), OIIO::AutoStride, OIIO::AutoStride);
+  if (!read) {
+    return label + " is truncated or corrupt: its header says " + sizeText(spec) +
+           " pixels but its last row cannot be read (" + firstLine(in.geterror()) + ")";
+  }
+  return "";
+}
+
+}  // namespace penumbra
