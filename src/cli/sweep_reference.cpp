@@ -4,12 +4,25 @@
 #include "cli/sweep_run.h"
 #include "plan/cpu_report.h"
 #include "plan/render_session.h"
+#include "core/error.h"
 #include "core/error_estimate.h"
 #include "io/image_io.h"
 #include <fmt/format.h>
 #include <filesystem>
 
 namespace penumbra {
+
+Image givenReference(const std::string& path, const std::string& scenePath,
+                     const std::vector<std::pair<std::string, const PlannedJob*>>& runs) {
+  Image reference = readImage(path);
+  for (const auto& [id, job] : runs) {
+    const Camera& c = job->scene.camera;
+    if (c.width == reference.width && c.height == reference.height) continue;
+    throw InputError(fmt::format("--reference {} is {}x{}, but {} renders {}x{} (sweep run '{}')", path, reference.width,
+                                 reference.height, scenePath, c.width, c.height, id));
+  }
+  return reference;
+}
 
 LongReference longReference(RenderSession& session, const SweepRequest& req, const PlannedJob& highest,
                             const std::string& saved, const std::function<void()>& rendering) {

@@ -4,6 +4,8 @@
 #include "core/image.h"
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace penumbra {
 
@@ -15,6 +17,11 @@ struct LongReference {
   Image image;
   std::string note;  // what it is, and how it was rendered (report.md)
 };
+
+// The image given with --reference, read and measured against every run's film before
+// anything is written (InputError naming both files and the run otherwise).
+Image givenReference(const std::string& path, const std::string& scenePath,
+                     const std::vector<std::pair<std::string, const PlannedJob*>>& runs);
 
 // `highest` (the highest run's plan) with req.referencePasses x its passes: reloaded
 // from `saved` when an earlier sweep left that very render there, else rendered on

@@ -12,7 +12,6 @@
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
 #include "core/error.h"
-#include <fmt/format.h>
 #include "io/contact_sheet.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
@@ -49,7 +48,11 @@ class Sweep {
       return {};
     }
     plan();  // a bad run refuses before the folder is made
-    readGivenReference();
+    if (!req_.referencePath.empty()) {  // before the folder is made: a wrong one leaves nothing behind
+      std::vector<std::pair<std::string, const PlannedJob*>> runs;
+      for (const PlannedRun& p : runs_) runs.push_back({spec_.runs[p.index].id, &p.job});
+      reference_ = givenReference(req_.referencePath, req_.scenePath, runs);
+    }
     const fs::path dir(req_.outDir);
     std::error_code ec;
     fs::create_directories(dir / "runs", ec);
@@ -117,20 +120,6 @@ class Sweep {
         notes_ = p.job.scene.load.notes;  // every run loads the same files
       }
       runs_.push_back(std::move(p));
-    }
-  }
-
-  // --reference is read and measured against every run before the folder is made,
-  // so a wrong one leaves nothing behind.
-  void readGivenReference() {
-    if (req_.referencePath.empty()) return;
-    reference_ = readImage(req_.referencePath);
-    for (const PlannedRun& p : runs_) {
-      const Camera& c = p.job.scene.camera;
-      if (c.width == reference_.width && c.height == reference_.height) continue;
-      throw InputError(fmt::format("--reference {} is {}x{}, but {} renders {}x{} (sweep run '{}')", req_.referencePath,
-                                   reference_.width, reference_.height, req_.scenePath, c.width, c.height,
-                                   spec_.runs[p.index].id));
     }
   }
 
