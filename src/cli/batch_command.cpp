@@ -24,7 +24,7 @@ struct BatchCommand::Options {
   std::vector<std::string> inputs, overrides;
   PlanArgs plan;
   RenderBudget budget;  // --time-limit, --target-error: every job's
-  std::string out, views, format = "png", shard, listShard, mapCache = "4G", maxMemory;
+  std::string out, views, format = "png", shard, listShard, mapCache, maxMemory;
   int threads = 0;
   bool force = false, keepGoing = false, quiet = false;
 };
@@ -42,7 +42,9 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   c->add_option("--shard", o.shard, "Render only shard I of N (1-based), e.g. 2/4");
   c->add_option("--list-shard", o.listShard, "Print the jobs shard I/N would take, and exit");
-  c->add_option("--map-cache", o.mapCache, "Photon maps kept for later jobs, at most this much (LRU), e.g. 4G");
+  c->add_option("--map-cache", o.mapCache,
+                "Photon maps kept for later jobs, at most this much (LRU), e.g. 2G (default: " +
+                    formatBytes(static_cast<double>(kStageCacheBytes)) + ")");
   c->add_flag("--force", o.force, "Render every job, even those whose outputs are up to date");
   c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
   c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a job estimated to need more, e.g. 8G (default: the memory available)");
@@ -116,7 +118,7 @@ int BatchCommand::run() {
   req.threads = o.threads;
   req.force = o.force;
   req.keepGoing = o.keepGoing;
-  req.mapCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
+  if (!o.mapCache.empty()) req.mapCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
   req.plan = passes;
   req.load = o.plan.load();
   std::optional<ItemProgress> progress;
