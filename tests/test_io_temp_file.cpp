@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using namespace penumbra;
@@ -99,6 +101,23 @@ TEST_F(TempFileTest, TextWritesReplaceWholeOrNotAtAll) {
 
 // Every name the directory allows can be written: the temp name gives up the end
 // of a long stem (a 250-byte target plus ".tmpPID-N" would pass NAME_MAX).
+// A process killed by SIGKILL leaves its temp file; a later process of the same pid
+// (common in containers) must pass over that name, not fail on it every run.
+TEST_F(TempFileTest, ALeftoverTempFileOfTheSamePidIsPassedOverAndKept) {
+  const std::string target = (dir / "out.txt").string();
+  const std::string probe = tempPathFor(target);  // takes counter c; the next write tries c + 1 first
+  const size_t dash = probe.rfind('-'), dot = probe.rfind('.');
+  const unsigned next = std::stoul(probe.substr(dash + 1, dot - dash - 1)) + 1;
+  std::vector<std::string> leftovers;
+  for (unsigned c = next; c < next + 3; ++c) {
+    leftovers.push_back(make(fs::path(probe.substr(0, dash + 1) + std::to_string(c) + ".txt").filename().string(),
+                             "left by a killed process"));
+  }
+  writeTextFileAtomic(target, "new");
+  EXPECT_EQ(read(target), "new");
+  for (const std::string& l : leftovers) EXPECT_EQ(read(l), "left by a killed process") << l;
+}
+
 TEST_F(TempFileTest, LongestLegalNamesAreWritten) {
   for (const std::string name :
        {std::string(250, 'n') + ".json", std::string(255, 'x'), std::string(251, 'e') + ".exr"}) {

@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 namespace penumbra {
 namespace {
@@ -92,26 +93,11 @@ size_t nameMax(const fs::path& dir) {
   return n > 0 ? static_cast<size_t>(n) : NAME_MAX;
 }
 
+// Names tried before a write gives up: each taken one is a leftover of a killed process.
+constexpr int kTempNameAttempts = 64;
+
 // What a temp name adds at most: ".tmp", the pid and "-" and the counter at full width.
 constexpr size_t kTempTagMax = 4 + 10 + 1 + 10;
-
-// Same directory (so the rename is atomic on one filesystem), pid + counter (so
-// neither two processes nor two threads share a name), the target's extension last
-// (a leftover shows what it was). A long name gives up the end of its stem, so
-// every name the target may have has a temp name the directory allows.
-fs::path tempPathFor(const fs::path& target) {
-  static std::atomic<unsigned> counter{0};
-  const std::string tag = ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  std::string stem = target.stem().string(), ext = target.extension().string();
-  const size_t limit = nameMax(target.parent_path());
-  if (tag.size() + ext.size() > limit) ext.clear();
-  if (stem.size() + tag.size() + ext.size() > limit) {
-    size_t keep = limit - tag.size() - ext.size();
-    while (keep > 0 && (static_cast<unsigned char>(stem[keep]) & 0xC0) == 0x80) --keep;  // whole UTF-8 characters
-    stem.resize(keep);
-  }
-  return target.parent_path() / (stem + tag + ext);
-}
 
 // Writes all `size` bytes (write(2) may take fewer, or be interrupted); 0 or the errno.
 // `failAfter` < SIZE_MAX: the disk-full hook's ENOSPC once that many bytes are written.
@@ -165,20 +151,45 @@ void installTempFileCleanup() {
   gDiskFullHook.read("PENUMBRA_TEST_DISK_FULL_AT", "write");
 }
 
+// Same directory (so the rename is atomic on one filesystem), pid + counter (so
+// neither two processes nor two threads share a name), the target's extension last
+// (a leftover shows what it was). A long name gives up the end of its stem, so
+// every name the target may have has a temp name the directory allows.
+std::string tempPathFor(const std::string& path) {
+  const fs::path target(path);
+  static std::atomic<unsigned> counter{0};
+  const std::string tag = ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  std::string stem = target.stem().string(), ext = target.extension().string();
+  const size_t limit = nameMax(target.parent_path());
+  if (tag.size() + ext.size() > limit) ext.clear();
+  if (stem.size() + tag.size() + ext.size() > limit) {
+    size_t keep = limit - tag.size() - ext.size();
+    while (keep > 0 && (static_cast<unsigned char>(stem[keep]) & 0xC0) == 0x80) --keep;  // whole UTF-8 characters
+    stem.resize(keep);
+  }
+  return (target.parent_path() / (stem + tag + ext)).string();
+}
+
 void writeFileAtomic(const std::string& path, const void* data, size_t size, const std::string& what) {
   const fs::path target(path);
-  const fs::path temp = tempPathFor(target);
+  fs::path temp;
   auto fail = [&](int err) {
     std::error_code ec;
     const bool kept = fs::exists(target, ec);
     throw InputError(fmt::format("{}: cannot write {}: {}{}", path, what, std::strerror(err),
                                  kept ? "; the old file is kept" : ""));
   };
-  // Registered before it exists: a SIGINT during the write removes it.
-  TempFileGuard guard(temp.string());
   // O_EXCL: the temp name is this write's alone, never a file (or link) already there.
-  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) fail(errno);
+  // A name left by a process killed mid-write (SIGKILL runs no cleanup) under the same
+  // pid is passed over for the next counter, never reused or overwritten.
+  std::optional<TempFileGuard> guard;
+  int fd = -1;
+  for (int attempt = 0; fd < 0; ++attempt) {
+    temp = tempPathFor(path);
+    guard.emplace(temp.string());  // registered before it exists: a SIGINT during the write removes it
+    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && (errno != EEXIST || attempt + 1 == kTempNameAttempts)) fail(errno);
+  }
   const size_t failAfter = gDiskFullHook.fires(temp.string()) ? size / 2 : SIZE_MAX;
   int err = writeAll(fd, static_cast<const unsigned char*>(data), size, failAfter);
   // A network or delayed-allocation file system may report the lost bytes only here.

@@ -39,6 +39,11 @@ void removeRegisteredTempFiles() noexcept;
 void writeFileAtomic(const std::string& path, const void* data, size_t size, const std::string& what = "file");
 void writeTextFileAtomic(const std::string& path, const std::string& text);
 
+// The temp name the next write of `path` takes: beside it, ".tmp<pid>-<counter>"
+// after its stem (shortened to fit NAME_MAX), its extension last. Each call takes a
+// new counter value.
+std::string tempPathFor(const std::string& path);
+
 // Why `path` cannot be written as an output, "" when it can: its directory is missing
 // or not writable, it is a directory, its file system has not one block free, its
 // name is longer than the directory allows (NAME_MAX), or it or its temp file's path
