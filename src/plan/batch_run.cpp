@@ -4,11 +4,13 @@
 #include "plan/batch_run.h"
 #include "plan/cpu_report.h"
 #include "plan/image_metadata.h"
+#include "plan/memory_limit.h"
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
 #include "plan/resource_estimate.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <algorithm>
 #include <filesystem>
@@ -89,14 +91,24 @@ BatchOutcome runBatch(const BatchRequest& req) {
     jobFiles.push_back({p.job->name, p.outputs, p.views.front().inputs});
   }
   checkJobsApart(jobFiles);
-  // Checked as a whole, the file is cut into shards; a job that failed validation costs
-  // nothing and is reported by the shard it falls to.
+  // Checked as a whole, the file is cut into shards. Every shard must cut it alike, so a
+  // job refused on this machine (its memory, a full disk) is costed from its scene all
+  // the same; only a scene that does not load costs nothing. It is reported by its shard.
   std::vector<size_t> order(prepared.size());
   std::iota(order.begin(), order.end(), size_t(0));
   if (req.shard) {
     std::vector<double> costs;
     for (const PreparedJob& p : prepared) {
-      costs.push_back(p.error.empty() ? shardCostNs(p.views.front().scene, p.job->outputs.size()) : 0.0);
+      const size_t views = p.job->outputs.size();
+      if (p.error.empty()) {
+        costs.push_back(shardCostNs(p.views.front().scene, views));
+        continue;
+      }
+      try {
+        costs.push_back(shardCostNs(loadScene(p.job->scene, p.job->overrides, loadLimits(0), req.load), views));
+      } catch (const InputError&) {
+        costs.push_back(0.0);
+      }
     }
     order = shardJobs(costs, req.shard->index, req.shard->count);
     out.shardJobs = order;

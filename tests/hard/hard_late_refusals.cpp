@@ -77,6 +77,25 @@ TEST(HardLateRefusals, ShardsOfAGoodFileRenderEachJobOnce) {
   for (const char* image : {"a.png", "b.png", "c.png"}) EXPECT_TRUE(fs::exists(dir / image)) << image;
 }
 
+// With --keep-going a job refused on one machine (here: its output folder is missing)
+// must not move other jobs between shards, or two machines would cut the file apart
+// differently and render some jobs twice and others never.
+TEST(HardLateRefusals, AShardSplitDoesNotDependOnWhatThisMachineRefuses) {
+  ScratchDir dir;
+  dir.write("scene.json", kFloorScene);
+  dir.write("jobs.json", R"({"jobs": [{"name": "a", "scene": "scene.json", "output": "a.png"},
+    {"name": "b", "scene": "scene.json", "set": ["camera.spp=8"], "output": "sub/b.png"},
+    {"name": "c", "scene": "scene.json", "output": "c.png", "set": ["camera.spp=2"]},
+    {"name": "d", "scene": "scene.json", "output": "d.png", "set": ["camera.spp=3"]}]})");
+  auto split = [&] {
+    return runCli("batch " + at(dir, "jobs.json") + " -q --keep-going --list-shard 1/2").out + "|" +
+           runCli("batch " + at(dir, "jobs.json") + " -q --keep-going --list-shard 2/2").out;
+  };
+  const std::string refused = split();
+  fs::create_directory(dir / "sub");
+  EXPECT_EQ(split(), refused);
+}
+
 TEST(HardLateRefusals, BatchRefusesEveryBudgetRenderRefuses) {
   ScratchDir dir;
   dir.write("scene.json", kFloorScene);
