@@ -1,6 +1,7 @@
 // The "environment" section: a constant sky or an HDR lat-long map (OpenEXR or Radiance
 // HDR, as OpenImageIO finds it), decoded and checked whole at load, appended as the last light.
 #include "core/environment.h"
+#include "io/input_file.h"
 #include "core/byte_size.h"
 #include "io/image_header.h"
 #include "io/scene_sections.h"
@@ -19,6 +20,8 @@ namespace {
 // The largest map: 8192 x 4096 (a "8k" sky) is 32M pixels, 512 MB once decoded with
 // its sampling tables: enough for any sky, and still a load of seconds.
 constexpr uint64_t kMaxEnvironmentPixels = 8192ull * 4096ull;
+// A side at most twice the 8k map's width: a lat-long map is twice as wide as tall.
+constexpr int kMaxEnvironmentSide = 16384;
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -46,7 +49,8 @@ std::string decodeMap(const std::string& path, const LoadLimits& limits, int& wi
            " values, not high dynamic range: an environment map must be OpenEXR or Radiance HDR";
   }
   const std::string header = imageHeaderProblem(*in, path,
-                                                {kMaxEnvironmentPixels, "the 8192x4096 an environment map may have"});
+                                                {kMaxEnvironmentPixels, "the 8192x4096 an environment map may have",
+                                                 kMaxEnvironmentSide});
   if (!header.empty()) return header;
   const OIIO::ImageSpec spec = in->spec();
   if (spec.width < 2) {
@@ -106,8 +110,7 @@ void readEnvironment(const JsonNode& node, Scene& scene) {
     if (ext != ".exr" && ext != ".hdr") {
       file.fail("an environment map is high dynamic range: an .exr or .hdr file, got \"" + name + "\"");
     }
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) file.fail("environment map not found: " + path);
+    if (const std::string why = unreadableFileReason(path); !why.empty()) file.fail("environment map " + path + ": " + why);
     int width = 0, height = 0;
     std::vector<Color> texels;
     const std::string problem = decodeMap(path, node.context().limits, width, height, texels);

@@ -96,9 +96,9 @@ std::string imageHeaderProblem(OIIO::ImageInput& in, const std::string& label, c
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1) {
     return label + " has no pixels (a flat image needs at least 1x1)";
   }
-  if (spec.width > kMaxImageSide || spec.height > kMaxImageSide) {
-    return label + " is " + sizeText(spec) + " pixels: " + (spec.width > kMaxImageSide ? "wider" : "taller") +
-           " than the " + std::to_string(kMaxImageSide) + " pixels penumbra reads in a row or column";
+  if (spec.width > bound.maxSide || spec.height > bound.maxSide) {
+    return label + " is " + sizeText(spec) + " pixels: " + (spec.width > bound.maxSide ? "wider" : "taller") +
+           " than the " + std::to_string(bound.maxSide) + " pixels penumbra reads in a row or column";
   }
   if (uint64_t(spec.width) * uint64_t(spec.height) > bound.maxPixels) {
     return label + " is " + sizeText(spec) + " pixels, more than " + bound.maxText;

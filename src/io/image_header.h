@@ -10,9 +10,6 @@
 
 namespace penumbra {
 
-// The widest or tallest image: a row is one buffer, whole, in penumbra's bands and in
-// the decoder (OpenEXR allocates a chunk of rows), so a side is bounded on its own.
-inline constexpr int kMaxImageSide = 16384;
 
 // OIIO::ImageInput::open after the checks a decoder skips (an OpenEXR header's
 // attribute sizes against the file: OpenEXR allocates what one claims before reading
@@ -20,14 +17,17 @@ inline constexpr int kMaxImageSide = 16384;
 std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const std::string& label, std::string& problem);
 
 // What an image may claim: at most `maxPixels`, spelled `maxText` in a refusal
-// ("the 8192x4096 an environment map may have").
+// ("the 8192x4096 an environment map may have"), and at most `maxSide` pixels a row or
+// column: a row is one buffer, whole, in penumbra's bands and in the decoder (OpenEXR
+// allocates a chunk of rows), so a side is bounded on its own.
 struct ImageBound {
   uint64_t maxPixels = 0;
   std::string maxText;
+  int maxSide = 0;
 };
 
 // "" when the header of `in` (opened from the file `label` names: "texture a.png")
-// describes a flat image of 1..kMaxImageSide pixels each way, at most bound.maxPixels,
+// describes a flat image of 1..bound.maxSide pixels each way, at most bound.maxPixels,
 // in tiles (if any) a band of rows can hold; else the problem, one line.
 std::string imageHeaderProblem(OIIO::ImageInput& in, const std::string& label, const ImageBound& bound);
 // "" when the file holds the last row its header claims: read first, through a

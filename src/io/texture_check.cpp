@@ -79,7 +79,7 @@ std::string textureFileProblem(const std::string& path) {
   // The header's size, before a pixel is decoded: a small file may claim billions.
   // The bands read below hold a few rows, so a file shorter than its header costs nothing.
   const std::string header =
-      imageHeaderProblem(*in, "texture " + path, {kMaxTexturePixels, "the 16384x16384 penumbra reads"});
+      imageHeaderProblem(*in, "texture " + path, {kMaxTexturePixels, "the 16384x16384 penumbra reads", kMaxTextureSide});
   if (!header.empty()) return header;
   const OIIO::ImageSpec spec = in->spec();
   const int band = bandRows(spec);

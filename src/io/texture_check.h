@@ -13,6 +13,9 @@ std::string textureFileProblem(const std::string& path);
 // The largest texture: by pixels (decoding every one at load must stay seconds) and
 // by file size (judged before the file is opened).
 inline constexpr uint64_t kMaxTexturePixels = 16384ull * 16384ull;
+// A texture's widest row: a 2:1 lat-long earth of 21600x10800 fits, a 33554432x1 strip
+// (whose one row OpenEXR would allocate whole) does not.
+inline constexpr int kMaxTextureSide = 65536;
 inline constexpr uint64_t kMaxTextureFileBytes = 1ull << 30;
 
 // "" when `spec` is "builtin:NAME" or "builtin:NAME@WIDTH" with a known NAME and

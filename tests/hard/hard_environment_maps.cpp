@@ -199,6 +199,27 @@ TEST(HardEnvironmentMaps, RowsWiderThanABufferAreRefusedByTheHeader) {
   expectOneLineRefusal(renderMeasured(dir, "zip.json"), scene, "cannot read " + (dir / "zip.exr").string());
 }
 
+// Textures share the header rule with a wider row: a 21600-wide lat-long earth (the
+// common Blue Marble size) loads as a texture; a 33554432-wide strip is refused.
+TEST(HardEnvironmentMaps, ATextureKeepsItsWiderRowBound) {
+  ScratchDir dir;
+  writeMap(dir / "earth.png", "png", 21600, 2, OIIO::TypeDesc::UINT8, 0.5f);
+  dir.write("strip.exr", exrClaiming(33554432, 1, 0));
+  for (const std::string texture : {"earth.png", "strip.exr"}) {
+    dir.write(texture + ".json", R"({"camera": {"position": [0, 0, 3], "width": 8, "height": 6},
+      "lights": [{"type": "point", "position": [0, 2, 2], "intensity": 5}],
+      "materials": {"earth": {"diffuse": 0.8, "texture": {"file": ")" + texture + R"("}}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "earth"}]})");
+    const CliResult r = runCli("check " + quote((dir / (texture + ".json")).string()));
+    if (texture == "earth.png") {
+      EXPECT_EQ(r.exitCode, 0) << r.err;
+    } else {
+      EXPECT_EQ(r.exitCode, 2) << r.err;
+      EXPECT_NE(r.err.find("wider than the 65536"), std::string::npos) << r.err;
+    }
+  }
+}
+
 // The map and its sampling tables are scene memory in the estimate that admission
 // and --stats use: exactly environmentMapBytes more than a constant sky.
 TEST(HardEnvironmentMaps, TheEstimateCountsTheMap) {
