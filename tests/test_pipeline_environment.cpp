@@ -79,7 +79,7 @@ TEST(EnvironmentScene, BadValuesAreRefusedNamingFileAndPath) {
       {R"({"intensity": -1})", "environment.intensity", "must be >= 0"},
       {R"({"color": [1, 1]})", "environment.color", ""},
       {R"({"intensity": "2"})", "environment.intensity", ""},
-      {R"({"map": "missing.exr"})", "environment.map", "environment map not found: " + (dir / "missing.exr").string()},
+      {R"({"map": "missing.exr"})", "environment.map", "environment map " + (dir / "missing.exr").string() + ": does not exist"},
       {R"({"map": "sky.png"})", "environment.map", "an .exr or .hdr file"},
       {R"({"map": "negative.exr"})", "environment.map", "negative value at row 0, column 1"},
       {R"({"map": "nan.exr"})", "environment.map", "non-finite value at row 0, column 1"},

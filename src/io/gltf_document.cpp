@@ -2,6 +2,7 @@
 // (a stack overflow at depth ~100,000), reads every file a URI names and indexes
 // buffers by views it has not bounded, so those are settled here first.
 #include "io/gltf_document.h"
+#include "io/input_file.h"
 
 #include "io/gltf_checks.h"
 #include "io/gltf_extensions.h"
@@ -137,8 +138,8 @@ std::string notJsonStart(const std::vector<unsigned char>& bytes) {
 }  // namespace
 
 GltfSource readGltfSource(const std::string& path, const LoadLimits& limits) {
+  if (const std::string why = unreadableFileReason(path); !why.empty()) throw ModelError("glTF file " + path + ": " + why);
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw ModelError("glTF file " + path + ": not found or not a regular file");
   const uint64_t size = fs::file_size(path, ec);
   if (ec) throw ModelError("glTF file " + path + ": cannot read its size");
   if (limits.maxBytes > 0 && size > limits.maxBytes) {

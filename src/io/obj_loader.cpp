@@ -1,6 +1,7 @@
 // OBJ loading: tinyobjloader parse, vertex unification, normals, uvs and colours; MTL
 // materials mapped onto penumbra's, and the mesh split by material.
 #include "io/obj_loader.h"
+#include "io/input_file.h"
 
 #include "io/mesh_normals.h"
 #include "io/obj_scan.h"
@@ -47,9 +48,8 @@ void checkIndex(int index, size_t count, const char* what, const std::string& pa
 // material id (-1 = none), in triangle order.
 TriangleMesh readObj(const std::string& path, tinyobj::ObjReader& reader, std::vector<int>* faceMaterial,
                      const LoadLimits& limits, std::vector<std::string>* mtlFiles) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw ObjError("cannot open OBJ file " + path);
+  if (const std::string why = unreadableFileReason(path); !why.empty()) {
+    throw ObjError("cannot open OBJ file " + path + ": " + why);
   }
   const ObjScan scan = scanObj(path, limits);
   if (mtlFiles) *mtlFiles = scan.mtlFiles;
