@@ -55,9 +55,17 @@ class Sweep {
     }
     const fs::path dir(req_.outDir);
     std::error_code ec;
+    // The names are checked in the folder they will be in; a refusal removes what it made.
+    const fs::path made = fs::exists(dir, ec) ? dir / "runs" : dir;
+    const bool fresh = !fs::exists(made, ec);
     fs::create_directories(dir / "runs", ec);
     if (ec) throw InputError(req_.outDir + ": cannot create the sweep folder (" + ec.message() + ")");
-    checkSweepFiles(req_.outDir, spec_);
+    try {
+      checkSweepFiles(req_.outDir, spec_);
+    } catch (const InputError&) {
+      if (fresh) fs::remove_all(made, ec);
+      throw;
+    }
     csvPath_ = (dir / "results.csv").string();
     std::map<std::string, SweepRow> finished;
     const SweepIdentity identity = sweepIdentity(req_, runs_.front().job.inputs);
