@@ -2,6 +2,7 @@
 // lives here; quads, boxes, OBJ files and teapots all arrive as TriangleMesh.
 #pragma once
 #include "core/alpha_mask.h"
+#include "core/shading_model.h"
 #include "core/math.h"
 #include "core/shared_list.h"
 #include <array>
@@ -173,12 +174,8 @@ struct Texture {
   bool operator==(const Texture& o) const { return path == o.path && data == o.data; }
 };
 
-// classic: the report's Whitted + Phong model with its ambient term and photon
-// roulette; physical: radiometric BSDFs and lights, caustic and global photon maps.
-enum class ShadingModel { Classic, Physical };
-
 struct RenderSettings {
-  ShadingModel model = ShadingModel::Classic;
+  ShadingModel model = kDefaultShadingModel;
   int maxDepth = 4;
   Color background{0.0f};
   Color ambient{1.0f};     // global ambient light, multiplies Material::ambient

@@ -2,6 +2,7 @@
 // thread (tbb::enumerable_thread_specific) and add them up afterwards.
 #pragma once
 #include "core/cpu_time.h"
+#include "core/shading_model.h"
 #include "core/error_estimate.h"
 #include "core/map_kind.h"
 #include <chrono>
@@ -55,7 +56,7 @@ struct RenderStats {
   uint64_t seed = 0;
   Timings time;
   RayCounts rays;
-  std::string model = "classic";
+  std::string model = shadingModelName(kDefaultShadingModel);
   int passes = 1;
   ErrorEstimate error;     // the image's noise (and bias change) without a reference
   std::string budget;      // --time-limit / --target-error as given; empty: none

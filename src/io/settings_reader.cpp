@@ -59,8 +59,8 @@ void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
 void readRender(const JsonNode& node, RenderSettings& out) {
   node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
                   "aov", "light_samples", "packets"});
-  size_t model = node.enumOr("model", out.model == ShadingModel::Physical, {"classic", "physical"});
-  out.model = model == 0 ? ShadingModel::Classic : ShadingModel::Physical;
+  out.model = static_cast<ShadingModel>(node.enumOr("model", static_cast<size_t>(out.model),
+                                                    {kShadingModelNames.begin(), kShadingModelNames.end()}));
   out.maxDepth = node.intOr("max_depth", out.maxDepth, 0, 64);
   out.background = node.colorOr("background", out.background);
   out.ambient = node.colorOr("ambient", out.ambient);

@@ -11,7 +11,7 @@ namespace {
 
 class ClassicTransport final : public TransportModel {
  public:
-  const char* name() const override { return "classic"; }
+  const char* name() const override { return shadingModelName(ShadingModel::Classic); }
   const Integrator& integrator() const override { return whittedIntegrator(); }
   bool hasView(Aov aov) const override { return aov != Aov::Direct && aov != Aov::Caustic; }
 
@@ -47,7 +47,7 @@ class ClassicTransport final : public TransportModel {
     }
   }
   int passes(const Scene& scene, Aov aov) const override {
-    return aov == Aov::Depth || aov == Aov::Normal ? 1 : std::max(1, scene.photons.passes);
+    return readsLight(aov) ? std::max(1, scene.photons.passes) : 1;
   }
   bool freshPhotonsEachPass() const override { return false; }
   IndirectLookup indirectLookup(const PhotonSettings& ps) const override {

@@ -12,7 +12,7 @@ namespace {
 
 class PhysicalTransport final : public TransportModel {
  public:
-  const char* name() const override { return "physical"; }
+  const char* name() const override { return shadingModelName(ShadingModel::Physical); }
   const Integrator& integrator() const override { return physicalIntegrator(); }
   bool hasView(Aov) const override { return true; }
 
@@ -54,7 +54,7 @@ class PhysicalTransport final : public TransportModel {
     e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
   }
   int passes(const Scene& scene, Aov aov) const override {
-    return aov == Aov::Depth || aov == Aov::Normal ? 1 : std::max(1, scene.photons.passes);
+    return readsLight(aov) ? std::max(1, scene.photons.passes) : 1;
   }
   bool freshPhotonsEachPass() const override { return true; }
   IndirectLookup indirectLookup(const PhotonSettings& ps) const override {

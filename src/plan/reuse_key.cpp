@@ -2,6 +2,7 @@
 // Conservative by construction: a key not named here stays in, so an unknown or
 // new setting can only prevent sharing, never share wrongly.
 #include "plan/reuse_key.h"
+#include "core/shading_model.h"
 #include "core/error.h"
 #include "io/json_parse.h"
 #include "io/model_import.h"
@@ -60,7 +61,7 @@ ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>
   geometry.erase("name");
   nlohmann::json model = doc.contains("render") && doc["render"].is_object() && doc["render"].contains("model")
                              ? doc["render"]["model"]
-                             : nlohmann::json("classic");
+                             : nlohmann::json(shadingModelName(kDefaultShadingModel));
   geometry["render"] = {{"model", model}};
   keys.geometry = scenePath + "\n" + geometry.dump();
 

@@ -198,7 +198,7 @@ bool physicalShadesDirect(const Scene& scene, const Material& m) {
 }  // namespace
 
 const Integrator& physicalIntegrator() {
-  static const Integrator kPhysical{"physical", physicalSample, physicalTree, physicalShadesDirect,
+  static const Integrator kPhysical{shadingModelName(ShadingModel::Physical), physicalSample, physicalTree, physicalShadesDirect,
                                     GlassShadows::Block};
   return kPhysical;
 }

@@ -175,7 +175,7 @@ bool whittedShadesDirect(const Scene&, const Material&) { return true; }
 }  // namespace
 
 const Integrator& whittedIntegrator() {
-  static const Integrator kWhitted{"classic", whittedSample, whittedTree, whittedShadesDirect, GlassShadows::Tint};
+  static const Integrator kWhitted{shadingModelName(ShadingModel::Classic), whittedSample, whittedTree, whittedShadesDirect, GlassShadows::Tint};
   return kWhitted;
 }
 
