@@ -15,13 +15,13 @@ constexpr double kRequiredSaving = 2.0;
 
 }  // namespace
 
-LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, double gatherPhotons) {
+LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, double gatherPhotons,
+                            int cameraPasses) {
   using namespace cost;
   LookupDecision d;
   const PhotonSettings& ps = scene.photons;
   // Camera hits bound the shading points from below (progressive passes repeat them).
-  const double points = double(scene.camera.width) * scene.camera.height * scene.camera.spp *
-                        (scene.render.model == ShadingModel::Physical ? ps.passes : 1);
+  const double points = double(scene.camera.width) * scene.camera.height * scene.camera.spp * cameraPasses;
   const double perPointNs = gatedLights * kExactVoteNs + (gatherPhotons > 0.0 ? gatherK * kGatherNsPerNeighbour : 0.0);
   // A cell per k photons' neighbourhood, twice over for the surfaces' two sides (the
   // resource estimate's cache size), each answered once exactly.
