@@ -1,6 +1,7 @@
 // One frame from built photon maps: the context the integrators read, the
 // precomputed lookups, and the physical model's progressive passes.
 #include "plan/render_frame.h"
+#include "plan/frame_lookups.h"
 #include "plan/transport_model.h"
 #include "gather/lookup_cache.h"
 #include "gather/radiance_estimate.h"
@@ -14,80 +15,6 @@
 
 namespace penumbra {
 namespace {
-
-// The built map of a light-map kind the context reads (null: none).
-const IndirectPhotonMap* lightMap(const ShadingContext& ctx, MapKind k) {
-  switch (k) {
-    case MapKind::Indirect: return ctx.indirectMap;
-    case MapKind::Global: return ctx.globalMap;
-    case MapKind::Caustic: return ctx.causticMap;
-    default: return nullptr;
-  }
-}
-
-// photons.lookup = precomputed: the gate verdicts and the model's indirect estimate
-// (IndirectLookup), once per cell, from the maps just built, with the pass's gathers
-// (passGathers) for the global map. The estimate keeps its own cells; where the gate
-// wants finer ones (a penumbra is narrower than a sparse light map's cells), its
-// verdicts get a cache of their own, so the estimate is the same with or without it.
-// A null key: build without keeping the parameters.
-void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& cache, LookupCache& gateCache,
-                 std::optional<LookupCacheParams>* cachedKey, std::optional<LookupCacheParams>* gateKey,
-                 double* builtSeconds, ShadingContext& ctx, RenderStats& stats, ProgressPhases* meter,
-                 const std::string& phaseName) {
-  const PhotonSettings& ps = scene.photons;
-  Stopwatch phase;
-  const IndirectLookup recipe = model.indirectLookup(ps);
-  const IndirectPhotonMap* map = lightMap(ctx, recipe.map);
-  const bool gate = ctx.choices.gate && ctx.choices.shadows && ctx.shadowMap;
-  if (!gate && !map) return;  // nothing to precompute
-  LookupCacheParams params;
-  params.gate = gate;
-  params.gateParams = gateParamsFor(scene, ctx.choices.integrator->glass);
-  if (map) params.indirect = recipe.kind;
-  const bool global = recipe.map == MapKind::Global;
-  params.k = global ? ctx.globalK : recipe.k;
-  params.maxRadius = recipe.maxRadius;
-  params.radius = global ? ctx.globalRadius : 0.0f;
-  params.cellSize = params.k == 0 ? cacheCellSize(params.radius, recipe.k, ps.lookupCell)
-                                  : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
-  LookupCacheParams gateOnly;
-  bool split = false;
-  if (gate && map) {
-    const float gateCell = cacheCellSize(nullptr, 0, ctx.shadowMap, ps.kShadow, ps.lookupCell);
-    if (gateCell > 0.0f && (!(params.cellSize > 0.0f) || gateCell < params.cellSize)) {
-      split = params.cellSize > 0.0f;
-      gateOnly = params;
-      gateOnly.indirect = CachedIndirect::None;
-      gateOnly.cellSize = gateCell;
-      if (split) params.gate = false;
-      else params.cellSize = gateCell;
-    }
-  }
-  const bool fresh = !(cachedKey && *cachedKey && sameLookup(**cachedKey, params));
-  const bool freshGate = split && !(gateKey && *gateKey && sameLookup(**gateKey, gateOnly));
-  ProgressCounter* progress = fresh || freshGate ? beginPhase(meter, phaseName) : nullptr;
-  auto build = [&](const LookupCacheParams& wanted, LookupCache& into, std::optional<LookupCacheParams>* key) {
-    if (key) key->reset();  // a build that throws leaves no key to a half-built cache
-    LookupCacheParams p = wanted;
-    p.progress = progress;
-    into.build(p.gate ? ctx.shadowMap : nullptr, p.indirect != CachedIndirect::None ? map : nullptr, p);
-    if (key) *key = wanted;
-  };
-  if (fresh) build(params, cache, cachedKey);
-  if (freshGate) build(gateOnly, gateCache, gateKey);
-  if (fresh || freshGate) endPhase(meter);
-  if (builtSeconds && (fresh || freshGate)) *builtSeconds = phase.seconds();
-  ctx.lookup = cache.empty() ? nullptr : &cache;
-  ctx.gateLookup = split ? (gateCache.empty() ? nullptr : &gateCache) : ctx.lookup;
-  if (!ctx.lookup) ctx.lookup = ctx.gateLookup;
-  stats.time.precompute += phase.seconds();
-  const LookupCache* g = ctx.gateLookup ? ctx.gateLookup : ctx.lookup;
-  stats.cacheRecords = cache.records() + (split ? gateCache.records() : 0);
-  stats.cacheSplits = g ? g->splitLines() : 0;
-  stats.cacheCell = g ? g->cellSize() : cache.cellSize();
-  stats.cacheBytes = cache.memoryBytes() + (split ? gateCache.memoryBytes() : 0);
-}
 
 void addStage(const PhotonStage& s, RenderStats& stats) {
   stats.time.emit += s.emitSeconds;
@@ -147,133 +74,185 @@ SceneAssets prepareAssets(const Scene& scene, bool textures) {
   return assets;
 }
 
-void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& stage,
-                 const FrameOptions& options, RenderResult& result) {
-  RenderStats& stats = result.stats;
-  const TransportModel& model = transportOf(scene);
-  const Aov aov = options.aov;
-  ShadingContext ctx{scene, *assets.tracer};
-  if (options.choices) ctx.choices = *options.choices;
-  const bool precomputed = options.precomputed ? *options.precomputed : scene.photons.lookup == PhotonLookup::Precomputed;
-  ctx.textures = assets.textures.get();
-  ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
-  ctx.hasGlass = sceneHasGlass(scene);
-  ctx.classicScale = stage.classicScale;
-  ctx.shadowMap = stage.shadow.size() > 0 ? &stage.shadow : nullptr;
-  for (const std::string& n : stage.notes) result.notes.push_back(n);
-  if (stage.emitted[MapKind::Indirect] > 0 && stage.indirect.empty()) {
-    result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
-                           "using the ambient term");
-  }
-  const bool needsLight = readsLight(aov);
-  const bool budgeted = options.budget.any() && needsLight && !options.tracePixel;
-  const bool fresh = model.freshPhotonsEachPass();
-  // --trace-pixel traces the first sample of the render's own sequence, in one pass.
-  // A budget's passes sample as any progressive render does, so its image equals the
-  // render with photons.passes set to the passes it ran.
-  ctx.passes = static_cast<uint32_t>(budgeted ? kBudgetMaxPasses : model.passes(scene, aov));
-  const int passes = options.tracePixel ? 1 : static_cast<int>(ctx.passes);
-  const Stopwatch wall;
-  const std::function<double()> clock = options.clock ? options.clock : [&wall] { return wall.seconds(); };
+namespace {
 
-  LookupCache cache;
-  PhotonStage later;  // the maps of physical passes >= 1 (fresh photons each)
+// One frame's running state: the context every pass shades with, the maps of the pass
+// being rendered, the image sum and spread, and the budget's clock.
+struct FrameRun {
+  FrameRun(const Scene& s, const SceneAssets& a, PhotonStage& st, const FrameOptions& o, RenderResult& r)
+      : scene(s), assets(a), stage(st), options(o), result(r), stats(r.stats), model(transportOf(s)),
+        ctx{s, *a.tracer} {
+    if (options.choices) ctx.choices = *options.choices;
+    precomputed = options.precomputed ? *options.precomputed : scene.photons.lookup == PhotonLookup::Precomputed;
+    ctx.textures = assets.textures.get();
+    ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
+    ctx.hasGlass = sceneHasGlass(scene);
+    ctx.classicScale = stage.classicScale;
+    ctx.shadowMap = stage.shadow.size() > 0 ? &stage.shadow : nullptr;
+    for (const std::string& n : stage.notes) result.notes.push_back(n);
+    if (stage.emitted[MapKind::Indirect] > 0 && stage.indirect.empty()) {
+      result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
+                             "using the ambient term");
+    }
+    needsLight = readsLight(options.aov);
+    budgeted = options.budget.any() && needsLight && !options.tracePixel;
+    fresh = model.freshPhotonsEachPass();
+    // --trace-pixel traces the first sample of the render's own sequence, in one pass.
+    // A budget's passes sample as any progressive render does, so its image equals the
+    // render with photons.passes set to the passes it ran.
+    ctx.passes = static_cast<uint32_t>(budgeted ? kBudgetMaxPasses : model.passes(scene, options.aov));
+    passes = options.tracePixel ? 1 : static_cast<int>(ctx.passes);
+    clock = options.clock ? options.clock : [this] { return wall.seconds(); };
+    render.aov = options.aov;
+    if (needsLight && passes == 1 && scene.camera.spp > 1) render.standardError = &sampleSpread;
+    passStart = clock();
+  }
+  FrameRun(const FrameRun&) = delete;
+  FrameRun& operator=(const FrameRun&) = delete;
+
+  const Scene& scene;
+  const SceneAssets& assets;
+  PhotonStage& stage;  // pass 0's maps (and the gate's, for every pass)
+  const FrameOptions& options;
+  RenderResult& result;
+  RenderStats& stats;
+  const TransportModel& model;
+  ShadingContext ctx;
+  bool precomputed = false, needsLight = false, budgeted = false, fresh = false;
+  int passes = 1, done = 0;
+  const Stopwatch wall;
+  std::function<double()> clock;
+  double passStart = 0.0;
+  LookupCache cache;   // a later pass's own lookups
+  PhotonStage later;   // the maps of physical passes >= 1 (fresh photons each)
   RenderOptions render;
-  render.aov = aov;
   PassSpread spread;
   Image sampleSpread;  // one pass: its samples' standard error per pixel
-  if (needsLight && passes == 1 && scene.camera.spp > 1) render.standardError = &sampleSpread;
-  int done = 0;
-  double passStart = clock();
-  for (int pass = 0; pass < passes; ++pass) {
-    const PhotonStage* maps = &stage;
-    if (pass > 0 && fresh) {
-      later = PhotonStage();
-      PhotonNeeds needs = options.needs;
-      needs.maps[MapKind::Shadow] = false;  // the gate's photons are pass 0's, for every pass
-      const std::string name = budgeted ? fmt::format("pass {}", pass + 1) : phaseName("photons", pass, passes);
-      Emission e = emitPhotonsFor(scene, *assets.tracer, needs, options.budgets, static_cast<uint32_t>(pass), {},
-                                  beginPhase(options.progress, name));
-      buildStage(e, e.budgets, true, later, beginPhase(options.progress, phaseName("maps", pass, passes)));
-      endPhase(options.progress);
-      maps = &later;
-    }
-    if (pass == 0 || fresh) addStage(*maps, stats);
-    ctx.indirectMap = maps->indirect.empty() ? nullptr : &maps->indirect;
-    ctx.causticMap = maps->caustic.empty() ? nullptr : &maps->caustic;
-    ctx.globalMap = maps->global.empty() ? nullptr : &maps->global;
-    ctx.pass = static_cast<uint32_t>(pass);
-    if (passes > 1 && fresh) passGathers(scene.photons, ctx.pass, *maps, ctx, stats);
-    // Pass 0 keeps its lookups with its maps, for later frames on the same maps; a
-    // pass on pass 0's maps reads pass 0's lookups.
-    if (needsLight && precomputed && (pass == 0 || fresh)) {
-      const std::string lookups = phaseName("lookups", pass, passes);
-      if (pass == 0) {
-        buildLookup(scene, model, stage.lookup, stage.gateLookup, &stage.lookupKey, &stage.gateLookupKey,
-                    &stage.lookupSeconds, ctx, stats, options.progress, lookups);
-      } else {
-        // The gate's photons are pass 0's for every pass: so are its own cells.
-        buildLookup(scene, model, cache, stage.gateLookup, nullptr, &stage.gateLookupKey, nullptr, ctx, stats,
-                    options.progress, lookups);
-      }
-    }
-    // A gate with no precomputed verdicts votes over the shadow map's KD-trees, which
-    // the photon stage leaves out until a frame reads them.
-    if (pass == 0 && needsLight && ctx.choices.gate && ctx.shadowMap && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
-        !stage.shadow.hasTrees()) {
-      Stopwatch trees;
-      stage.shadow.buildTrees();
-      stats.time.buildMaps += trees.seconds();
-    }
-    Stopwatch phase;
-    if (options.tracePixel) {
-      result.rayTree = tracePixel(ctx, options.tracePixel->first, options.tracePixel->second);
-      done = 1;
-      break;
-    }
-    render.tiles = beginPhase(options.progress, budgeted ? fmt::format("render {}", pass + 1)
-                                                         : phaseName("render", pass, passes));
-    Image image = renderImage(ctx, render, stats.rays);
-    endPhase(options.progress);
-    if (ctx.lookup) stats.cacheLazyCells = ctx.lookup->lazyCells();
-    if (passes > 1) spread.add(result.image, image, pass);
-    if (pass == 0) result.image = std::move(image);
-    else for (size_t i = 0; i < image.pixels.size(); ++i) result.image.pixels[i] += image.pixels[i];
-    stats.time.render += phase.seconds();
-    done = pass + 1;
-    if (options.afterPass) options.afterPass(done, result.image, spread.estimate());
-    if (budgeted) {
-      const double now = clock();
-      const BudgetState state{done, now, now - passStart, spread.estimate().noiseRmse};
-      passStart = now;
-      if (const char* stop = budgetStop(options.budget, state)) {
-        stats.budgetStop = stop;
-        break;
-      }
+};
+
+// The maps pass `pass` reads: pass 0's, or a later physical pass's own fresh photons.
+const PhotonStage& mapsForPass(FrameRun& f, int pass) {
+  if (pass == 0 || !f.fresh) return f.stage;
+  f.later = PhotonStage();
+  PhotonNeeds needs = f.options.needs;
+  needs.maps[MapKind::Shadow] = false;  // the gate's photons are pass 0's, for every pass
+  const std::string name = f.budgeted ? fmt::format("pass {}", pass + 1) : phaseName("photons", pass, f.passes);
+  Emission e = emitPhotonsFor(f.scene, *f.assets.tracer, needs, f.options.budgets, static_cast<uint32_t>(pass), {},
+                              beginPhase(f.options.progress, name));
+  buildStage(e, e.budgets, true, f.later, beginPhase(f.options.progress, phaseName("maps", pass, f.passes)));
+  endPhase(f.options.progress);
+  return f.later;
+}
+
+// The context reads `maps` in pass `pass`, with the pass's gathers.
+void bindMaps(FrameRun& f, const PhotonStage& maps, int pass) {
+  if (pass == 0 || f.fresh) addStage(maps, f.stats);
+  f.ctx.indirectMap = maps.indirect.empty() ? nullptr : &maps.indirect;
+  f.ctx.causticMap = maps.caustic.empty() ? nullptr : &maps.caustic;
+  f.ctx.globalMap = maps.global.empty() ? nullptr : &maps.global;
+  f.ctx.pass = static_cast<uint32_t>(pass);
+  if (f.passes > 1 && f.fresh) passGathers(f.scene.photons, f.ctx.pass, maps, f.ctx, f.stats);
+}
+
+// Pass 0 keeps its lookups with its maps, for later frames on the same maps; a pass
+// on pass 0's maps reads pass 0's lookups. A gate with no precomputed verdicts votes
+// over the shadow map's KD-trees, which the photon stage leaves out until a frame reads them.
+void prepareLookups(FrameRun& f, int pass) {
+  ShadingContext& ctx = f.ctx;
+  PhotonStage& stage = f.stage;
+  if (f.needsLight && f.precomputed && (pass == 0 || f.fresh)) {
+    const std::string lookups = phaseName("lookups", pass, f.passes);
+    if (pass == 0) {
+      buildLookup(f.scene, f.model, stage.lookup, stage.gateLookup, &stage.lookupKey, &stage.gateLookupKey,
+                  &stage.lookupSeconds, ctx, f.stats, f.options.progress, lookups);
+    } else {
+      // The gate's photons are pass 0's for every pass: so are its own cells.
+      buildLookup(f.scene, f.model, f.cache, stage.gateLookup, nullptr, &stage.gateLookupKey, nullptr, ctx, f.stats,
+                  f.options.progress, lookups);
     }
   }
-  stats.passes = done;
-  if (budgeted) stats.budget = describeBudget(options.budget);
+  if (pass == 0 && f.needsLight && ctx.choices.gate && ctx.shadowMap && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
+      !stage.shadow.hasTrees()) {
+    Stopwatch trees;
+    stage.shadow.buildTrees();
+    f.stats.time.buildMaps += trees.seconds();
+  }
+}
+
+// Renders pass `pass` and adds it to the frame's sum and spread.
+void renderPass(FrameRun& f, int pass) {
+  Stopwatch phase;
+  f.render.tiles = beginPhase(f.options.progress, f.budgeted ? fmt::format("render {}", pass + 1)
+                                                             : phaseName("render", pass, f.passes));
+  Image image = renderImage(f.ctx, f.render, f.stats.rays);
+  endPhase(f.options.progress);
+  if (f.ctx.lookup) f.stats.cacheLazyCells = f.ctx.lookup->lazyCells();
+  Image& sum = f.result.image;
+  if (f.passes > 1) f.spread.add(sum, image, pass);
+  if (pass == 0) sum = std::move(image);
+  else for (size_t i = 0; i < image.pixels.size(); ++i) sum.pixels[i] += image.pixels[i];
+  f.stats.time.render += phase.seconds();
+  f.done = pass + 1;
+  if (f.options.afterPass) f.options.afterPass(f.done, sum, f.spread.estimate());
+}
+
+// Whether the budget stops the frame after the pass just done (and why, in the stats).
+bool budgetStops(FrameRun& f) {
+  if (!f.budgeted) return false;
+  const double now = f.clock();
+  const BudgetState state{f.done, now, now - f.passStart, f.spread.estimate().noiseRmse};
+  f.passStart = now;
+  const char* stop = budgetStop(f.options.budget, state);
+  if (stop) f.stats.budgetStop = stop;
+  return stop != nullptr;
+}
+
+// The image as the mean of its passes, and its error estimate.
+void finishFrame(FrameRun& f) {
+  RenderStats& stats = f.stats;
+  RenderResult& result = f.result;
+  const FrameOptions& options = f.options;
+  stats.passes = f.done;
+  if (f.budgeted) stats.budget = describeBudget(options.budget);
   // Progressive passes are independent estimates: their mean is the image.
-  if (done > 1) {
-    for (Color& c : result.image.pixels) c /= static_cast<float>(done);
+  if (f.done > 1) {
+    for (Color& c : result.image.pixels) c /= static_cast<float>(f.done);
   }
-  if (needsLight && !options.tracePixel) {
+  if (f.needsLight && !options.tracePixel) {
     // One pass of one sample (the pixel centres) has no spread: probes beside it measure
     // its error, at every pixel for the error view; their samples count as render time.
     Image probed;
-    const bool probes = done == 1 && !render.standardError;
+    const bool probes = f.done == 1 && !f.render.standardError;
     Stopwatch probing;
-    stats.error = done > 1  ? spread.estimate()
-                  : probes ? probeError(ctx, result.image, render.aov, options.errorView ? &probed : nullptr)
-                           : sampleError(sampleSpread, scene.camera.spp);
+    stats.error = f.done > 1 ? f.spread.estimate()
+                  : probes   ? probeError(f.ctx, result.image, f.render.aov, options.errorView ? &probed : nullptr)
+                             : sampleError(f.sampleSpread, f.scene.camera.spp);
     if (probes) stats.time.render += probing.seconds();
     for (MapKind k : kAllMaps) stats.error.sharedMaps = stats.error.sharedMaps || stats.stored[k] > 0;
     if (options.errorView) {
-      result.image = done > 1 ? spread.standardError() : probes ? std::move(probed) : std::move(sampleSpread);
+      result.image = f.done > 1 ? f.spread.standardError() : probes ? std::move(probed) : std::move(f.sampleSpread);
     }
   }
-  stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, stage.bytes() + later.bytes());
+  stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, f.stage.bytes() + f.later.bytes());
+}
+
+}  // namespace
+
+void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& stage,
+                 const FrameOptions& options, RenderResult& result) {
+  FrameRun f(scene, assets, stage, options, result);
+  for (int pass = 0; pass < f.passes; ++pass) {
+    bindMaps(f, mapsForPass(f, pass), pass);
+    prepareLookups(f, pass);
+    if (options.tracePixel) {
+      result.rayTree = tracePixel(f.ctx, options.tracePixel->first, options.tracePixel->second);
+      f.done = 1;
+      break;
+    }
+    renderPass(f, pass);
+    if (budgetStops(f)) break;
+  }
+  finishFrame(f);
 }
 
 }  // namespace penumbra
