@@ -3,7 +3,7 @@
 #include "cli/batch_jobs.h"
 #include "cli/progress_line.h"
 #include "plan/batch_run.h"
-#include "cli/plan_command.h"
+#include "cli/session_args.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
@@ -21,12 +21,10 @@ namespace penumbra {
 
 struct BatchCommand::Options {
   CLI::App* command = nullptr;
-  std::vector<std::string> inputs, overrides;
-  PlanArgs plan;
-  RenderBudget budget;  // --time-limit, --target-error: every job's
-  std::string out, views, format = "png", shard, listShard, mapCache, maxMemory;
-  int threads = 0;
-  bool force = false, keepGoing = false, quiet = false;
+  std::vector<std::string> inputs;
+  SessionArgs session;  // its budget is every job's
+  std::string out, views, format = "png", shard, listShard, mapCache;
+  bool force = false, keepGoing = false;
 };
 
 BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
@@ -38,8 +36,6 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--views", o.views, "Views of scene files given directly, e.g. beauty,depth (default: each scene's render.aov)");
   c->add_option("--format", o.format, "Image format of scene files given directly: png or exr (several views: one layered exr)")
       ->check(CLI::IsMember({"png", "exr"}));
-  c->add_option("-D,--set", o.overrides, "Override a scene value in every job")->take_all()->allow_extra_args(false);
-  c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024));
   c->add_option("--shard", o.shard, "Render only shard I of N (1-based), e.g. 2/4");
   c->add_option("--list-shard", o.listShard, "Print the jobs shard I/N would take, and exit");
   c->add_option("--map-cache", o.mapCache,
@@ -47,10 +43,8 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
                     formatBytes(static_cast<double>(kStageCacheBytes)) + ")");
   c->add_flag("--force", o.force, "Render every job, even those whose outputs are up to date");
   c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
-  c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a job estimated to need more, e.g. 8G (default: the memory available)");
-  addPlanOptions(*c, o.plan);
-  addBudgetOptions(*c, o.budget);
-  c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
+  addSessionOptions(*c, o.session,
+                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption, "job");
 }
 
 BatchCommand::~BatchCommand() = default;
@@ -86,43 +80,45 @@ bool isJobsFile(const std::string& path) {
 int BatchCommand::run() {
   Options& o = *o_;
   BatchRequest req;
-  const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before any scene is read
-  checkBudget(o.budget);  // as render and sweep do: a bad budget is refused, never ignored
-  if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
+  const SessionArgs& session = o.session;
+  const PlanOverrides passes = session.plan.passes();  // contradicting options: refused before any scene is read
+  const int threads = session.threadCount();
+  std::vector<std::string> overrides = session.overrides;
+  if (!session.plan.gateSetting().empty()) overrides.push_back(session.plan.gateSetting());
   const bool jobsFile = o.inputs.size() == 1 && isJobsFile(o.inputs[0]);
   if (jobsFile) {
     req.jobs = readJobsFile(o.inputs[0]);
-    for (BatchJob& j : req.jobs) j.overrides.insert(j.overrides.begin(), o.overrides.begin(), o.overrides.end());
+    for (BatchJob& j : req.jobs) j.overrides.insert(j.overrides.begin(), overrides.begin(), overrides.end());
     // The command line's gate wins over a job's own photons.gate.
-    if (!o.plan.gateSetting().empty()) for (BatchJob& j : req.jobs) j.overrides.push_back(o.plan.gateSetting());
+    if (!session.plan.gateSetting().empty()) for (BatchJob& j : req.jobs) j.overrides.push_back(session.plan.gateSetting());
     req.extraInputs.push_back(o.inputs[0]);
   } else {
     if (o.out.empty()) throw InputError("batch: -o DIR is required when scene files are given directly");
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);
     if (ec) throw InputError(o.out + ": cannot create the output folder (" + ec.message() + ")");
-    req.jobs = jobsForScenes(o.inputs, o.out, o.overrides, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
+    req.jobs = jobsForScenes(o.inputs, o.out, overrides, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
   }
   // The command line's budget wins over a job's own, as its gate does.
   for (BatchJob& j : req.jobs) {
-    if (o.budget.seconds > 0.0) j.budget.seconds = o.budget.seconds;
-    if (o.budget.targetError > 0.0) j.budget.targetError = o.budget.targetError;
+    if (session.budget.seconds > 0.0) j.budget.seconds = session.budget.seconds;
+    if (session.budget.targetError > 0.0) j.budget.targetError = session.budget.targetError;
   }
-  if (!o.maxMemory.empty()) req.maxMemoryBytes = parseMemorySize(o.maxMemory);
+  req.maxMemoryBytes = session.maxMemoryBytes();
   const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;
   if (!shardArg.empty()) {
     const auto [index, count] = parseShard(shardArg);
     req.shard = BatchShard{index, count};
     req.listShard = !o.listShard.empty();
   }
-  req.threads = o.threads;
+  req.threads = threads;
   req.force = o.force;
   req.keepGoing = o.keepGoing;
   if (!o.mapCache.empty()) req.mapCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
   req.plan = passes;
-  req.load = o.plan.load();
+  req.load = session.plan.load();
   std::optional<ItemProgress> progress;
-  if (!o.quiet) {
+  if (!session.quiet) {
     progress.emplace();
     req.phases = progress->phases();
     req.progress = [&](const BatchProgress& p) {
@@ -135,7 +131,7 @@ int BatchCommand::run() {
     for (size_t j : out.shardJobs) std::cout << req.jobs[j].name << "\t" << req.jobs[j].outputs.front().path << "\n";
     return 0;
   }
-  if (!o.quiet) {
+  if (!session.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     std::cerr << batchSummary(out);
   }

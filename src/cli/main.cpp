@@ -7,6 +7,7 @@
 #include "cli/batch_command.h"
 #include "cli/bench_command.h"
 #include "cli/plan_command.h"
+#include "cli/session_args.h"
 #include "cli/sweep_command.h"
 #include "core/cpu_time.h"
 #include "core/error.h"
@@ -146,36 +147,26 @@ int runCommandLine(int argc, char** argv) {
 
   RenderRequest req;
   std::string statsPath, tracePixelArg;
-  bool quiet = false, verbose = false;
-  std::string seedArg, maxMemoryArg;
+  bool verbose = false;
+  std::string seedArg;
+  SessionArgs session;
   std::optional<int> spp;
   CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
   render->add_option("scene", req.scenePath, "Scene file (JSON, .gltf or .glb; - reads JSON from stdin)")->required();
   render->add_option("-o,--output,--outfile", req.outputPath,
                      "Output image: .png (8-bit sRGB) or .exr (linear: half colour, float depth in scene units and normals in [-1,1]); with --trace-pixel, "
                      "the JSON file (default stdout)");
-  render->add_option("-t,--threads,--nthreads", req.threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024));
   render->add_option("--seed", seedArg, "Random seed, 0..2^64-1 (overrides render.seed)");
-  render->add_option("--max-memory", maxMemoryArg,
-                     "Refuse (exit 2) a render estimated to need more, e.g. 8G, 512M (default: "
-                     "the memory available when it starts)");
   render->add_option("--spp", spp, "Samples per pixel (overrides camera.spp)")->check(CLI::Range(1, 4096));
-  render->add_option("-D,--set", req.overrides,
-                     "Override a scene value, e.g. --set render.max_depth=8 -D objects[0].radius=2")
-      ->take_all()
-      ->allow_extra_args(false);
   render->add_option("--stats", statsPath, "Write render statistics as JSON to this file (- : stdout)");
   render->add_option("--aov", req.aov,
                      "What to render: beauty, depth, normal, indirect, direct, caustic, or error (the beauty's "
                      "per-pixel standard error) (default: the scene's render.aov, else beauty)");
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
-  render->add_flag("-q,--quiet", quiet, "No progress, notes or summary on stderr");
   render->add_flag("-v,--verbose", verbose, "The summary also gives the reasons of automatic decisions (the gate)");
-  PlanArgs planArgs;
-  addPlanOptions(*render, planArgs);
-  addBudgetOptions(*render, req.budget);
+  addSessionOptions(*render, session,
+                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption, "");
   std::string toneArg;
   render->add_option("--exposure", req.display.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
       ->check(CLI::Range(-64.0, 64.0));
@@ -229,14 +220,17 @@ int runCommandLine(int argc, char** argv) {
       if (!tracePixelArg.empty() && (ext == ".png" || ext == ".exr")) {
         throw InputError("--trace-pixel writes JSON, not an image: give -o a .json path (got '" + req.outputPath + "')");
       }
-      req.plan = planArgs.passes();
-      req.load = planArgs.load();
+      req.threads = session.threadCount();
+      req.overrides = session.overrides;
+      req.budget = session.budget;
+      req.plan = session.plan.passes();
+      req.load = session.plan.load();
       if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
-      if (!maxMemoryArg.empty()) req.maxMemoryBytes = parseMemorySize(maxMemoryArg);
+      req.maxMemoryBytes = session.maxMemoryBytes();
       if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
-      if (!planArgs.gateSetting().empty()) req.overrides.push_back(planArgs.gateSetting());
-      return runRenderCommand(req, statsPath, tracePixelArg, quiet, verbose);
+      if (!session.plan.gateSetting().empty()) req.overrides.push_back(session.plan.gateSetting());
+      return runRenderCommand(req, statsPath, tracePixelArg, session.quiet, verbose);
     }
     if (sweep.selected()) return sweep.run();
     if (plan.selected()) return plan.run();

@@ -3,7 +3,7 @@
 #include "cli/sweep_run.h"
 #include "cli/sweep_scenes.h"
 #include "io/temp_file.h"
-#include "cli/plan_command.h"
+#include "cli/session_args.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
@@ -21,13 +21,11 @@ struct SweepCommand::Options {
   CLI::App* command = nullptr;
   std::vector<std::string> scenes;
   std::string out, reference, aov, photons, k, depth, spp;
-  std::vector<std::string> vary, overrides;
-  PlanArgs plan;
-  RenderBudget budget;  // --time-limit, --target-error: every run's
+  std::vector<std::string> vary;
+  SessionArgs session;  // its budget is every run's
   int repeat = 1, referencePasses = 8;
-  std::string maxMemory, metric = "relmse";
-  std::string threads;
-  bool force = false, noGateCompare = false, quiet = false;
+  std::string metric = "relmse";
+  bool force = false, noGateCompare = false;
 };
 
 SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
@@ -42,22 +40,19 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--depth", o.depth, "render.max_depth values, e.g. 1,2,4,8");
   c->add_option("--spp", o.spp, "camera.spp values, e.g. 1,4");
   c->add_option("--vary", o.vary, "Any scene key and its values: --vary photons.shadow=1e5,1e6 (repeatable)");
-  c->add_option("-D,--set", o.overrides, "Override a scene value in every run")->take_all()->allow_extra_args(false);
   c->add_option("--reference", o.reference, "Reference image (EXR) for the error (default: the sweep renders its own, see --reference-passes)");
   c->add_option("--reference-passes", o.referencePasses, "Without --reference: the reference is the run at every knob's highest value "
                 "with N times its progressive passes (default 8); 1 = that run itself")->check(CLI::Range(1, 4096));
   c->add_option("--metric", o.metric, "What the front, the plot and the best run rank by: relmse (default), rmse, psnr or rmse-clamped; results.csv keeps every one");
   c->add_option("--aov", o.aov, "View to render (default: the scene's render.aov)");
-  c->add_option("-t,--threads,--nthreads", o.threads, "Worker threads (default: all cores); a list, e.g. 1,2, is a "
-                "knob: every run at each count, each count in its own session");
   c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
   c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
-  c->add_option("--max-memory", o.maxMemory, "Refuse (exit 2) a run estimated to need more, e.g. 8G (default: the memory available)");
-  addPlanOptions(*c, o.plan);
-  addBudgetOptions(*c, o.budget);
+  addSessionOptions(*c, o.session,
+                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption, "run",
+                    "Worker threads (default: all cores); a list, e.g. 1,2, is a knob: every run at each count, each "
+                    "count in its own session");
   c->add_option("--repeat", o.repeat, "Render each run's frame N times on its maps; keep the fastest and the median "
                 "(render_s, render_median_s)")->check(CLI::Range(1, 1000));
-  c->add_flag("-q,--quiet", o.quiet, "No progress line and no summary");
 }
 
 SweepCommand::~SweepCommand() = default;
@@ -66,15 +61,17 @@ bool SweepCommand::selected() const { return o_->command->parsed(); }
 
 int SweepCommand::run() {
   Options& o = *o_;
-  const uint64_t maxMemory = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
+  const SessionArgs& session = o.session;
+  const uint64_t maxMemory = session.maxMemoryBytes();
   const SweepMetric metric = parseMetric(o.metric);  // before the scene is read
-  const PlanOverrides passes = o.plan.passes();  // contradicting options: refused before the scene is read
-  const SweepKnob threadList = o.threads.empty() ? SweepKnob{} : threadsKnob(o.threads);
+  const PlanOverrides passes = session.plan.passes();  // contradicting options: refused before the scene is read
+  const SweepKnob threadList = session.threads.empty() ? SweepKnob{} : threadsKnob(session.threads);
   const int threads = threadList.values.size() == 1 ? std::atoi(threadList.values.front().c_str()) : 0;
   if (o.scenes.size() > 1 && !o.reference.empty()) {
     throw InputError("sweep: --reference is one image, for one scene; several scenes take their own references");
   }
-  if (!o.plan.gateSetting().empty()) o.overrides.push_back(o.plan.gateSetting());
+  std::vector<std::string> overrides = session.overrides;
+  if (!session.plan.gateSetting().empty()) overrides.push_back(session.plan.gateSetting());
   const std::vector<std::string> folders = sceneFolders(o.scenes, o.out);
 
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
@@ -82,7 +79,7 @@ int SweepCommand::run() {
   std::vector<SweepRequest> requests;
   for (size_t i = 0; i < o.scenes.size(); ++i) {
     // The knobs' keys depend on the model: load the scene once with the sweep's --set.
-    const Scene base = loadScene(o.scenes[i], o.overrides, loadLimits(maxMemory), o.plan.load());
+    const Scene base = loadScene(o.scenes[i], overrides, loadLimits(maxMemory), session.plan.load());
     std::vector<SweepKnob> knobs;
     const std::pair<const char*, const std::string*> named[] = {
         {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
@@ -95,7 +92,7 @@ int SweepCommand::run() {
     SweepRequest req;
     req.scenePath = o.scenes[i];
     req.outDir = folders[i];
-    req.spec = expandGrid(knobs, o.overrides);
+    req.spec = expandGrid(knobs, overrides);
     req.referencePath = o.reference;
     req.referencePasses = o.referencePasses;
     req.metric = metric;
@@ -104,8 +101,8 @@ int SweepCommand::run() {
     req.force = o.force;
     req.compareGate = !o.noGateCompare;
     req.plan = passes;
-    req.load = o.plan.load();
-    req.budget = o.budget;
+    req.load = session.plan.load();
+    req.budget = session.budget;
     req.repeat = o.repeat;
     req.maxMemoryBytes = maxMemory;
     req.plotScript = plotScript;
@@ -121,14 +118,14 @@ int SweepCommand::run() {
   std::vector<SceneSweep> done;
   for (SweepRequest& req : requests) {
     std::optional<ItemProgress> progress;
-    if (!o.quiet) {
+    if (!session.quiet) {
       progress.emplace();
       req.phases = progress->phases();
       req.progress = [&](const std::string& line) { progress->line(line); };
     }
     SweepOutcome out = runSweep(req);
     if (progress) progress->finish();
-    if (!o.quiet) {
+    if (!session.quiet) {
       for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
       const SweepTotals& t = out.totals;
       std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {}; {} emission(s), {} prefix cut(s), {} map "
@@ -142,7 +139,7 @@ int SweepCommand::run() {
   if (requests.size() > 1) {
     const std::string summary = (std::filesystem::path(o.out) / "scenes.md").string();
     writeTextFileAtomic(summary, scenesMarkdown(done, metric));
-    if (!o.quiet) std::cerr << "wrote " << summary << "\n";
+    if (!session.quiet) std::cerr << "wrote " << summary << "\n";
   }
   return 0;
 }

@@ -1,0 +1,60 @@
+// The options the commands share, registered once: threads, memory, scene overrides,
+// quiet, the plan's overrides (--enable/--disable/--gate/--no-gate), loading
+// (--no-defaults) and budgets (--time-limit/--target-error). Each command asks for its set.
+#pragma once
+#include "io/scene_loader.h"
+#include "plan/render_budget.h"
+#include "plan/render_plan.h"
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+// --enable PASS and --disable PASS (repeatable), --gate MODE and --no-gate; --no-defaults.
+struct PlanArgs {
+  std::vector<std::string> enable, disable;
+  std::string gate;     // on, off, auto; empty: the scene's photons.gate
+  bool noGate = false;  // --no-gate: --gate off
+  bool noDefaults = false;  // --no-defaults: a glTF scene gets no framed camera or default sky
+  LoadOptions load() const { return LoadOptions{!noDefaults}; }
+  // The passes named; throws InputError for an unknown pass, or when two of these
+  // options contradict each other (--no-gate --gate on, --enable gate --no-gate, ...).
+  PlanOverrides passes() const;
+  // The photons.gate override --gate or --no-gate ask for ("photons.gate=off"); empty: none.
+  std::string gateSetting() const;
+};
+
+// Which shared options a command takes (addSessionOptions).
+enum SessionOption : unsigned {
+  kThreadsOption = 1u << 0,    // -t/--threads/--nthreads
+  kMaxMemoryOption = 1u << 1,  // --max-memory
+  kSetOption = 1u << 2,        // -D/--set
+  kQuietOption = 1u << 3,      // -q/--quiet
+  kPlanOption = 1u << 4,       // --enable, --disable, --gate, --no-gate, --no-defaults
+  kDefaultsOption = 1u << 5,   // --no-defaults alone (check: no plan)
+  kBudgetOption = 1u << 6,     // --time-limit, --target-error
+};
+
+struct SessionArgs {
+  std::string threads;  // as given: one count, or a list where the command takes one (sweep, bench)
+  std::string maxMemory;
+  std::vector<std::string> overrides;  // -D, in order
+  bool quiet = false;
+  PlanArgs plan;
+  RenderBudget budget;
+  // The one thread count of -t (0: all cores); a list or a count outside 1..1024 is refused.
+  int threadCount() const;
+  // --max-memory in bytes; 0: the memory available.
+  uint64_t maxMemoryBytes() const;
+};
+
+// Registers the options in `which` on `command`. `each` names what one command
+// renders ("job", "run", "render"): "Override a scene value in every job" ("": the
+// scene the command reads); and
+// `threadsHelp`, when not null, says what -t means for a command that takes a list.
+void addSessionOptions(CLI::App& command, SessionArgs& args, unsigned which, const char* each,
+                       const char* threadsHelp = nullptr);
+
+}  // namespace penumbra
