@@ -189,10 +189,6 @@ float spotSolidAngle(const Light& light) {
   return 2.0f * kPi * ((1.0f - light.spotCosInner) + (light.spotCosInner - light.spotCosOuter) / 3.0f);
 }
 
-bool isDeltaLight(const Light& light) {
-  return light.type == LightType::Point || light.type == LightType::Directional;
-}
-
 PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                             float u3, float u4) {
   PhotonRay r;

@@ -61,16 +61,15 @@ bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, const Vec3
 // Surface area of an area light (0 for a delta light).
 float lightArea(const Light& light);
 // Area lights in a scene get this many samples per shading point, delta lights one.
-inline int lightSampleCount(const Light& light, int areaSamples) {
-  return light.type == LightType::Point || light.type == LightType::Directional ? 1 : areaSamples;
-}
+inline int lightSampleCount(const Light& light, int areaSamples) { return isDelta(light.type) ? 1 : areaSamples; }
 
 // Total emitted flux, per channel: 4 pi I for a point light, E pi R^2 for a
 // directional light over the scene's bounding disc, pi A L for an area light, pi R^2
 // x the integral of L over all directions for an environment.
 Color lightPower(const Light& light, const SceneSphere& bounds);
 
-bool isDeltaLight(const Light& light);
+inline const LightTraits& lightTraits(const Light& light) { return lightTraits(light.type); }
+inline bool isDeltaLight(const Light& light) { return isDelta(light.type); }
 
 // A spot's share of its intensity towards `dir` (the way light leaves it): glTF's
 // falloff, the square of a linear ramp between the outer and inner cone; 1 for

@@ -11,10 +11,9 @@ namespace penumbra {
 constexpr int kStrataSide = 4;
 constexpr int kMaxLightStrata = kStrataSide * kStrataSide;
 
-// How many strata the gate keeps for a light. Mesh lights pick a triangle and a
-// side from one number, so their (u, v) cells are not regions of the light: one.
+// How many strata the gate keeps for a light (its traits' StrataKind).
 inline int lightStrata(const Light& light) {
-  return light.type == LightType::Quad || light.type == LightType::Sphere ? kMaxLightStrata : 1;
+  return lightTraits(light.type).strata != StrataKind::One ? kMaxLightStrata : 1;
 }
 
 // The cell of (u1, u2) in [0, 1)^2 (NaN and out-of-range values clamp to an edge cell).
