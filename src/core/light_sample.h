@@ -1,5 +1,6 @@
 // The light interface: incident light at a point (one sample of an area light),
-// emitted photons, total power, delta-ness; dispatched on Light::type. Units: a
+// emitted photons, total power, delta-ness; each dispatched to the light's type
+// (core/light_types.h, the code in core/lights/). Units: a
 // point light's colour x intensity is its radiant intensity (W/sr), a directional
 // light's its irradiance (W/m^2), a quad, sphere, mesh or environment light's its radiance
 // (W/(sr m^2)).
@@ -30,14 +31,14 @@ struct LightIncidence {
 };
 
 // What sampling one light from one point needs, computed once for all its samples
-// (the quad's normal and area, the sphere's cone and frame).
+// by its type's prepare: scratch a type may use as its header says.
 struct LightSampler {
   const Light* light = nullptr;
   Vec3 p{0.0f};
-  Vec3 normal{0.0f};  // quad
+  Vec3 normal{0.0f};  // a planar emitter's normal
   float area = 0.0f;
-  float band = 0.0f;  // quad: the rounding band about its plane a shadow ray stops short of
-  Vec3 w{0.0f}, t{0.0f}, b{0.0f};  // sphere: towards the centre, and a frame about it
+  float band = 0.0f;  // a planar emitter: the rounding band about its plane a shadow ray stops short of
+  Vec3 w{0.0f}, t{0.0f}, b{0.0f};  // towards the centre, and a frame about it (the sphere)
   float dc = 0.0f, dc2 = 0.0f, r2 = 0.0f, oneMinusCosMax = 0.0f;
   bool outside = false;
 };
@@ -101,8 +102,5 @@ struct PhotonRay {
 float classicPhotonWeight(const Light& light);
 PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                             float u3, float u4);
-// A sphere light's photon start at the unit normal `n`: its surface point and rounding
-// error (no direction yet).
-PhotonRay sphereLightStart(const Light& light, const Vec3& n);
 
 }  // namespace penumbra

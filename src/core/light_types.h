@@ -1,8 +1,13 @@
-// The list of light types and what each answers by plain data (its traits): the one
-// place a new light type is named. Behaviour lives in light_sample.h's dispatchers.
+// The list of light types: each type's traits (what it answers by plain data) and the
+// struct of static functions holding its code (core/lights/), joined by one type list
+// that dispatchLight turns into a switch. The one place a new light type is named.
 #pragma once
+#include "core/math.h"
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <tuple>
+#include <utility>
 
 namespace penumbra {
 
@@ -11,6 +16,7 @@ namespace penumbra {
 // light is the triangles of every mesh whose material has an emission. An environment
 // (at most one, always the last light) lights from every direction at infinity and is
 // what rays leaving the scene see (core/environment.h).
+// A new type: an enumerator here, its header and its AllLights entry below.
 enum class LightType : uint8_t { Point, Directional, Quad, Sphere, Mesh, Environment };
 
 // Where a light's emission comes from, as pbrt names it: a point or a direction
@@ -22,25 +28,101 @@ enum class LightSupport : uint8_t { Position, Direction, Area, Infinite };
 // 4x4 equal-area cells of the surface where a sample lands.
 enum class StrataKind : uint8_t { One, Parametric, Surface };
 
+// What a light type answers without running code: read by the stages in loops.
 struct LightTraits {
   LightSupport support;
   StrataKind strata;
 };
 
-inline constexpr LightTraits kLightTraits[] = {
-    /* Point */ {LightSupport::Position, StrataKind::One},
-    /* Directional */ {LightSupport::Direction, StrataKind::One},
-    /* Quad */ {LightSupport::Area, StrataKind::Parametric},
-    /* Sphere */ {LightSupport::Area, StrataKind::Surface},
-    /* Mesh: a triangle and its side come from one number, so (u, v) cells are not regions */
-    {LightSupport::Area, StrataKind::One},
-    /* Environment */ {LightSupport::Infinite, StrataKind::One},
+struct Light;
+struct LightSampler;
+struct LightIncidence;
+struct PhotonRay;
+struct SceneSphere;
+
+// The answers a type leaves out (defined in light_sample.cpp). Each type is a struct
+// of static functions deriving from this; the dispatchers in light_sample.cpp call
+// T::f, so a type overrides a default by declaring its own f.
+struct LightDefaults {
+  // Per shading point, before its samples: nothing to set up.
+  static void prepare(const Light& light, const Vec3& p, LightSampler& s);
+  // No closed form: sample.
+  static bool irradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E);
+  static float area(const Light& light);  // 0: not an area light
+  // A Lambertian emitter's flux: pi A L.
+  static Color power(const Light& light, const SceneSphere& bounds);
+  // Its share of the classic photon budget, in a point light's intensity units: pi A L / (4 pi).
+  static float classicWeight(const Light& light);
 };
+
+}  // namespace penumbra
+
+// One header per type; each declares only, with the forward declarations above.
+#include "core/lights/point_light.h"
+#include "core/lights/directional_light.h"
+#include "core/lights/quad_light.h"
+#include "core/lights/sphere_light.h"
+#include "core/lights/mesh_light.h"
+#include "core/lights/environment_light.h"
+
+namespace penumbra {
+
+template <class... Ts>
+struct LightTypeList {};
+// In the enum's order: the i-th type handles LightType value i.
+using AllLights = LightTypeList<PointLight, DirectionalLight, QuadLight, SphereLight, MeshLight, EnvironmentLight>;
+
+namespace light_list {
+template <class... Ts, size_t... I>
+constexpr bool inEnumOrder(LightTypeList<Ts...>, std::index_sequence<I...>) {
+  return ((Ts::kType == static_cast<LightType>(I)) && ...);
+}
+template <class... Ts>
+constexpr std::array<LightTraits, sizeof...(Ts)> traitsOf(LightTypeList<Ts...>) {
+  return {Ts::kTraits...};
+}
+template <class... Ts>
+constexpr size_t countOf(LightTypeList<Ts...>) {
+  return sizeof...(Ts);
+}
+
+// pbrt-v4's TaggedPointer::Dispatch: a switch over the list, so a hot loop pays a
+// jump, never a virtual call.
+template <class F, class... Ts>
+decltype(auto) dispatch(LightType type, F&& f, LightTypeList<Ts...>) {
+  constexpr size_t n = sizeof...(Ts);
+  static_assert(n <= 8, "dispatch switches over at most 8 types: add cases");
+  using List = std::tuple<Ts...>;
+  // Cases past the list are discarded at compile time (if constexpr), not dispatched.
+#define PENUMBRA_LIGHT_CASE(i) \
+  case i:                      \
+    if constexpr (i < n) return f(std::tuple_element_t<(i < n ? i : 0), List>{}); \
+    break;
+  switch (static_cast<size_t>(type)) {
+    PENUMBRA_LIGHT_CASE(0) PENUMBRA_LIGHT_CASE(1) PENUMBRA_LIGHT_CASE(2) PENUMBRA_LIGHT_CASE(3)
+    PENUMBRA_LIGHT_CASE(4) PENUMBRA_LIGHT_CASE(5) PENUMBRA_LIGHT_CASE(6) PENUMBRA_LIGHT_CASE(7)
+  }
+#undef PENUMBRA_LIGHT_CASE
+  __builtin_unreachable();  // a LightType value with no entry in AllLights
+}
+}  // namespace light_list
+
+inline constexpr size_t kLightTypes = light_list::countOf(AllLights{});
+static_assert(light_list::inEnumOrder(AllLights{}, std::make_index_sequence<kLightTypes>{}),
+              "AllLights lists the types in LightType's order");
+inline constexpr auto kLightTraits = light_list::traitsOf(AllLights{});
 
 constexpr const LightTraits& lightTraits(LightType type) { return kLightTraits[static_cast<size_t>(type)]; }
 
 constexpr bool isDelta(LightType type) {
   return lightTraits(type).support == LightSupport::Position || lightTraits(type).support == LightSupport::Direction;
+}
+
+// Calls f(T{}) with the struct T of `type` (core/lights/), e.g.
+// dispatchLight(light.type, [&](auto t) { return decltype(t)::area(light); }).
+template <class F>
+decltype(auto) dispatchLight(LightType type, F&& f) {
+  return light_list::dispatch(type, std::forward<F>(f), AllLights{});
 }
 
 }  // namespace penumbra

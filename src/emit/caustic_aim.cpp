@@ -117,7 +117,7 @@ float startOf(const Light& light, const SceneSphere& bounds, const CausticAim& a
   const std::vector<SceneSphere>& targets = *aim.targets;
   const Cone cap = capFacing(light, targets[pick(aim.measure, aim.total, rng.uniform())]);
   const float u1 = rng.uniform(), u2 = rng.uniform();
-  start = sphereLightStart(light, sampleCone(cap, u1, u2));
+  start = SphereLight::start(light, sampleCone(cap, u1, u2));
   double density = 0.0;  // per unit of the sphere's area 4 pi r^2
   for (size_t k = 0; k < targets.size(); ++k) {
     if (aim.measure[k] > 0.0f && facing(targets[k], start.origin, start.normal)) {

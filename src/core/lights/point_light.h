@@ -1,0 +1,16 @@
+// The point light, and the spot (a point light with a cone, Light::isSpot): radiant
+// intensity from one position. Included by core/light_types.h only.
+#pragma once
+
+namespace penumbra {
+
+struct PointLight : LightDefaults {
+  static constexpr LightType kType = LightType::Point;
+  static constexpr LightTraits kTraits = {LightSupport::Position, StrataKind::One};
+  static LightIncidence sample(const LightSampler& s, float u1, float u2);
+  static Color power(const Light& light, const SceneSphere& bounds);
+  static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);
+  static float classicWeight(const Light& light);
+};
+
+}  // namespace penumbra
