@@ -1,6 +1,7 @@
 // The light interface's dispatchers: each function calls its answer in the light's
 // type (core/lights/, through core/light_types.h), and the defaults types leave out.
 #include "core/light_sample.h"
+#include "core/rng.h"
 #include "core/sampling.h"
 
 namespace penumbra {
@@ -12,6 +13,13 @@ Color LightDefaults::power(const Light& light, const SceneSphere&) {
   return light.radiance() * (kPi * lightArea(light));  // a Lambertian emitter: pi A L
 }
 float LightDefaults::classicWeight(const Light& light) { return luminance(light.radiance()) * lightArea(light) * 0.25f; }
+Color LightDefaults::classicPower(const Light& light, const SceneSphere& bounds, float count) {
+  return lightPower(light, bounds) * (1.0f / count);
+}
+int LightDefaults::startNumbers(const Light&) { return 4; }
+Vec3 LightDefaults::photonOrigin(const Light&, const PhotonRay& r, const SceneSphere&) {
+  return offsetRayOrigin(r.origin, r.normal, r.error, r.dir);
+}
 
 LightSampler prepareLight(const Light& light, const Vec3& p) {
   LightSampler s;
@@ -44,6 +52,39 @@ PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float
 
 float classicPhotonWeight(const Light& light) {
   return dispatchLight(light.type, [&](auto t) { return decltype(t)::classicWeight(light); });
+}
+
+Vec3 photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds) {
+  return dispatchLight(light.type, [&](auto t) { return decltype(t)::photonOrigin(light, r, bounds); });
+}
+
+PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4) {
+  PhotonRay r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
+  r.origin = photonOrigin(light, r, bounds);
+  return r;
+}
+
+int photonStartNumbers(const Light& light) {
+  return dispatchLight(light.type, [&](auto t) { return decltype(t)::startNumbers(light); });
+}
+
+// The rng's draws stay in order (u1, u2, then u3, u4 only for a light that reads them),
+// so every stream emits the photons it always did.
+PhotonRay classicPhotonStart(const Light& light, const SceneSphere& bounds, Rng& rng) {
+  const float u1 = rng.uniform(), u2 = rng.uniform();
+  if (photonStartNumbers(light) == 2) return emitterPhoton(light, bounds, u1, u2, 0.0f, 0.0f);
+  const float u3 = rng.uniform(), u4 = rng.uniform();
+  return emitterPhoton(light, bounds, u1, u2, u3, u4);
+}
+
+PhotonRay shadowPhotonStart(const Light& light, const SceneSphere& bounds, const Kronecker4& starts, uint64_t i,
+                            Rng& rng) {
+  if (photonStartNumbers(light) == 2) return classicPhotonStart(light, bounds, rng);
+  return emitterPhoton(light, bounds, starts(i, 0), starts(i, 1), starts(i, 2), starts(i, 3));
+}
+
+Color classicPhotonPower(const Light& light, const SceneSphere& bounds, float count) {
+  return dispatchLight(light.type, [&](auto t) { return decltype(t)::classicPower(light, bounds, count); });
 }
 
 }  // namespace penumbra

@@ -9,6 +9,9 @@
 
 namespace penumbra {
 
+class Rng;         // core/rng.h
+class Kronecker4;  // core/sampling.h
+
 // A sphere enclosing the scene: directional lights emit photons from a disc of
 // its radius, and their total power is irradiance x that disc's area.
 struct SceneSphere {
@@ -95,6 +98,26 @@ struct PhotonRay {
   Color weight{1.0f};
   uint8_t stratum = 0;  // the part of the light it left from (core/light_strata.h)
 };
+
+// Where photons start (the classic and physical passes share these). emitterPhoton is
+// sampleLightPhoton with its origin made safe to trace from (photonOrigin): an area
+// light's point lifted off its own surface, a point light's position pushed a rounding
+// error along the photon's way, a directional light's disc point as drawn.
+PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);
+Vec3 photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds);
+// How many of u1..u4 a light's photon reads: 2 for a point light, 4 for the rest.
+int photonStartNumbers(const Light& light);
+// A classic photon's start from the light's own stream: its numbers drawn in order.
+PhotonRay classicPhotonStart(const Light& light, const SceneSphere& bounds, Rng& rng);
+// Shadow photon i of a batch: every light that reads four numbers takes them from point
+// i of the batch's Kronecker sequence (a cell's vote per stratum sees a sixteenth of a
+// light's photons, and evenly spread ones decide it right more often than as many
+// independent ones); a point light keeps classicPhotonStart's two.
+PhotonRay shadowPhotonStart(const Light& light, const SceneSphere& bounds, const Kronecker4& starts, uint64_t i,
+                            Rng& rng);
+// The power each of `count` classic photons carries: power / count (a point light's
+// as 4 pi I / count).
+Color classicPhotonPower(const Light& light, const SceneSphere& bounds, float count);
 
 // A light's share of the classic photon budget, in the units of a point light's
 // intensity (flux / 4 pi): area lights pi A L / (4 pi); directional and environment

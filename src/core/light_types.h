@@ -53,6 +53,13 @@ struct LightDefaults {
   static Color power(const Light& light, const SceneSphere& bounds);
   // Its share of the classic photon budget, in a point light's intensity units: pi A L / (4 pi).
   static float classicWeight(const Light& light);
+  // Each of `count` classic photons carries power / count.
+  static Color classicPower(const Light& light, const SceneSphere& bounds, float count);
+  // Uniform numbers a photon's start reads (photon's u1..u4): all four.
+  static int startNumbers(const Light& light);
+  // An area (or infinite) light's photon leaves from its drawn point lifted off the
+  // surface along its normal, so its first ray misses the emitter.
+  static Vec3 photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds);
 };
 
 }  // namespace penumbra

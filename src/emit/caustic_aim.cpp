@@ -68,7 +68,7 @@ float sampleDelta(const Light& light, const SceneSphere& bounds, const CausticAi
   const bool point = light.type == LightType::Point;
   if (point) {
     r.dir = sampleCone(coneTo(t, light.position), u1, u2);
-    r.origin = pointLightOrigin(light, r.dir, bounds);
+    r.origin = photonOrigin(light, r, bounds);
   } else {
     const float rad = t.radius * std::sqrt(u1), phi = 2.0f * kPi * u2;
     Vec3 tt, bb;

@@ -30,6 +30,8 @@ PhotonRay DirectionalLight::photon(const Light& light, const SceneSphere& bounds
   return r;
 }
 
+Vec3 DirectionalLight::photonOrigin(const Light&, const PhotonRay& r, const SceneSphere&) { return r.origin; }
+
 // The classic model lights by it through shadow rays only.
 float DirectionalLight::classicWeight(const Light&) { return 0.0f; }
 

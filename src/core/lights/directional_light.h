@@ -11,6 +11,8 @@ struct DirectionalLight : LightDefaults {
   static Color power(const Light& light, const SceneSphere& bounds);
   static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);
   static float classicWeight(const Light& light);
+  // As drawn: outside the scene's bounding sphere already.
+  static Vec3 photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds);
 };
 
 }  // namespace penumbra

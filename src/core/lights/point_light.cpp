@@ -47,6 +47,22 @@ float PointLight::classicWeight(const Light& light) {
   return luminance(light.radiance());
 }
 
+Color PointLight::classicPower(const Light& light, const SceneSphere& bounds, float count) {
+  if (light.isSpot()) return LightDefaults::classicPower(light, bounds, count);
+  return light.radiance() * (4.0f * kPi / count);  // 4 pi I / count, as always
+}
+
+// A point light draws its direction from two numbers, as it always has; a spot draws four.
+int PointLight::startNumbers(const Light& light) { return light.isSpot() ? 4 : 2; }
+
+// A rounding error along the photon's way (measured against the light's coordinates and
+// the scene's size). A light lying in a surface would otherwise meet that surface at
+// t = 0 with every photon, as Embree's watertight test counts such hits, and the gate
+// would call everything around it shadowed.
+Vec3 PointLight::photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds) {
+  return light.position + r.dir * (gammaBound(7) * (maxComponent(glm::abs(light.position)) + bounds.radius));
+}
+
 float spotFalloff(const Light& light, const Vec3& dir) {
   if (!light.isSpot()) return 1.0f;
   const float c = glm::dot(dir, light.direction);

@@ -11,6 +11,10 @@ struct PointLight : LightDefaults {
   static Color power(const Light& light, const SceneSphere& bounds);
   static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);
   static float classicWeight(const Light& light);
+  static Color classicPower(const Light& light, const SceneSphere& bounds, float count);
+  static int startNumbers(const Light& light);  // 2, a spot 4
+  // Its position, a rounding error along the way (photonOrigin in point_light.cpp says why).
+  static Vec3 photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds);
 };
 
 }  // namespace penumbra
