@@ -28,10 +28,16 @@ enum class LightSupport : uint8_t { Position, Direction, Area, Infinite };
 // 4x4 equal-area cells of the surface where a sample lands.
 enum class StrataKind : uint8_t { One, Parametric, Surface };
 
+// How the physical model's caustic photons aim at the specular targets (emit/caustic_aim.h):
+// not at all; cones from the light's position; discs along its direction; from a start
+// on its surface; from a start on a cap of the sphere that faces a target.
+enum class AimKind : uint8_t { None, Cone, Disc, Surface, SphereCaps };
+
 // What a light type answers without running code: read by the stages in loops.
 struct LightTraits {
   LightSupport support;
   StrataKind strata;
+  AimKind aim;
 };
 
 struct Light;

@@ -6,7 +6,7 @@ namespace penumbra {
 
 struct EnvironmentLight : LightDefaults {
   static constexpr LightType kType = LightType::Environment;
-  static constexpr LightTraits kTraits = {LightSupport::Infinite, StrataKind::One};
+  static constexpr LightTraits kTraits = {LightSupport::Infinite, StrataKind::One, AimKind::None};
   // Without a normal: the map by luminance, a constant sky uniformly (the tracers
   // sample it about the normal instead, trace/environment_light.h).
   static LightIncidence sample(const LightSampler& s, float u1, float u2);

@@ -6,7 +6,7 @@ namespace penumbra {
 
 struct PointLight : LightDefaults {
   static constexpr LightType kType = LightType::Point;
-  static constexpr LightTraits kTraits = {LightSupport::Position, StrataKind::One};
+  static constexpr LightTraits kTraits = {LightSupport::Position, StrataKind::One, AimKind::Cone};
   static LightIncidence sample(const LightSampler& s, float u1, float u2);
   static Color power(const Light& light, const SceneSphere& bounds);
   static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);
