@@ -74,6 +74,10 @@ Color lightPower(const Light& light, const SceneSphere& bounds);
 
 inline const LightTraits& lightTraits(const Light& light) { return lightTraits(light.type); }
 inline bool isDeltaLight(const Light& light) { return isDelta(light.type); }
+// Whether the shadow gate answers for a light: it emits shadow photons and is not dark.
+inline bool answersGate(const Light& light) {
+  return lightTraits(light).emitsShadowPhotons && maxComponent(light.radiance()) > 0.0f;
+}
 
 // A spot's share of its intensity towards `dir` (the way light leaves it): glTF's
 // falloff, the square of a linear ramp between the outer and inner cone; 1 for

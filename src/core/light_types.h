@@ -33,11 +33,28 @@ enum class StrataKind : uint8_t { One, Parametric, Surface };
 // on its surface; from a start on a cap of the sphere that faces a target.
 enum class AimKind : uint8_t { None, Cone, Disc, Surface, SphereCaps };
 
+// What decides a shadow ray: anything on the segment short of the sample point; or
+// the first surface the ray meets, which lets it through when that is the emitter
+// itself (a sphere: near its silhouette a lifted ray can enter it before the sample).
+enum class ShadowTest : uint8_t { Segment, FirstHitIsEmitter };
+
+// How the tracers light a point by it: gated light samples (directFromLight), or
+// multiple importance sampling of the light and the BSDF (directFromEnvironment).
+enum class DirectSampling : uint8_t { Gated, EnvironmentMis };
+
 // What a light type answers without running code: read by the stages in loops.
 struct LightTraits {
   LightSupport support;
   StrataKind strata;
   AimKind aim;
+  ShadowTest shadowTest;
+  DirectSampling direct;
+  // It emits shadow photons (so the gate can answer for it) and classic photons.
+  bool emitsShadowPhotons;
+  // It emits the physical model's photons, so on its own it keeps those maps on. A
+  // directional light does not, though it emits physical photons when another light
+  // keeps them on (as the renderer has always done).
+  bool opensPhysicalMaps;
 };
 
 struct Light;

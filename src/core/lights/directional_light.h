@@ -6,7 +6,10 @@ namespace penumbra {
 
 struct DirectionalLight : LightDefaults {
   static constexpr LightType kType = LightType::Directional;
-  static constexpr LightTraits kTraits = {LightSupport::Direction, StrataKind::One, AimKind::Disc};
+  static constexpr LightTraits kTraits = {
+      LightSupport::Direction, StrataKind::One, AimKind::Disc,
+      ShadowTest::Segment, DirectSampling::Gated,
+      /*emitsShadowPhotons*/ false, /*opensPhysicalMaps*/ false};
   static LightIncidence sample(const LightSampler& s, float u1, float u2);
   static Color power(const Light& light, const SceneSphere& bounds);
   static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);

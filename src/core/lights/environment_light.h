@@ -6,7 +6,10 @@ namespace penumbra {
 
 struct EnvironmentLight : LightDefaults {
   static constexpr LightType kType = LightType::Environment;
-  static constexpr LightTraits kTraits = {LightSupport::Infinite, StrataKind::One, AimKind::None};
+  static constexpr LightTraits kTraits = {
+      LightSupport::Infinite, StrataKind::One, AimKind::None,
+      ShadowTest::Segment, DirectSampling::EnvironmentMis,
+      /*emitsShadowPhotons*/ false, /*opensPhysicalMaps*/ true};
   // Without a normal: the map by luminance, a constant sky uniformly (the tracers
   // sample it about the normal instead, trace/environment_light.h).
   static LightIncidence sample(const LightSampler& s, float u1, float u2);

@@ -8,7 +8,10 @@ namespace penumbra {
 // regions of it: one stratum.
 struct MeshLight : LightDefaults {
   static constexpr LightType kType = LightType::Mesh;
-  static constexpr LightTraits kTraits = {LightSupport::Area, StrataKind::One, AimKind::Surface};
+  static constexpr LightTraits kTraits = {
+      LightSupport::Area, StrataKind::One, AimKind::Surface,
+      ShadowTest::Segment, DirectSampling::Gated,
+      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true};
   static void prepare(const Light& light, const Vec3& p, LightSampler& s);
   // One sample uniform by area (pdf_A = 1 / A; textured: by area x luminance): the
   // incidence L cos_l / (pdf_A d^2), invalid behind the sampled triangle's emitting side

@@ -6,7 +6,10 @@ namespace penumbra {
 
 struct PointLight : LightDefaults {
   static constexpr LightType kType = LightType::Point;
-  static constexpr LightTraits kTraits = {LightSupport::Position, StrataKind::One, AimKind::Cone};
+  static constexpr LightTraits kTraits = {
+      LightSupport::Position, StrataKind::One, AimKind::Cone,
+      ShadowTest::Segment, DirectSampling::Gated,
+      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true};
   static LightIncidence sample(const LightSampler& s, float u1, float u2);
   static Color power(const Light& light, const SceneSphere& bounds);
   static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);

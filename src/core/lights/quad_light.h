@@ -6,7 +6,10 @@ namespace penumbra {
 
 struct QuadLight : LightDefaults {
   static constexpr LightType kType = LightType::Quad;
-  static constexpr LightTraits kTraits = {LightSupport::Area, StrataKind::Parametric, AimKind::Surface};
+  static constexpr LightTraits kTraits = {
+      LightSupport::Area, StrataKind::Parametric, AimKind::Surface,
+      ShadowTest::Segment, DirectSampling::Gated,
+      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true};
   static void prepare(const Light& light, const Vec3& p, LightSampler& s);
   static LightIncidence sample(const LightSampler& s, float u1, float u2);
   static bool irradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E);

@@ -6,7 +6,10 @@ namespace penumbra {
 
 struct SphereLight : LightDefaults {
   static constexpr LightType kType = LightType::Sphere;
-  static constexpr LightTraits kTraits = {LightSupport::Area, StrataKind::Surface, AimKind::SphereCaps};
+  static constexpr LightTraits kTraits = {
+      LightSupport::Area, StrataKind::Surface, AimKind::SphereCaps,
+      ShadowTest::FirstHitIsEmitter, DirectSampling::Gated,
+      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true};
   static void prepare(const Light& light, const Vec3& p, LightSampler& s);
   static LightIncidence sample(const LightSampler& s, float u1, float u2);
   static bool irradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E);
