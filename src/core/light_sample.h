@@ -1,5 +1,6 @@
 // The light interface: incident light at a point (one sample of an area light),
-// emitted photons, total power, delta-ness; dispatched on Light::type. Units: a
+// emitted photons, total power, delta-ness; each dispatched to the light's type
+// (core/light_types.h, the code in core/lights/). Units: a
 // point light's colour x intensity is its radiant intensity (W/sr), a directional
 // light's its irradiance (W/m^2), a quad, sphere, mesh or environment light's its radiance
 // (W/(sr m^2)).
@@ -7,6 +8,9 @@
 #include "core/scene.h"
 
 namespace penumbra {
+
+class Rng;         // core/rng.h
+class Kronecker4;  // core/sampling.h
 
 // A sphere enclosing the scene: directional lights emit photons from a disc of
 // its radius, and their total power is irradiance x that disc's area.
@@ -30,14 +34,14 @@ struct LightIncidence {
 };
 
 // What sampling one light from one point needs, computed once for all its samples
-// (the quad's normal and area, the sphere's cone and frame).
+// by its type's prepare: scratch a type may use as its header says.
 struct LightSampler {
   const Light* light = nullptr;
   Vec3 p{0.0f};
-  Vec3 normal{0.0f};  // quad
+  Vec3 normal{0.0f};  // a planar emitter's normal
   float area = 0.0f;
-  float band = 0.0f;  // quad: the rounding band about its plane a shadow ray stops short of
-  Vec3 w{0.0f}, t{0.0f}, b{0.0f};  // sphere: towards the centre, and a frame about it
+  float band = 0.0f;  // a planar emitter: the rounding band about its plane a shadow ray stops short of
+  Vec3 w{0.0f}, t{0.0f}, b{0.0f};  // towards the centre, and a frame about it (the sphere)
   float dc = 0.0f, dc2 = 0.0f, r2 = 0.0f, oneMinusCosMax = 0.0f;
   bool outside = false;
 };
@@ -61,16 +65,19 @@ bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, const Vec3
 // Surface area of an area light (0 for a delta light).
 float lightArea(const Light& light);
 // Area lights in a scene get this many samples per shading point, delta lights one.
-inline int lightSampleCount(const Light& light, int areaSamples) {
-  return light.type == LightType::Point || light.type == LightType::Directional ? 1 : areaSamples;
-}
+inline int lightSampleCount(const Light& light, int areaSamples) { return isDelta(light.type) ? 1 : areaSamples; }
 
 // Total emitted flux, per channel: 4 pi I for a point light, E pi R^2 for a
 // directional light over the scene's bounding disc, pi A L for an area light, pi R^2
 // x the integral of L over all directions for an environment.
 Color lightPower(const Light& light, const SceneSphere& bounds);
 
-bool isDeltaLight(const Light& light);
+inline const LightTraits& lightTraits(const Light& light) { return lightTraits(light.type); }
+inline bool isDeltaLight(const Light& light) { return isDelta(light.type); }
+// Whether the shadow gate answers for a light: it emits shadow photons and is not dark.
+inline bool answersGate(const Light& light) {
+  return lightTraits(light).emitsShadowPhotons && maxComponent(light.radiance()) > 0.0f;
+}
 
 // A spot's share of its intensity towards `dir` (the way light leaves it): glTF's
 // falloff, the square of a linear ramp between the outer and inner cone; 1 for
@@ -96,14 +103,31 @@ struct PhotonRay {
   uint8_t stratum = 0;  // the part of the light it left from (core/light_strata.h)
 };
 
+// Where photons start (the classic and physical passes share these). emitterPhoton is
+// sampleLightPhoton with its origin made safe to trace from (photonOrigin): an area
+// light's point lifted off its own surface, a point light's position pushed a rounding
+// error along the photon's way, a directional light's disc point as drawn.
+PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);
+Vec3 photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds);
+// How many of u1..u4 a light's photon reads: 2 for a point light, 4 for the rest.
+int photonStartNumbers(const Light& light);
+// A classic photon's start from the light's own stream: its numbers drawn in order.
+PhotonRay classicPhotonStart(const Light& light, const SceneSphere& bounds, Rng& rng);
+// Shadow photon i of a batch: every light that reads four numbers takes them from point
+// i of the batch's Kronecker sequence (a cell's vote per stratum sees a sixteenth of a
+// light's photons, and evenly spread ones decide it right more often than as many
+// independent ones); a point light keeps classicPhotonStart's two.
+PhotonRay shadowPhotonStart(const Light& light, const SceneSphere& bounds, const Kronecker4& starts, uint64_t i,
+                            Rng& rng);
+// The power each of `count` classic photons carries: power / count (a point light's
+// as 4 pi I / count).
+Color classicPhotonPower(const Light& light, const SceneSphere& bounds, float count);
+
 // A light's share of the classic photon budget, in the units of a point light's
 // intensity (flux / 4 pi): area lights pi A L / (4 pi); directional and environment
 // lights emit no classic photons (the classic model lights by them through shadow rays).
 float classicPhotonWeight(const Light& light);
 PhotonRay sampleLightPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
                             float u3, float u4);
-// A sphere light's photon start at the unit normal `n`: its surface point and rounding
-// error (no direction yet).
-PhotonRay sphereLightStart(const Light& light, const Vec3& n);
 
 }  // namespace penumbra

@@ -11,10 +11,9 @@ namespace penumbra {
 constexpr int kStrataSide = 4;
 constexpr int kMaxLightStrata = kStrataSide * kStrataSide;
 
-// How many strata the gate keeps for a light. Mesh lights pick a triangle and a
-// side from one number, so their (u, v) cells are not regions of the light: one.
+// How many strata the gate keeps for a light (its traits' StrataKind).
 inline int lightStrata(const Light& light) {
-  return light.type == LightType::Quad || light.type == LightType::Sphere ? kMaxLightStrata : 1;
+  return lightTraits(light.type).strata != StrataKind::One ? kMaxLightStrata : 1;
 }
 
 // The cell of (u1, u2) in [0, 1)^2 (NaN and out-of-range values clamp to an edge cell).
@@ -40,10 +39,14 @@ inline uint8_t sphereStratum(const Vec3& n) {
 }
 
 // The stratum of one light sample drawn with numbers u that reached `point` on the
-// light: a quad's from u itself (u is its (u, v)), a sphere's from where it was met.
+// light, by its StrataKind: Parametric from u itself (u is the light's (u, v)), Surface
+// (the sphere) from where it was met. Inline: the gate asks once per light sample.
 inline uint8_t sampleStratum(const Light& light, const Vec2& u, const Vec3& point) {
-  if (light.type == LightType::Quad) return stratumOf(u.x, u.y);
-  if (light.type == LightType::Sphere) return sphereStratum(glm::normalize(point - light.position));
+  switch (lightTraits(light.type).strata) {
+    case StrataKind::Parametric: return stratumOf(u.x, u.y);
+    case StrataKind::Surface: return sphereStratum(glm::normalize(point - light.position));
+    case StrataKind::One: break;
+  }
   return 0;
 }
 

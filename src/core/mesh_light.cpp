@@ -1,5 +1,6 @@
-// Mesh lights (emissive triangle meshes): construction, sampling by area, closed-form
-// irradiance, photon emission; and the clipped Lambert polygon formula.
+// Mesh lights (emissive triangle meshes): construction, and MeshLight's answers
+// (core/lights/mesh_light.h): sampling by area, closed-form irradiance, photon
+// emission; and the clipped Lambert polygon formula.
 #include "core/mesh_light.h"
 #include "core/emission_map.h"
 #include "core/sampling.h"
@@ -80,7 +81,19 @@ float meshLightPowerFactor(const Light& light) {
   return light.twoSided ? 2.0f * perSide : perSide;
 }
 
-LightIncidence sampleMeshLight(const LightSampler& s, float u1, float u2) {
+void MeshLight::prepare(const Light& light, const Vec3&, LightSampler& s) { s.area = meshLightArea(light); }
+
+float MeshLight::area(const Light& light) { return meshLightArea(light); }
+
+Color MeshLight::power(const Light& light, const SceneSphere&) {
+  return light.radiance() * (kPi * meshLightPowerFactor(light));
+}
+
+float MeshLight::classicWeight(const Light& light) {
+  return luminance(light.radiance()) * meshLightPowerFactor(light) * 0.25f;
+}
+
+LightIncidence MeshLight::sample(const LightSampler& s, float u1, float u2) {
   const Light& light = *s.light;
   LightIncidence in;
   if (light.areaCdf.empty()) return in;
@@ -108,7 +121,7 @@ LightIncidence sampleMeshLight(const LightSampler& s, float u1, float u2) {
   return in;
 }
 
-bool meshLightIrradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E) {
+bool MeshLight::irradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E) {
   const Light& light = *s.light;
   E = Color(0.0f);
   const size_t count = light.areaCdf.size();
@@ -125,7 +138,7 @@ bool meshLightIrradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, C
   return true;
 }
 
-PhotonRay meshLightPhoton(const Light& light, float u1, float u2, float u3, float u4) {
+PhotonRay MeshLight::photon(const Light& light, const SceneSphere&, float u1, float u2, float u3, float u4) {
   PhotonRay r;
   if (light.areaCdf.empty()) return r;
   float rest;

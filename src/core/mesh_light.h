@@ -1,6 +1,6 @@
 // Mesh lights: the triangles of an emissive mesh as one Lambertian area light,
-// sampled uniformly by area over all its triangles. Called from light_sample.cpp's
-// dispatch; the Lambert polygon formula here also serves the quad light.
+// sampled uniformly by area over all its triangles (MeshLight, core/lights/mesh_light.h,
+// answers for it); the Lambert polygon formula here also serves the quad light.
 #pragma once
 #include "core/light_sample.h"
 #include <vector>
@@ -25,22 +25,9 @@ inline float meshLightArea(const Light& light) {
 // textured), twice over for a two-sided light.
 float meshLightPowerFactor(const Light& light);
 
-// One sample uniform by area (pdf_A = 1 / A; textured: by area x luminance): the
-// incidence L cos_l / (pdf_A d^2), invalid behind the sampled triangle's emitting side
-// (a two-sided light has none).
-LightIncidence sampleMeshLight(const LightSampler& s, float u1, float u2);
-
-// Closed-form unoccluded irradiance: Lambert's formula per triangle facing p, each
-// clipped to the hemispheres of n and ng. False above kMeshClosedFormTriangles
-// triangles (sample instead: the cost would grow with the mesh).
+// MeshLight::irradiance's closed form runs up to this many triangles.
 inline constexpr size_t kMeshClosedFormTriangles = 64;
-bool meshLightIrradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E);
 
-// A photon from a uniform point (triangle by area, or area x luminance, from u1,
-// position from u1's remainder and u2) in a cosine-weighted direction about that
-// triangle's normal (or, two-sided, either side's); a textured light's photon weighs
-// its texel over the triangle's density.
-PhotonRay meshLightPhoton(const Light& light, float u1, float u2, float u3, float u4);
 
 // Lambert's formula for the polygon poly[0..m) (corners relative to the receiving
 // point, m <= 4), clipped to the half-spaces above n and ng: the integral of

@@ -2,6 +2,7 @@
 // lives here; quads, boxes, OBJ files and teapots all arrive as TriangleMesh.
 #pragma once
 #include "core/alpha_mask.h"
+#include "core/light_types.h"
 #include "core/shading_model.h"
 #include "core/math.h"
 #include "core/shared_list.h"
@@ -25,13 +26,6 @@ struct Camera {
   int height = 480;
   int spp = 1;  // samples per pixel and pass (one pass at spp 1: the pixel centre)
 };
-
-// Point and directional lights are deltas; quad, sphere and mesh lights are area
-// emitters, sampled light_samples times per shading point and visible to rays. A mesh
-// light is the triangles of every mesh whose material has an emission. An environment
-// (at most one, always the last light) lights from every direction at infinity and is
-// what rays leaving the scene see (core/environment.h).
-enum class LightType { Point, Directional, Quad, Sphere, Mesh, Environment };
 
 struct EnvironmentMap;  // core/environment.h
 struct MeshEmission;    // core/emission_map.h

@@ -65,10 +65,10 @@ float sampleDelta(const Light& light, const SceneSphere& bounds, const CausticAi
   const std::vector<SceneSphere>& targets = *aim.targets;
   const SceneSphere& t = targets[pick(aim.measure, aim.total, rng.uniform())];
   const float u1 = rng.uniform(), u2 = rng.uniform();
-  const bool point = light.type == LightType::Point;
+  const bool point = lightTraits(light).aim == AimKind::Cone;  // else a disc along its direction
   if (point) {
     r.dir = sampleCone(coneTo(t, light.position), u1, u2);
-    r.origin = pointLightOrigin(light, r.dir, bounds);
+    r.origin = photonOrigin(light, r, bounds);
   } else {
     const float rad = t.radius * std::sqrt(u1), phi = 2.0f * kPi * u2;
     Vec3 tt, bb;
@@ -109,7 +109,7 @@ Cone capFacing(const Light& light, const SceneSphere& t) {
 // on a cap that faces a target, picked by aim.measure, uniform in it, since elsewhere
 // every target is behind the start; its density is the mixture of the caps holding it.
 float startOf(const Light& light, const SceneSphere& bounds, const CausticAim& aim, Rng& rng, PhotonRay& start) {
-  if (light.type != LightType::Sphere) {
+  if (lightTraits(light).aim != AimKind::SphereCaps) {
     const float u1 = rng.uniform(), u2 = rng.uniform();
     start = sampleLightPhoton(light, bounds, u1, u2, 0.5f, 0.5f);
     return 1.0f;
@@ -117,7 +117,7 @@ float startOf(const Light& light, const SceneSphere& bounds, const CausticAim& a
   const std::vector<SceneSphere>& targets = *aim.targets;
   const Cone cap = capFacing(light, targets[pick(aim.measure, aim.total, rng.uniform())]);
   const float u1 = rng.uniform(), u2 = rng.uniform();
-  start = sphereLightStart(light, sampleCone(cap, u1, u2));
+  start = SphereLight::start(light, sampleCone(cap, u1, u2));
   double density = 0.0;  // per unit of the sphere's area 4 pi r^2
   for (size_t k = 0; k < targets.size(); ++k) {
     if (aim.measure[k] > 0.0f && facing(targets[k], start.origin, start.normal)) {
@@ -159,15 +159,8 @@ float sampleArea(const Light& light, const SceneSphere& bounds, const CausticAim
 }  // namespace
 
 bool aimsCausticPhotons(const Light& light) {
-  switch (light.type) {
-    case LightType::Point: return !light.isSpot();
-    case LightType::Directional:
-    case LightType::Quad:
-    case LightType::Sphere:
-    case LightType::Mesh: return true;
-    case LightType::Environment: return false;
-  }
-  return false;
+  // A spot shares the point light's type, but its cone would cut the aim.
+  return lightTraits(light).aim != AimKind::None && !light.isSpot();
 }
 
 CausticAim aimAt(const Light& light, const std::vector<SceneSphere>& targets, const SceneSphere& bounds,
@@ -176,7 +169,7 @@ CausticAim aimAt(const Light& light, const std::vector<SceneSphere>& targets, co
   aim.targets = &targets;
   if (!aimsCausticPhotons(light) || targets.empty()) return aim;
   if (isDeltaLight(light)) {
-    const bool point = light.type == LightType::Point;
+    const bool point = lightTraits(light).aim == AimKind::Cone;
     for (const SceneSphere& t : targets) {
       aim.measure.push_back(point ? 2.0f * kPi * coneTo(t, light.position).oneMinusCos : kPi * t.radius * t.radius);
       aim.total += aim.measure.back();
@@ -185,7 +178,7 @@ CausticAim aimAt(const Light& light, const std::vector<SceneSphere>& targets, co
     aim.share = std::min(1.0, double(aim.total) / full);
     return aim;
   }
-  if (light.type == LightType::Sphere) {  // its caps, by their targets' solid angles from its centre
+  if (lightTraits(light).aim == AimKind::SphereCaps) {  // its caps, by their targets' solid angles from its centre
     for (const SceneSphere& t : targets) {
       const bool faces = capFacing(light, t).oneMinusCos > 0.0f;
       aim.measure.push_back(faces ? 2.0f * kPi * coneTo(t, light.position).oneMinusCos : 0.0f);

@@ -62,45 +62,6 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
   }
 }
 
-// Where a classic photon starts: a point light's position and a uniform direction
-// from two numbers (as always), an area light's surface point and cosine-weighted
-// direction from four (emitterPhoton).
-PhotonRay startPhoton(const Light& light, const SceneSphere& bounds, Rng& rng) {
-  PhotonRay r;
-  const float u1 = rng.uniform(), u2 = rng.uniform();
-  if (light.type == LightType::Point && !light.isSpot()) {
-    r.dir = uniformSphere(u1, u2);
-    r.origin = pointLightOrigin(light, r.dir, bounds);
-    return r;
-  }
-  const float u3 = rng.uniform(), u4 = rng.uniform();
-  return emitterPhoton(light, bounds, u1, u2, u3, u4);
-}
-
-// Where shadow photon i of a batch starts. Every light but a point light takes its four
-// numbers from point i of the batch's Kronecker sequence: a cell's vote per stratum
-// sees a sixteenth of a light's photons, and evenly spread ones decide it right more
-// often than as many independent ones. A point light keeps startPhoton's two.
-PhotonRay shadowPhotonStart(const Light& light, const SceneSphere& bounds, const Kronecker4& starts,
-                            uint64_t i, Rng& rng) {
-  if (light.type == LightType::Point && !light.isSpot()) return startPhoton(light, bounds, rng);
-  return emitterPhoton(light, bounds, starts(i, 0), starts(i, 1), starts(i, 2), starts(i, 3));
-}
-
-}  // namespace
-
-PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
-                        float u3, float u4) {
-  PhotonRay r = sampleLightPhoton(light, bounds, u1, u2, u3, u4);
-  if (!isDeltaLight(light)) {
-    r.origin = offsetRayOrigin(r.origin, r.normal, r.error, r.dir);
-  } else if (light.type == LightType::Point) {
-    r.origin = pointLightOrigin(light, r.dir, bounds);
-  }
-  return r;
-}
-
-namespace {
 std::vector<double> classicWeights(const Scene& scene) {
   std::vector<double> power(scene.lights.size(), 0.0);
   for (size_t l = 0; l < scene.lights.size(); ++l) power[l] = classicPhotonWeight(scene.lights[l]);
@@ -147,14 +108,11 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
       [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         // Each photon carries an equal share of the light's flux (4 pi I for a point light).
-        const float count = static_cast<float>(indirectCounts[batch.light]);
-        const Color power = light.type == LightType::Point && !light.isSpot()
-                                ? light.radiance() * (4.0f * kPi / count)
-                                : lightPower(light, bounds) * (1.0f / count);
+        const Color power = classicPhotonPower(light, bounds, static_cast<float>(indirectCounts[batch.light]));
         return [&scene, &tracer, &light, &bounds, power, storeFirstHit,
                 rng = Rng(hashKey(seed, kIndirectStream, batchStreamKey(batch)))](
                    BatchAppender<IndirectPhoton>& out) mutable {
-          const PhotonRay r = startPhoton(light, bounds, rng);
+          const PhotonRay r = classicPhotonStart(light, bounds, rng);
           traceIndirectPath(scene, tracer, Ray{r.origin, r.dir}, power * r.weight, rng, storeFirstHit, out);
         };
       });

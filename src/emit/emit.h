@@ -71,17 +71,4 @@ inline MapCounts budgetsOf(const Scene& scene) {
 // With `reach` (emit/light_reach.h), by power times reach: the indirect map's split.
 std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total, const std::vector<float>& reach = {});
 
-// Where a point light's photon starts: a rounding error along its way (measured against
-// the light's coordinates and the scene's size). A light lying in a surface would
-// otherwise meet that surface at t = 0 with every photon, as Embree's watertight
-// test counts such hits, and the gate would call everything around it shadowed.
-inline Vec3 pointLightOrigin(const Light& light, const Vec3& dir, const SceneSphere& bounds) {
-  return light.position + dir * (gammaBound(7) * (maxComponent(glm::abs(light.position)) + bounds.radius));
-}
-
-// sampleLightPhoton, with an area light's origin lifted off its own surface so the
-// photon's first ray misses the emitter. Shared by the classic and physical passes.
-PhotonRay emitterPhoton(const Light& light, const SceneSphere& bounds, float u1, float u2,
-                        float u3, float u4);
-
 }  // namespace penumbra

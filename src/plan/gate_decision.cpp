@@ -9,20 +9,12 @@
 
 namespace penumbra {
 
-namespace {
-
-bool answersFor(const Light& l) {
-  return l.type != LightType::Directional && l.type != LightType::Environment && maxComponent(l.radiance()) > 0.0f;
-}
-
-}  // namespace
-
 double avoidableShare(const Light& light, bool precomputed) {
   return precomputed && lightStrata(light) > 1 ? cost::kAvoidableStratified : cost::kAvoidable;
 }
 
 int gatedLightCount(const Scene& scene) {
-  return static_cast<int>(std::count_if(scene.lights.begin(), scene.lights.end(), answersFor));
+  return static_cast<int>(std::count_if(scene.lights.begin(), scene.lights.end(), answersGate));
 }
 
 GateDecision decideGate(const Scene& scene) {
@@ -36,7 +28,7 @@ GateDecision decideGate(const Scene& scene) {
   double testsPerPoint = 0.0, avoidablePerPoint = 0.0;
   int stratified = 0;
   for (const Light& l : scene.lights) {
-    if (!answersFor(l)) continue;
+    if (!answersGate(l)) continue;
     const double tests = lightSampleCount(l, scene.render.lightSamples);
     testsPerPoint += tests;
     avoidablePerPoint += tests * avoidableShare(l, precomputed);

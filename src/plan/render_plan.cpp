@@ -28,8 +28,9 @@ PassDecision off(std::string reason) { return {false, std::move(reason), 0, {}, 
 
 struct SceneFacts {
   // photonLight: one that emits shadow and classic photons (neither directional nor
-  // environment); environment: a sky, which emits the physical model's photons only.
-  bool photonLight = false, environment = false, areaLight = false, anyLight = false;
+  // environment); physicalLight: one whose photons keep the physical maps on (all but
+  // directional lights), so without a photonLight it is a sky.
+  bool photonLight = false, physicalLight = false, areaLight = false, anyLight = false;
   bool reflective = false, transparent = false;
   int areaLights = 0;
 };
@@ -39,8 +40,8 @@ SceneFacts factsOf(const Scene& scene, const TransportModel& model) {
   for (const Light& l : scene.lights) {
     if (maxComponent(l.radiance()) <= 0.0f) continue;
     f.anyLight = true;
-    f.photonLight = f.photonLight || (l.type != LightType::Directional && l.type != LightType::Environment);
-    f.environment = f.environment || l.type == LightType::Environment;
+    f.photonLight = f.photonLight || answersGate(l);
+    f.physicalLight = f.physicalLight || lightTraits(l).opensPhysicalMaps;
     if (lightSampleCount(l, 2) > 1) { f.areaLight = true; ++f.areaLights; }
   }
   for (const Material& m : scene.materials) {
@@ -87,8 +88,8 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
       d = off(light ? "this view does not read it" : view);
     } else if (budgets[k] == 0) {
       d = off(fmt::format("photons.{} is 0", mapName(k)));
-    } else if (!f.photonLight && !(f.environment && k != MapKind::Indirect)) {
-      d = off(f.environment ? "only directional or environment lights: no classic photons" : "only directional lights: no photons");
+    } else if (!f.photonLight && !(f.physicalLight && k != MapKind::Indirect)) {
+      d = off(f.physicalLight ? "only directional or environment lights: no classic photons" : "only directional lights: no photons");
     } else if (const char* cannot = model.cannotStore(k, scene)) {
       d = off(cannot);
     } else {

@@ -28,7 +28,7 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uin
   }
   const bool finite = std::isfinite(in.distance);
   const bool tinted = ctx.hasGlass && ctx.choices.integrator->glass == GlassShadows::Tint;
-  if (ctx.scene.lights[lightIndex].type == LightType::Sphere && !tinted) {
+  if (lightTraits(ctx.scene.lights[lightIndex]).shadowTest == ShadowTest::FirstHitIsEmitter && !tinted) {
     // Near a sphere light's silhouette the ray from the lifted origin can enter the
     // sphere before the sampled point: whatever it meets first decides, and meeting
     // the light itself means it arrived.

@@ -123,10 +123,10 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   for (int j = 0; j < n; ++j) {
     // One sample of an area light is uniform, not its centre (Stratified2D's n = 1).
     const Vec2 u = !area ? deltaLightSample() : n > 1 ? stratified(j, rng) : Vec2(rng.uniform(), rng.uniform());
-    // A quad's sample names its stratum by its numbers alone, so its verdict comes
-    // before the sample is drawn: in a stratum called shadowed it adds nothing.
-    const bool quadStrata = strata && light.type == LightType::Quad;
-    GateVerdict sv = quadStrata ? (*strata)(stratumOf(u.x, u.y)) : GateVerdict::Mixed;
+    // A quad's sample (parametric strata) names its stratum by its numbers alone, so its
+    // verdict comes before the sample is drawn: in a stratum called shadowed it adds nothing.
+    const bool parametricStrata = strata && lightTraits(light).strata == StrataKind::Parametric;
+    GateVerdict sv = parametricStrata ? (*strata)(stratumOf(u.x, u.y)) : GateVerdict::Mixed;
     if (sv == GateVerdict::Shadowed) {
       ++ts.counts.shadowRaysAvoided;
       continue;
@@ -141,9 +141,9 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
       const uint8_t* row = v == GateVerdict::Mixed ? gateStrata(ctx, li, cached) : nullptr;
       if (row) {
         strata.emplace(*ctx.gateLookup, row, li, s.position);
-        // A quad whose every stratum its cell decides alike here is lit or shadowed
+        // A quad (parametric strata) whose every stratum its cell decides alike is lit or shadowed
         // here as a whole (a sphere's strata include its far side, which no sample meets).
-        if (light.type == LightType::Quad) v = strata->common(ctx.gateLookup->strataOf(li));
+        if (lightTraits(light).strata == StrataKind::Parametric) v = strata->common(ctx.gateLookup->strataOf(li));
         if (note && v != GateVerdict::Mixed) *note += v == GateVerdict::Lit ? "; every stratum lit here" : "; every stratum shadowed here";
         if (v != GateVerdict::Mixed) strata.reset();
       }
@@ -171,7 +171,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
     if (strata) {
       // A mixed light whose sample falls in a stratum its cell calls lit or shadowed
       // here: that sample's ray is answered, only ambiguous strata still cast one.
-      if (!quadStrata) sv = (*strata)(sampleStratum(light, u, in.point));
+      if (!parametricStrata) sv = (*strata)(sampleStratum(light, u, in.point));
       if (sv != GateVerdict::Mixed) {
         ++ts.counts.shadowRaysAvoided;
         if (sv == GateVerdict::Lit) sum += weigh(Color(1.0f), f, in);

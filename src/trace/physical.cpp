@@ -28,7 +28,7 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
   for (uint32_t li = 0; li < lights.size(); ++li) {
     if (maxComponent(lights[li].radiance()) <= 0.0f) continue;
     std::string one;
-    if (lights[li].type == LightType::Environment) {
+    if (lightTraits(lights[li]).direct == DirectSampling::EnvironmentMis) {
       sum += directFromEnvironment(ctx, s, li, bsdf, frame, wo, ts, note ? &one : nullptr);
     } else {
       sum += directFromLight(

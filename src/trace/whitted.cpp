@@ -28,7 +28,7 @@ Color localShading(const ShadingContext& ctx, const SurfaceRecord& s, const Mate
   for (uint32_t li = 0; li < lights.size(); ++li) {
     if (maxComponent(lights[li].radiance()) <= 0.0f) continue;  // nothing to add: skip the shadow test
     std::string note;
-    if (lights[li].type == LightType::Environment) {
+    if (lightTraits(lights[li]).direct == DirectSampling::EnvironmentMis) {
       lit += directFromEnvironment(ctx, s, li, bsdf, frame, toEye, ts, rec ? &note : nullptr);
     } else {
       lit += directFromLight(

@@ -1,0 +1,23 @@
+// The point light, and the spot (a point light with a cone, Light::isSpot): radiant
+// intensity from one position. Included by core/light_types.h only.
+#pragma once
+
+namespace penumbra {
+
+struct PointLight : LightDefaults {
+  static constexpr LightType kType = LightType::Point;
+  static constexpr LightTraits kTraits = {
+      LightSupport::Position, StrataKind::One, AimKind::Cone,
+      ShadowTest::Segment, DirectSampling::Gated,
+      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true};
+  static LightIncidence sample(const LightSampler& s, float u1, float u2);
+  static Color power(const Light& light, const SceneSphere& bounds);
+  static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);
+  static float classicWeight(const Light& light);
+  static Color classicPower(const Light& light, const SceneSphere& bounds, float count);
+  static int startNumbers(const Light& light);  // 2, a spot 4
+  // Its position, a rounding error along the way (photonOrigin in point_light.cpp says why).
+  static Vec3 photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds);
+};
+
+}  // namespace penumbra
