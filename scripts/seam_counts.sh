@@ -24,7 +24,7 @@ for o in '-t,--threads' '--max-memory' '--map-cache' '-D,--set' '-q,--quiet' '--
 done
 
 echo "M5 renderFrame: $(awk '/^void renderFrame/,/^}/' src/plan/render_frame.cpp | wc -l) lines, its pass loop" \
-  "$(awk '/^void renderFrame/,/^}/' src/plan/render_frame.cpp | awk '/for \(int pass = 0; pass < passes/,/^  }$/' | wc -l)"
+  "$(awk '/^void renderFrame/,/^}/' src/plan/render_frame.cpp | awk '/for \(int pass = 0; pass < (f\.)?passes/,/^  }$/' | wc -l)"
 
 echo "M6 cli files including more than plan/ and core/error.h:" \
   "$(grep -E '^\s*#\s*include "(core|io|emit|gather|geometry|trace)/' src/cli/*.h src/cli/*.cpp | grep -v '"core/error.h"' |
