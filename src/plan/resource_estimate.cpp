@@ -209,7 +209,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const double spill = std::max(1.0, e.photonPeakBytes / kCacheFriendlyBytes);
   e.photonSeconds = photonNs * (1.0 + kSpillSlowdown * std::log2(spill)) * p.photonPasses / e.threads * 1e-9;
   const double samples = options.tracePixel ? 1.0 : pixels * scene.camera.spp;
-  const bool lit = options.aov != Aov::Depth && options.aov != Aov::Normal;
+  const bool lit = readsLight(options.aov);
   // Mirrors and glass repeat the shading at each level of the recursion, but few
   // paths go many levels deep, so the factor is capped.
   const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;

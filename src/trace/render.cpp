@@ -17,7 +17,8 @@ namespace penumbra {
 
 namespace {
 
-bool geometric(Aov aov) { return aov == Aov::Depth || aov == Aov::Normal; }
+// Depth and normals carry no light (core/view.h's rule).
+bool geometric(Aov aov) { return !readsLight(aov); }
 
 // A geometric view's sample that hit nothing: no depth is -2 and no normal has r = -2,
 // so the pixel's mean can leave it out and count it against the coverage instead.
