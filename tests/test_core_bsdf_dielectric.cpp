@@ -107,7 +107,7 @@ TEST(BsdfClassic, EvaluateIsKdCosPlusKsRdotVToTheN) {
   // The report's Phong: k_d (N.L) + k_s (R.V)^n with R = 2 (N.L) N - L, computed
   // here in double for random light/view pairs. Tolerance 1e-5 (float rounding).
   Material m = opaque(Color(0.7f, 0.4f, 0.2f), Color(0.5f, 0.6f, 0.3f), 12.0f);
-  Bsdf b = makeBsdf(m, ShadingModel::Classic, HemisphereSampling::Uniform);
+  Bsdf b = makeBsdf(m, BsdfFamily::Phong, HemisphereSampling::Uniform);
   EXPECT_EQ(b.type, BsdfType::ClassicPhong);
   BsdfFrame f = frameOf(kNormal);
   const glm::dvec3 N(kNormal);
@@ -140,7 +140,7 @@ TEST(BsdfClassic, RouletteMeanWeightIsTheAlbedo) {
   Material m = opaque(Color(0.9f, 0.45f, 0.09f));
   m.pR = 0.6f;
   for (HemisphereSampling hs : {HemisphereSampling::Uniform, HemisphereSampling::Cosine}) {
-    Bsdf b = makeBsdf(m, ShadingModel::Classic, hs);
+    Bsdf b = makeBsdf(m, BsdfFamily::Phong, hs);
     MeanWeight w = meanWeight(b, frameOf(kNormal), kNormal, 400000, 89);
     glm::dvec3 expected = 0.6 * glm::dvec3(1.0, 0.5, 0.1);
     expectNearMean(w, expected, hs == HemisphereSampling::Uniform ? "uniform" : "cosine");

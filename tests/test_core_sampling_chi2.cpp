@@ -106,7 +106,7 @@ Bsdf classic(float pR, float pT, HemisphereSampling bounce) {
   m.shininess = 20.0f;
   m.pR = pR;
   m.pT = pT;
-  return makeBsdf(m, ShadingModel::Classic, bounce);
+  return makeBsdf(m, BsdfFamily::Phong, bounce);
 }
 
 std::vector<BsdfCase> bsdfCases() {

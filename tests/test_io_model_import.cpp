@@ -140,7 +140,7 @@ TEST(Gltf, AWholeGlbSceneBringsMeshesMaterialsCameraAndLights) {
   EXPECT_TRUE(chrome.metalRough);
   EXPECT_EQ(chrome.metallic, 1.0f);
   EXPECT_EQ(chrome.roughness, 0.0f);
-  const Bsdf mirror = makeBsdf(chrome, ShadingModel::Physical, HemisphereSampling::Cosine);
+  const Bsdf mirror = makeBsdf(chrome, BsdfFamily::Radiometric, HemisphereSampling::Cosine);
   EXPECT_EQ(bsdfFlags(mirror), kBsdfSpecular);
   const BsdfFrame up{Vec3(0, 0, 1), Vec3(0, 0, 1), true};
   expectNear(mirrorReflectance(mirror, up, glm::normalize(Vec3(1, 0, 1))), Color(1.0f), 1e-6f, "chrome");

@@ -180,7 +180,7 @@ TEST(PhotonEstimate, UniformPhotonsOnAPlaneGiveFTimesTheIrradiance) {
       m.specular = Color(0.3f);
       m.shininess = 10.0f;
     }
-    Bsdf b = makeBsdf(m, ShadingModel::Physical, HemisphereSampling::Cosine);
+    Bsdf b = makeBsdf(m, BsdfFamily::Radiometric, HemisphereSampling::Cosine);
     const Color f = evaluateBsdf(b, frame, wo, wi) / glm::dot(n, wi);
     for (PhotonGather gather : {PhotonGather{0, 0.2f}, PhotonGather{400, 0.0f}}) {
       const float radius = gather.maxRadius;
@@ -197,7 +197,7 @@ TEST(PhotonEstimate, UniformPhotonsOnAPlaneGiveFTimesTheIrradiance) {
   for (IndirectPhoton& p : back) p.normal = encodeOctahedral(-n);
   IndirectPhotonMap backMap;
   backMap.build(back);
-  Bsdf b = makeBsdf(lambert("m", Color(0.5f)), ShadingModel::Physical, HemisphereSampling::Cosine);
+  Bsdf b = makeBsdf(lambert("m", Color(0.5f)), BsdfFamily::Radiometric, HemisphereSampling::Cosine);
   EXPECT_EQ(photonRadiance(backMap, b, frame, q, wo, PhotonGather{0, 0.2f}, scratch).value, Color(0.0f));
 }
 

@@ -108,7 +108,7 @@ TEST(PhysicalMetalRough, ANarrowLobeUnderAUniformSkyReturnsItsDirectionalAlbedo)
     sum2 += v * v;
   }
   const double mean = sum / n, err = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
-  const Bsdf b = makeBsdf(scene.materials[0], ShadingModel::Physical, HemisphereSampling::Cosine);
+  const Bsdf b = makeBsdf(scene.materials[0], BsdfFamily::Radiometric, HemisphereSampling::Cosine);
   const Vec3 wo = glm::normalize(eye - p);
   const double albedo = hemisphereIntegral(b, frameOf(Vec3(0, 1, 0)), wo, 800, 7).y;
   EXPECT_NEAR(mean, albedo, 4.0 * err + 1e-3) << "standard error " << err;
@@ -150,7 +150,7 @@ TEST(PhysicalMetalRough, AWhiteFurnaceReturnsAtMostWhatArrivesAndARoughMetalLose
       const std::string what = "metallic " + std::to_string(metallic) + " roughness " + std::to_string(roughness);
       EXPECT_LE(mean, 1.0 + 4.0 * err) << what;
       if (metallic == 1.0f && roughness >= 0.5f) {
-        const Bsdf b = makeBsdf(scene.materials[0], ShadingModel::Physical, HemisphereSampling::Cosine);
+        const Bsdf b = makeBsdf(scene.materials[0], BsdfFamily::Radiometric, HemisphereSampling::Cosine);
         const double albedo = hemisphereIntegral(b, frameOf(p), wo, 1000, 3).y;
         std::printf("%s: furnace %.4f, single-scattering albedo %.4f (loss %.1f%%)\n", what.c_str(), mean, albedo,
                     100.0 * (1.0 - albedo));
@@ -171,11 +171,11 @@ TEST(PhysicalMetalRough, JsonKeysSelectTheMaterialAndRefuseAPhongTermBeside) {
   EXPECT_EQ(m["gold"].metallic, 1.0f);
   EXPECT_FLOAT_EQ(m["gold"].roughness, 0.3f);
   EXPECT_EQ(m["plastic"].metallic, 0.0f);  // glTF's default is 1; a JSON material's 0
-  const Bsdf gold = makeBsdf(m["gold"], ShadingModel::Physical, HemisphereSampling::Cosine);
+  const Bsdf gold = makeBsdf(m["gold"], BsdfFamily::Radiometric, HemisphereSampling::Cosine);
   EXPECT_EQ(gold.type, BsdfType::MetalRough);
   EXPECT_FLOAT_EQ(gold.roughness, 0.09f);
   // The classic model: no mirror for a rough metal, the metal's colour as highlight.
-  const Bsdf classic = makeBsdf(m["gold"], ShadingModel::Classic, HemisphereSampling::Uniform);
+  const Bsdf classic = makeBsdf(m["gold"], BsdfFamily::Phong, HemisphereSampling::Uniform);
   EXPECT_LT(classic.kr, 0.25f);
   EXPECT_FLOAT_EQ(classic.specular.g, 0.78f);
   EXPECT_EQ(classic.diffuse, Color(0.0f));

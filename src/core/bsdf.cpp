@@ -151,11 +151,11 @@ BsdfSample sampleDielectric(const Bsdf& b, const BsdfFrame& f, const Vec3& wo, f
 
 }  // namespace
 
-void setMetalRough(Bsdf& b, ShadingModel model, const Color& base, float metallic, float roughness) {
+void setMetalRough(Bsdf& b, BsdfFamily family, const Color& base, float metallic, float roughness) {
   b.diffuse = base;
   b.metallic = std::clamp(metallic, 0.0f, 1.0f);
   const float alpha = std::clamp(roughness, 0.0f, 1.0f) * std::clamp(roughness, 0.0f, 1.0f);
-  if (model == ShadingModel::Physical) {
+  if (family == BsdfFamily::Radiometric) {
     b.type = BsdfType::MetalRough;
     b.roughness = alpha;
     return;
@@ -170,7 +170,7 @@ void setMetalRough(Bsdf& b, ShadingModel model, const Color& base, float metalli
   b.kr = b.metallic * (smooth * smooth) * (smooth * smooth);
 }
 
-Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce, const Color& tint) {
+Bsdf makeBsdf(const Material& m, BsdfFamily family, HemisphereSampling bounce, const Color& tint) {
   Bsdf b;
   const Color base = m.diffuse * tint;
   b.diffuse = base;
@@ -182,9 +182,9 @@ Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce, 
   b.pR = m.pR;
   b.pT = m.pT;
   b.uniformBounce = bounce == HemisphereSampling::Uniform;
-  if (model == ShadingModel::Classic) b.type = BsdfType::ClassicPhong;
+  if (family == BsdfFamily::Phong) b.type = BsdfType::ClassicPhong;
   else b.type = m.transparent ? BsdfType::Dielectric : BsdfType::Opaque;
-  if (m.metalRough && !m.transparent) setMetalRough(b, model, base, m.metallic, m.roughness);
+  if (m.metalRough && !m.transparent) setMetalRough(b, family, base, m.metallic, m.roughness);
   return b;
 }
 

@@ -2,6 +2,7 @@
 // hit, dispatched on a small tag (no virtual call per ray). The report's Phong
 // model is one implementation; the physical model's opaque and glass BSDFs the others.
 #pragma once
+#include "core/bsdf_family.h"
 #include "core/scene.h"
 
 namespace penumbra {
@@ -64,13 +65,14 @@ struct BsdfSample {
   bool valid = false;  // false: absorbed (classic roulette) or no usable direction
 };
 
-// `tint` multiplies the base colour (diffuse, or the metallic-roughness base): a
-// mesh's vertex colour at the hit, 1 elsewhere.
-Bsdf makeBsdf(const Material& m, ShadingModel model, HemisphereSampling bounce, const Color& tint = Color(1.0f));
-// Makes `b` glTF's metallic-roughness at one hit's values: MetalRough in the physical
-// model, its Phong terms in the classic one. makeBsdf calls it with the material's
-// factors; a hit with textures calls it again with the texels applied.
-void setMetalRough(Bsdf& b, ShadingModel model, const Color& base, float metallic, float roughness);
+// The material as a BSDF of `family` (core/bsdf_family.h): ClassicPhong for Phong;
+// Opaque, Dielectric or MetalRough for Radiometric. `tint` multiplies the base colour
+// (diffuse, or the metallic-roughness base): a mesh's vertex colour at the hit, 1 elsewhere.
+Bsdf makeBsdf(const Material& m, BsdfFamily family, HemisphereSampling bounce, const Color& tint = Color(1.0f));
+// Makes `b` glTF's metallic-roughness at one hit's values: MetalRough in the
+// Radiometric family, its Phong terms in the Phong one. makeBsdf calls it with the
+// material's factors; a hit with textures calls it again with the texels applied.
+void setMetalRough(Bsdf& b, BsdfFamily family, const Color& base, float metallic, float roughness);
 
 // The Lambertian part of evaluateBsdf is lambertCoefficient(b) x max(0, ns . wi)
 // (classic k_d; physical (1 - kr) rho / pi); glossyPart(b) evaluates to the rest.

@@ -1,6 +1,7 @@
-// The transport models a scene can render in (render.model), their names and the
-// default, defined once for the loader, the plan, the integrators and the reports.
+// The transport models a scene can render in (render.model): their names, their
+// BSDF family and the default, defined once.
 #pragma once
+#include "core/bsdf_family.h"
 #include <array>
 #include <cstddef>
 
@@ -10,12 +11,24 @@ namespace penumbra {
 // roulette; physical: radiometric BSDFs and lights, caustic and global photon maps.
 enum class ShadingModel { Classic, Physical };
 
-// In enum order: render.model's values.
-inline constexpr std::array<const char*, 2> kShadingModelNames = {"classic", "physical"};
+struct ShadingModelInfo {
+  ShadingModel id;
+  const char* name;  // render.model's value
+  BsdfFamily bsdf;   // what its integrator, emitter and loaders make of a material
+};
+
+// In enum order.
+inline constexpr std::array<ShadingModelInfo, 2> kShadingModels = {{
+    {ShadingModel::Classic, "classic", BsdfFamily::Phong},
+    {ShadingModel::Physical, "physical", BsdfFamily::Radiometric},
+}};
 
 // What a scene that says nothing renders in: the report's scenes are classic.
 inline constexpr ShadingModel kDefaultShadingModel = ShadingModel::Classic;
 
-inline const char* shadingModelName(ShadingModel model) { return kShadingModelNames[static_cast<size_t>(model)]; }
+inline constexpr const ShadingModelInfo& shadingModelInfo(ShadingModel model) {
+  return kShadingModels[static_cast<size_t>(model)];
+}
+inline constexpr const char* shadingModelName(ShadingModel model) { return shadingModelInfo(model).name; }
 
 }  // namespace penumbra

@@ -51,7 +51,7 @@ void traceIndirectPath(const Scene& scene, const TraceScene& tracer, Ray ray, Co
     // the rest is absorbed; a survivor's power never grows in any channel.
     float xi = rng.uniform();
     float u1 = rng.uniform(), u2 = rng.uniform();
-    const Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ps.sampling, Color(tracer.vertexColor(hit)));
+    const Bsdf bsdf = makeBsdf(m, BsdfFamily::Phong, ps.sampling, Color(tracer.vertexColor(hit)));
     BsdfSample bs = sampleBsdf(bsdf, {s.ns, s.ng, s.frontFace}, -ray.dir, xi, u1, u2);
     if (!bs.valid) return;  // absorbed
     Vec3 dir = bs.wi;

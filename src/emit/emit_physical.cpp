@@ -45,7 +45,7 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray
     SurfaceRecord s = tracer.surface(ray, hit, kSurfaceShadingNormal);
     // The albedo camera paths see at this hit: the vertex colour tints the base.
     Bsdf bsdf =
-        makeBsdf(scene.materials[s.material], ShadingModel::Physical, ps.sampling, Color(tracer.vertexColor(hit)));
+        makeBsdf(scene.materials[s.material], BsdfFamily::Radiometric, ps.sampling, Color(tracer.vertexColor(hit)));
     if (hasGatheredLobe(bsdf)) {  // where a camera path reads the maps
       bool store = pass == MapKind::Global ? diffuseBounces > 0 : specularBounces > 0;
       if (store) {
@@ -148,7 +148,7 @@ PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& trac
 
 std::vector<SceneSphere> specularTargets(const Scene& scene) {
   auto specular = [&](int material) {
-    return hasTracedLobe(makeBsdf(scene.materials[material], ShadingModel::Physical,
+    return hasTracedLobe(makeBsdf(scene.materials[material], BsdfFamily::Radiometric,
                                  scene.photons.sampling));
   };
   std::vector<SceneSphere> out;

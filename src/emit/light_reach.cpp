@@ -15,9 +15,9 @@ bool reaches(const Scene& scene, int material, ReachRule rule) {
   switch (rule) {
     case ReachRule::Bouncing: return m.pR > 0.0f || m.pT > 0.0f;
     case ReachRule::Scattering:
-      return maxComponent(albedoBsdf(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling))) > 0.0f;
+      return maxComponent(albedoBsdf(makeBsdf(m, BsdfFamily::Radiometric, scene.photons.sampling))) > 0.0f;
     case ReachRule::Specular:
-      return hasTracedLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
+      return hasTracedLobe(makeBsdf(m, BsdfFamily::Radiometric, scene.photons.sampling));
   }
   return false;
 }

@@ -59,8 +59,9 @@ void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
 void readRender(const JsonNode& node, RenderSettings& out) {
   node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
                   "aov", "light_samples", "packets"});
-  out.model = static_cast<ShadingModel>(node.enumOr("model", static_cast<size_t>(out.model),
-                                                    {kShadingModelNames.begin(), kShadingModelNames.end()}));
+  std::vector<std::string> models;
+  for (const ShadingModelInfo& m : kShadingModels) models.push_back(m.name);
+  out.model = static_cast<ShadingModel>(node.enumOr("model", static_cast<size_t>(out.model), models));
   out.maxDepth = node.intOr("max_depth", out.maxDepth, 0, 64);
   out.background = node.colorOr("background", out.background);
   out.ambient = node.colorOr("ambient", out.ambient);

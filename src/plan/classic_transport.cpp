@@ -11,7 +11,7 @@ namespace {
 
 class ClassicTransport final : public TransportModel {
  public:
-  const char* name() const override { return shadingModelName(ShadingModel::Classic); }
+  ShadingModel id() const override { return ShadingModel::Classic; }
   const Integrator& integrator() const override { return whittedIntegrator(); }
   bool hasView(Aov aov) const override { return aov != Aov::Direct && aov != Aov::Caustic; }
 
@@ -31,7 +31,7 @@ class ClassicTransport final : public TransportModel {
     return "no surface can bounce a photon: every p_r and p_t is 0";
   }
   bool reflects(const Material& m, const PhotonSettings& ps) const override {
-    return m.transparent || makeBsdf(m, ShadingModel::Classic, ps.sampling).kr > 0.0f;
+    return m.transparent || makeBsdf(m, info().bsdf, ps.sampling).kr > 0.0f;
   }
 
   PerMap<bool> emittedMaps(const PerMap<bool>& wanted, uint32_t) const override {

@@ -12,7 +12,7 @@ namespace {
 
 class PhysicalTransport final : public TransportModel {
  public:
-  const char* name() const override { return shadingModelName(ShadingModel::Physical); }
+  ShadingModel id() const override { return ShadingModel::Physical; }
   const Integrator& integrator() const override { return physicalIntegrator(); }
   bool hasView(Aov) const override { return true; }
 
@@ -28,7 +28,7 @@ class PhysicalTransport final : public TransportModel {
     if (map == MapKind::Global) {
       bool smooth = false;
       for (const Material& m : scene.materials) {
-        smooth = smooth || hasGatheredLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
+        smooth = smooth || hasGatheredLobe(makeBsdf(m, info().bsdf, scene.photons.sampling));
       }
       if (!smooth) return "no diffuse or glossy surface to store a photon on";
     } else if (specularTargets(scene).empty()) {
@@ -37,7 +37,7 @@ class PhysicalTransport final : public TransportModel {
     return scene.photons.maxBounces == 0 ? "photons.max_bounces is 0" : nullptr;
   }
   bool reflects(const Material& m, const PhotonSettings& ps) const override {
-    return m.transparent || hasTracedLobe(makeBsdf(m, ShadingModel::Physical, ps.sampling));
+    return m.transparent || hasTracedLobe(makeBsdf(m, info().bsdf, ps.sampling));
   }
 
   PerMap<bool> emittedMaps(const PerMap<bool>& wanted, uint32_t pass) const override {

@@ -28,7 +28,10 @@ struct IndirectLookup {
 class TransportModel {
  public:
   virtual ~TransportModel() = default;
-  virtual const char* name() const = 0;  // "classic", "physical": render.model's values
+  // Its row of core/shading_model.h: render.model's value and its BSDF family.
+  virtual ShadingModel id() const = 0;
+  const ShadingModelInfo& info() const { return shadingModelInfo(id()); }
+  const char* name() const { return info().name; }
   virtual const Integrator& integrator() const = 0;
   // The views it renders (depth and normal need no model: every model has them).
   virtual bool hasView(Aov aov) const = 0;

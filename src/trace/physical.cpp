@@ -97,7 +97,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   }
   ++ts.shadingPoint;
   // The vertex colour multiplies the base colour, as the texture below does.
-  Bsdf bsdf = makeBsdf(m, ShadingModel::Physical, ctx.scene.photons.sampling, Color(ctx.tracer.vertexColor(hit)));
+  Bsdf bsdf = makeBsdf(m, BsdfFamily::Radiometric, ctx.scene.photons.sampling, Color(ctx.tracer.vertexColor(hit)));
   if (textured && ctx.textures) {
     // A texture is the diffuse albedo's (base colour's) map: multiplied in, or added
     // and kept <= 1; a metallic-roughness map scales those factors.
@@ -110,7 +110,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
     }
     if (m.metalRoughTexture >= 0) {
       const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);
-      setMetalRough(bsdf, ShadingModel::Physical, bsdf.diffuse, mr.metallic, mr.roughness);
+      setMetalRough(bsdf, BsdfFamily::Radiometric, bsdf.diffuse, mr.metallic, mr.roughness);
     }
   }
   const BsdfFrame frame{s.ns, s.ng, s.frontFace};
@@ -192,7 +192,7 @@ void physicalTree(const ShadingContext& ctx, const Ray& ray, ThreadState& ts) {
 // Direct light lands on smooth lobes only; a mirror or glass has none, unless a
 // texture adds a diffuse albedo at the hit.
 bool physicalShadesDirect(const Scene& scene, const Material& m) {
-  return m.texture >= 0 || m.metalRoughTexture >= 0 || hasSmoothLobe(makeBsdf(m, ShadingModel::Physical, scene.photons.sampling));
+  return m.texture >= 0 || m.metalRoughTexture >= 0 || hasSmoothLobe(makeBsdf(m, BsdfFamily::Radiometric, scene.photons.sampling));
 }
 
 }  // namespace

@@ -93,10 +93,10 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   Color texel(1.0f);
   if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
   const Color tint(ctx.tracer.vertexColor(hit));
-  Bsdf bsdf = makeBsdf(m, ShadingModel::Classic, ctx.scene.photons.sampling, tint);
+  Bsdf bsdf = makeBsdf(m, BsdfFamily::Phong, ctx.scene.photons.sampling, tint);
   if (m.metalRoughTexture >= 0 && ctx.textures) {
     const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);
-    setMetalRough(bsdf, ShadingModel::Classic, m.diffuse * tint, mr.metallic, mr.roughness);
+    setMetalRough(bsdf, BsdfFamily::Phong, m.diffuse * tint, mr.metallic, mr.roughness);
   }
 
   // Local shading records its gate notes into this ray's record; fetch the

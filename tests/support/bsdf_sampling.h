@@ -44,7 +44,7 @@ inline Bsdf metalRough(const Color& base, float metallic, float alpha) {
   return b;
 }
 
-inline Bsdf physical(const Material& m) { return makeBsdf(m, ShadingModel::Physical, HemisphereSampling::Cosine); }
+inline Bsdf physical(const Material& m) { return makeBsdf(m, BsdfFamily::Radiometric, HemisphereSampling::Cosine); }
 
 // A tilted frame, so a bug that assumes n = +z shows up.
 const Vec3 kNormal = glm::normalize(Vec3(0.3f, 0.5f, 0.8f));
