@@ -1,5 +1,5 @@
 // The transport models a scene can render in (render.model): their names, their
-// BSDF family and the default, defined once.
+// BSDF family and the default, defined once; modelOf is the one reader of the choice.
 #pragma once
 #include "core/bsdf_family.h"
 #include <array>
@@ -30,5 +30,9 @@ inline constexpr const ShadingModelInfo& shadingModelInfo(ShadingModel model) {
   return kShadingModels[static_cast<size_t>(model)];
 }
 inline constexpr const char* shadingModelName(ShadingModel model) { return shadingModelInfo(model).name; }
+
+// The model a scene's settings choose (core/shading_model.cpp).
+struct RenderSettings;
+const ShadingModelInfo& modelOf(const RenderSettings& render);
 
 }  // namespace penumbra

@@ -156,12 +156,13 @@ Material readMaterial(const JsonNode& node, const std::string& name, Scene& scen
                   m.pR + m.pT);
     node.fail(buf);
   }
-  if (scene.render.model == ShadingModel::Physical && m.transparent) {
+  const bool bounded = boundsAlbedo(modelOf(scene.render).bsdf);
+  if (bounded && m.transparent) {
     // A transmittance filter above 1 would add light at every crossing.
     if (maxComponent(m.tint) > 1.0f + 1e-6f) {
       node.child("transparent").child("tint").fail("must be <= 1 in the physical model");
     }
-  } else if (scene.render.model == ShadingModel::Physical) {
+  } else if (bounded) {
     // A physical surface may not reflect more than arrives: rho_d + rho_s <= 1
     // (the glossy lobe exists only with shininess > 0).
     for (int c = 0; c < 3; ++c) {

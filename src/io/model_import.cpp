@@ -27,14 +27,14 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-// The same limits the JSON materials meet (material_reader.cpp): the physical
-// model's surfaces reflect at most what arrives and glass filters never amplify, so
-// specular gives way to diffuse and tints are clamped to 1; classic photon roulette
+// The same limits the JSON materials meet (material_reader.cpp): radiometric BSDFs
+// (the physical model's) reflect at most what arrives and glass filters never amplify,
+// so specular gives way to diffuse and tints are clamped to 1; classic photon roulette
 // follows the shading as its defaults do.
 // A value the file gave as NaN (an MTL "Kd nan") counts as 0, never reaches a ray.
 float bounded(float v, float lo, float hi) { return std::isnan(v) ? lo : std::clamp(v, lo, hi); }
 
-Material fitToModel(Material m, ShadingModel model) {
+Material fitToModel(Material m, BsdfFamily family) {
   for (Color* c : {&m.ambient, &m.diffuse, &m.specular, &m.emission, &m.tint}) {
     for (int k = 0; k < 3; ++k) (*c)[k] = bounded((*c)[k], 0.0f, 1e30f);
   }
@@ -46,7 +46,7 @@ Material fitToModel(Material m, ShadingModel model) {
   m.alpha = bounded(m.alpha, 0.0f, 1.0f);
   m.alphaCutoff = bounded(m.alphaCutoff, 0.0f, 1.0f);
   m.normalScale = std::isfinite(m.normalScale) ? std::clamp(m.normalScale, -1e3f, 1e3f) : 1.0f;
-  if (model == ShadingModel::Physical) {
+  if (boundsAlbedo(family)) {
     m.diffuse = glm::min(m.diffuse, Color(1.0f));
     if (m.shininess > 0.0f) m.specular = glm::min(m.specular, Color(1.0f) - m.diffuse);
     m.tint = glm::min(m.tint, Color(1.0f));
@@ -89,7 +89,7 @@ void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fa
   for (const TriangleMesh& mesh : model.meshes) {
     if (named >= 0 || mesh.material < 0 || index[mesh.material] >= 0) continue;
     const ModelMaterial& mm = model.materials[mesh.material];
-    Material m = fitToModel(mm.material, scene.render.model);
+    Material m = fitToModel(mm.material, modelOf(scene.render).bsdf);
     m.name = stem + ":" + mm.material.name;
     if (!mm.texture.empty()) m.texture = addTextureFile(where, mm.texture, scene);
     if (!mm.metalRoughTexture.empty()) m.metalRoughTexture = addTextureFile(where, mm.metalRoughTexture, scene, true);

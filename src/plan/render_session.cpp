@@ -79,7 +79,9 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
   job.errorView = isErrorView(job.viewName);
   checkBudget(request.budget);
   if (!transportOf(scene).hasView(job.aov)) {
-    throw InputError(scene.file + ": view '" + job.viewName + "' needs the physical model (render.model: \"physical\")");
+    const char* physical = shadingModelName(ShadingModel::Physical);
+    throw InputError(fmt::format("{}: view '{}' needs the {} model (render.model: \"{}\")", scene.file, job.viewName,
+                                 physical, physical));
   }
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
   // Before any work: what runs and why (photons.gate = auto is decided here too).

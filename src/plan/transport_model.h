@@ -69,9 +69,9 @@ class TransportModel {
 const TransportModel& classicTransport();   // plan/classic_transport.cpp
 const TransportModel& physicalTransport();  // plan/physical_transport.cpp
 
-// The model a scene's render.model names: the one place the choice is made.
+// The model the scene chose (modelOf): the one place the plan turns the choice into code.
 inline const TransportModel& transportOf(const Scene& scene) {
-  return scene.render.model == ShadingModel::Physical ? physicalTransport() : classicTransport();
+  return modelOf(scene.render).id == ShadingModel::Physical ? physicalTransport() : classicTransport();
 }
 
 }  // namespace penumbra
