@@ -1,6 +1,7 @@
-// The transport-model interface: each model's own views, light maps and passes, the
+// The transport-model interface: each model's row (name, BSDF family), views, light maps and passes, the
 // plan deciding photon passes from them, and a frame shading with the model's
 // integrator (its indirect view is the analytic ambient term without photons).
+#include "core/bsdf.h"
 #include "io/shapes.h"
 #include "plan/render_plan.h"
 #include "plan/transport_model.h"
@@ -99,6 +100,20 @@ TEST(TransportModel, TheFrameShadesWithTheModelsIntegrator) {
     // Classic glass tints shadow rays; physical glass blocks them (caustics carry that light).
     EXPECT_EQ(choices.integrator->glass, m == ShadingModel::Classic ? GlassShadows::Tint : GlassShadows::Block);
   }
+}
+
+TEST(TransportModel, TheSceneChoosesItsModelsRowAndFamily) {
+  for (ShadingModel m : {ShadingModel::Classic, ShadingModel::Physical}) {
+    const Scene scene = floorAndSpheres(m);
+    const TransportModel& model = transportOf(scene);
+    EXPECT_EQ(model.id(), m);
+    EXPECT_EQ(&model.info(), &modelOf(scene.render));
+    EXPECT_STREQ(model.integrator().name, model.name());
+    // The family decides the BSDF: the classic model's materials shade as the report's Phong.
+    const BsdfType type = makeBsdf(scene.materials[0], model.info().bsdf, scene.photons.sampling).type;
+    EXPECT_EQ(type == BsdfType::ClassicPhong, m == ShadingModel::Classic);
+  }
+  EXPECT_EQ(modelOf(RenderSettings{}).id, kDefaultShadingModel);
 }
 
 TEST(TransportModel, ClassicIndirectViewWithoutPhotonsIsTheAmbientTerm) {

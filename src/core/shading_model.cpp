@@ -4,6 +4,10 @@
 
 namespace penumbra {
 
+static_assert(kShadingModels[size_t(ShadingModel::Classic)].id == ShadingModel::Classic &&
+                  kShadingModels[size_t(ShadingModel::Physical)].id == ShadingModel::Physical,
+              "kShadingModels is indexed by ShadingModel");
+
 const ShadingModelInfo& modelOf(const RenderSettings& render) { return shadingModelInfo(render.model); }
 
 }  // namespace penumbra
