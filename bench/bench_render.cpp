@@ -16,7 +16,7 @@ namespace {
 void renderScene(benchmark::State& state, const std::string& scene, std::vector<std::string> overrides) {
   RenderRequest req;
   req.scenePath = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + scene;
-  req.threads = static_cast<int>(state.range(0));
+  req.session.threads = static_cast<int>(state.range(0));
   req.overrides = std::move(overrides);
   Timings sum;
   RayCounts rays;  // of the last frame (every frame casts the same)
@@ -32,7 +32,7 @@ void renderScene(benchmark::State& state, const std::string& scene, std::vector<
     pixels += int64_t(r.stats.width) * r.stats.height;
     benchmark::DoNotOptimize(r.image.pixels.data());
   }
-  cpu.report(state, req.threads);
+  cpu.report(state, req.session.threads);
   auto avg = [&](const char* name, double v) {
     state.counters[name] = benchmark::Counter(v, benchmark::Counter::kAvgIterations);
   };

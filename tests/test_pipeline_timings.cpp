@@ -75,7 +75,7 @@ TEST(Timings, SweepRowsCarryCpuColumns) {
 TEST(Timings, BatchJobsAndTheWholeBatchCarryCpuTime) {
   const ScratchDir dir;
   BatchRequest req;
-  req.threads = 1;
+  req.session.threads = 1;
   for (int i = 0; i < 2; ++i) {
     const std::string out = (dir / ("j" + std::to_string(i) + ".png")).string();
     req.jobs.push_back({"j" + std::to_string(i), kScene, {"camera.width=40", "camera.height=30"}, {{"", out}}, "-", {}});

@@ -38,19 +38,15 @@ int BenchCommand::run() {
   Options& o = *o_;
   BenchRequest req;
   const SessionArgs& session = o.session;
-  req.plan = session.plan.passes();  // contradicting options: refused before any scene is read
-  req.load = session.plan.load();
+  req.session = session.options();  // contradicting options: refused before any scene is read
   req.scenes = o.scenes;
-  req.overrides = session.overrides;
-  if (!session.plan.gateSetting().empty()) req.overrides.push_back(session.plan.gateSetting());
   if (!session.threads.empty()) req.threads = parseThreadCounts(session.threads);
   req.repeat = o.repeat;
   req.jsonPath = o.json;
-  req.maxMemoryBytes = session.maxMemoryBytes();
   std::optional<ItemProgress> progress;
   if (!session.quiet) {
     progress.emplace();
-    req.phases = progress->phases();
+    req.session.progress = progress->phases();
     req.progress = [&](size_t done, size_t total, const std::string& item, const char* phase, double seconds) {
       progress->line(progressLine("bench", done, total, item, phase, seconds, done, total - done));
     };

@@ -92,13 +92,13 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   }
   if (!statsPath.empty() && !statsToStdout) req.statsPaths.push_back(statsPath);
   // The estimate of a long job, before it starts; --quiet silences it like every note.
-  if (!quiet) req.notice = [](const std::string& note) { std::cerr << "note: " << note << "\n"; };
+  if (!quiet) req.session.notice = [](const std::string& note) { std::cerr << "note: " << note << "\n"; };
   // Progress goes to stderr: stdout may carry --trace-pixel's JSON.
   std::optional<ProgressMeter> meter;
   if (!quiet) {
     meter.emplace(progressDisplay());
     meter->startTicker();
-    req.progress = &*meter;
+    req.session.progress = &*meter;
   }
   // A time limit counts the whole process: its start-up (loading the shared
   // libraries) and the image's write are the user's wait too.
@@ -220,16 +220,11 @@ int runCommandLine(int argc, char** argv) {
       if (!tracePixelArg.empty() && (ext == ".png" || ext == ".exr")) {
         throw InputError("--trace-pixel writes JSON, not an image: give -o a .json path (got '" + req.outputPath + "')");
       }
-      req.threads = session.threadCount();
-      req.overrides = session.overrides;
-      req.budget = session.budget;
-      req.plan = session.plan.passes();
-      req.load = session.plan.load();
+      std::vector<std::string> own;  // the render's options that stand for scene values
+      if (!seedArg.empty()) own.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
+      if (spp) own.push_back("camera.spp=" + std::to_string(*spp));
+      req.session = session.options(own);
       if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
-      req.maxMemoryBytes = session.maxMemoryBytes();
-      if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
-      if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
-      if (!session.plan.gateSetting().empty()) req.overrides.push_back(session.plan.gateSetting());
       return runRenderCommand(req, statsPath, tracePixelArg, session.quiet, verbose);
     }
     if (sweep.selected()) return sweep.run();

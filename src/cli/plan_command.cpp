@@ -39,12 +39,10 @@ PlanCommand::PlanCommand(CLI::App& app) {
 }
 
 int PlanCommand::run() {
-  const PlanOverrides passes = args_.plan.passes();
-  std::vector<std::string> overrides = args_.overrides;
-  if (!args_.plan.gateSetting().empty()) overrides.push_back(args_.plan.gateSetting());
-  Scene scene = loadScene(scene_, overrides, loadLimits(0), args_.plan.load());
+  const SessionOptions options = args_.options();
+  Scene scene = loadJobScene(scene_, options);
   const Aov aov = parseAov(aov_.empty() ? scene.render.aov : aov_);
-  RenderPlan plan = makePlan(scene, aov, passes);
+  RenderPlan plan = makePlan(scene, aov, options.plan);
   // The light split needs a few rays per light: build the BVH only when a photon
   // pass could be split (no textures, no photons, no render).
   const bool split = plan[Pass::IndirectPhotons].on || plan[Pass::GlobalPhotons].on || plan[Pass::CausticPhotons].on;
@@ -63,8 +61,9 @@ CheckCommand::CheckCommand(CLI::App& app) {
 }
 
 int CheckCommand::run() {
+  const SessionOptions options = args_.options();
   for (const std::string& path : scenes_) {
-    const Scene s = loadScene(path, args_.overrides, loadLimits(0), args_.plan.load());
+    const Scene s = loadJobScene(path, options);
     const LoadReport& load = s.load;
     size_t triangles = 0;
     for (const TriangleMesh& m : s.meshes) triangles += m.triangles.size();

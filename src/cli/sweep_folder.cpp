@@ -47,13 +47,13 @@ SweepIdentity sweepIdentity(const SweepRequest& req, const std::vector<std::stri
   id.sceneFiles = inputsStamp(inputs);
   std::set<std::string> knobKeys;
   for (const SweepKnob& k : req.spec.knobs) knobKeys.insert(k.keys.begin(), k.keys.end());
-  for (const std::string& o : req.spec.runs.front().overrides) {
+  for (const std::string& o : jobOverrides(req.session, req.spec.runs.front().overrides)) {
     if (!knobKeys.count(o.substr(0, o.find('=')))) id.overrides.push_back(o);
   }
   id.view = req.aov;
-  for (Pass p : req.plan.enable) id.plan.push_back(std::string("+") + passName(p));
-  for (Pass p : req.plan.disable) id.plan.push_back(std::string("-") + passName(p));
-  if (!req.load.defaults) id.plan.push_back("--no-defaults");  // another picture of a glTF scene
+  for (Pass p : req.session.plan.enable) id.plan.push_back(std::string("+") + passName(p));
+  for (Pass p : req.session.plan.disable) id.plan.push_back(std::string("-") + passName(p));
+  if (!req.session.load.defaults) id.plan.push_back("--no-defaults");  // another picture of a glTF scene
   if (!req.referencePath.empty()) {
     id.reference = inputsStamp({req.referencePath});
   } else if (req.referencePasses > 1) {

@@ -38,7 +38,11 @@ LongReference longReference(RenderSession& session, const SweepRequest& req, con
   }
   std::vector<std::string> overrides = run.overrides;
   overrides.push_back("photons.passes=" + std::to_string(passes));
-  PlannedJob job = session.plan(JobRequest{req.scenePath, overrides, req.aov, {}, {}, {}});
+  JobRequest request;  // no budget: exactly the passes above
+  request.scenePath = req.scenePath;
+  request.overrides = overrides;
+  request.view = req.aov;
+  PlannedJob job = session.plan(request);
   session.prepare(job);
   rendering();
   const CpuSpan clock;

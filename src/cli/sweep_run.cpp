@@ -119,7 +119,12 @@ class Sweep {
       PlannedRun p;
       p.index = i;
       try {
-        p.job = session_.plan(JobRequest{req_.scenePath, run.overrides, req_.aov, {}, {}, req_.budget});
+        JobRequest job;
+        job.scenePath = req_.scenePath;
+        job.overrides = run.overrides;
+        job.view = req_.aov;
+        job.budget = req_.session.budget;
+        p.job = session_.plan(job);
       } catch (const InputError& e) {
         throw InputError("sweep run '" + run.id + "': " + e.what());
       }
@@ -349,8 +354,9 @@ class Sweep {
 }  // namespace
 
 SweepOutcome runSweepSession(const SweepRequest& request, int threads, bool onlyThatCount) {
-  RenderSession session(
-      {request.maxMemoryBytes, request.plan, threads, request.phases, {}, kStageCacheBytes, request.load});
+  SessionOptions options = request.session;
+  options.threads = threads;
+  RenderSession session(options);
   return Sweep(request, session, onlyThatCount ? threads : 0).run();
 }
 

@@ -5,10 +5,7 @@
 #pragma once
 #include "cli/sweep_results.h"
 #include "cli/sweep_spec.h"
-#include "core/progress.h"
-#include "io/scene_loader.h"
-#include "plan/render_budget.h"
-#include "plan/render_plan.h"
+#include "plan/session_options.h"
 #include <functional>
 #include <string>
 #include <vector>
@@ -16,6 +13,9 @@
 namespace penumbra {
 
 struct SweepRequest {
+  // Every run's: threads (one count; a list is the threads knob), memory, the plan,
+  // -D (before each run's knobs), the budget, the phases inside each render.
+  SessionOptions session;
   std::string scenePath;
   std::string outDir;
   SweepSpec spec;
@@ -25,19 +25,13 @@ struct SweepRequest {
   // that run itself, marked as the reference row.
   int referencePasses = 8;
   std::string aov;            // empty: the scene's
-  int threads = 0;
   bool force = false;         // redo every run, even those results.csv has
   bool compareGate = true;    // gated runs: render again ungated for the gate's trade-off
   std::string plotScript;     // scripts/plot_tradeoff.py; empty: no plot
   SweepMetric metric = SweepMetric::RelMse;  // what the front, plot and best run rank by
-  uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available
-  PlanOverrides plan;           // --enable / --disable, for every run
   // One line describing the sweep's progress (run i of n, phase, elapsed, ETA),
   // called on the sweep's own thread.
   std::function<void(const std::string& line)> progress;
-  ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
-  LoadOptions load;                  // --no-defaults, for every run
-  RenderBudget budget;               // --time-limit, --target-error, for every run
   int repeat = 1;                    // --repeat: frames per run, the fastest and the median kept
   bool planOnly = false;             // load and plan every run (InputError on a bad one), render nothing
 };

@@ -7,7 +7,7 @@ namespace penumbra {
 
 SweepOutcome runSweep(const SweepRequest& request) {
   const std::vector<int> counts = threadCounts(request.spec);
-  if (counts.empty()) return runSweepSession(request, request.threads, false);
+  if (counts.empty()) return runSweepSession(request, request.session.threads, false);
   // The most threads first, so the highest run (the default reference's) comes
   // first; later sessions resume the rows the earlier wrote.
   SweepRequest each = request;

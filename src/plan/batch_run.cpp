@@ -31,6 +31,14 @@ struct PreparedJob {
   std::string error;  // validation failure (keepGoing)
 };
 
+// The command line's budget wins over a job's own, field by field.
+RenderBudget budgetOf(const BatchJob& job, const RenderBudget& command) {
+  RenderBudget b = job.budget;
+  if (command.seconds > 0.0) b.seconds = command.seconds;
+  if (command.targetError > 0.0) b.targetError = command.targetError;
+  return b;
+}
+
 }  // namespace
 
 std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count) {
@@ -47,7 +55,7 @@ std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, si
 BatchOutcome runBatch(const BatchRequest& req) {
   const CpuSpan clock;
   BatchOutcome out;
-  RenderSession session({req.maxMemoryBytes, req.plan, req.threads, req.phases, {}, req.mapCacheBytes, req.load});
+  RenderSession session(req.session);
 
   // 1. Every job loaded, planned and admitted, its outputs checked, before the first render.
   std::vector<PreparedJob> prepared(req.jobs.size());
@@ -65,7 +73,13 @@ BatchOutcome runBatch(const BatchRequest& req) {
       }
       if (p.job->outputs.empty()) throw InputError("the job writes no output");
       checkOutputs(outputs, req.extraInputs);  // the jobs file
-      p.views.push_back(session.plan({p.job->scene, p.job->overrides, p.job->outputs.front().view, outputs, {}, p.job->budget}));
+      JobRequest first;
+      first.scenePath = p.job->scene;
+      first.overrides = p.job->overrides;
+      first.view = p.job->outputs.front().view;
+      first.outputs = outputs;
+      first.budget = budgetOf(*p.job, req.session.budget);
+      p.views.push_back(session.plan(first));
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
         p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
       }
@@ -75,8 +89,8 @@ BatchOutcome runBatch(const BatchRequest& req) {
       p.inputs = p.views.front().inputs;
       p.inputs.insert(p.inputs.end(), req.extraInputs.begin(), req.extraInputs.end());
       // --no-defaults changes the picture of a glTF scene: outputs of the other choice are stale.
-      std::vector<std::string> stamped = p.job->overrides;
-      if (!req.load.defaults) stamped.push_back("--no-defaults");
+      std::vector<std::string> stamped = p.views.front().request.overrides;  // -D, then the job's own
+      if (!req.session.load.defaults) stamped.push_back("--no-defaults");
       p.stamp = jobStamp(p.job->scene, stamped, viewFiles);
     } catch (const InputError& e) {
       p.error = e.what();
@@ -105,7 +119,8 @@ BatchOutcome runBatch(const BatchRequest& req) {
         continue;
       }
       try {
-        costs.push_back(shardCostNs(loadScene(p.job->scene, p.job->overrides, loadLimits(0), req.load), views));
+        costs.push_back(shardCostNs(
+            loadScene(p.job->scene, jobOverrides(req.session, p.job->overrides), loadLimits(0), req.session.load), views));
       } catch (const InputError&) {
         costs.push_back(0.0);
       }

@@ -3,9 +3,9 @@
 // jobs whose photon inputs are equal (plan/reuse_key.h), in an LRU cache with a
 // byte cap; skips jobs whose outputs are up to date; reports every job.
 #pragma once
-#include "core/progress.h"
+#include "core/cpu_time.h"
 #include "plan/render_budget.h"
-#include "plan/render_session.h"
+#include "plan/session_options.h"
 #include <functional>
 #include <optional>
 #include <string>
@@ -21,7 +21,7 @@ struct BatchOutput {
 struct BatchJob {
   std::string name;                    // "orbit_3", "fig03_shadows": unique in the batch
   std::string scene;                   // resolved path
-  std::vector<std::string> overrides;  // the batch's "set", then the job's, then the orbit's
+  std::vector<std::string> overrides;  // the batch's "set", then the job's, then the orbit's (after -D)
   std::vector<BatchOutput> outputs;    // one per view
   std::string where;                   // "jobs[2] (orbit 3)": names the job in messages
   RenderBudget budget;                 // "time_limit", "target_error" or the command line's
@@ -41,22 +41,19 @@ struct BatchShard {
 };
 
 struct BatchRequest {
+  // Every job's: threads, memory, the map cache, the plan, -D (before each job's own),
+  // the budget (over each job's own, field by field), the phases inside each render.
+  SessionOptions session;
   std::vector<BatchJob> jobs;  // the whole jobs file, also when one shard renders
   // Set: validate and clash-check every job, then render only this shard's; an unset
   // shard renders every job.
   std::optional<BatchShard> shard;
   bool listShard = false;  // stop after choosing the shard's jobs (BatchOutcome::shardJobs)
   std::vector<std::string> extraInputs;  // the jobs file: its edits make every output stale
-  int threads = 0;
   bool force = false;       // render even jobs whose outputs are up to date
   bool keepGoing = false;   // a job that fails validation is reported, not fatal
-  uint64_t mapCacheBytes = kStageCacheBytes;  // photon maps kept for later jobs (LRU)
-  uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available
-  PlanOverrides plan;           // --enable / --disable, for every job
   // Told on the batch's own thread as each job starts ("render") and ends ("done").
   std::function<void(const BatchProgress&)> progress;
-  ProgressPhases* phases = nullptr;  // the phases inside each render; null: none
-  LoadOptions load;                  // --no-defaults, for every job
 };
 
 struct BatchJobResult {

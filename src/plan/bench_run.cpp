@@ -85,16 +85,20 @@ BenchOutcome runBench(const BenchRequest& req) {
   const int cores = tbb::info::default_concurrency();
   out.threads = !req.threads.empty() ? req.threads : cores > 1 ? std::vector<int>{1, cores} : std::vector<int>{1};
   out.repeat = req.repeat;
-  out.overrides = req.overrides;
+  out.overrides = req.session.overrides;
   const int most = *std::max_element(out.threads.begin(), out.threads.end());
 
   // 1. Every scene checked as its render would be, before the first render.
   for (const std::string& path : req.scenes) {
     if (path == "-") throw InputError("bench: a scene on stdin can be read only once; give a file");
-    RenderSession session({req.maxMemoryBytes, req.plan, most, nullptr, {}, kStageCacheBytes, req.load});
-    std::vector<OutputPath> outputs;
-    if (!req.jsonPath.empty()) outputs.push_back({req.jsonPath, "--json", false});
-    const PlannedJob job = session.plan({path, req.overrides, "", outputs, {}, {}});
+    SessionOptions options = req.session;
+    options.threads = most;
+    options.progress = nullptr;
+    RenderSession session(options);
+    JobRequest request;
+    request.scenePath = path;
+    if (!req.jsonPath.empty()) request.outputs.push_back({req.jsonPath, "--json", false});
+    const PlannedJob job = session.plan(request);
     SceneBench s;
     s.path = path;
     s.name = job.scene.name;
@@ -119,13 +123,9 @@ BenchOutcome runBench(const BenchRequest& req) {
         const std::string item = fmt::format("{} {}T, round {}/{}", s.name, threads, round + 1, req.repeat);
         report(item, "render");
         RenderRequest r;
+        r.session = req.session;
+        r.session.threads = threads;
         r.scenePath = s.path;
-        r.overrides = req.overrides;
-        r.threads = threads;
-        r.progress = req.phases;
-        r.maxMemoryBytes = req.maxMemoryBytes;
-        r.plan = req.plan;
-        r.load = req.load;
         const RenderResult result = runRender(r);
         s.samples.push_back({threads, round, result.stats.time, result.stats.cpu});
         ++done;

@@ -4,10 +4,8 @@
 // (plan/compute_control.h) measured between them in the same run.
 #pragma once
 #include "core/cpu_time.h"
-#include "core/progress.h"
 #include "core/stats.h"
-#include "io/scene_loader.h"
-#include "plan/render_plan.h"
+#include "plan/session_options.h"
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -16,17 +14,15 @@
 namespace penumbra {
 
 struct BenchRequest {
+  // Every render's: memory, the plan, loading, -D, the phases inside each render
+  // (its threads: the list below).
+  SessionOptions session;
   std::vector<std::string> scenes;
-  std::vector<std::string> overrides;  // --set, for every scene
   std::vector<int> threads;            // in the order each round runs them; empty: 1 and all cores
   int repeat = 5;                      // rounds
   std::string jsonPath;                // empty: defaultBenchJson(scenes)
-  uint64_t maxMemoryBytes = 0;         // --max-memory; 0 = the memory available
-  PlanOverrides plan;                  // --enable / --disable
-  LoadOptions load;                    // --no-defaults
   // Told on the bench's own thread as each render or control pass starts and ends.
   std::function<void(size_t done, size_t total, const std::string& item, const char* phase, double seconds)> progress;
-  ProgressPhases* phases = nullptr;    // the phases inside each render; null: none
 };
 
 // One measured render (or control pass: time.total only) and its CPU time.
