@@ -6,7 +6,7 @@
 #include "plan/bench_report.h"
 #include "plan/bench_run.h"
 #include "plan/memory_limit.h"
-#include "io/temp_file.h"
+#include "plan/command_support.h"
 #include <iostream>
 #include <optional>
 
@@ -53,7 +53,7 @@ int BenchCommand::run() {
   }
   const BenchOutcome out = runBench(req);
   if (progress) progress->finish();
-  writeTextFileAtomic(out.jsonPath, benchJson(out));
+  writeTextOutput(out.jsonPath, benchJson(out));
   std::cout << benchTable(out);
   if (!session.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";

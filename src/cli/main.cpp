@@ -1,5 +1,6 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
 // 0 ok, 2 bad input (one-line message), 1 internal error.
+#include "plan/command_support.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "plan/pipeline.h"
@@ -9,13 +10,7 @@
 #include "cli/plan_command.h"
 #include "cli/session_args.h"
 #include "cli/sweep_command.h"
-#include "core/cpu_time.h"
 #include "core/error.h"
-#include "io/image_io.h"
-#include "io/report_json.h"
-#include "io/suggest.h"
-#include "io/temp_file.h"
-#include "io/texture_gen.h"
 #include <algorithm>
 #include <CLI/CLI.hpp>
 #include <charconv>
@@ -102,19 +97,19 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   }
   // A time limit counts the whole process: its start-up (loading the shared
   // libraries) and the image's write are the user's wait too.
-  if (processAgeSeconds() >= 0.0) req.jobClock = [] { return processAgeSeconds(); };
+  if (processSeconds() >= 0.0) req.jobClock = [] { return processSeconds(); };
   RenderResult result = runRender(req);
   if (meter) meter->finish();
   if (req.tracePixel) {
-    std::string json = rayTreeToJson(result.rayTree, req.tracePixel->first, req.tracePixel->second);
+    std::string json = rayTreeReport(result, req.tracePixel->first, req.tracePixel->second);
     if (req.outputPath.empty() || req.outputPath == "-") std::cout << json;
-    else writeTextFileAtomic(req.outputPath, json);
+    else writeTextOutput(req.outputPath, json);
   }
   if (statsToStdout) std::cout << statsReport(result);
-  else if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsReport(result));
+  else if (!statsPath.empty()) writeTextOutput(statsPath, statsReport(result));
   if (!quiet) {
     for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
-    std::cerr << statsSummary(result.stats, verbose || !statsPath.empty()) << "  " << cpuLine(result.stats.cpu) << "\n";
+    std::cerr << renderSummary(result, verbose || !statsPath.empty()) << "\n";
   }
   return 0;
 }
@@ -189,7 +184,7 @@ int runCommandLine(int argc, char** argv) {
   BenchCommand bench(app);
 
   // From here on an interrupt removes our temp files, never an old output.
-  installTempFileCleanup();
+  installOutputCleanup();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ExtrasError& e) {
@@ -201,7 +196,7 @@ int runCommandLine(int argc, char** argv) {
         for (const CLI::Option* o : sub->get_options()) {
           for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
         }
-        std::string hint = didYouMean(extra.substr(0, extra.find('=')), names);
+        std::string hint = optionHint(extra.substr(0, extra.find('=')), names);
         if (hint.empty()) hint = otherCommandsHint(app, *sub, extra.substr(0, extra.find('=')));
         std::cerr << "penumbra " << sub->get_name() << ": unknown option '" << extra << "'" << hint << "\n";
         return 2;
@@ -233,8 +228,7 @@ int runCommandLine(int argc, char** argv) {
     if (batch.selected()) return batch.run();
     if (bench.selected()) return bench.run();
     if (*texture) {
-      writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),
-                 {{"penumbra:texture", textureName}});
+      writeProceduralTexture(textureName, textureWidth, textureSeed, textureOut);
       return 0;
     }
   } catch (const InputError& e) {

@@ -2,13 +2,12 @@
 #include "cli/sweep_command.h"
 #include "cli/sweep_run.h"
 #include "cli/sweep_scenes.h"
-#include "io/temp_file.h"
+#include "plan/command_support.h"
 #include "cli/session_args.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "core/error.h"
-#include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <unistd.h>
 #include <filesystem>
@@ -131,7 +130,7 @@ int SweepCommand::run() {
   }
   if (requests.size() > 1) {
     const std::string summary = (std::filesystem::path(o.out) / "scenes.md").string();
-    writeTextFileAtomic(summary, scenesMarkdown(done, metric));
+    writeTextOutput(summary, scenesMarkdown(done, metric));
     if (!session.quiet) std::cerr << "wrote " << summary << "\n";
   }
   return 0;
