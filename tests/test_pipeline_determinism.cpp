@@ -6,7 +6,7 @@
 #include "cli/batch_jobs.h"
 #include "plan/batch_run.h"
 #include "cli/progress_meter.h"
-#include "cli/sweep_run.h"
+#include "plan/sweep/sweep_run.h"
 #include "core/error.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -190,8 +190,8 @@ TEST(Determinism, SweepWithProgressOnTwoThreads) {
   req.spec = expandGrid({keyKnob("photons.k_indirect=10,30")}, {"camera.spp=1"});
   req.session.threads = 2;
   size_t lines = 0;
-  req.progress = [&](const std::string& line) {
-    progress.meter->setContext(line);
+  req.progress = [&](const SweepProgress& p) {
+    progress.meter->setContext(p.run + " " + p.phase);
     ++lines;
   };
   req.session.progress = &*progress.meter;

@@ -7,7 +7,7 @@
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
-#include "cli/sweep_spec.h"
+#include "plan/sweep/sweep_spec.h"
 #include "core/error.h"
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

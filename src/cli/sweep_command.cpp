@@ -1,9 +1,10 @@
 // Options of `penumbra sweep`, the progress line, and the closing summary.
 #include "cli/sweep_command.h"
-#include "cli/sweep_run.h"
-#include "cli/sweep_scenes.h"
+#include "plan/sweep/sweep_run.h"
+#include "plan/sweep/sweep_scenes.h"
 #include "plan/command_support.h"
 #include "cli/session_args.h"
+#include "cli/progress_line.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
@@ -113,7 +114,9 @@ int SweepCommand::run() {
     if (!session.quiet) {
       progress.emplace();
       req.session.progress = progress->phases();
-      req.progress = [&](const std::string& line) { progress->line(line); };
+      req.progress = [&](const SweepProgress& p) {
+        progress->line(progressLine("sweep", p.done, p.total, p.run, p.phase, p.seconds, p.paced, p.remaining));
+      };
     }
     SweepOutcome out = runSweep(req);
     if (progress) progress->finish();

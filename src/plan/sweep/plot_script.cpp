@@ -1,5 +1,5 @@
 // posix_spawn of the plotting script and its exit status.
-#include "cli/plot_script.h"
+#include "plan/sweep/plot_script.h"
 #include <fmt/format.h>
 #include <filesystem>
 #include <spawn.h>

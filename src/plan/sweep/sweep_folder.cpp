@@ -1,7 +1,7 @@
 // sweep.json holds one field per thing that changes a row, so a refusal can say
 // which one differs; the knob values are the rows' own keys in results.csv.
-#include "cli/sweep_folder.h"
-#include "cli/sweep_run.h"
+#include "plan/sweep/sweep_folder.h"
+#include "plan/sweep/sweep_run.h"
 #include "plan/reuse_key.h"
 #include "core/error.h"
 #include "io/temp_file.h"

@@ -1,7 +1,7 @@
 // penumbra sweep's results: one row per run, results.csv (rewritten atomically
 // after every run, read back to resume), the Pareto front, and report.md.
 #pragma once
-#include "cli/sweep_spec.h"
+#include "plan/sweep/sweep_spec.h"
 #include "core/stats.h"
 #include <map>
 #include <string>

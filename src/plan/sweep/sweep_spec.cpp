@@ -1,5 +1,5 @@
 // Value lists, knob-to-key mapping and the grid's expansion.
-#include "cli/sweep_spec.h"
+#include "plan/sweep/sweep_spec.h"
 #include "core/error.h"
 #include <algorithm>
 #include <cmath>

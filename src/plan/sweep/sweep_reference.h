@@ -11,7 +11,7 @@ namespace penumbra {
 
 class RenderSession;
 struct PlannedJob;
-struct SweepRequest;  // cli/sweep_run.h
+struct SweepRequest;  // plan/sweep/sweep_run.h
 
 struct LongReference {
   Image image;

@@ -1,5 +1,5 @@
 // Folders of a several-scene sweep and its summary, scenes.md.
-#include "cli/sweep_scenes.h"
+#include "plan/sweep/sweep_scenes.h"
 #include "core/error.h"
 #include <fmt/format.h>
 #include <algorithm>

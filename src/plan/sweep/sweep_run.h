@@ -3,14 +3,25 @@
 // measures each run's stages and error, and writes results.csv, report.md, the
 // runs' images and tradeoff.png into one folder; a rerun resumes.
 #pragma once
-#include "cli/sweep_results.h"
-#include "cli/sweep_spec.h"
+#include "plan/sweep/sweep_results.h"
+#include "plan/sweep/sweep_spec.h"
 #include "plan/session_options.h"
 #include <functional>
 #include <string>
 #include <vector>
 
 namespace penumbra {
+
+// Where a sweep is: `done` of `total` runs after `seconds`, the current `run` in
+// `phase`; `paced` runs finished by this session and `remaining` still to render
+// (what an ETA extrapolates from).
+struct SweepProgress {
+  size_t done = 0, total = 0;
+  std::string run;
+  std::string phase;
+  double seconds = 0.0;
+  size_t paced = 0, remaining = 0;
+};
 
 struct SweepRequest {
   // Every run's: threads (one count; a list is the threads knob), memory, the plan,
@@ -29,9 +40,8 @@ struct SweepRequest {
   bool compareGate = true;    // gated runs: render again ungated for the gate's trade-off
   std::string plotScript;     // scripts/plot_tradeoff.py; empty: no plot
   SweepMetric metric = SweepMetric::RelMse;  // what the front, plot and best run rank by
-  // One line describing the sweep's progress (run i of n, phase, elapsed, ETA),
-  // called on the sweep's own thread.
-  std::function<void(const std::string& line)> progress;
+  // Told on the sweep's own thread as each run's phase changes.
+  std::function<void(const SweepProgress&)> progress;
   int repeat = 1;                    // --repeat: frames per run, the fastest and the median kept
   bool planOnly = false;             // load and plan every run (InputError on a bad one), render nothing
 };
@@ -43,7 +53,7 @@ struct SweepOutcome {
 };
 
 // Every run is loaded and checked (InputError, naming the run) before the first renders.
-// A threads knob (--threads 1,2) runs one session per count (cli/sweep_sessions.cpp).
+// A threads knob (--threads 1,2) runs one session per count (plan/sweep/sweep_sessions.cpp).
 SweepOutcome runSweep(const SweepRequest& request);
 // One session of `threads` workers; with `onlyThatCount`, just the runs of that value
 // of the threads knob (the others' rows are read back from results.csv).

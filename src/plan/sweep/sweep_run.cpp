@@ -2,12 +2,11 @@
 // (one BVH per geometry), the reference first, then each photon group's emission
 // once, its budgets' maps from largest to smallest, and every run of a budget on
 // the same maps.
-#include "cli/sweep_run.h"
-#include "cli/plot_script.h"
-#include "cli/sweep_folder.h"
-#include "cli/sweep_idle_knobs.h"
-#include "cli/sweep_reference.h"
-#include "cli/progress_line.h"
+#include "plan/sweep/sweep_run.h"
+#include "plan/sweep/plot_script.h"
+#include "plan/sweep/sweep_folder.h"
+#include "plan/sweep/sweep_idle_knobs.h"
+#include "plan/sweep/sweep_reference.h"
 #include "plan/cpu_report.h"
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
@@ -328,9 +327,15 @@ class Sweep {
     for (const PlannedRun& p : runs_) {
       if (p.mine) (p.done ? done : todo) += 1;
     }
-    const std::string id = current_ < spec_.runs.size() ? spec_.runs[current_].id : "";
-    req_.progress(progressLine("sweep", done + finishedNow_, done + todo, id, status_, clock_.wallSeconds(),
-                               finishedNow_, todo - finishedNow_));
+    SweepProgress p;
+    p.done = done + finishedNow_;
+    p.total = done + todo;
+    p.run = current_ < spec_.runs.size() ? spec_.runs[current_].id : "";
+    p.phase = status_;
+    p.seconds = clock_.wallSeconds();
+    p.paced = finishedNow_;
+    p.remaining = todo - finishedNow_;
+    req_.progress(p);
   }
 
   const SweepRequest& req_;

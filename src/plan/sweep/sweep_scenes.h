@@ -1,8 +1,8 @@
 // penumbra sweep over several scenes: each into a folder of its own name under the
 // output, and scenes.md, one line per scene with its best and fastest runs.
 #pragma once
-#include "cli/sweep_results.h"
-#include "cli/sweep_run.h"
+#include "plan/sweep/sweep_results.h"
+#include "plan/sweep/sweep_run.h"
 #include <string>
 #include <vector>
 

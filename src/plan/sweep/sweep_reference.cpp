@@ -1,7 +1,7 @@
 // A sweep's own long reference: one longer render by the same consistent estimator,
 // kept beside the results with a note that says what it is, so a rerun reloads it.
-#include "cli/sweep_reference.h"
-#include "cli/sweep_run.h"
+#include "plan/sweep/sweep_reference.h"
+#include "plan/sweep/sweep_run.h"
 #include "plan/cpu_report.h"
 #include "plan/render_session.h"
 #include "core/error.h"

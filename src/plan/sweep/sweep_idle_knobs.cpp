@@ -1,6 +1,6 @@
 // Idle knobs: runs grouped by every other knob's value, their images compared pixel
 // for pixel (read back from the sweep folder), and a reason named where one is known.
-#include "cli/sweep_idle_knobs.h"
+#include "plan/sweep/sweep_idle_knobs.h"
 #include "io/image_io.h"
 #include <algorithm>
 #include <cstring>

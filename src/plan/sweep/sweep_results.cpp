@@ -1,5 +1,5 @@
 // results.csv rows both ways, the Pareto front, and the markdown report.
-#include "cli/sweep_results.h"
+#include "plan/sweep/sweep_results.h"
 #include "core/error.h"
 #include "plan/cpu_report.h"
 #include <cmath>

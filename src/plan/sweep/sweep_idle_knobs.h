@@ -1,8 +1,8 @@
 // A sweep knob that changed nothing: every group of runs that differ only in that
 // knob rendered identical images. Said after the sweep, with the likely reason.
 #pragma once
-#include "cli/sweep_results.h"
-#include "cli/sweep_spec.h"
+#include "plan/sweep/sweep_results.h"
+#include "plan/sweep/sweep_spec.h"
 #include <filesystem>
 #include <string>
 #include <vector>

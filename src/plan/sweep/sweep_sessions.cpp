@@ -1,6 +1,6 @@
 // penumbra sweep's sessions: one for the whole grid, or with a threads knob one per
 // thread count, so every stage of a run is timed at its own count.
-#include "cli/sweep_run.h"
+#include "plan/sweep/sweep_run.h"
 #include "core/cpu_time.h"
 
 namespace penumbra {

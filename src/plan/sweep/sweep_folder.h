@@ -6,8 +6,8 @@
 
 namespace penumbra {
 
-struct SweepRequest;  // cli/sweep_run.h
-struct SweepSpec;     // cli/sweep_spec.h
+struct SweepRequest;  // plan/sweep/sweep_run.h
+struct SweepSpec;     // plan/sweep/sweep_spec.h
 
 struct SweepIdentity {
   std::string scene;                   // the scene path as given
