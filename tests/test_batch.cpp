@@ -2,8 +2,8 @@
 // runRender of the same scene and overrides, camera variants share one photon
 // build, layered EXRs hold every view, reruns skip up-to-date jobs, a failing job
 // does not stop the batch, shards split jobs stably, and outputs carry a render's header.
-#include "cli/batch_jobs.h"
-#include "plan/batch_run.h"
+#include "plan/batch/batch_jobs.h"
+#include "plan/batch/batch_run.h"
 #include "plan/pipeline.h"
 #include "core/error.h"
 #include "io/image_compare.h"

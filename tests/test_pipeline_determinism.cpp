@@ -3,8 +3,8 @@
 // the jittered image, and the CLI's exit codes and messages follow the contract
 // (0 ok, 2 bad input with one line on stderr).
 #include "plan/pipeline.h"
-#include "cli/batch_jobs.h"
-#include "plan/batch_run.h"
+#include "plan/batch/batch_jobs.h"
+#include "plan/batch/batch_run.h"
 #include "cli/progress_meter.h"
 #include "plan/sweep/sweep_run.h"
 #include "core/error.h"
@@ -207,7 +207,7 @@ TEST(Determinism, BatchWithProgressOnTwoThreads) {
   const fs::path scene = dir.write("scene.json", kScene);
   MeterToFile progress(dir.path() / "progress.txt");
   BatchRequest req;
-  req.jobs = jobsForScenes({scene.string()}, dir.path().string(), {}, {"beauty", "depth"}, ".exr");
+  req.jobs = jobsForScenes({scene.string()}, dir.path().string(), {"beauty", "depth"}, ".exr");
   req.session.threads = 2;
   req.force = true;
   req.progress = [&](const BatchProgress& p) { progress.meter->setContext(p.job + " " + p.phase); };

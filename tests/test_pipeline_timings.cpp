@@ -2,7 +2,7 @@
 // batch jobs, and `penumbra bench` (its table, its JSON with the thread counts
 // interleaved, and its refusals of bad input before any render). Values are
 // checked for sanity (a share in (0, cores]), never for speed.
-#include "plan/batch_run.h"
+#include "plan/batch/batch_run.h"
 #include "support/cli_run.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

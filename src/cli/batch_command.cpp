@@ -1,8 +1,8 @@
 // Options of `penumbra batch`, the shard selection, the progress line and the summary.
 #include "cli/batch_command.h"
-#include "cli/batch_jobs.h"
+#include "plan/batch/batch_jobs.h"
 #include "cli/progress_line.h"
-#include "plan/batch_run.h"
+#include "plan/batch/batch_run.h"
 #include "cli/session_args.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
@@ -10,10 +10,8 @@
 #include "plan/sweep/sweep_spec.h"
 #include "core/error.h"
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <iostream>
 
@@ -70,11 +68,6 @@ std::string batchSummary(const BatchOutcome& o) {
   return s;
 }
 
-bool isJobsFile(const std::string& path) {
-  std::ifstream in(path);
-  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  return doc.is_object() && doc.contains("jobs");
-}
 }  // namespace
 
 int BatchCommand::run() {
@@ -94,7 +87,7 @@ int BatchCommand::run() {
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);
     if (ec) throw InputError(o.out + ": cannot create the output folder (" + ec.message() + ")");
-    req.jobs = jobsForScenes(o.inputs, o.out, {}, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
+    req.jobs = jobsForScenes(o.inputs, o.out, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
   }
   const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;
   if (!shardArg.empty()) {

@@ -1,7 +1,7 @@
 // The batch loop: plan and admit every job, then render each through the render
 // session, which shares scenes and photon stages between jobs; a job's views are
 // rendered from the same maps.
-#include "plan/batch_run.h"
+#include "plan/batch/batch_run.h"
 #include "plan/cpu_report.h"
 #include "plan/image_metadata.h"
 #include "plan/memory_limit.h"

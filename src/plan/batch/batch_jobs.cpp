@@ -1,10 +1,11 @@
 // Jobs file parsing and expansion (orbits, scene globs), output names, shards.
-#include "cli/batch_jobs.h"
+#include "plan/batch/batch_jobs.h"
 #include "core/error.h"
 #include "io/json_parse.h"
 #include <fmt/format.h>
 #include <fnmatch.h>
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -212,15 +213,19 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
   return jobs;
 }
 
+bool isJobsFile(const std::string& path) {
+  std::ifstream in(path);
+  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  return doc.is_object() && doc.contains("jobs");
+}
+
 std::vector<BatchJob> jobsForScenes(const std::vector<std::string>& scenes, const std::string& dir,
-                                    const std::vector<std::string>& overrides,
                                     const std::vector<std::string>& views, const std::string& ext) {
   std::vector<BatchJob> jobs;
   for (size_t i = 0; i < scenes.size(); ++i) {
     BatchJob job;
     job.name = fs::path(scenes[i]).stem().string();
     job.scene = scenes[i];
-    job.overrides = overrides;
     job.where = fmt::format("scene {} ({})", i + 1, scenes[i]);
     for (const std::string& v : views) {
       const std::string file = views.size() > 1 && ext != ".exr" ? job.name + "_" + v + ext : job.name + ext;

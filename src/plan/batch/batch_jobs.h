@@ -1,12 +1,15 @@
 // penumbra batch's jobs: a jobs file (or a list of scenes) expanded into plain
-// jobs (plan/batch_run.h), and the deterministic split of a batch into shards.
+// jobs (plan/batch/batch_run.h), and the deterministic split of a batch into shards.
 #pragma once
-#include "plan/batch_run.h"
+#include "plan/batch/batch_run.h"
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace penumbra {
+
+// Whether `path` is a jobs file (a JSON object with "jobs") rather than a scene.
+bool isJobsFile(const std::string& path);
 
 // A jobs file:
 //   {"set": [...], "jobs": [{"scene": "a.json", "set": [...], "views": ["beauty", "depth"],
@@ -20,7 +23,6 @@ std::vector<BatchJob> readJobsFile(const std::string& path);
 
 // One job per scene, every view into DIR/<scene stem>[_<view>].<ext>.
 std::vector<BatchJob> jobsForScenes(const std::vector<std::string>& scenes, const std::string& dir,
-                                    const std::vector<std::string>& overrides,
                                     const std::vector<std::string>& views, const std::string& ext);
 
 // "2/4" -> {1, 4} (1-based on the command line); throws InputError.
