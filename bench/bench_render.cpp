@@ -3,7 +3,7 @@
 // and ray/gather counts as counters for `make scaling` and docs/PERFORMANCE.md; and
 // a compute-only control that measures the machine's own 2T/1T in the same run.
 #include "bench/bench_common.h"
-#include "plan/compute_control.h"
+#include "cli/bench/compute_control.h"
 #include "plan/pipeline.h"
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -71,7 +71,7 @@ void BM_SceneCornellPhysical(benchmark::State& s) {
   renderScene(s, "cornell_physical.json", {"camera.spp=1"});
 }
 
-// The machine's own ceiling for the scaling table (plan/compute_control.h), the same
+// The machine's own ceiling for the scaling table (cli/bench/compute_control.h), the same
 // work `penumbra bench` measures beside the user's scenes.
 void BM_ControlCompute(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));

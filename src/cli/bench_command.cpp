@@ -3,8 +3,8 @@
 #include "cli/session_args.h"
 #include "cli/progress_line.h"
 #include "cli/progress_meter.h"
-#include "plan/bench_report.h"
-#include "plan/bench_run.h"
+#include "cli/bench/bench_report.h"
+#include "cli/bench/bench_run.h"
 #include "plan/memory_limit.h"
 #include "plan/command_support.h"
 #include <iostream>

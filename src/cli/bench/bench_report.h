@@ -2,7 +2,7 @@
 // count, the speed-up of each thread count over the fewest, the CPU share, and the
 // compute-only control beside them; the same as JSON with every sample.
 #pragma once
-#include "plan/bench_run.h"
+#include "cli/bench/bench_run.h"
 #include <string>
 #include <vector>
 

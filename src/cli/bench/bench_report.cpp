@@ -1,5 +1,5 @@
 // The bench's table and JSON, both from the samples in the order they ran.
-#include "plan/bench_report.h"
+#include "cli/bench/bench_report.h"
 #include "plan/cpu_report.h"
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

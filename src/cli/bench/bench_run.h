@@ -1,10 +1,10 @@
 // penumbra bench: the user's own scenes rendered at each thread count several
 // times through the render session, the thread counts interleaved (1, 2, 1, 2, ...)
 // so drift on a shared machine hits each alike, beside the compute-only control
-// (plan/compute_control.h) measured between them in the same run.
+// (cli/bench/compute_control.h) measured between them in the same run.
 #pragma once
-#include "core/cpu_time.h"
-#include "core/stats.h"
+#include "plan/cpu_report.h"
+#include "plan/pipeline.h"
 #include "plan/session_options.h"
 #include <cstdint>
 #include <functional>

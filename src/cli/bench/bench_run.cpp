@@ -1,8 +1,8 @@
 // The bench's schedule: validation of every scene first, then rounds of renders
 // and control passes, each render a lone one (runRender: a fresh session, so load
 // and BVH count as they would for the user).
-#include "plan/bench_run.h"
-#include "plan/compute_control.h"
+#include "cli/bench/bench_run.h"
+#include "cli/bench/compute_control.h"
 #include "plan/cpu_report.h"
 #include "plan/pipeline.h"
 #include "plan/render_session.h"

@@ -1,5 +1,5 @@
 // The control's fixed work, parallelised over whatever threads TBB may use.
-#include "plan/compute_control.h"
+#include "cli/bench/compute_control.h"
 #include <tbb/parallel_for.h>
 #include <array>
 #include <cstddef>
