@@ -1,8 +1,8 @@
 // The lookup cache's gate verdicts: per cell, each light's vote over the photons
 // around the cell (further around where they are sparse), each stratum's of an area
 // light too, and a split line for a stratum whose photons there disagree.
-#include "gather/lookup_cache.h"
-#include "gather/lookup_cache_cells.h"
+#include "gather/lookup_cache/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache_cells.h"
 #include "core/light_strata.h"
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>

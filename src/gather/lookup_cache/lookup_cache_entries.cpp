@@ -1,6 +1,6 @@
 // The lookup cache's photon entries in key order: a stable radix sort over the bits of
 // the cell coordinates and bucket the photons occupy (a few cells a side, not 2^20).
-#include "gather/lookup_cache_cells.h"
+#include "gather/lookup_cache/lookup_cache_cells.h"
 #include "gather/radix_pass.h"
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>

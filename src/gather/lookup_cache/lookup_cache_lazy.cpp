@@ -1,6 +1,6 @@
 // The lookup cache's lazy cells: where no precomputed cell is near a shading point,
 // the estimate of its own (cell, bucket) is computed once, on first use, and kept.
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include <cmath>
 
 namespace penumbra {

@@ -1,7 +1,7 @@
 // Building the lookup cache: bin photons into (cell, normal bucket) keys, count the
 // gate's photons per key, then vote and estimate once per key, in parallel.
-#include "gather/lookup_cache.h"
-#include "gather/lookup_cache_cells.h"
+#include "gather/lookup_cache/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache_cells.h"
 #include "gather/kth_distance.h"
 #include "gather/radiance_estimate.h"
 #include "gather/morton.h"
