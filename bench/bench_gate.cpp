@@ -16,7 +16,7 @@ namespace {
 RenderResult renderWith(const std::string& scene, const std::vector<std::string>& overrides, int threads) {
   RenderRequest req;
   req.scenePath = bench::scenePath(scene);
-  req.threads = threads;
+  req.session.threads = threads;
   req.overrides = overrides;
   return runRender(req);
 }

@@ -4,7 +4,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "emit/emit.h"
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "geometry/trace_scene.h"
 #include "trace/camera.h"

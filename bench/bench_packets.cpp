@@ -84,7 +84,7 @@ void BM_PrimaryRays(benchmark::State& state) {
 void renderTeapot(benchmark::State& state, const char* aov) {
   RenderRequest req;
   req.scenePath = kScene;
-  req.threads = static_cast<int>(state.range(0));
+  req.session.threads = static_cast<int>(state.range(0));
   req.aov = aov;
   req.overrides = {state.range(1) ? "render.packets=true" : "render.packets=false"};
   double render = 0.0, total = 0.0;

@@ -3,7 +3,7 @@
 // and ray/gather counts as counters for `make scaling` and docs/PERFORMANCE.md; and
 // a compute-only control that measures the machine's own 2T/1T in the same run.
 #include "bench/bench_common.h"
-#include "plan/compute_control.h"
+#include "cli/bench/compute_control.h"
 #include "plan/pipeline.h"
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -16,7 +16,7 @@ namespace {
 void renderScene(benchmark::State& state, const std::string& scene, std::vector<std::string> overrides) {
   RenderRequest req;
   req.scenePath = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + scene;
-  req.threads = static_cast<int>(state.range(0));
+  req.session.threads = static_cast<int>(state.range(0));
   req.overrides = std::move(overrides);
   Timings sum;
   RayCounts rays;  // of the last frame (every frame casts the same)
@@ -32,7 +32,7 @@ void renderScene(benchmark::State& state, const std::string& scene, std::vector<
     pixels += int64_t(r.stats.width) * r.stats.height;
     benchmark::DoNotOptimize(r.image.pixels.data());
   }
-  cpu.report(state, req.threads);
+  cpu.report(state, req.session.threads);
   auto avg = [&](const char* name, double v) {
     state.counters[name] = benchmark::Counter(v, benchmark::Counter::kAvgIterations);
   };
@@ -71,7 +71,7 @@ void BM_SceneCornellPhysical(benchmark::State& s) {
   renderScene(s, "cornell_physical.json", {"camera.spp=1"});
 }
 
-// The machine's own ceiling for the scaling table (plan/compute_control.h), the same
+// The machine's own ceiling for the scaling table (cli/bench/compute_control.h), the same
 // work `penumbra bench` measures beside the user's scenes.
 void BM_ControlCompute(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(0));

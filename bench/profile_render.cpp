@@ -137,12 +137,12 @@ int main(int argc, char** argv) {
   }
   RenderRequest req;
   req.scenePath = argv[1];
-  req.threads = std::atoi(argv[2]);
+  req.session.threads = std::atoi(argv[2]);
   const int reps = std::atoi(argv[3]);
   for (int i = 5; i < argc; ++i) req.overrides.push_back(argv[i]);
   std::FILE* out = std::fopen(argv[4], "w");
   if (!out) return 2;
-  std::fprintf(out, "{\"scene\": \"%s\", \"threads\": %d, \"renders\": [\n", argv[1], req.threads);
+  std::fprintf(out, "{\"scene\": \"%s\", \"threads\": %d, \"renders\": [\n", argv[1], req.session.threads);
   bool queried = false;
   // The render phase's start, announced by the session on its own thread.
   struct RenderStart final : ProgressPhases {
@@ -155,7 +155,7 @@ int main(int argc, char** argv) {
   };
   for (int rep = 0; rep < reps; ++rep) {
     RenderStart renderStart;
-    req.progress = &renderStart;
+    req.session.progress = &renderStart;
     const double t0 = monotonicNow();
     const RenderResult r = runRender(req);
     const double t1 = monotonicNow();
@@ -179,10 +179,10 @@ int main(int argc, char** argv) {
   const TraceScene tracer(scene);
   const RaySets rays = makeRaySets(scene, tracer);
   std::fprintf(out, "], \"raw\": {\"t0\": %.6f, \"camera_ns\": %.2f, \"shadow_ns\": %.2f, \"incoherent_ns\": %.2f, ",
-               rawT0, nsPerRay(tracer, rays.camera, false, req.threads),
-               nsPerRay(tracer, rays.shadow, true, req.threads),
-               nsPerRay(tracer, rays.incoherent, false, req.threads));
-  rawGatherRates(scene, tracer, rays, req.threads, queried, out);
+               rawT0, nsPerRay(tracer, rays.camera, false, req.session.threads),
+               nsPerRay(tracer, rays.shadow, true, req.session.threads),
+               nsPerRay(tracer, rays.incoherent, false, req.session.threads));
+  rawGatherRates(scene, tracer, rays, req.session.threads, queried, out);
   std::fprintf(out, ", \"points\": %zu}}\n", rays.points.size());
   std::fclose(out);
   return 0;

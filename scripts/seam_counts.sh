@@ -27,5 +27,5 @@ echo "M5 renderFrame: $(awk '/^void renderFrame/,/^}/' src/plan/render_frame.cpp
   "$(awk '/^void renderFrame/,/^}/' src/plan/render_frame.cpp | awk '/for \(int pass = 0; pass < (f\.)?passes/,/^  }$/' | wc -l)"
 
 echo "M6 cli files including more than plan/ and core/error.h:" \
-  "$(grep -E '^\s*#\s*include "(core|io|emit|gather|geometry|trace)/' src/cli/*.h src/cli/*.cpp | grep -v '"core/error.h"' |
-     cut -d: -f1 | sort -u | wc -l) of $(ls src/cli/*.h src/cli/*.cpp | wc -l)"
+  "$(grep -rE --include='*.h' --include='*.cpp' '^\s*#\s*include "(core|io|emit|gather|geometry|trace)/' src/cli |
+     grep -v '"core/error.h"' | cut -d: -f1 | sort -u | wc -l) of $(find src/cli -name '*.h' -o -name '*.cpp' | wc -l)"

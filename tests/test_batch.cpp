@@ -2,8 +2,8 @@
 // runRender of the same scene and overrides, camera variants share one photon
 // build, layered EXRs hold every view, reruns skip up-to-date jobs, a failing job
 // does not stop the batch, shards split jobs stably, and outputs carry a render's header.
-#include "cli/batch_jobs.h"
-#include "plan/batch_run.h"
+#include "plan/batch/batch_jobs.h"
+#include "plan/batch/batch_run.h"
 #include "plan/pipeline.h"
 #include "core/error.h"
 #include "io/image_compare.h"
@@ -42,7 +42,7 @@ TEST(Batch, CameraVariantsShareOnePhotonBuildAndMatchStandaloneRenders) {
                                            "\"radius\": 2.5, \"height\": 0.2, \"from\": -20, \"to\": 20}}");
   BatchRequest req;
   req.jobs = readJobsFile(jobsFile.string());
-  req.threads = 2;
+  req.session.threads = 2;
   ASSERT_EQ(req.jobs.size(), 3u);
   const BatchOutcome out = runBatch(req);
   EXPECT_EQ(out.rendered, 3u);
@@ -54,7 +54,7 @@ TEST(Batch, CameraVariantsShareOnePhotonBuildAndMatchStandaloneRenders) {
     RenderRequest alone;
     alone.scenePath = job.scene;
     alone.overrides = job.overrides;
-    alone.threads = 2;
+    alone.session.threads = 2;
     alone.outputPath = (dir / ("alone_" + job.name + ".exr")).string();
     runRender(alone);
     const ImageError e = compareImages(readImage(job.outputs[0].path), readImage(alone.outputPath));

@@ -1,7 +1,7 @@
 // Batch orbits keep the horizon level: every camera an orbit makes turns about the
 // world's up axis (or the orbit's "up") and takes that axis as camera.up, whatever
 // roll the scene's own camera has; angle 0 stays on the +z side as before.
-#include "cli/batch_jobs.h"
+#include "plan/batch/batch_jobs.h"
 #include "core/camera_frame.h"
 #include "core/error.h"
 #include "io/scene_loader.h"

@@ -1,7 +1,7 @@
 // The lookup cache's entry sort against std::stable_sort by key (the order the cache's
 // records and their photons were defined in): few cells with many repeats across radix
 // chunks, keys over every bit of the layout, one key, and the empty and single cases.
-#include "gather/lookup_cache_cells.h"
+#include "gather/lookup_cache/lookup_cache_cells.h"
 #include "gather/radix_pass.h"
 #include "core/rng.h"
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The precomputed lookup cache against the exact estimators it replaces: a uniformly
 // lit plane (analytic irradiance), a constant power, a thin wall's two sides, points
 // far from any photon and the lazy cells of points with no cell near.
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "support/cache_photons.h"
 #include <gtest/gtest.h>

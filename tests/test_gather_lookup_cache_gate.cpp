@@ -1,7 +1,7 @@
 // The lookup cache's gate verdicts against the truth they stand for: a half-shadowed
 // plane (never contradicted, confident away from the edge), sparse photons, empty
 // cells, cells without voters of their own, glass, and a thin box's exit hits.
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "support/cache_photons.h"
 #include <gtest/gtest.h>

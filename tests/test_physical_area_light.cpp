@@ -230,9 +230,9 @@ TEST(AreaLight, RendersAreIdenticalForOneAndTwoThreadsInBothModels) {
       RenderRequest req;
       req.scenePath = path;
       req.overrides = {std::string("render.model=") + model, std::string("photons.lookup=") + lookup};
-      req.threads = 1;
+      req.session.threads = 1;
       RenderResult one = runRender(req);
-      req.threads = 2;
+      req.session.threads = 2;
       RenderResult two = runRender(req);
       ASSERT_EQ(one.image.pixels.size(), two.image.pixels.size());
       EXPECT_EQ(std::memcmp(one.image.pixels.data(), two.image.pixels.data(),

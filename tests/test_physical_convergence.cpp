@@ -33,7 +33,7 @@ Image render(std::vector<std::string> overrides, const std::string& aov = "") {
   RenderRequest req;
   req.scenePath = kScene;
   req.overrides = std::move(overrides);
-  req.threads = 2;
+  req.session.threads = 2;
   req.aov = aov;
   return runRender(req).image;
 }

@@ -3,10 +3,10 @@
 // the jittered image, and the CLI's exit codes and messages follow the contract
 // (0 ok, 2 bad input with one line on stderr).
 #include "plan/pipeline.h"
-#include "cli/batch_jobs.h"
-#include "plan/batch_run.h"
+#include "plan/batch/batch_jobs.h"
+#include "plan/batch/batch_run.h"
 #include "cli/progress_meter.h"
-#include "cli/sweep_run.h"
+#include "plan/sweep/sweep_run.h"
 #include "core/error.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -115,7 +115,7 @@ size_t lineCount(const std::string& s) { return static_cast<size_t>(std::count(s
 RenderResult render(const fs::path& scene, int threads, std::vector<std::string> overrides = {}) {
   RenderRequest req;
   req.scenePath = scene.string();
-  req.threads = threads;
+  req.session.threads = threads;
   req.overrides = std::move(overrides);
   return runRender(req);
 }
@@ -188,13 +188,13 @@ TEST(Determinism, SweepWithProgressOnTwoThreads) {
   req.scenePath = scene.string();
   req.outDir = (dir.path() / "sweep").string();
   req.spec = expandGrid({keyKnob("photons.k_indirect=10,30")}, {"camera.spp=1"});
-  req.threads = 2;
+  req.session.threads = 2;
   size_t lines = 0;
-  req.progress = [&](const std::string& line) {
-    progress.meter->setContext(line);
+  req.progress = [&](const SweepProgress& p) {
+    progress.meter->setContext(p.run + " " + p.phase);
     ++lines;
   };
-  req.phases = &*progress.meter;
+  req.session.progress = &*progress.meter;
   const SweepOutcome out = runSweep(req);
   progress.meter->finish();
   EXPECT_EQ(out.rows.size(), 2u);
@@ -207,11 +207,11 @@ TEST(Determinism, BatchWithProgressOnTwoThreads) {
   const fs::path scene = dir.write("scene.json", kScene);
   MeterToFile progress(dir.path() / "progress.txt");
   BatchRequest req;
-  req.jobs = jobsForScenes({scene.string()}, dir.path().string(), {}, {"beauty", "depth"}, ".exr");
-  req.threads = 2;
+  req.jobs = jobsForScenes({scene.string()}, dir.path().string(), {"beauty", "depth"}, ".exr");
+  req.session.threads = 2;
   req.force = true;
   req.progress = [&](const BatchProgress& p) { progress.meter->setContext(p.job + " " + p.phase); };
-  req.phases = &*progress.meter;
+  req.session.progress = &*progress.meter;
   const BatchOutcome out = runBatch(req);
   progress.meter->finish();
   EXPECT_EQ(out.rendered, 1u);
@@ -335,7 +335,7 @@ TEST(Cli, TracePixelWritesParsableRayTree) {
   // The in-process pipeline records the same first ray.
   RenderRequest req;
   req.scenePath = scene.string();
-  req.threads = 1;
+  req.session.threads = 1;
   req.tracePixel = std::make_pair(40, 30);
   RenderResult result = runRender(req);
   ASSERT_EQ(result.rayTree.size(), tree["rays"].size());

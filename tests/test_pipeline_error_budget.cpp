@@ -101,7 +101,7 @@ TEST(ErrorBudget, TheErrorViewIsThePerPixelStandardErrorOfTheEstimate) {
   req.scenePath = kCornell;
   req.overrides = with(kSmall, {"photons.passes=4"});
   req.aov = "error";
-  req.threads = 1;
+  req.session.threads = 1;
   const RenderResult error = runRender(req);
   double squares = 0.0;
   for (const Color& c : error.image.pixels) squares += double(c.r) * c.r + double(c.g) * c.g + double(c.b) * c.b;

@@ -37,7 +37,7 @@ RenderResult renderTo(const std::string& scene, const std::string& out, const st
   req.scenePath = scene;
   req.outputPath = out;
   req.aov = aov;
-  req.threads = 2;
+  req.session.threads = 2;
   req.overrides = std::move(overrides);
   return runRender(req);
 }

@@ -5,7 +5,7 @@
 #include "core/light_sample.h"
 #include "core/light_strata.h"
 #include "emit/emit.h"
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "geometry/trace_scene.h"
 #include "io/scene_loader.h"

@@ -24,7 +24,7 @@ RenderResult render(const Case& c, std::vector<std::string> extra, int threads =
   req.scenePath = kSource + "/scenes/" + c.scene;
   req.overrides = c.overrides;
   req.overrides.insert(req.overrides.end(), extra.begin(), extra.end());
-  req.threads = threads;
+  req.session.threads = threads;
   return runRender(req);
 }
 

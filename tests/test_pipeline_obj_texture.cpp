@@ -33,7 +33,7 @@ TEST(ObjTexture, MtlMapKdIsUprightAsInEveryOtherTool) {
   })");
   RenderRequest req;
   req.scenePath = (dir / "scene.json").string();
-  req.threads = 1;
+  req.session.threads = 1;
   const Image img = runRender(req).image;
   const Color top = img.at(10, 6), bottom = img.at(10, 14);
   EXPECT_GT(top.r, 5.0f * top.b) << "top " << top.r << " " << top.b;

@@ -20,7 +20,7 @@ struct Case {
 RenderResult render(const Case& c, bool packets) {
   RenderRequest req;
   req.scenePath = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + c.scene + ".json";
-  req.threads = 2;
+  req.session.threads = 2;
   req.aov = c.aov;
   // Small and cheap: an odd size leaves partial tiles and partial packets.
   req.overrides = {"camera.width=83", "camera.height=61", "photons.shadow=40000"};

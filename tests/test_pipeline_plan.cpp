@@ -43,8 +43,8 @@ RenderResult render(const std::string& scene, const PlanOverrides& plan, uint64_
   RenderRequest r;
   r.scenePath = scene;
   r.overrides = quick(seed);
-  r.threads = 2;
-  r.plan = plan;
+  r.session.threads = 2;
+  r.session.plan = plan;
   return runRender(r);
 }
 

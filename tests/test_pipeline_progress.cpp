@@ -135,7 +135,7 @@ TEST(Progress, EveryPhaseCounterReachesItsTotal) {
   req.aov = "beauty";
   req.overrides = {"camera.width=40", "camera.height=30", "camera.spp=1", "photons.shadow=30000",
                    "photons.indirect=30000", "photons.gate=on", "photons.lookup=precomputed"};
-  req.progress = &meter;
+  req.session.progress = &meter;
   const RenderResult r = runRender(req);
   meter.finish();
   std::vector<std::string> names;
@@ -161,7 +161,7 @@ TEST(Progress, ProgressivePassesNameTheirPhases) {
   req.scenePath = kScenes + "cornell_physical.json";
   req.overrides = {"camera.width=32", "camera.height=32", "camera.spp=1", "photons.global=20000",
                    "photons.caustic=20000", "photons.passes=2"};
-  req.progress = &meter;
+  req.session.progress = &meter;
   runRender(req);
   meter.finish();
   std::vector<std::string> names;

@@ -130,8 +130,8 @@ TEST(ResourceEstimate, AHugeFrameSaysItsEstimateBeforeAnyPhotonOrTile) {
     void end() override {}
   } phases;
   struct Stop {};
-  req.notice = [&](const std::string& n) { note = n; throw Stop{}; };
-  req.progress = &phases;
+  req.session.notice = [&](const std::string& n) { note = n; throw Stop{}; };
+  req.session.progress = &phases;
   EXPECT_THROW(runRender(req), Stop);
   EXPECT_FALSE(phases.begun);
   EXPECT_NE(note.find("estimated ~"), std::string::npos) << note;
@@ -143,7 +143,7 @@ TEST(ResourceEstimate, SmallJobsSayNothing) {
   req.scenePath = kScenes + "fig03_shadows.json";
   req.overrides = {"camera.width=32", "camera.height=24", "photons.shadow=1000"};
   bool told = false;
-  req.notice = [&](const std::string&) { told = true; };
+  req.session.notice = [&](const std::string&) { told = true; };
   const RenderResult r = runRender(req);
   EXPECT_FALSE(told);
   EXPECT_LT(r.estimate.seconds(), kLongJobSeconds);

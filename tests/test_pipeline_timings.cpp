@@ -2,7 +2,7 @@
 // batch jobs, and `penumbra bench` (its table, its JSON with the thread counts
 // interleaved, and its refusals of bad input before any render). Values are
 // checked for sanity (a share in (0, cores]), never for speed.
-#include "plan/batch_run.h"
+#include "plan/batch/batch_run.h"
 #include "support/cli_run.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -75,7 +75,7 @@ TEST(Timings, SweepRowsCarryCpuColumns) {
 TEST(Timings, BatchJobsAndTheWholeBatchCarryCpuTime) {
   const ScratchDir dir;
   BatchRequest req;
-  req.threads = 1;
+  req.session.threads = 1;
   for (int i = 0; i < 2; ++i) {
     const std::string out = (dir / ("j" + std::to_string(i) + ".png")).string();
     req.jobs.push_back({"j" + std::to_string(i), kScene, {"camera.width=40", "camera.height=30"}, {{"", out}}, "-", {}});

@@ -3,7 +3,7 @@
 // within the power packing's rounding for prefix-cut budgets), a rerun resumes
 // without rendering, the gate's trade-off is measured, and bad runs fail first.
 #include "plan/pipeline.h"
-#include "cli/sweep_run.h"
+#include "plan/sweep/sweep_run.h"
 #include "core/error.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
@@ -31,7 +31,7 @@ SweepRequest cornellSweep(const std::string& dir) {
                          namedKnob("k", "8,40", physicalTransport()),
                          namedKnob("spp", "1,2", physicalTransport())},
                         base);
-  req.threads = 2;
+  req.session.threads = 2;
   req.referencePasses = 1;  // the highest run is the reference row
   return req;
 }
@@ -41,7 +41,7 @@ Image standalone(const std::string& scene, const std::vector<std::string>& overr
   RenderRequest r;
   r.scenePath = scene;
   r.overrides = overrides;
-  r.threads = 2;
+  r.session.threads = 2;
   r.outputPath = exr.string();
   runRender(r);
   return readImage(exr.string());
@@ -151,7 +151,7 @@ TEST(Sweep, RepeatsKeepTheFastestAndTheMedianAndEveryRunItsEstimate) {
   req.outDir = dir.path().string();
   req.spec = expandGrid({namedKnob("spp", "2,4", physicalTransport())},
                         {"camera.width=32", "camera.height=32", "photons.global=3000", "photons.caustic=3000"});
-  req.threads = 2;
+  req.session.threads = 2;
   req.repeat = 3;
   const SweepOutcome out = runSweep(req);
   ASSERT_EQ(out.rows.size(), 2u);
@@ -177,7 +177,7 @@ TEST(Sweep, TheDefaultReferenceIsALongerProgressiveRenderWithItsOwnEstimate) {
   const std::vector<std::string> base = {"camera.width=24", "camera.height=24", "photons.global=2000",
                                          "photons.caustic=2000", "photons.passes=2"};
   req.spec = expandGrid({namedKnob("spp", "1,2", physicalTransport())}, base);
-  req.threads = 2;
+  req.session.threads = 2;
   const SweepOutcome out = runSweep(req);
   for (const SweepRow& row : out.rows) EXPECT_FALSE(row.reference) << row.id;
   std::vector<std::string> longer = req.spec.runs[req.spec.highest].overrides;
@@ -249,7 +249,7 @@ TEST(Sweep, RunsSplitTheirLightsByReachInEveryPassAsALoneRenderDoes) {
   req.scenePath = scene;
   req.outDir = (dir / "out").string();
   req.spec = expandGrid({namedKnob("spp", "1,2", physicalTransport())}, {});
-  req.threads = 2;
+  req.session.threads = 2;
   const SweepOutcome out = runSweep(req);
   ASSERT_EQ(out.rows.size(), 2u);
   for (size_t i = 0; i < out.rows.size(); ++i) {
@@ -266,7 +266,7 @@ TEST(Sweep, GatedRunsReportTheRaysAvoidedAndTheErrorTheGateAdds) {
   req.outDir = dir.path().string();
   req.spec = expandGrid({keyKnob("photons.shadow=2e4,1e5")},
                         {"camera.width=64", "camera.height=48", "photons.gate=on"});
-  req.threads = 2;
+  req.session.threads = 2;
   SweepOutcome out = runSweep(req);
   ASSERT_EQ(out.rows.size(), 2u);
   for (const SweepRow& r : out.rows) {

@@ -1,19 +1,17 @@
 // Options of `penumbra batch`, the shard selection, the progress line and the summary.
 #include "cli/batch_command.h"
-#include "cli/batch_jobs.h"
+#include "plan/batch/batch_jobs.h"
 #include "cli/progress_line.h"
-#include "plan/batch_run.h"
+#include "plan/batch/batch_run.h"
 #include "cli/session_args.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
-#include "cli/sweep_spec.h"
+#include "plan/sweep/sweep_spec.h"
 #include "core/error.h"
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <iostream>
 
@@ -70,57 +68,40 @@ std::string batchSummary(const BatchOutcome& o) {
   return s;
 }
 
-bool isJobsFile(const std::string& path) {
-  std::ifstream in(path);
-  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  return doc.is_object() && doc.contains("jobs");
-}
 }  // namespace
 
 int BatchCommand::run() {
   Options& o = *o_;
   BatchRequest req;
   const SessionArgs& session = o.session;
-  const PlanOverrides passes = session.plan.passes();  // contradicting options: refused before any scene is read
-  const int threads = session.threadCount();
-  std::vector<std::string> overrides = session.overrides;
-  if (!session.plan.gateSetting().empty()) overrides.push_back(session.plan.gateSetting());
+  req.session = session.options();  // contradicting options: refused before any scene is read
+  const std::string gate = session.plan.gateSetting();
   const bool jobsFile = o.inputs.size() == 1 && isJobsFile(o.inputs[0]);
   if (jobsFile) {
     req.jobs = readJobsFile(o.inputs[0]);
-    for (BatchJob& j : req.jobs) j.overrides.insert(j.overrides.begin(), overrides.begin(), overrides.end());
     // The command line's gate wins over a job's own photons.gate.
-    if (!session.plan.gateSetting().empty()) for (BatchJob& j : req.jobs) j.overrides.push_back(session.plan.gateSetting());
+    if (!gate.empty()) for (BatchJob& j : req.jobs) j.overrides.push_back(gate);
     req.extraInputs.push_back(o.inputs[0]);
   } else {
     if (o.out.empty()) throw InputError("batch: -o DIR is required when scene files are given directly");
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);
     if (ec) throw InputError(o.out + ": cannot create the output folder (" + ec.message() + ")");
-    req.jobs = jobsForScenes(o.inputs, o.out, overrides, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
+    req.jobs = jobsForScenes(o.inputs, o.out, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
   }
-  // The command line's budget wins over a job's own, as its gate does.
-  for (BatchJob& j : req.jobs) {
-    if (session.budget.seconds > 0.0) j.budget.seconds = session.budget.seconds;
-    if (session.budget.targetError > 0.0) j.budget.targetError = session.budget.targetError;
-  }
-  req.maxMemoryBytes = session.maxMemoryBytes();
   const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;
   if (!shardArg.empty()) {
     const auto [index, count] = parseShard(shardArg);
     req.shard = BatchShard{index, count};
     req.listShard = !o.listShard.empty();
   }
-  req.threads = threads;
   req.force = o.force;
   req.keepGoing = o.keepGoing;
-  if (!o.mapCache.empty()) req.mapCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
-  req.plan = passes;
-  req.load = session.plan.load();
+  if (!o.mapCache.empty()) req.session.stageCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
   std::optional<ItemProgress> progress;
   if (!session.quiet) {
     progress.emplace();
-    req.phases = progress->phases();
+    req.session.progress = progress->phases();
     req.progress = [&](const BatchProgress& p) {
       progress->line(progressLine("batch", p.done, p.total, p.job, p.phase, p.seconds, p.done, p.total - p.done));
     };

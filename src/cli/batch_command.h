@@ -1,5 +1,5 @@
 // `penumbra batch JOBS.json` and `penumbra batch SCENE... -o DIR`: the command
-// line of plan/batch_run.h, with shards for splitting a batch across processes.
+// line of plan/batch/batch_run.h, with shards for splitting a batch across processes.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <memory>

@@ -3,10 +3,10 @@
 #include "cli/session_args.h"
 #include "cli/progress_line.h"
 #include "cli/progress_meter.h"
-#include "plan/bench_report.h"
-#include "plan/bench_run.h"
+#include "cli/bench/bench_report.h"
+#include "cli/bench/bench_run.h"
 #include "plan/memory_limit.h"
-#include "io/temp_file.h"
+#include "plan/command_support.h"
 #include <iostream>
 #include <optional>
 
@@ -38,26 +38,22 @@ int BenchCommand::run() {
   Options& o = *o_;
   BenchRequest req;
   const SessionArgs& session = o.session;
-  req.plan = session.plan.passes();  // contradicting options: refused before any scene is read
-  req.load = session.plan.load();
+  req.session = session.options();  // contradicting options: refused before any scene is read
   req.scenes = o.scenes;
-  req.overrides = session.overrides;
-  if (!session.plan.gateSetting().empty()) req.overrides.push_back(session.plan.gateSetting());
   if (!session.threads.empty()) req.threads = parseThreadCounts(session.threads);
   req.repeat = o.repeat;
   req.jsonPath = o.json;
-  req.maxMemoryBytes = session.maxMemoryBytes();
   std::optional<ItemProgress> progress;
   if (!session.quiet) {
     progress.emplace();
-    req.phases = progress->phases();
+    req.session.progress = progress->phases();
     req.progress = [&](size_t done, size_t total, const std::string& item, const char* phase, double seconds) {
       progress->line(progressLine("bench", done, total, item, phase, seconds, done, total - done));
     };
   }
   const BenchOutcome out = runBench(req);
   if (progress) progress->finish();
-  writeTextFileAtomic(out.jsonPath, benchJson(out));
+  writeTextOutput(out.jsonPath, benchJson(out));
   std::cout << benchTable(out);
   if (!session.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";

@@ -1,5 +1,5 @@
 // `penumbra bench SCENE... --threads 1,2 --repeat 5`: the command line of
-// plan/bench_run.h; the table goes to stdout, the JSON to --json or the cache.
+// cli/bench/bench_run.h; the table goes to stdout, the JSON to --json or the cache.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <memory>

@@ -1,5 +1,6 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
 // 0 ok, 2 bad input (one-line message), 1 internal error.
+#include "plan/command_support.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "plan/pipeline.h"
@@ -9,13 +10,7 @@
 #include "cli/plan_command.h"
 #include "cli/session_args.h"
 #include "cli/sweep_command.h"
-#include "core/cpu_time.h"
 #include "core/error.h"
-#include "io/image_io.h"
-#include "io/report_json.h"
-#include "io/suggest.h"
-#include "io/temp_file.h"
-#include "io/texture_gen.h"
 #include <algorithm>
 #include <CLI/CLI.hpp>
 #include <charconv>
@@ -92,29 +87,29 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   }
   if (!statsPath.empty() && !statsToStdout) req.statsPaths.push_back(statsPath);
   // The estimate of a long job, before it starts; --quiet silences it like every note.
-  if (!quiet) req.notice = [](const std::string& note) { std::cerr << "note: " << note << "\n"; };
+  if (!quiet) req.session.notice = [](const std::string& note) { std::cerr << "note: " << note << "\n"; };
   // Progress goes to stderr: stdout may carry --trace-pixel's JSON.
   std::optional<ProgressMeter> meter;
   if (!quiet) {
     meter.emplace(progressDisplay());
     meter->startTicker();
-    req.progress = &*meter;
+    req.session.progress = &*meter;
   }
   // A time limit counts the whole process: its start-up (loading the shared
   // libraries) and the image's write are the user's wait too.
-  if (processAgeSeconds() >= 0.0) req.jobClock = [] { return processAgeSeconds(); };
+  if (processSeconds() >= 0.0) req.jobClock = [] { return processSeconds(); };
   RenderResult result = runRender(req);
   if (meter) meter->finish();
   if (req.tracePixel) {
-    std::string json = rayTreeToJson(result.rayTree, req.tracePixel->first, req.tracePixel->second);
+    std::string json = rayTreeReport(result, req.tracePixel->first, req.tracePixel->second);
     if (req.outputPath.empty() || req.outputPath == "-") std::cout << json;
-    else writeTextFileAtomic(req.outputPath, json);
+    else writeTextOutput(req.outputPath, json);
   }
   if (statsToStdout) std::cout << statsReport(result);
-  else if (!statsPath.empty()) writeTextFileAtomic(statsPath, statsReport(result));
+  else if (!statsPath.empty()) writeTextOutput(statsPath, statsReport(result));
   if (!quiet) {
     for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
-    std::cerr << statsSummary(result.stats, verbose || !statsPath.empty()) << "  " << cpuLine(result.stats.cpu) << "\n";
+    std::cerr << renderSummary(result, verbose || !statsPath.empty()) << "\n";
   }
   return 0;
 }
@@ -189,7 +184,7 @@ int runCommandLine(int argc, char** argv) {
   BenchCommand bench(app);
 
   // From here on an interrupt removes our temp files, never an old output.
-  installTempFileCleanup();
+  installOutputCleanup();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ExtrasError& e) {
@@ -201,7 +196,7 @@ int runCommandLine(int argc, char** argv) {
         for (const CLI::Option* o : sub->get_options()) {
           for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
         }
-        std::string hint = didYouMean(extra.substr(0, extra.find('=')), names);
+        std::string hint = optionHint(extra.substr(0, extra.find('=')), names);
         if (hint.empty()) hint = otherCommandsHint(app, *sub, extra.substr(0, extra.find('=')));
         std::cerr << "penumbra " << sub->get_name() << ": unknown option '" << extra << "'" << hint << "\n";
         return 2;
@@ -220,16 +215,11 @@ int runCommandLine(int argc, char** argv) {
       if (!tracePixelArg.empty() && (ext == ".png" || ext == ".exr")) {
         throw InputError("--trace-pixel writes JSON, not an image: give -o a .json path (got '" + req.outputPath + "')");
       }
-      req.threads = session.threadCount();
-      req.overrides = session.overrides;
-      req.budget = session.budget;
-      req.plan = session.plan.passes();
-      req.load = session.plan.load();
+      std::vector<std::string> own;  // the render's options that stand for scene values
+      if (!seedArg.empty()) own.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
+      if (spp) own.push_back("camera.spp=" + std::to_string(*spp));
+      req.session = session.options(own);
       if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
-      req.maxMemoryBytes = session.maxMemoryBytes();
-      if (!seedArg.empty()) req.overrides.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
-      if (spp) req.overrides.push_back("camera.spp=" + std::to_string(*spp));
-      if (!session.plan.gateSetting().empty()) req.overrides.push_back(session.plan.gateSetting());
       return runRenderCommand(req, statsPath, tracePixelArg, session.quiet, verbose);
     }
     if (sweep.selected()) return sweep.run();
@@ -238,8 +228,7 @@ int runCommandLine(int argc, char** argv) {
     if (batch.selected()) return batch.run();
     if (bench.selected()) return bench.run();
     if (*texture) {
-      writeImage(textureOut, makeTexture(textureName, textureWidth, textureWidth / 2, textureSeed),
-                 {{"penumbra:texture", textureName}});
+      writeProceduralTexture(textureName, textureWidth, textureSeed, textureOut);
       return 0;
     }
   } catch (const InputError& e) {

@@ -1,7 +1,7 @@
 // The progress of one render's long phases (photons, maps, lookups, render) on
 // stderr: one line redrawn in place on a terminal, a few plain lines in a log.
 #pragma once
-#include "core/progress.h"
+#include "plan/command_support.h"
 #include <condition_variable>
 #include <cstdio>
 #include <functional>

@@ -94,9 +94,23 @@ int SessionArgs::threadCount() const {
 
 uint64_t SessionArgs::maxMemoryBytes() const { return maxMemory.empty() ? 0 : parseMemorySize(maxMemory); }
 
+SessionOptions SessionArgs::options(const std::vector<std::string>& own) const {
+  SessionOptions o;
+  o.threads = threadList ? 0 : threadCount();
+  o.plan = plan.passes();
+  o.load = plan.load();
+  o.maxMemoryBytes = maxMemoryBytes();
+  o.budget = budget;
+  o.overrides = overrides;
+  o.overrides.insert(o.overrides.end(), own.begin(), own.end());
+  if (!plan.gateSetting().empty()) o.overrides.push_back(plan.gateSetting());
+  return o;
+}
+
 void addSessionOptions(CLI::App& command, SessionArgs& args, unsigned which, const char* each,
                        const char* threadsHelp) {
   if (which & kThreadsOption) {
+    args.threadList = threadsHelp != nullptr;
     command.add_option("-t,--threads,--nthreads", args.threads,
                        threadsHelp ? threadsHelp : "Worker threads (default: all cores)");
   }

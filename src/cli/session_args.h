@@ -2,9 +2,7 @@
 // quiet, the plan's overrides (--enable/--disable/--gate/--no-gate), loading
 // (--no-defaults) and budgets (--time-limit/--target-error). Each command asks for its set.
 #pragma once
-#include "io/scene_loader.h"
-#include "plan/render_budget.h"
-#include "plan/render_plan.h"
+#include "plan/session_options.h"
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
@@ -39,6 +37,7 @@ enum SessionOption : unsigned {
 
 struct SessionArgs {
   std::string threads;  // as given: one count, or a list where the command takes one (sweep, bench)
+  bool threadList = false;  // -t takes a list (addSessionOptions with threadsHelp): the command reads it
   std::string maxMemory;
   std::vector<std::string> overrides;  // -D, in order
   bool quiet = false;
@@ -48,6 +47,10 @@ struct SessionArgs {
   int threadCount() const;
   // --max-memory in bytes; 0: the memory available.
   uint64_t maxMemoryBytes() const;
+  // Every job's options, checked (InputError): the thread count (0 where -t is a list),
+  // memory, plan overrides, loading, budget, and -D, then `own` (a command's options
+  // that stand for scene values, e.g. render's --seed), then --gate.
+  SessionOptions options(const std::vector<std::string>& own = {}) const;
 };
 
 // Registers the options in `which` on `command`. `each` names what one command

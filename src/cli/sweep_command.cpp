@@ -1,14 +1,14 @@
 // Options of `penumbra sweep`, the progress line, and the closing summary.
 #include "cli/sweep_command.h"
-#include "cli/sweep_run.h"
-#include "cli/sweep_scenes.h"
-#include "io/temp_file.h"
+#include "plan/sweep/sweep_run.h"
+#include "plan/sweep/sweep_scenes.h"
+#include "plan/command_support.h"
 #include "cli/session_args.h"
+#include "cli/progress_line.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "core/error.h"
-#include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <unistd.h>
 #include <filesystem>
@@ -62,16 +62,13 @@ bool SweepCommand::selected() const { return o_->command->parsed(); }
 int SweepCommand::run() {
   Options& o = *o_;
   const SessionArgs& session = o.session;
-  const uint64_t maxMemory = session.maxMemoryBytes();
+  SessionOptions options = session.options();  // contradicting options: refused before the scene is read
   const SweepMetric metric = parseMetric(o.metric);  // before the scene is read
-  const PlanOverrides passes = session.plan.passes();  // contradicting options: refused before the scene is read
   const SweepKnob threadList = session.threads.empty() ? SweepKnob{} : threadsKnob(session.threads);
-  const int threads = threadList.values.size() == 1 ? std::atoi(threadList.values.front().c_str()) : 0;
+  options.threads = threadList.values.size() == 1 ? std::atoi(threadList.values.front().c_str()) : 0;
   if (o.scenes.size() > 1 && !o.reference.empty()) {
     throw InputError("sweep: --reference is one image, for one scene; several scenes take their own references");
   }
-  std::vector<std::string> overrides = session.overrides;
-  if (!session.plan.gateSetting().empty()) overrides.push_back(session.plan.gateSetting());
   const std::vector<std::string> folders = sceneFolders(o.scenes, o.out);
 
   const std::filesystem::path script = std::filesystem::path(PENUMBRA_SOURCE_DIR) / "scripts" / "plot_tradeoff.py";
@@ -79,7 +76,7 @@ int SweepCommand::run() {
   std::vector<SweepRequest> requests;
   for (size_t i = 0; i < o.scenes.size(); ++i) {
     // The knobs' keys depend on the model: load the scene once with the sweep's --set.
-    const Scene base = loadScene(o.scenes[i], overrides, loadLimits(maxMemory), session.plan.load());
+    const Scene base = loadJobScene(o.scenes[i], options);
     std::vector<SweepKnob> knobs;
     const std::pair<const char*, const std::string*> named[] = {
         {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
@@ -90,21 +87,17 @@ int SweepCommand::run() {
     if (threadList.values.size() > 1) knobs.push_back(threadList);
 
     SweepRequest req;
+    req.session = options;  // its -D and --gate come before each run's knobs
     req.scenePath = o.scenes[i];
     req.outDir = folders[i];
-    req.spec = expandGrid(knobs, overrides);
+    req.spec = expandGrid(knobs, {});
     req.referencePath = o.reference;
     req.referencePasses = o.referencePasses;
     req.metric = metric;
     req.aov = o.aov;
-    req.threads = threads;
     req.force = o.force;
     req.compareGate = !o.noGateCompare;
-    req.plan = passes;
-    req.load = session.plan.load();
-    req.budget = session.budget;
     req.repeat = o.repeat;
-    req.maxMemoryBytes = maxMemory;
     req.plotScript = plotScript;
     requests.push_back(std::move(req));
   }
@@ -120,8 +113,10 @@ int SweepCommand::run() {
     std::optional<ItemProgress> progress;
     if (!session.quiet) {
       progress.emplace();
-      req.phases = progress->phases();
-      req.progress = [&](const std::string& line) { progress->line(line); };
+      req.session.progress = progress->phases();
+      req.progress = [&](const SweepProgress& p) {
+        progress->line(progressLine("sweep", p.done, p.total, p.run, p.phase, p.seconds, p.paced, p.remaining));
+      };
     }
     SweepOutcome out = runSweep(req);
     if (progress) progress->finish();
@@ -138,7 +133,7 @@ int SweepCommand::run() {
   }
   if (requests.size() > 1) {
     const std::string summary = (std::filesystem::path(o.out) / "scenes.md").string();
-    writeTextFileAtomic(summary, scenesMarkdown(done, metric));
+    writeTextOutput(summary, scenesMarkdown(done, metric));
     if (!session.quiet) std::cerr << "wrote " << summary << "\n";
   }
   return 0;

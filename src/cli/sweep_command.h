@@ -1,4 +1,4 @@
-// `penumbra sweep SCENE -o DIR`: the command line of cli/sweep_run.h.
+// `penumbra sweep SCENE -o DIR`: the command line of plan/sweep/sweep_run.h.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <memory>

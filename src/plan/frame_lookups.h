@@ -3,7 +3,7 @@
 #pragma once
 #include "plan/render_frame.h"
 #include "plan/transport_model.h"
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "trace/shading.h"
 #include <optional>
 #include <string>

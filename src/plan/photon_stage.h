@@ -7,7 +7,7 @@
 #include "core/scene.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "geometry/trace_scene.h"
 #include "plan/render_plan.h"

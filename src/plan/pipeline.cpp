@@ -11,9 +11,7 @@ namespace penumbra {
 
 RenderResult runRender(const RenderRequest& request) {
   const CpuSpan total;
-  RenderSession session(
-      {request.maxMemoryBytes, request.plan, request.threads, request.progress, request.notice, kStageCacheBytes,
-       request.load});
+  RenderSession session(request.session);
 
   // Bad views, pixels, outputs and oversized jobs fail here, before any heavy work.
   JobRequest job;
@@ -21,7 +19,7 @@ RenderResult runRender(const RenderRequest& request) {
   job.overrides = request.overrides;
   job.view = request.aov;
   job.tracePixel = request.tracePixel;
-  job.budget = request.budget;
+  job.budget = request.session.budget;
   const bool toStdout = request.outputPath.empty() || request.outputPath == "-";
   if (!request.outputPath.empty() && !(request.tracePixel && toStdout)) {
     job.outputs.push_back({request.outputPath, "-o", !request.tracePixel});

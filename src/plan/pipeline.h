@@ -1,14 +1,10 @@
 // One render from scene file to image file (penumbra render), on the render session.
 #pragma once
-#include "core/progress.h"
-#include "plan/render_budget.h"
-#include "plan/render_plan.h"
+#include "plan/session_options.h"
 #include "plan/resource_estimate.h"
-#include "io/scene_loader.h"
 #include "io/tone_map.h"
 #include "core/image.h"
 #include "core/ray_record.h"
-#include <functional>
 #include "core/stats.h"
 #include <functional>
 #include <optional>
@@ -19,23 +15,16 @@
 namespace penumbra {
 
 struct RenderRequest {
+  SessionOptions session;               // threads, memory, plan, budget, -D, progress, notice
   std::string scenePath;
   std::string outputPath;               // empty: keep the image in memory only
-  std::vector<std::string> overrides;   // --set k=v, applied in order
-  int threads = 0;                      // 0 = all cores
+  // The render's own overrides (--seed, --spp, --gate), after session.overrides.
+  std::vector<std::string> overrides;
   std::string aov;  // empty: the scene's render.aov
   std::optional<std::pair<int, int>> tracePixel;  // record this pixel's ray tree instead
-  // The command's progress display; null: none.
-  ProgressPhases* progress = nullptr;
   // Files the caller writes after the render (--stats): checked with -o before any work.
   std::vector<std::string> statsPaths;
-  uint64_t maxMemoryBytes = 0;  // --max-memory; 0 = the memory available when it starts
-  PlanOverrides plan;  // --enable / --disable PASS
   DisplayOptions display;  // --exposure, --tonemap (PNG only)
-  // Told before the photons start, e.g. that the job is estimated to take hours.
-  std::function<void(const std::string& note)> notice;
-  LoadOptions load;  // --no-defaults
-  RenderBudget budget;  // --time-limit, --target-error
   // The job's wall seconds so far, for the budget's time limit (the render command:
   // the process's age); empty: the session's own account from the job's load.
   std::function<double()> jobClock;

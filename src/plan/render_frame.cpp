@@ -3,7 +3,7 @@
 #include "plan/render_frame.h"
 #include "plan/frame_lookups.h"
 #include "plan/transport_model.h"
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "gather/radiance_estimate.h"
 #include "trace/camera.h"
 #include "trace/light_visibility.h"

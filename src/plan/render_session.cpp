@@ -29,9 +29,11 @@ RenderSession::RenderSession(SessionOptions options)
     : options_(resolved(std::move(options))),
       limit_(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(options_.threads)) {}
 
-PlannedJob RenderSession::plan(const JobRequest& request) {
+PlannedJob RenderSession::plan(const JobRequest& asked) {
   PlannedJob job;
-  job.request = request;
+  job.request = asked;
+  job.request.overrides = jobOverrides(options_, asked.overrides);
+  const JobRequest& request = job.request;
   Stopwatch clock;
   job.scene = loadScene(request.scenePath, request.overrides, loadLimits(options_.maxMemoryBytes), options_.load);
   job.notes = job.scene.load.notes;

@@ -13,6 +13,7 @@
 #include "plan/render_frame.h"
 #include "plan/render_plan.h"
 #include "plan/reuse_key.h"
+#include "plan/session_options.h"
 #include "io/scene_loader.h"
 #include <functional>
 #include <list>
@@ -25,25 +26,11 @@
 
 namespace penumbra {
 
-// Photon stages a session keeps for later jobs by default (batch's --map-cache).
-constexpr uint64_t kStageCacheBytes = 4ull << 30;
-
-struct SessionOptions {
-  uint64_t maxMemoryBytes = 0;          // --max-memory; 0 = the memory available
-  PlanOverrides plan;                   // --enable / --disable, for every job
-  int threads = 0;                      // worker threads, 0 = all cores
-  ProgressPhases* progress = nullptr;   // the command's display; null: none
-  // Told on the session's thread, e.g. that a job is estimated to take hours.
-  std::function<void(const std::string& note)> notice;
-  uint64_t stageCacheBytes = kStageCacheBytes;  // photon stages kept for later jobs (LRU)
-  LoadOptions load;  // --no-defaults: a glTF scene gets no framed camera or default sky
-};
-
 // One render a command asks for: a scene with its overrides, one view, and the
 // files it will write (checked against each other and every input up front).
 struct JobRequest {
   std::string scenePath;
-  std::vector<std::string> overrides;
+  std::vector<std::string> overrides;  // the job's own, after SessionOptions::overrides
   std::string view;  // empty: the scene's render.aov
   std::vector<OutputPath> outputs;
   std::optional<std::pair<int, int>> tracePixel;
@@ -54,7 +41,7 @@ struct JobRequest {
 // keeps the settings as the user gave them and is never rewritten; its meshes are
 // the buffer every job of the same geometry shares (keys.geometry).
 struct PlannedJob {
-  JobRequest request;
+  JobRequest request;  // its overrides: the session's, then the job's own
   Scene scene;
   std::string viewName;
   Aov aov = Aov::Beauty;  // the view whose light is rendered (the beauty for the error view)

@@ -8,8 +8,8 @@
 #include "core/environment.h"
 #include "core/light_sample.h"
 #include "core/light_strata.h"
-#include "gather/lookup_cache.h"
-#include "gather/lookup_cache_cells.h"
+#include "gather/lookup_cache/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache_cells.h"
 #include "core/photon.h"
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>

@@ -8,7 +8,7 @@
 #include "core/stats.h"
 #include "core/view.h"
 #include "emit/emit.h"
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "io/image_io.h"
 #include "trace/integrator.h"
 #include <vector>

@@ -6,7 +6,7 @@
 #include "core/light_strata.h"
 #include "core/rng.h"
 #include "core/sampling.h"
-#include "gather/lookup_cache.h"
+#include "gather/lookup_cache/lookup_cache.h"
 #include "trace/shading.h"
 #include <optional>
 #include <vector>

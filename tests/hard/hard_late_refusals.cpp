@@ -126,7 +126,10 @@ std::vector<std::string> notesOfPreparing(const std::string& scene, const Render
   options.threads = 2;
   options.notice = [&](const std::string& n) { notes.push_back(n); };
   RenderSession session(options);
-  PlannedJob job = session.plan({scene, {}, "", {}, {}, budget});
+  JobRequest request;
+  request.scenePath = scene;
+  request.budget = budget;
+  PlannedJob job = session.plan(request);
   session.prepare(job);
   return notes;
 }

@@ -49,7 +49,7 @@ inline RenderResult renderJson(const std::string& json, std::vector<std::string>
     for (std::string kv; std::getline(in, kv, ';');)
       if (!kv.empty()) req.overrides.push_back(kv);
   }
-  req.threads = threads;
+  req.session.threads = threads;
   return runRender(req);
 }
 

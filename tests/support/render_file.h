@@ -14,7 +14,7 @@ inline RenderResult renderFile(const std::string& path, std::vector<std::string>
   RenderRequest req;
   req.scenePath = path;
   req.overrides = std::move(overrides);
-  req.threads = threads;
+  req.session.threads = threads;
   req.aov = aov;
   return runRender(req);
 }

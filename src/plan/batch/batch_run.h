@@ -1,0 +1,88 @@
+// A batch: renders many jobs in one process, sharing the loaded scene,
+// BVH and textures between jobs of the same geometry and the photon maps between
+// jobs whose photon inputs are equal (plan/reuse_key.h), in an LRU cache with a
+// byte cap; skips jobs whose outputs are up to date; reports every job.
+#pragma once
+#include "core/cpu_time.h"
+#include "plan/render_budget.h"
+#include "plan/session_options.h"
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct BatchOutput {
+  std::string view;  // "beauty", "depth", ...; "" = the scene's render.aov
+  std::string path;  // an image file; several views may share one layered .exr
+};
+
+struct BatchJob {
+  std::string name;                    // "orbit_3", "fig03_shadows": unique in the batch
+  std::string scene;                   // resolved path
+  std::vector<std::string> overrides;  // the batch's "set", then the job's, then the orbit's (after -D)
+  std::vector<BatchOutput> outputs;    // one per view
+  std::string where;                   // "jobs[2] (orbit 3)": names the job in messages
+  RenderBudget budget;                 // "time_limit", "target_error" or the command line's
+};
+
+// Where a batch is: `done` of `total` jobs finished after `seconds`; `job` in `phase`.
+struct BatchProgress {
+  size_t done = 0, total = 0;
+  std::string job;
+  const char* phase = "";
+  double seconds = 0.0;
+};
+
+// Shard `index` (0-based) of `count`: the jobs this process renders out of the whole file.
+struct BatchShard {
+  size_t index = 0, count = 1;
+};
+
+struct BatchRequest {
+  // Every job's: threads, memory, the map cache, the plan, -D (before each job's own),
+  // the budget (over each job's own, field by field), the phases inside each render.
+  SessionOptions session;
+  std::vector<BatchJob> jobs;  // the whole jobs file, also when one shard renders
+  // Set: validate and clash-check every job, then render only this shard's; an unset
+  // shard renders every job.
+  std::optional<BatchShard> shard;
+  bool listShard = false;  // stop after choosing the shard's jobs (BatchOutcome::shardJobs)
+  std::vector<std::string> extraInputs;  // the jobs file: its edits make every output stale
+  bool force = false;       // render even jobs whose outputs are up to date
+  bool keepGoing = false;   // a job that fails validation is reported, not fatal
+  // Told on the batch's own thread as each job starts ("render") and ends ("done").
+  std::function<void(const BatchProgress&)> progress;
+};
+
+struct BatchJobResult {
+  std::string name;
+  std::string status;   // "rendered", "up to date", "failed: ..."
+  std::string reused;   // "scene", "photons", "scene+photons" or "-"
+  double seconds = 0.0;
+  CpuTiming cpu;  // the process's CPU time over the same span
+  std::vector<std::string> outputs;
+};
+
+struct BatchOutcome {
+  std::vector<BatchJobResult> jobs;  // the jobs rendered or checked: the shard's, else all
+  std::vector<size_t> shardJobs;     // with a shard: indices into BatchRequest::jobs
+  size_t failed = 0, rendered = 0, upToDate = 0;
+  size_t sceneBuilds = 0, photonBuilds = 0, photonReuses = 0, evictions = 0;
+  uint64_t peakCacheBytes = 0;
+  double seconds = 0.0;
+  CpuTiming cpu;  // over the whole batch
+  // The jobs' load and plan notes, each once; the contended note when rendered jobs had too little CPU.
+  std::vector<std::string> notes;
+};
+
+// Validates every job (InputError naming the job unless keepGoing), then renders.
+BatchOutcome runBatch(const BatchRequest& request);
+
+// The jobs of shard `index` (0-based) of `count`: jobs in order, each to the shard
+// with the least estimated cost so far (ties to the lowest index), so appending
+// jobs never moves an earlier one.
+std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count);
+
+}  // namespace penumbra

@@ -1,0 +1,59 @@
+// A sweep's own long reference: one longer render by the same consistent estimator,
+// kept beside the results with a note that says what it is, so a rerun reloads it.
+#include "plan/sweep/sweep_reference.h"
+#include "plan/sweep/sweep_run.h"
+#include "plan/cpu_report.h"
+#include "plan/render_session.h"
+#include "core/error.h"
+#include "core/error_estimate.h"
+#include "io/image_io.h"
+#include <fmt/format.h>
+#include <filesystem>
+
+namespace penumbra {
+
+Image givenReference(const std::string& path, const std::string& scenePath,
+                     const std::vector<std::pair<std::string, const PlannedJob*>>& runs) {
+  Image reference = readImage(path);
+  for (const auto& [id, job] : runs) {
+    const Camera& c = job->scene.camera;
+    if (c.width == reference.width && c.height == reference.height) continue;
+    throw InputError(fmt::format("--reference {} is {}x{}, but {} renders {}x{} (sweep run '{}')", path, reference.width,
+                                 reference.height, scenePath, c.width, c.height, id));
+  }
+  return reference;
+}
+
+LongReference longReference(RenderSession& session, const SweepRequest& req, const PlannedJob& highest,
+                            const std::string& saved, const std::function<void()>& rendering) {
+  const SweepRun& run = req.spec.runs[req.spec.highest];
+  const int passes = highest.scene.photons.passes * req.referencePasses;
+  const std::string what =
+      fmt::format("{} passes of the run at every knob's highest value ({})", passes, run.id);
+  LongReference out;
+  if (imageComplete(saved) && readImageAttribute(saved, "penumbra:sweep_reference") == what) {
+    out.image = readImage(saved);
+    out.note = what + ", reloaded from `reference.exr`. " + readImageAttribute(saved, "penumbra:sweep_reference_note");
+    return out;
+  }
+  std::vector<std::string> overrides = run.overrides;
+  overrides.push_back("photons.passes=" + std::to_string(passes));
+  JobRequest request;  // no budget: exactly the passes above
+  request.scenePath = req.scenePath;
+  request.overrides = overrides;
+  request.view = req.aov;
+  PlannedJob job = session.plan(request);
+  session.prepare(job);
+  rendering();
+  const CpuSpan clock;
+  RenderResult r = session.frame(job, session.photons(job));
+  const std::string note = fmt::format("Rendered by this sweep in {:.1f} s. Its own error estimate, how far it is "
+                                       "from converged: {} (docs/accuracy.md)",
+                                       clock.wallSeconds(), describeError(r.stats.error));
+  out.note = what + ", saved as `reference.exr`. " + note;
+  writeImage(saved, r.image, {{"penumbra:sweep_reference", what}, {"penumbra:sweep_reference_note", note}});
+  out.image = std::move(r.image);
+  return out;
+}
+
+}  // namespace penumbra

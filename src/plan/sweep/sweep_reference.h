@@ -1,0 +1,32 @@
+// The image a sweep measures its runs against when it renders its own: the run at every
+// knob's highest value with --reference-passes times its progressive passes.
+#pragma once
+#include "core/image.h"
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+class RenderSession;
+struct PlannedJob;
+struct SweepRequest;  // plan/sweep/sweep_run.h
+
+struct LongReference {
+  Image image;
+  std::string note;  // what it is, and how it was rendered (report.md)
+};
+
+// The image given with --reference, read and measured against every run's film before
+// anything is written (InputError naming both files and the run otherwise).
+Image givenReference(const std::string& path, const std::string& scenePath,
+                     const std::vector<std::pair<std::string, const PlannedJob*>>& runs);
+
+// `highest` (the highest run's plan) with req.referencePasses x its passes: reloaded
+// from `saved` when an earlier sweep left that very render there, else rendered on
+// `session` (after `rendering()` is called) and saved there with its note.
+LongReference longReference(RenderSession& session, const SweepRequest& req, const PlannedJob& highest,
+                            const std::string& saved, const std::function<void()>& rendering);
+
+}  // namespace penumbra

@@ -1,0 +1,94 @@
+// penumbra sweep's results: one row per run, results.csv (rewritten atomically
+// after every run, read back to resume), the Pareto front, and report.md.
+#pragma once
+#include "plan/sweep/sweep_spec.h"
+#include "core/stats.h"
+#include <map>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+// One finished run. Times are what the run costs as a standalone render (shared
+// stages counted in full, a prefix's emission by its share of the photons);
+// `spentSeconds` is what the sweep actually spent on it.
+struct SweepRow {
+  std::string id;
+  std::vector<std::string> values;  // one per knob
+  bool reference = false;           // the default reference itself (error 0)
+  double load = 0, bvh = 0, emit = 0, maps = 0, precompute = 0, render = 0, total = 0, spent = 0;
+  // --repeat N: render is the fastest of the run's N frames, this their median.
+  double renderMedian = 0;
+  // The process's CPU time over `spent`, its share of (spent x threads), the load at the run's start.
+  double cpu = 0, cpuShare = 0, loadAverage = -1;
+  uint64_t cameraRays = 0, shadowRays = 0, reflectionRays = 0, refractionRays = 0;
+  uint64_t gateQueries = 0, shadowRaysAvoided = 0, gatherQueries = 0;
+  uint64_t photonsEmitted = 0, photonsStored = 0;
+  double rmse = 0, relMse = 0, psnr = 0, worstRmse = 0;
+  double noiseRmse = -1;  // the run's own error estimate without the reference; < 0 unknown
+  bool gate = false;
+  double ungatedRender = 0, gateRmse = 0;  // gated runs: the same run with every shadow ray cast
+  uint64_t ungatedShadowRays = 0;
+  std::string reused;  // what came from earlier runs: "bvh", "photons(prefix of N)", "maps"
+  std::string image;   // relative to the sweep folder
+};
+
+// Rays and photons of a finished render, into its row.
+void fillCounts(SweepRow& row, const RenderStats& stats);
+
+// The CSV header for these knobs.
+std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs);
+std::string csvLine(const SweepRow& row);
+// The whole results.csv: the header and every finished row (rows with an id).
+std::string resultsCsv(const std::vector<SweepKnob>& knobs, const std::vector<SweepRow>& rows);
+
+// Rows of an earlier results.csv with the same header, by run id; an absent file
+// gives none. Throws InputError when the file exists but has another header.
+std::map<std::string, SweepRow> readFinishedRows(const std::string& path,
+                                                    const std::vector<SweepKnob>& knobs);
+
+// What the front, the plot and the best run rank by (every metric stays in
+// results.csv). relMSE by default: plain RMSE lets a few bright caustic pixels
+// outweigh visible noise everywhere else. rmse-clamped is the RMSE of values clamped
+// to [0, 1], the one PSNR reports, so the two rank alike.
+enum class SweepMetric { RelMse, Rmse, Psnr, RmseClamped };
+inline constexpr const char* kMetricNames[] = {"relmse", "rmse", "psnr", "rmse-clamped"};
+const char* metricName(SweepMetric metric);
+SweepMetric parseMetric(const std::string& name);  // throws InputError naming the choices
+// The row's error under `metric`, lower better (PSNR as its clamped RMSE).
+double metricError(const SweepRow& row, SweepMetric metric);
+
+// Rows no other row beats on both total time and the metric (the reference
+// excluded), fastest first.
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric = SweepMetric::RelMse);
+
+// The run with the lowest error under `metric` (the reference excluded), rows.size()
+// when there is none.
+size_t bestRun(const std::vector<SweepRow>& rows, SweepMetric metric);
+
+struct SweepTotals {
+  double wallSeconds = 0;       // the whole sweep
+  CpuTiming cpu;                // ... and its CPU time
+  double photonSeconds = 0;     // sum over distinct photon settings: emission (share) + map build
+  double renderSeconds = 0;     // sum of every render pass (precompute + render, ungated ones too)
+  size_t emissions = 0, prefixCuts = 0, mapBuilds = 0, bvhBuilds = 0, resumed = 0;
+  std::string referenceNote;    // which reference the errors are against
+  int repeat = 1;               // frames rendered per run (--repeat)
+
+  // Adds another session's counts and stage seconds (a --threads list's sessions).
+  void addCounts(const SweepTotals& o) {
+    photonSeconds += o.photonSeconds;
+    renderSeconds += o.renderSeconds;
+    emissions += o.emissions;
+    prefixCuts += o.prefixCuts;
+    mapBuilds += o.mapBuilds;
+    bvhBuilds += o.bvhBuilds;
+    resumed += o.resumed;
+  }
+};
+
+std::string reportMarkdown(const std::string& scene, const SweepSpec& spec,
+                           const std::vector<SweepRow>& rows, const SweepTotals& totals,
+                           SweepMetric metric = SweepMetric::RelMse);
+
+}  // namespace penumbra
