@@ -46,10 +46,10 @@ struct Fixture {
 
   explicit Fixture(const std::string& path) : scene(loadScene(path)), tracer(scene) {
     const auto t0 = std::chrono::steady_clock::now();
-    PhotonMaps emitted = emitPhotons(scene, tracer, EmitOptions{});
-    const size_t nShadow = emitted.shadow.size(), nIndirect = emitted.indirect.size();
-    shadow.build(std::move(emitted.shadow), scene.lights.size());
-    indirect.build(std::move(emitted.indirect));
+    EmittedPhotons emitted = emitPhotons(scene, tracer, EmitOptions{});
+    const size_t nShadow = emitted.batches.get<MapKind::Shadow>().size(), nIndirect = emitted.batches.get<MapKind::Indirect>().size();
+    shadow.build(std::move(emitted.batches.get<MapKind::Shadow>()), scene.lights.size());
+    indirect.build(std::move(emitted.batches.get<MapKind::Indirect>()));
     const PhotonSettings& ps = scene.photons;
     gate = gateParamsFor(scene, integratorFor(scene.render.model).glass);
     k = ps.kIndirect;

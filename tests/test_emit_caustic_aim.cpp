@@ -58,9 +58,9 @@ Caustic causticOf(const std::string& json) {
   std::ofstream(file) << json;
   const Scene scene = loadScene(file);
   const TraceScene tracer(scene);
-  const PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer);
-  return {photons.causticTally.stored[MapKind::Caustic].g,
-          double(photons.caustic.size()) / double(photons.emitted[MapKind::Caustic])};
+  const EmittedPhotons photons = emitPhysicalPhotons(scene, tracer);
+  return {photons.tally[MapKind::Caustic].stored[MapKind::Caustic].g,
+          double(photons.batches.get<MapKind::Caustic>().size()) / double(photons.emitted[MapKind::Caustic])};
 }
 
 TEST(CausticAim, AreaLightsGiveThePointLightsCausticPerWattTowardsTheSphere) {

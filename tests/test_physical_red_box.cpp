@@ -63,9 +63,9 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   Scene scene = redBox(ShadingModel::Physical, 64);
   scene.photons.globalPhotons = 200000;
   Rig rig(scene);
-  PhysicalPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
   const glm::dvec3 stored = expectedStoredPhysical(64);
-  const PhotonTally& t = photons.globalTally;
+  const PhotonTally& t = photons.tally[MapKind::Global];
   for (int c = 0; c < 3; ++c) {
     // Red: stored power per photon ~ geometric(0.9), rel. s.e. 1.05/sqrt(N) = 0.24%;
     // green/blue are dominated by the first bounce (s.e. ~0.1%). Tolerance 1%.
@@ -85,7 +85,7 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   // map against the tally at the format's bound, and the gather below against what
   // the map holds, at its old 2%.
   glm::dvec3 inMap(0.0), bound(0.0);
-  for (const IndirectPhoton& p : photons.global) {
+  for (const IndirectPhoton& p : photons.batches.get<MapKind::Global>()) {
     const Color c = p.power.color();
     inMap += glm::dvec3(c);
     bound += glm::dvec3(0x1p-8 * maxComponent(c) / (1.0 - 0x1p-8));  // 2^-8 of the float's largest
@@ -97,7 +97,7 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
               inMap.g / t.stored[MapKind::Global].g - 1.0, inMap.b / t.stored[MapKind::Global].b - 1.0);
 
   IndirectPhotonMap map;
-  map.build(std::move(photons.global));
+  map.build(std::move(photons.batches.get<MapKind::Global>()));
   rig.ctx.globalMap = &map;
   // A fixed gather radius r (a progressive pass of photons.radius): every photon
   // within r on the same face counts, unbiased away from edges. Within r of an edge
@@ -137,12 +137,12 @@ TEST(RedBox, PhysicalStoredPowerFollowsTheBounceCap) {
     Scene scene = redBox(ShadingModel::Physical, m);
     scene.photons.globalPhotons = 200000;
     TraceScene tracer(scene);
-    PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer);
+    EmittedPhotons photons = emitPhysicalPhotons(scene, tracer);
     const glm::dvec3 want = expectedStoredPhysical(m);
     for (int c = 0; c < 3; ++c) {
-      EXPECT_LT(rel(photons.globalTally.stored[MapKind::Global][c], want[c]), 0.01) << "M=" << m << " ch " << c;
+      EXPECT_LT(rel(photons.tally[MapKind::Global].stored[MapKind::Global][c], want[c]), 0.01) << "M=" << m << " ch " << c;
     }
-    double red = photons.globalTally.stored[MapKind::Global].r;
+    double red = photons.tally[MapKind::Global].stored[MapKind::Global].r;
     if (m == 128) {
       EXPECT_LT(rel(red, last), 0.01) << "not converged from 64 to 128";
     }
@@ -172,9 +172,9 @@ TEST(RedBox, ClassicRouletteStoredPowerConvergesWithMaxBounces) {
       TraceScene tracer(scene);
       EmitOptions options;
       options.maps[MapKind::Shadow] = false;
-      PhotonMaps maps = emitPhotons(scene, tracer, options);
+      EmittedPhotons maps = emitPhotons(scene, tracer, options);
       glm::dvec3 sum(0.0);
-      for (const IndirectPhoton& p : maps.indirect) sum += glm::dvec3(p.power.color());
+      for (const IndirectPhoton& p : maps.batches.get<MapKind::Indirect>()) sum += glm::dvec3(p.power.color());
       total[i++] = sum;
       for (int ch = 0; ch < 3; ++ch) {
         const double x = 0.5 * c[ch];

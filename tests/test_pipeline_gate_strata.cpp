@@ -81,9 +81,9 @@ Scene halfBlockedScene() {
 TEST(GateStrata, StratumVerdictsAgreeWithBruteForceVisibility) {
   const Scene scene = halfBlockedScene();
   const TraceScene tracer(scene);
-  PhotonMaps maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer);
   ShadowPhotonMap map;
-  map.build(std::move(maps.shadow), scene.lights.size());
+  map.build(std::move(maps.batches.get<MapKind::Shadow>()), scene.lights.size());
   LookupCacheParams params;
   params.gate = true;
   params.cellSize = cacheCellSize(nullptr, 0, &map, params.gateParams.k, 1.5f);

@@ -77,6 +77,17 @@ class MapSlots {
   void with(MapKind k, F&& f) const {
     forEach([&](auto kind, const auto& slot) { if (kind == k) f(kind, slot); });
   }
+  // The slot of a light-carrying kind (any but Shadow) chosen at run time; null for Shadow.
+  Slot<IndirectPhoton>* light(MapKind k) {
+    Slot<IndirectPhoton>* out = nullptr;
+    forEach([&](auto kind, auto& slot) {
+      if constexpr (std::is_same_v<PhotonOf<decltype(kind)::value>, IndirectPhoton>) {
+        if (kind == k) out = &slot;
+      }
+    });
+    return out;
+  }
+  const Slot<IndirectPhoton>* light(MapKind k) const { return const_cast<MapSlots*>(this)->light(k); }
 
  private:
   decltype(slotsOf(std::make_index_sequence<kMapKinds>{})) slots_;

@@ -43,7 +43,7 @@ class ClassicTransport final : public TransportModel {
   void emit(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, uint32_t,
             Emission& e) const override {
     if (options.maps[MapKind::Shadow] || options.maps[MapKind::Indirect]) {
-      e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
+      emitPhotons(scene, tracer, options, e.photons);
     }
   }
   int passes(const Scene& scene, Aov aov) const override {

@@ -67,8 +67,7 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
   options.progress = progress;
   progressExpect(progress, photonsAskedFor(scene, options, budgets));
   model.emit(scene, tracer, options, pass, e);
-  e.budgets = e.classic.emitted;
-  e.budgets += e.photons.emitted;
+  e.budgets = e.photons.emitted;
   e.seconds = clock.seconds();
   return e;
 }
@@ -81,11 +80,12 @@ bool buildStage(Emission& e, const MapCounts& wanted, bool consume, PhotonStage&
   MapCounts b;
   for (MapKind k : kAllMaps) b[k] = budget(e.budgets[k], wanted[k]);
   using K = MapKind;
-  auto shadow = photonsFor(e.classic.shadow, e.classicCuts.shadow, e.budgets[K::Shadow], b[K::Shadow], consume, ok);
-  auto indirect = photonsFor(e.classic.indirect, e.classicCuts.indirect, e.budgets[K::Indirect], b[K::Indirect],
+  EmittedPhotons& p = e.photons;
+  auto shadow = photonsFor(p.batches.get<K::Shadow>(), p.cuts[K::Shadow], e.budgets[K::Shadow], b[K::Shadow], consume, ok);
+  auto indirect = photonsFor(p.batches.get<K::Indirect>(), p.cuts[K::Indirect], e.budgets[K::Indirect], b[K::Indirect],
                              consume, ok);
-  auto global = photonsFor(e.photons.global, e.photons.globalCuts, e.budgets[K::Global], b[K::Global], consume, ok);
-  auto caustic = photonsFor(e.photons.caustic, e.photons.causticCuts, e.budgets[K::Caustic], b[K::Caustic],
+  auto global = photonsFor(p.batches.get<K::Global>(), p.cuts[K::Global], e.budgets[K::Global], b[K::Global], consume, ok);
+  auto caustic = photonsFor(p.batches.get<K::Caustic>(), p.cuts[K::Caustic], e.budgets[K::Caustic], b[K::Caustic],
                             consume, ok);
   if (!ok) return false;
 
@@ -98,9 +98,9 @@ bool buildStage(Emission& e, const MapCounts& wanted, bool consume, PhotonStage&
   stage.emitSeconds = full > 0.0 ? e.seconds * part / full : e.seconds;
   stage.notes = e.notes;
   // Converts stored flux back into photon colour: emitted / (4 pi x summed intensity).
-  stage.classicScale = e.classic.classicScale;
+  stage.classicScale = p.classicScale;
   if (stage.fromPrefix && e.budgets[K::Indirect] > 0) {
-    stage.classicScale = e.classic.classicScale * float(double(b[K::Indirect]) / double(e.budgets[K::Indirect]));
+    stage.classicScale = p.classicScale * float(double(b[K::Indirect]) / double(e.budgets[K::Indirect]));
   }
   Stopwatch clock;
   MapBuildOptions build;

@@ -24,9 +24,7 @@ namespace penumbra {
 // One emission (pass 0 of the physical model, or the classic pass) with the raw
 // photons of every map the view reads, and the prefix cuts asked for.
 struct Emission {
-  PhotonMaps classic;          // classic maps; the physical model's gate photons (shadow)
-  ClassicCuts classicCuts;
-  PhysicalPhotons photons;     // physical caustic and global photons
+  EmittedPhotons photons;  // every map's (the physical model emits the gate's shadow photons too)
   MapCounts budgets;       // what was emitted
   size_t numLights = 0;
   double seconds = 0.0;

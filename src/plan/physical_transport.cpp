@@ -50,8 +50,8 @@ class PhysicalTransport final : public TransportModel {
   }
   void emit(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, uint32_t pass,
             Emission& e) const override {
-    if (options.maps[MapKind::Shadow]) e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
-    e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
+    if (options.maps[MapKind::Shadow]) emitPhotons(scene, tracer, options, e.photons);
+    emitPhysicalPhotons(scene, tracer, pass, options, e.photons);
   }
   int passes(const Scene& scene, Aov aov) const override {
     return readsLight(aov) ? std::max(1, scene.photons.passes) : 1;
