@@ -104,7 +104,7 @@ TEST_P(Furnace, GlobalMapGivesTheInterreflectionOfAClosedSphere) {
 
   IndirectPhotonMap map;
   map.build(std::move(photons.batches.get<MapKind::Global>()));
-  rig.ctx.globalMap = &map;
+  rig.ctx.maps.get<MapKind::Global>() = &map;
   // Camera rays from the centre in uniformly random directions land on points
   // uniformly spread over the wall; the global view there is rho/pi E0 rho/(1-rho),
   // the direct view rho/pi E0 (normal incidence everywhere).

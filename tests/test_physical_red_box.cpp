@@ -98,7 +98,7 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
 
   IndirectPhotonMap map;
   map.build(std::move(photons.batches.get<MapKind::Global>()));
-  rig.ctx.globalMap = &map;
+  rig.ctx.maps.get<MapKind::Global>() = &map;
   // A fixed gather radius r (a progressive pass of photons.radius): every photon
   // within r on the same face counts, unbiased away from edges. Within r of an edge
   // the disc reaches past its face; the adjacent face's photons mark the edge and the
@@ -106,8 +106,8 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   // (without that, the area mean would be low by 8 r / (15 pi) per unit of perimeter
   // over the area: 0.44% here).
   const float r = 0.01f;
-  rig.ctx.globalK = 0;
-  rig.ctx.globalRadius = r;
+  rig.ctx.gathers[MapKind::Global].k = 0;
+  rig.ctx.gathers[MapKind::Global].maxRadius = r;
   const Vec3 inside(0.05f, 0.7f, 0.05f);  // the box is convex: it sees every wall point
   const int points = 20000;
   Rng rng(9);

@@ -195,7 +195,7 @@ TEST(MirrorCaustic, LandsInTheMirrorsImageWithItsSolidAnglesPower) {
   // kNN radius is ~0.03, well inside the image's edge at 1.5): rho/pi I 3 / d^3.
   IndirectPhotonMap map;
   map.build(std::move(photons.batches.get<MapKind::Caustic>()));
-  rig.ctx.causticMap = &map;
+  rig.ctx.maps.get<MapKind::Caustic>() = &map;
   double sumRatio = 0.0;
   int n = 0;
   for (int i = 0; i < 31; ++i) {

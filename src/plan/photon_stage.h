@@ -74,8 +74,7 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
 
 // Built photon maps and what they cost.
 struct PhotonStage {
-  ShadowPhotonMap shadow;
-  IndirectPhotonMap indirect, caustic, global;
+  MapSlots<PhotonMapFor> maps;
   float classicScale = 1.0f;
   MapCounts budgets;
   MapCounts emitted;
@@ -90,8 +89,9 @@ struct PhotonStage {
   std::optional<LookupCacheParams> lookupKey, gateLookupKey;
   double lookupSeconds = 0.0;  // what building the lookups took
   size_t bytes() const {
-    return shadow.memoryBytes() + indirect.memoryBytes() + caustic.memoryBytes() + global.memoryBytes() +
-           lookup.memoryBytes() + gateLookup.memoryBytes();
+    size_t n = lookup.memoryBytes() + gateLookup.memoryBytes();
+    maps.forEach([&n](MapKind, const auto& map) { n += map.memoryBytes(); });
+    return n;
   }
 };
 

@@ -85,8 +85,8 @@ class PhysicalTransport final : public TransportModel {
     add("photons.passes", stats.passes);
     add("photons.alpha", ps.alpha);
     add("photons.radius", ps.radius);
-    if (stats.passes > 1) add("photons.final_global_radius", stats.globalRadius);
-    if (stats.passes > 1) add("photons.final_caustic_radius", stats.causticRadius);
+    if (stats.passes > 1) add("photons.final_global_radius", stats.gatherRadius[MapKind::Global]);
+    if (stats.passes > 1) add("photons.final_caustic_radius", stats.gatherRadius[MapKind::Caustic]);
   }
 };
 

@@ -20,10 +20,7 @@ void addStage(const PhotonStage& s, RenderStats& stats) {
   stats.time.emit += s.emitSeconds;
   stats.time.buildMaps += s.buildSeconds;
   stats.emitted += s.emitted;
-  stats.stored[MapKind::Shadow] += s.shadow.size();
-  stats.stored[MapKind::Indirect] += s.indirect.size();
-  stats.stored[MapKind::Caustic] += s.caustic.size();
-  stats.stored[MapKind::Global] += s.global.size();
+  s.maps.forEach([&stats](MapKind k, const auto& map) { stats.stored[k] += map.size(); });
 }
 
 // Progressive pass `pass` of a frame (Knaus & Zwicker 2011): each map gathers
@@ -32,18 +29,17 @@ void addStage(const PhotonStage& s, RenderStats& stats) {
 // by the same share. The stats keep the typical radius of the last pass.
 void passGathers(const PhotonSettings& ps, uint32_t pass, const PhotonStage& maps, ShadingContext& ctx,
                  RenderStats& stats) {
+  const MapKind caustic = MapKind::Caustic, global = MapKind::Global;
   if (ps.radius > 0.0f) {
-    ctx.causticK = ctx.globalK = 0;
-    ctx.causticRadius = ctx.globalRadius = static_cast<float>(ps.radius * std::sqrt(passRadiusShare(pass, ps.alpha)));
-    stats.causticRadius = stats.globalRadius = ctx.globalRadius;
+    const float radius = static_cast<float>(ps.radius * std::sqrt(passRadiusShare(pass, ps.alpha)));
+    ctx.gathers[caustic] = ctx.gathers[global] = PhotonGather{0, radius};
+    stats.gatherRadius[caustic] = stats.gatherRadius[global] = radius;
     return;
   }
-  ctx.causticK = passK(ps.kCaustic, pass, ps.alpha);
-  ctx.globalK = passK(ps.kGlobal, pass, ps.alpha);
-  ctx.causticRadius = ctx.globalRadius = 0.0f;
+  ctx.gathers[caustic] = PhotonGather{passK(ps.kCaustic, pass, ps.alpha), 0.0f};
+  ctx.gathers[global] = PhotonGather{passK(ps.kGlobal, pass, ps.alpha), 0.0f};
   GatherScratch scratch;
-  stats.causticRadius = typicalKnnRadius(maps.caustic, ctx.causticK, scratch);
-  stats.globalRadius = typicalKnnRadius(maps.global, ctx.globalK, scratch);
+  for (MapKind k : {caustic, global}) stats.gatherRadius[k] = typicalKnnRadius(*maps.maps.light(k), ctx.gathers[k].k, scratch);
 }
 
 // "render", or "render 2/4" in pass 2 of 4 progressive passes.
@@ -88,9 +84,10 @@ struct FrameRun {
     ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
     ctx.hasGlass = sceneHasGlass(scene);
     ctx.classicScale = stage.classicScale;
-    ctx.shadowMap = stage.shadow.size() > 0 ? &stage.shadow : nullptr;
+    const ShadowPhotonMap& shadow = stage.maps.get<MapKind::Shadow>();
+    ctx.maps.get<MapKind::Shadow>() = shadow.size() > 0 ? &shadow : nullptr;  // pass 0's, for every pass
     for (const std::string& n : stage.notes) result.notes.push_back(n);
-    if (stage.emitted[MapKind::Indirect] > 0 && stage.indirect.empty()) {
+    if (stage.emitted[MapKind::Indirect] > 0 && stage.maps.get<MapKind::Indirect>().empty()) {
       result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
                              "using the ambient term");
     }
@@ -147,9 +144,9 @@ const PhotonStage& mapsForPass(FrameRun& f, int pass) {
 // The context reads `maps` in pass `pass`, with the pass's gathers.
 void bindMaps(FrameRun& f, const PhotonStage& maps, int pass) {
   if (pass == 0 || f.fresh) addStage(maps, f.stats);
-  f.ctx.indirectMap = maps.indirect.empty() ? nullptr : &maps.indirect;
-  f.ctx.causticMap = maps.caustic.empty() ? nullptr : &maps.caustic;
-  f.ctx.globalMap = maps.global.empty() ? nullptr : &maps.global;
+  maps.maps.forEach([&f](auto k, const auto& map) {
+    if constexpr (decltype(k)::value != MapKind::Shadow) f.ctx.maps.get<decltype(k)::value>() = map.empty() ? nullptr : &map;
+  });
   f.ctx.pass = static_cast<uint32_t>(pass);
   if (f.passes > 1 && f.fresh) passGathers(f.scene.photons, f.ctx.pass, maps, f.ctx, f.stats);
 }
@@ -171,10 +168,10 @@ void prepareLookups(FrameRun& f, int pass) {
                   f.options.progress, lookups);
     }
   }
-  if (pass == 0 && f.needsLight && ctx.choices.gate && ctx.shadowMap && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
-      !stage.shadow.hasTrees()) {
+  if (pass == 0 && f.needsLight && ctx.choices.gate && ctx.maps.get<MapKind::Shadow>() && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
+      !stage.maps.get<MapKind::Shadow>().hasTrees()) {
     Stopwatch trees;
-    stage.shadow.buildTrees();
+    stage.maps.get<MapKind::Shadow>().buildTrees();
     f.stats.time.buildMaps += trees.seconds();
   }
 }

@@ -4,14 +4,15 @@
 #include "core/ray_record.h"
 #include "core/scene.h"
 #include "core/stats.h"
+#include "core/map_kind.h"
+#include "gather/photon_map_for.h"
+#include "gather/radiance_estimate.h"
 #include "geometry/trace_scene.h"
 #include "trace/integrator.h"
 #include <memory>
 
 namespace penumbra {
 
-class ShadowPhotonMap;
-class IndirectPhotonMap;
 class LookupCache;
 class TextureLookup;
 struct GatherScratch;
@@ -33,26 +34,34 @@ struct FrameChoices {
   }
 };
 
+template <class Photon>
+using ConstMapPtr = const PhotonMapFor<Photon>*;
+
+// Each map's gather in one pass: the k nearest (a progressive pass's k shrinks)
+// within the radius (0: any distance), or with k = 0 every photon within it.
+inline PerMap<PhotonGather> sceneGathers(const PhotonSettings& ps) {
+  PerMap<PhotonGather> g;
+  g[MapKind::Indirect] = {ps.kIndirect, ps.maxRadius};
+  g[MapKind::Global] = {ps.kGlobal, 0.0f};
+  g[MapKind::Caustic] = {ps.kCaustic, 0.0f};
+  return g;
+}
+
 // Read-only inputs shared by all render threads.
 struct ShadingContext {
   const Scene& scene;
   const TraceScene& tracer;
   FrameChoices choices = FrameChoices::of(scene);
-  const ShadowPhotonMap* shadowMap = nullptr;      // null: every shadow test is a ray
-  const IndirectPhotonMap* indirectMap = nullptr;  // null: the ambient term is used
+  // The maps the frame reads, null where none is stored: no shadow map, every shadow
+  // test is a ray; no indirect map, the ambient term is used.
+  MapSlots<ConstMapPtr> maps;
+  PerMap<PhotonGather> gathers = sceneGathers(scene.photons);  // (gather/radiance_estimate.h)
   const TextureLookup* textures = nullptr;
   // photons.lookup = precomputed: the indirect (classic) or global (physical,
   // Lambertian part) estimate read from `lookup`, the gate verdicts from `gateLookup`
   // (the same cache, or one of finer cells); one query of each per shading point.
   const LookupCache* lookup = nullptr;
   const LookupCache* gateLookup = nullptr;
-  // Physical model: caustic and global photon maps, each estimate's PhotonGather
-  // (gather/radiance_estimate.h): the k nearest (a progressive pass's k shrinks)
-  // within the radius (0: any distance), or with k = 0 every photon within it.
-  const IndirectPhotonMap* causticMap = nullptr;
-  const IndirectPhotonMap* globalMap = nullptr;
-  float causticRadius = 0.0f, globalRadius = 0.0f;
-  int causticK = scene.photons.kCaustic, globalK = scene.photons.kGlobal;
   uint32_t pass = 0;  // progressive pass: sample streams continue after earlier passes'
   uint32_t passes = 1;  // of the frame: more than one draws camera samples from a sequence over all
   float classicScale = 1.0f;  // turns stored photon flux back into photon colour
