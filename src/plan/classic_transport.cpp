@@ -55,6 +55,11 @@ class ClassicTransport final : public TransportModel {
                                                                            : CachedIndirect::Classic;
     return {MapKind::Indirect, kind, ps.kIndirect, ps.maxRadius};
   }
+  PerMap<PhotonGather> gathers(const PhotonSettings& ps, uint32_t, uint32_t) const override {
+    PerMap<PhotonGather> g;
+    g[MapKind::Indirect] = {ps.kIndirect, ps.maxRadius};
+    return g;
+  }
 
   std::string photonSummary(const Scene& scene, const MapCounts&, const RenderStats& stats, bool gate) const override {
     const PhotonSettings& ps = scene.photons;

@@ -61,6 +61,25 @@ class PhysicalTransport final : public TransportModel {
     // Irradiance answers the Lambertian part; a glossy lobe still gathers.
     return {MapKind::Global, CachedIndirect::Irradiance, ps.kGlobal, 0.0f};
   }
+  // Progressive pass `pass` (Knaus & Zwicker 2011): each map gathers k x passRadiusShare
+  // nearest photons, so every point's radius shrinks from its own k-nearest one;
+  // photons.radius > 0 instead fixes one radius for all points, shrunk by the same
+  // share. A frame of one pass gathers the k nearest at any distance.
+  PerMap<PhotonGather> gathers(const PhotonSettings& ps, uint32_t pass, uint32_t passes) const override {
+    const MapKind caustic = MapKind::Caustic, global = MapKind::Global;
+    PerMap<PhotonGather> g;
+    g[caustic] = {ps.kCaustic, 0.0f};
+    g[global] = {ps.kGlobal, 0.0f};
+    if (passes <= 1) return g;
+    if (ps.radius > 0.0f) {
+      const float radius = static_cast<float>(ps.radius * std::sqrt(passRadiusShare(pass, ps.alpha)));
+      g[caustic] = g[global] = PhotonGather{0, radius};
+      return g;
+    }
+    g[caustic] = PhotonGather{passK(ps.kCaustic, pass, ps.alpha), 0.0f};
+    g[global] = PhotonGather{passK(ps.kGlobal, pass, ps.alpha), 0.0f};
+    return g;
+  }
 
   std::string photonSummary(const Scene& scene, const MapCounts& budgets, const RenderStats& stats,
                             bool gate) const override {

@@ -23,23 +23,15 @@ void addStage(const PhotonStage& s, RenderStats& stats) {
   s.maps.forEach([&stats](MapKind k, const auto& map) { stats.stored[k] += map.size(); });
 }
 
-// Progressive pass `pass` of a frame (Knaus & Zwicker 2011): each map gathers
-// k x passRadiusShare nearest photons, so every point's radius shrinks from its own
-// k-nearest one; photons.radius > 0 instead fixes one radius for all points, shrunk
-// by the same share. The stats keep the typical radius of the last pass.
-void passGathers(const PhotonSettings& ps, uint32_t pass, const PhotonStage& maps, ShadingContext& ctx,
+// The stats keep each light map's typical gather radius in the last pass: its fixed
+// radius, or the median k-nearest one.
+void gatherRadii(const TransportModel& model, const PhotonStage& maps, const ShadingContext& ctx,
                  RenderStats& stats) {
-  const MapKind caustic = MapKind::Caustic, global = MapKind::Global;
-  if (ps.radius > 0.0f) {
-    const float radius = static_cast<float>(ps.radius * std::sqrt(passRadiusShare(pass, ps.alpha)));
-    ctx.gathers[caustic] = ctx.gathers[global] = PhotonGather{0, radius};
-    stats.gatherRadius[caustic] = stats.gatherRadius[global] = radius;
-    return;
-  }
-  ctx.gathers[caustic] = PhotonGather{passK(ps.kCaustic, pass, ps.alpha), 0.0f};
-  ctx.gathers[global] = PhotonGather{passK(ps.kGlobal, pass, ps.alpha), 0.0f};
   GatherScratch scratch;
-  for (MapKind k : {caustic, global}) stats.gatherRadius[k] = typicalKnnRadius(*maps.maps.light(k), ctx.gathers[k].k, scratch);
+  for (MapKind k : model.lightMaps()) {
+    const PhotonGather& g = ctx.gathers[k];
+    stats.gatherRadius[k] = g.k == 0 ? g.maxRadius : typicalKnnRadius(*maps.maps.light(k), g.k, scratch);
+  }
 }
 
 // "render", or "render 2/4" in pass 2 of 4 progressive passes.
@@ -148,7 +140,8 @@ void bindMaps(FrameRun& f, const PhotonStage& maps, int pass) {
     if constexpr (decltype(k)::value != MapKind::Shadow) f.ctx.maps.get<decltype(k)::value>() = map.empty() ? nullptr : &map;
   });
   f.ctx.pass = static_cast<uint32_t>(pass);
-  if (f.passes > 1 && f.fresh) passGathers(f.scene.photons, f.ctx.pass, maps, f.ctx, f.stats);
+  f.ctx.gathers = f.model.gathers(f.scene.photons, f.ctx.pass, static_cast<uint32_t>(f.passes));
+  if (f.passes > 1 && f.fresh) gatherRadii(f.model, maps, f.ctx, f.stats);
 }
 
 // Pass 0 keeps its lookups with its maps, for later frames on the same maps; a pass

@@ -54,7 +54,7 @@ struct ShadingContext {
   FrameChoices choices = FrameChoices::of(scene);
   // The maps the frame reads, null where none is stored: no shadow map, every shadow
   // test is a ray; no indirect map, the ambient term is used.
-  MapSlots<ConstMapPtr> maps;
+  MapSlots<ConstMapPtr> maps{};
   PerMap<PhotonGather> gathers = sceneGathers(scene.photons);  // (gather/radiance_estimate.h)
   const TextureLookup* textures = nullptr;
   // photons.lookup = precomputed: the indirect (classic) or global (physical,
