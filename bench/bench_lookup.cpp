@@ -2,6 +2,7 @@
 // bounce rays, the exact gate and indirect gathers and the precomputed lookup cache, all at
 // the same first-hit shading points, plus their ratios from one interleaved run.
 #include "core/rng.h"
+#include "tests/support/emit_fixtures.h"
 #include "core/sampling.h"
 #include "emit/emit.h"
 #include "gather/lookup_cache.h"
@@ -46,7 +47,7 @@ struct Fixture {
 
   explicit Fixture(const std::string& path) : scene(loadScene(path)), tracer(scene) {
     const auto t0 = std::chrono::steady_clock::now();
-    EmittedPhotons emitted = emitPhotons(scene, tracer, EmitOptions{});
+    EmittedPhotons emitted = emitPhotons(scene, tracer, sceneEmit(scene));
     const size_t nShadow = emitted.batches.get<MapKind::Shadow>().size(), nIndirect = emitted.batches.get<MapKind::Indirect>().size();
     shadow.build(std::move(emitted.batches.get<MapKind::Shadow>()), scene.lights.size());
     indirect.build(std::move(emitted.batches.get<MapKind::Indirect>()));

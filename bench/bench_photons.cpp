@@ -3,6 +3,7 @@
 // the whole pass, at 1 and 2 threads (docs/PERFORMANCE.md: the photon pass and the
 // scaling targets).
 #include "emit/emit.h"
+#include "tests/support/emit_fixtures.h"
 #include "gather/photon_map.h"
 #include "io/scene_loader.h"
 #include "bench/bench_common.h"
@@ -26,7 +27,7 @@ void BM_EmitCornell(benchmark::State& state) {
   uint64_t emitted = 0, stored = 0;
   const penumbra::bench::CpuShare cpu;
   for (auto _ : state) {
-    EmittedPhotons maps = emitPhotons(scene, tracer);
+    EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
     emitted += maps.emitted[MapKind::Shadow] + maps.emitted[MapKind::Indirect];
     stored += maps.batches.get<MapKind::Shadow>().size() + maps.batches.get<MapKind::Indirect>().size();
   }
@@ -54,7 +55,7 @@ void BM_BuildMapsCornell(benchmark::State& state) {
   size_t stored = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    EmittedPhotons emitted = emitPhotons(scene, tracer);
+    EmittedPhotons emitted = emitPhotons(scene, tracer, sceneEmit(scene));
     stored = emitted.batches.get<MapKind::Shadow>().size() + emitted.batches.get<MapKind::Indirect>().size();
     state.ResumeTiming();
     auto maps = std::make_unique<Maps>(emitted, scene.lights.size());
@@ -74,7 +75,7 @@ void BM_PhotonPassCornell(benchmark::State& state) {
   TraceScene tracer(scene);
   const penumbra::bench::CpuShare cpu;
   for (auto _ : state) {
-    EmittedPhotons emitted = emitPhotons(scene, tracer);
+    EmittedPhotons emitted = emitPhotons(scene, tracer, sceneEmit(scene));
     auto maps = std::make_unique<Maps>(emitted, scene.lights.size());
     benchmark::DoNotOptimize(maps->shadow.size() + maps->indirect.size());
     state.PauseTiming();  // freeing the maps is not the pass's

@@ -2,6 +2,7 @@
 // one scene with their CLOCK_MONOTONIC windows and counters for perf, then in the same run
 // the raw Embree and nanoflann rates on that scene's rays and first-hit points.
 #include "bench/bench_common.h"
+#include "tests/support/emit_fixtures.h"
 #include "plan/pipeline.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
@@ -88,7 +89,7 @@ void rawGatherRates(const Scene& scene, const TraceScene& tracer, const RaySets&
                     bool queried, std::FILE* out) {
   const PhotonSettings& ps = scene.photons;
   if (scene.render.model == ShadingModel::Physical) {
-    EmittedPhotons ph = emitPhysicalPhotons(scene, tracer, 0);
+    EmittedPhotons ph = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
     IndirectPhotonMap global, caustic;
     global.build(std::move(ph.batches.get<MapKind::Global>()));
     caustic.build(std::move(ph.batches.get<MapKind::Caustic>()));
@@ -110,7 +111,7 @@ void rawGatherRates(const Scene& scene, const TraceScene& tracer, const RaySets&
     std::fprintf(out, "\"exact_queries\": 0");
     return;
   }
-  EmittedPhotons maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   ShadowPhotonMap shadow;
   IndirectPhotonMap indirect;
   shadow.build(std::move(maps.batches.get<MapKind::Shadow>()), scene.lights.size());

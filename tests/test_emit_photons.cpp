@@ -3,6 +3,7 @@
 // walls' colour on survivors, budget splitting, and byte-identical maps for 1 and 2
 // threads.
 #include "emit/budget.h"
+#include "support/emit_fixtures.h"
 #include "emit/emit.h"
 #include "support/emit_box.h"
 #include <gtest/gtest.h>
@@ -27,7 +28,7 @@ TEST(EmitIndirect, RussianRouletteClassicStoresEveryHit) {
     scene.photons.estimator = IndirectEstimator::Classic;
     scene.photons.sampling = HemisphereSampling::Cosine;  // unweighted bounces: power stays put
     TraceScene tracer(scene);
-    EmittedPhotons maps = emitPhotons(scene, tracer);
+    EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
     EXPECT_TRUE(maps.batches.get<MapKind::Shadow>().empty());
     EXPECT_EQ(maps.emitted[MapKind::Indirect], n);
     // Hits per path: 1 + Geometric(p), mean 1/(1-p), variance p/(1-p)^2.
@@ -60,13 +61,13 @@ TEST(EmitIndirect, RussianRouletteDensitySkipsTheFirstHit) {
   scene.photons.maxBounces = 1000;
   scene.photons.estimator = IndirectEstimator::Density;
   TraceScene tracer(scene);
-  EmittedPhotons maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   const double mean = n * p / (1.0 - p), sd = std::sqrt(n * p) / (1.0 - p);
   expectWithinSigmas(static_cast<double>(maps.batches.get<MapKind::Indirect>().size()), mean, sd, 4.0, "density");
   // max_bounces caps the path: with 1 bounce at most one stored photon per path,
   // and exactly the survivors of the first roulette, Binomial(n, p).
   scene.photons.maxBounces = 1;
-  EmittedPhotons capped = emitPhotons(scene, tracer);
+  EmittedPhotons capped = emitPhotons(scene, tracer, sceneEmit(scene));
   expectWithinSigmas(static_cast<double>(capped.batches.get<MapKind::Indirect>().size()), n * p, std::sqrt(n * p * (1 - p)), 4.0,
                      "density, max_bounces 1");
 }
@@ -79,7 +80,7 @@ TEST(EmitIndirect, UniformBouncesAreCosineWeighted) {
   scene.photons.maxBounces = 1;
   scene.photons.sampling = HemisphereSampling::Uniform;
   TraceScene tracer(scene);
-  EmittedPhotons maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   const double p0 = 4.0 * kPi / n;
   double sum = 0.0, sum2 = 0.0;
   size_t second = 0;
@@ -114,7 +115,7 @@ TEST(EmitIndirect, SurvivorsTakeOnTheWallColour) {
   scene.photons.maxBounces = 1000;
   scene.photons.sampling = HemisphereSampling::Cosine;
   TraceScene tracer(scene);
-  EmittedPhotons maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   const float p0 = 4.0f * kPi / n;
   size_t firstHits = 0, secondHits = 0;
   // The stored power is shared-exponent RGB: every channel within 2^-8 of the largest
@@ -164,7 +165,7 @@ TEST(Emit, ByteIdenticalForOneAndTwoThreads) {
   options.batchSize = 512;  // dozens of batches, so both threads get work
   auto run = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return emitPhotons(scene, tracer, options);
+    return emitPhotons(scene, tracer, sceneEmit(scene, options));
   };
   EmittedPhotons one = run(1), two = run(2), again = run(2);
   EXPECT_GT(one.batches.get<MapKind::Shadow>().size(), 30000u);  // the spheres cast shadow photons
@@ -230,7 +231,7 @@ TEST(SplitBudget, ProportionalToLuminanceAndExact) {
   sunOnly.photons.indirectPhotons = 1000;
   EXPECT_EQ(splitBudget(sunOnly, 1000), (std::vector<uint64_t>{0, 0}));
   TraceScene tracer(sunOnly);
-  EmittedPhotons maps = emitPhotons(sunOnly, tracer);
+  EmittedPhotons maps = emitPhotons(sunOnly, tracer, sceneEmit(sunOnly));
   EXPECT_TRUE(maps.batches.get<MapKind::Shadow>().empty());
   EXPECT_TRUE(maps.batches.get<MapKind::Indirect>().empty());
   EXPECT_EQ(maps.emitted[MapKind::Shadow], 0u);

@@ -3,6 +3,7 @@
 // positions, directions, normals, lights, in the same order), with powers within
 // the packing's rounding, for several lights of different power, in both models.
 #include "emit/emit.h"
+#include "support/emit_fixtures.h"
 #include "emit/emit_physical.h"
 #include "emit/photon_prefix.h"
 #include "io/shapes.h"
@@ -69,7 +70,7 @@ TEST(EmitPrefix, ClassicCutsEqualFreshEmissions) {
   options.batchSize = 1000;
   // 12345 ends inside batches; 3000 on batch bounds for light 0; 40000 is the full one.
   options.prefixBudgets = {12345, 3000, 40000};
-  EmittedPhotons big = emitPhotons(full, tracer, options);
+  EmittedPhotons big = emitPhotons(full, tracer, sceneEmit(full, options));
   const PerMap<PrefixCuts>& cuts = big.cuts;
   for (uint64_t budget : {uint64_t(3000), uint64_t(12345)}) {
     Scene small = full;
@@ -77,7 +78,7 @@ TEST(EmitPrefix, ClassicCutsEqualFreshEmissions) {
     small.photons.indirectPhotons = budget;
     EmitOptions fresh;
     fresh.batchSize = 1000;
-    EmittedPhotons expected = emitPhotons(small, tracer, fresh);
+    EmittedPhotons expected = emitPhotons(small, tracer, sceneEmit(small, fresh));
     const PrefixCut* s = cuts[MapKind::Shadow].find(budget);
     const PrefixCut* in = cuts[MapKind::Indirect].find(budget);
     ASSERT_NE(s, nullptr);
@@ -98,13 +99,13 @@ TEST(EmitPrefix, PhysicalCutsEqualFreshEmissions) {
   EmitOptions options;
   options.batchSize = 1000;
   options.prefixBudgets = {7777};
-  EmittedPhotons big = emitPhysicalPhotons(full, tracer, 0, options);
+  EmittedPhotons big = emitPhysicalPhotons(full, tracer, 0, sceneEmit(full, options));
   Scene small = full;
   small.photons.globalPhotons = 7777;
   small.photons.causticPhotons = 7777;
   EmitOptions fresh;
   fresh.batchSize = 1000;
-  EmittedPhotons expected = emitPhysicalPhotons(small, tracer, 0, fresh);
+  EmittedPhotons expected = emitPhysicalPhotons(small, tracer, 0, sceneEmit(small, fresh));
   ASSERT_NE(big.cuts[MapKind::Global].find(7777), nullptr);
   ASSERT_NE(big.cuts[MapKind::Caustic].find(7777), nullptr);
   expectSameIndirect(takePrefix(big.batches.get<MapKind::Global>(), *big.cuts[MapKind::Global].find(7777)), expected.batches.get<MapKind::Global>().flatten());

@@ -3,6 +3,7 @@
 // (its far-side hits met from behind), the kind records what was crossed, and a quad
 // light's lines fill its strata evenly and follow the cosine law.
 #include "emit/emit.h"
+#include "support/emit_fixtures.h"
 #include "support/emit_box.h"
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -21,7 +22,7 @@ TEST(EmitShadow, ClosedBoxEveryLineHitsExactlyOneWall) {
   TraceScene tracer(scene);
   EmitOptions options;
   options.batchSize = 1000;
-  EmittedPhotons maps = emitPhotons(scene, tracer, options);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene, options));
   EXPECT_EQ(maps.emitted[MapKind::Shadow], 20000u);
   EXPECT_EQ(maps.emitted[MapKind::Indirect], 0u);
   EXPECT_TRUE(maps.batches.get<MapKind::Indirect>().empty());
@@ -38,7 +39,7 @@ TEST(EmitShadow, ClosedBoxEveryLineHitsExactlyOneWall) {
 TEST(EmitShadow, DirectionsAreUniformOverTheCubeFaces) {
   Scene scene = boxScene(1.0f, Vec3(0.0f), 60000);
   TraceScene tracer(scene);
-  EmittedPhotons maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   ASSERT_EQ(maps.batches.get<MapKind::Shadow>().size(), 60000u);
   int faces[6] = {0, 0, 0, 0, 0, 0};
   for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
@@ -64,7 +65,7 @@ TEST(EmitShadow, SphereShadowMatchesItsSolidAngle) {
   Scene scene = boxScene(2.0f, Vec3(0.0f), 20000);
   scene.spheres.push_back(Sphere{Vec3(1.0f, 0.0f, 0.0f), 0.5f, 0});
   TraceScene tracer(scene);
-  EmittedPhotons maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   size_t direct = 0, shadow = 0, onSphere = 0, shadowOnWall = 0;
   const double alpha = std::asin(0.5);
   for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
@@ -99,7 +100,7 @@ TEST(EmitShadow, SphereShadowMatchesItsSolidAngle) {
   // Keeping only the first hit per line leaves exactly one (direct) photon per line.
   EmitOptions firstOnly;
   firstOnly.maxHitsPerLine = 1;
-  EmittedPhotons first = emitPhotons(scene, tracer, firstOnly);
+  EmittedPhotons first = emitPhotons(scene, tracer, sceneEmit(scene, firstOnly));
   ASSERT_EQ(first.batches.get<MapKind::Shadow>().size(), 20000u);
   for (const ShadowPhoton& p : first.batches.get<MapKind::Shadow>()) EXPECT_EQ(p.shadow, 0);
 }
@@ -113,7 +114,7 @@ TEST(EmitShadow, ShadowKindRecordsWhetherSomethingOpaqueWasCrossed) {
   scene.spheres.push_back(Sphere{Vec3(1.0f, 0.0f, 0.0f), 0.4f, 1});   // glass towards +x
   scene.spheres.push_back(Sphere{Vec3(-1.0f, 0.0f, 0.0f), 0.4f, 0});  // opaque towards -x
   TraceScene tracer(scene);
-  EmittedPhotons maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   size_t glassBehind = 0, opaqueBehind = 0;
   for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
     bool onWall = maxComponent(glm::abs(p.position)) > 1.99f;
@@ -146,7 +147,7 @@ TEST(EmitShadow, AQuadLightsLinesFillItsStrataEvenlyAndFollowTheCosineLaw) {
   TraceScene tracer(scene);
   EmitOptions options;
   options.batchSize = 4096;
-  const EmittedPhotons maps = emitPhotons(scene, tracer, options);
+  const EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene, options));
   ASSERT_EQ(maps.batches.get<MapKind::Shadow>().size(), 16u * 4096u);  // a closed box: one direct hit per line
   const double h = 3.9, r = 2.0;
   size_t inDisc = 0, i = 0;

@@ -120,11 +120,10 @@ TEST(AlphaMask, ShadowPhotonsReachTheFloorOnlyThroughTheHoles) {
   scene.render.model = ShadingModel::Classic;
   const uint64_t n = 400000;
   scene.photons.shadowPhotons = n;
-  scene.photons.gate = true;
+  scene.photons.gateMode = GateMode::On;
   TraceScene tracer(scene);
   EmitOptions options;
-  options.budgets = MapCounts{};
-  (*options.budgets)[MapKind::Shadow] = n;
+  options.budgets[MapKind::Shadow] = n;
   const EmittedPhotons maps = emitPhotons(scene, tracer, options);
   const double shrink = 0.1 * 0.5;  // 10% of a square's side off each edge
   for (int j = 0; j < kSquares; ++j) {

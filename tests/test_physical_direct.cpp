@@ -4,6 +4,7 @@
 // light at its centre: uniform irradiance E0 / (1 - rho)), and the estimator on a
 // regular photon grid. Every tolerance is stated next to its assertion.
 #include "support/physical_fixtures.h"
+#include "support/emit_fixtures.h"
 
 namespace penumbra {
 namespace {
@@ -85,7 +86,7 @@ TEST_P(Furnace, GlobalMapGivesTheInterreflectionOfAClosedSphere) {
   scene.photons.maxBounces = 64;  // rho^64 < 2e-9: the cap loses nothing measurable
   Rig rig(scene);
 
-  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer, 0, sceneEmit(scene));
   const glm::dvec3 phi = 4.0 * kPiD * glm::dvec3(colour) * double(intensity);
   const double gain = rho / (1.0 - rho);
   EXPECT_EQ(photons.emitted[MapKind::Global], 500000u);

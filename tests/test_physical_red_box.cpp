@@ -2,6 +2,7 @@
 // and the stored power per channel follows the truncated geometric series in
 // max_bounces, for the physical model and for the classic roulette alike.
 #include "support/physical_fixtures.h"
+#include "support/emit_fixtures.h"
 
 namespace penumbra {
 namespace {
@@ -63,7 +64,7 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   Scene scene = redBox(ShadingModel::Physical, 64);
   scene.photons.globalPhotons = 200000;
   Rig rig(scene);
-  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer, 0, sceneEmit(scene));
   const glm::dvec3 stored = expectedStoredPhysical(64);
   const PhotonTally& t = photons.tally[MapKind::Global];
   for (int c = 0; c < 3; ++c) {
@@ -137,7 +138,7 @@ TEST(RedBox, PhysicalStoredPowerFollowsTheBounceCap) {
     Scene scene = redBox(ShadingModel::Physical, m);
     scene.photons.globalPhotons = 200000;
     TraceScene tracer(scene);
-    EmittedPhotons photons = emitPhysicalPhotons(scene, tracer);
+    EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
     const glm::dvec3 want = expectedStoredPhysical(m);
     for (int c = 0; c < 3; ++c) {
       EXPECT_LT(rel(photons.tally[MapKind::Global].stored[MapKind::Global][c], want[c]), 0.01) << "M=" << m << " ch " << c;
@@ -172,7 +173,7 @@ TEST(RedBox, ClassicRouletteStoredPowerConvergesWithMaxBounces) {
       TraceScene tracer(scene);
       EmitOptions options;
       options.maps[MapKind::Shadow] = false;
-      EmittedPhotons maps = emitPhotons(scene, tracer, options);
+      EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene, options));
       glm::dvec3 sum(0.0);
       for (const IndirectPhoton& p : maps.batches.get<MapKind::Indirect>()) sum += glm::dvec3(p.power.color());
       total[i++] = sum;

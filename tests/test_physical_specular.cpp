@@ -3,6 +3,7 @@
 // light puts its caustic inside the mirror's image from the virtual light, with the
 // power of its solid angle.
 #include "support/physical_fixtures.h"
+#include "support/emit_fixtures.h"
 
 namespace penumbra {
 namespace {
@@ -58,7 +59,7 @@ TEST(GlassEnergy, ClearGlassAloneLetsEveryPhotonEscape) {
   for (bool slab : {false, true}) {
     Scene scene = glassScene(Color(1.0f), slab);
     TraceScene tracer(scene);
-    EmittedPhotons photons = emitPhysicalPhotons(scene, tracer);
+    EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
     const char* what = slab ? "slab" : "sphere";
     EXPECT_TRUE(photons.batches.get<MapKind::Global>().empty()) << what;
     EXPECT_TRUE(photons.batches.get<MapKind::Caustic>().empty()) << what;
@@ -87,7 +88,7 @@ TEST(GlassEnergy, TintedSphereAbsorbsHalfOfWhatEnters) {
   // light's photons hit. Tolerance: 4 binomial standard deviations.
   Scene scene = glassScene(Color(0.5f), false);
   TraceScene tracer(scene);
-  EmittedPhotons photons = emitPhysicalPhotons(scene, tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
   const double D = glm::length(glm::dvec3(scene.lights[0].position)), a = 1.0;
   const double enter = enteringFraction(D, a, 1.5);
   EXPECT_GT(enter, 0.85);  // sanity of the reference: mostly near-normal hits
@@ -116,7 +117,7 @@ TEST(GlassEnergy, TintedSlabAbsorbs) {
   // escapes than with clear glass; the books still balance exactly.
   Scene clear = glassScene(Color(1.0f), true), tinted = glassScene(Color(0.5f), true);
   TraceScene clearTracer(clear), tintedTracer(tinted);
-  EmittedPhotons a = emitPhysicalPhotons(clear, clearTracer), b = emitPhysicalPhotons(tinted, tintedTracer);
+  EmittedPhotons a = emitPhysicalPhotons(clear, clearTracer, 0, sceneEmit(clear)), b = emitPhysicalPhotons(tinted, tintedTracer, 0, sceneEmit(tinted));
   for (int pass = 0; pass < 2; ++pass) {
     const PhotonTally& ta = pass ? a.tally[MapKind::Caustic] : a.tally[MapKind::Global];
     const PhotonTally& tb = pass ? b.tally[MapKind::Caustic] : b.tally[MapKind::Global];
@@ -159,7 +160,7 @@ TEST(MirrorCaustic, LandsInTheMirrorsImageWithItsSolidAnglesPower) {
 
   std::vector<SceneSphere> targets = specularTargets(scene);
   ASSERT_EQ(targets.size(), 1u);  // the mirror only
-  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer, 0, sceneEmit(scene));
   ASSERT_EQ(photons.emitted[MapKind::Caustic], 400000u);
   ASSERT_FALSE(photons.batches.get<MapKind::Caustic>().empty());
   // The cone around the mirror's bounding sphere (half-diagonal 0.5 sqrt 2, x 1.001 + 1e-6).
@@ -227,7 +228,7 @@ TEST(MirrorCaustic, DirectionalLightThroughTheAimedDisc) {
   scene.photons.causticPhotons = 400000;
   scene.photons.globalPhotons = 1000;
   TraceScene tracer(scene);
-  EmittedPhotons photons = emitPhysicalPhotons(scene, tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
   ASSERT_FALSE(photons.batches.get<MapKind::Caustic>().empty());
   glm::dvec3 total(0.0);
   for (const IndirectPhoton& p : photons.batches.get<MapKind::Caustic>()) {

@@ -3,6 +3,7 @@
 // stratum at a point never contradicts brute-force visibility of that stratum, and
 // soft_shadows gated stays within 0.5% of the ungated image while most rays are answered.
 #include "core/light_sample.h"
+#include "support/emit_fixtures.h"
 #include "core/light_strata.h"
 #include "emit/emit.h"
 #include "gather/lookup_cache.h"
@@ -81,7 +82,7 @@ Scene halfBlockedScene() {
 TEST(GateStrata, StratumVerdictsAgreeWithBruteForceVisibility) {
   const Scene scene = halfBlockedScene();
   const TraceScene tracer(scene);
-  EmittedPhotons maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   ShadowPhotonMap map;
   map.build(std::move(maps.batches.get<MapKind::Shadow>()), scene.lights.size());
   LookupCacheParams params;

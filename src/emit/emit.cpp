@@ -86,10 +86,9 @@ void emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions
   const uint64_t seed = scene.render.seed;
   enum : uint64_t { kShadowStream = 1, kIndirectStream = 2 };
 
-  // Without the gate (or without shadows) nobody reads the shadow map: do not pay for it.
-  const MapCounts budgets = options.budgets ? *options.budgets : budgetsOf(scene);
-  bool wantShadowMap = options.maps[MapKind::Shadow] && (options.budgets || (ps.gate && scene.render.shadows));
-  const std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? budgets[MapKind::Shadow] : 0);
+  const MapCounts& budgets = options.budgets;
+  const std::vector<uint64_t> shadowCounts =
+      splitBudget(scene, options.maps[MapKind::Shadow] ? budgets[MapKind::Shadow] : 0);
   maps.batches.get<MapKind::Shadow>() = runPhotonPass<ShadowPhoton>(
       weights, shadowCounts, options, &maps.cuts[MapKind::Shadow], maps.emitted[MapKind::Shadow],
       [&](const PhotonBatch& batch) {

@@ -16,9 +16,7 @@
 namespace penumbra {
 
 struct EmitOptions {
-  // Empty: the scene's photons.* budgets, with shadow photons only when photons.gate
-  // and render.shadows are on.
-  std::optional<MapCounts> budgets;  // photons to emit per map
+  MapCounts budgets;  // photons to emit per map: the render plan's (plan/photon_stage.h: planBudgets)
   uint32_t batchSize = 4096;  // photons per task; each batch owns one random stream
   int maxHitsPerLine = 64;    // shadow photons kept per line at most
   // The maps to emit (false: nobody reads it, e.g. the gate's shadow photons under
@@ -62,7 +60,7 @@ struct EmittedPhotons {
 // exactly). The result is identical for any thread count: the maps read the batches
 // in batch order.
 void emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, EmittedPhotons& out);
-inline EmittedPhotons emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options = {}) {
+inline EmittedPhotons emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options) {
   EmittedPhotons out;
   emitPhotons(scene, tracer, options, out);
   return out;

@@ -169,7 +169,7 @@ std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& 
 
 void emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass, const EmitOptions& options,
                          EmittedPhotons& out) {
-  const MapCounts budgets = options.budgets ? *options.budgets : budgetsOf(scene);
+  const MapCounts& budgets = options.budgets;
   for (MapKind k : {MapKind::Global, MapKind::Caustic}) {
     *out.batches.light(k) = runPass(scene, tracer, k, pass, options.maps[k] ? budgets[k] : 0, options, out.emitted[k],
                                     out.tally[k], out.cuts[k]);

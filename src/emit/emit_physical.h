@@ -14,8 +14,8 @@ namespace penumbra {
 // estimates. Identical for any thread count.
 void emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass, const EmitOptions& options,
                          EmittedPhotons& out);
-inline EmittedPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass = 0,
-                                          const EmitOptions& options = {}) {
+inline EmittedPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass,
+                                          const EmitOptions& options) {
   EmittedPhotons out;
   emitPhysicalPhotons(scene, tracer, pass, options, out);
   return out;

@@ -28,9 +28,8 @@ StoreRates measureStoreRates(const Scene& scene, const TraceScene& tracer, const
   const MapCounts& n = plan.emitted;
   // Every map the plan emits, at most kPilotPhotons each; each emitter reads its own maps.
   EmitOptions options;
-  options.budgets = MapCounts();
   for (K k : kAllMaps) {
-    (*options.budgets)[k] = std::min(n[k], kPilotPhotons);
+    options.budgets[k] = std::min(n[k], kPilotPhotons);
     options.maps[k] = n[k] > 0;
   }
   EmittedPhotons photons;

@@ -29,7 +29,7 @@ struct FrameChoices {
   bool packets = true;      // camera rays and their shadow rays as Embree packets
   const Integrator* integrator = nullptr;  // the transport model's shading
   static FrameChoices of(const Scene& scene) {
-    return {scene.photons.gate, scene.render.shadows, true, true, scene.render.lightSamples, scene.render.packets,
+    return {scene.photons.gateMode != GateMode::Off, scene.render.shadows, true, true, scene.render.lightSamples, scene.render.packets,
             &integratorFor(scene.render.model)};
   }
 };
