@@ -11,6 +11,7 @@
 #include "trace/camera.h"
 #include "trace/light_visibility.h"
 #include "io/scene_loader.h"
+#include "plan/transport_model.h"
 #include "bench/bench_common.h"
 #include <benchmark/benchmark.h>
 #include <algorithm>
@@ -52,7 +53,7 @@ struct Fixture {
     shadow.build(std::move(emitted.batches.get<MapKind::Shadow>()), scene.lights.size());
     indirect.build(std::move(emitted.batches.get<MapKind::Indirect>()));
     const PhotonSettings& ps = scene.photons;
-    gate = gateParamsFor(scene, integratorFor(scene.render.model).glass);
+    gate = gateParamsFor(scene, transportOf(scene).integrator().glass);
     k = ps.kIndirect;
     maxRadius = ps.maxRadius;
     // As plan/render_frame.cpp buildLookup() does for the classic model.

@@ -69,9 +69,7 @@ namespace {
 struct FrameRun {
   FrameRun(const Scene& s, const SceneAssets& a, PhotonStage& st, const FrameOptions& o, RenderResult& r)
       : scene(s), assets(a), stage(st), options(o), result(r), stats(r.stats), model(transportOf(s)),
-        ctx{s, *a.tracer} {
-    if (options.choices) ctx.choices = *options.choices;
-    precomputed = options.precomputed ? *options.precomputed : scene.photons.lookup == PhotonLookup::Precomputed;
+        ctx(s, *a.tracer, o.choices), precomputed(o.precomputed) {
     ctx.textures = assets.textures.get();
     ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
     ctx.hasGlass = sceneHasGlass(scene);

@@ -18,8 +18,7 @@ class TextureLookup;
 struct GatherScratch;
 
 // What the render plan decided for a frame (plan/render_plan.h: choicesOf), read by
-// the tracer beside the scene's settings, which stay as the user gave them. Without
-// a plan (tests), the settings themselves.
+// the tracer beside the scene's settings, which stay as the user gave them.
 struct FrameChoices {
   bool gate = true;         // ask the shadow photon map before casting a shadow ray
   bool shadows = true;      // false: lights reach every surface facing them
@@ -28,34 +27,23 @@ struct FrameChoices {
   int lightSamples = 16;    // per area light and shading point
   bool packets = true;      // camera rays and their shadow rays as Embree packets
   const Integrator* integrator = nullptr;  // the transport model's shading
-  static FrameChoices of(const Scene& scene) {
-    return {scene.photons.gateMode != GateMode::Off, scene.render.shadows, true, true, scene.render.lightSamples, scene.render.packets,
-            &integratorFor(scene.render.model)};
-  }
 };
 
 template <class Photon>
 using ConstMapPtr = const PhotonMapFor<Photon>*;
 
-// Each map's gather in one pass: the k nearest (a progressive pass's k shrinks)
-// within the radius (0: any distance), or with k = 0 every photon within it.
-inline PerMap<PhotonGather> sceneGathers(const PhotonSettings& ps) {
-  PerMap<PhotonGather> g;
-  g[MapKind::Indirect] = {ps.kIndirect, ps.maxRadius};
-  g[MapKind::Global] = {ps.kGlobal, 0.0f};
-  g[MapKind::Caustic] = {ps.kCaustic, 0.0f};
-  return g;
-}
-
 // Read-only inputs shared by all render threads.
 struct ShadingContext {
+  ShadingContext(const Scene& s, const TraceScene& t, const FrameChoices& c) : scene(s), tracer(t), choices(c) {}
   const Scene& scene;
   const TraceScene& tracer;
-  FrameChoices choices = FrameChoices::of(scene);
+  FrameChoices choices;
   // The maps the frame reads, null where none is stored: no shadow map, every shadow
   // test is a ray; no indirect map, the ambient term is used.
   MapSlots<ConstMapPtr> maps{};
-  PerMap<PhotonGather> gathers = sceneGathers(scene.photons);  // (gather/radiance_estimate.h)
+  // Each map's gather in this pass (the transport model's): the k nearest (a progressive
+  // pass's k shrinks) within the radius (0: any distance), or with k = 0 every photon within it.
+  PerMap<PhotonGather> gathers;
   const TextureLookup* textures = nullptr;
   // photons.lookup = precomputed: the indirect (classic) or global (physical,
   // Lambertian part) estimate read from `lookup`, the gate verdicts from `gateLookup`
