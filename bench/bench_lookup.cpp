@@ -2,6 +2,7 @@
 // bounce rays, the exact gate and indirect gathers and the precomputed lookup cache, all at
 // the same first-hit shading points, plus their ratios from one interleaved run.
 #include "core/rng.h"
+#include "tests/support/emit_fixtures.h"
 #include "core/sampling.h"
 #include "emit/emit.h"
 #include "gather/lookup_cache/lookup_cache.h"
@@ -10,6 +11,7 @@
 #include "trace/camera.h"
 #include "trace/light_visibility.h"
 #include "io/scene_loader.h"
+#include "plan/transport_model.h"
 #include "bench/bench_common.h"
 #include <benchmark/benchmark.h>
 #include <algorithm>
@@ -46,12 +48,12 @@ struct Fixture {
 
   explicit Fixture(const std::string& path) : scene(loadScene(path)), tracer(scene) {
     const auto t0 = std::chrono::steady_clock::now();
-    PhotonMaps emitted = emitPhotons(scene, tracer, EmitOptions{});
-    const size_t nShadow = emitted.shadow.size(), nIndirect = emitted.indirect.size();
-    shadow.build(std::move(emitted.shadow), scene.lights.size());
-    indirect.build(std::move(emitted.indirect));
+    EmittedPhotons emitted = emitPhotons(scene, tracer, sceneEmit(scene));
+    const size_t nShadow = emitted.batches.get<MapKind::Shadow>().size(), nIndirect = emitted.batches.get<MapKind::Indirect>().size();
+    shadow.build(std::move(emitted.batches.get<MapKind::Shadow>()), scene.lights.size());
+    indirect.build(std::move(emitted.batches.get<MapKind::Indirect>()));
     const PhotonSettings& ps = scene.photons;
-    gate = gateParamsFor(scene, integratorFor(scene.render.model).glass);
+    gate = gateParamsFor(scene, transportOf(scene).integrator().glass);
     k = ps.kIndirect;
     maxRadius = ps.maxRadius;
     // As plan/render_frame.cpp buildLookup() does for the classic model.

@@ -3,6 +3,7 @@
 // the whole pass, at 1 and 2 threads (docs/PERFORMANCE.md: the photon pass and the
 // scaling targets).
 #include "emit/emit.h"
+#include "tests/support/emit_fixtures.h"
 #include "gather/photon_map.h"
 #include "io/scene_loader.h"
 #include "bench/bench_common.h"
@@ -26,9 +27,9 @@ void BM_EmitCornell(benchmark::State& state) {
   uint64_t emitted = 0, stored = 0;
   const penumbra::bench::CpuShare cpu;
   for (auto _ : state) {
-    PhotonMaps maps = emitPhotons(scene, tracer);
+    EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
     emitted += maps.emitted[MapKind::Shadow] + maps.emitted[MapKind::Indirect];
-    stored += maps.shadow.size() + maps.indirect.size();
+    stored += maps.batches.get<MapKind::Shadow>().size() + maps.batches.get<MapKind::Indirect>().size();
   }
   cpu.report(state, static_cast<int>(state.range(0)));
   state.SetItemsProcessed(static_cast<int64_t>(emitted));
@@ -40,9 +41,9 @@ void BM_EmitCornell(benchmark::State& state) {
 struct Maps {
   ShadowPhotonMap shadow;
   IndirectPhotonMap indirect;
-  Maps(PhotonMaps& emitted, size_t numLights) {
-    shadow.build(std::move(emitted.shadow), numLights);
-    indirect.build(std::move(emitted.indirect));
+  Maps(EmittedPhotons& emitted, size_t numLights) {
+    shadow.build(std::move(emitted.batches.get<MapKind::Shadow>()), numLights);
+    indirect.build(std::move(emitted.batches.get<MapKind::Indirect>()));
   }
 };
 
@@ -54,8 +55,8 @@ void BM_BuildMapsCornell(benchmark::State& state) {
   size_t stored = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    PhotonMaps emitted = emitPhotons(scene, tracer);
-    stored = emitted.shadow.size() + emitted.indirect.size();
+    EmittedPhotons emitted = emitPhotons(scene, tracer, sceneEmit(scene));
+    stored = emitted.batches.get<MapKind::Shadow>().size() + emitted.batches.get<MapKind::Indirect>().size();
     state.ResumeTiming();
     auto maps = std::make_unique<Maps>(emitted, scene.lights.size());
     state.counters["bytes"] = double(maps->shadow.memoryBytes() + maps->indirect.memoryBytes());
@@ -74,7 +75,7 @@ void BM_PhotonPassCornell(benchmark::State& state) {
   TraceScene tracer(scene);
   const penumbra::bench::CpuShare cpu;
   for (auto _ : state) {
-    PhotonMaps emitted = emitPhotons(scene, tracer);
+    EmittedPhotons emitted = emitPhotons(scene, tracer, sceneEmit(scene));
     auto maps = std::make_unique<Maps>(emitted, scene.lights.size());
     benchmark::DoNotOptimize(maps->shadow.size() + maps->indirect.size());
     state.PauseTiming();  // freeing the maps is not the pass's

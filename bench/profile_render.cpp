@@ -2,6 +2,7 @@
 // one scene with their CLOCK_MONOTONIC windows and counters for perf, then in the same run
 // the raw Embree and nanoflann rates on that scene's rays and first-hit points.
 #include "bench/bench_common.h"
+#include "tests/support/emit_fixtures.h"
 #include "plan/pipeline.h"
 #include "emit/emit.h"
 #include "emit/emit_physical.h"
@@ -88,10 +89,10 @@ void rawGatherRates(const Scene& scene, const TraceScene& tracer, const RaySets&
                     bool queried, std::FILE* out) {
   const PhotonSettings& ps = scene.photons;
   if (scene.render.model == ShadingModel::Physical) {
-    PhysicalPhotons ph = emitPhysicalPhotons(scene, tracer, 0);
+    EmittedPhotons ph = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
     IndirectPhotonMap global, caustic;
-    global.build(std::move(ph.global));
-    caustic.build(std::move(ph.caustic));
+    global.build(std::move(ph.batches.get<MapKind::Global>()));
+    caustic.build(std::move(ph.batches.get<MapKind::Caustic>()));
     const double g = nsPerQuery(rays.points, threads, [&](const Vec3& p, GatherScratch& s) {
       return global.knn(p, size_t(ps.kGlobal), 0.0f, s);
     });
@@ -110,11 +111,11 @@ void rawGatherRates(const Scene& scene, const TraceScene& tracer, const RaySets&
     std::fprintf(out, "\"exact_queries\": 0");
     return;
   }
-  PhotonMaps maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   ShadowPhotonMap shadow;
   IndirectPhotonMap indirect;
-  shadow.build(std::move(maps.shadow), scene.lights.size());
-  indirect.build(std::move(maps.indirect));
+  shadow.build(std::move(maps.batches.get<MapKind::Shadow>()), scene.lights.size());
+  indirect.build(std::move(maps.batches.get<MapKind::Indirect>()));
   const double i = nsPerQuery(rays.points, threads, [&](const Vec3& p, GatherScratch& s) {
     return indirect.size() ? indirect.knn(p, size_t(ps.kIndirect), ps.maxRadius, s) : 0;
   });

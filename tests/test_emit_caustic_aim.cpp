@@ -4,6 +4,7 @@
 // stored; an aimed photon's mean power factor is the share of unaimed ones that head
 // for the targets (overlapping cones, targets cut by or behind the emitting side).
 #include "core/emission_map.h"
+#include "support/emit_fixtures.h"
 #include "core/math.h"
 #include "core/mesh_light.h"
 #include "core/rng.h"
@@ -58,9 +59,9 @@ Caustic causticOf(const std::string& json) {
   std::ofstream(file) << json;
   const Scene scene = loadScene(file);
   const TraceScene tracer(scene);
-  const PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer);
-  return {photons.causticTally.stored[MapKind::Caustic].g,
-          double(photons.caustic.size()) / double(photons.emitted[MapKind::Caustic])};
+  const EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
+  return {photons.tally[MapKind::Caustic].stored[MapKind::Caustic].g,
+          double(photons.batches.get<MapKind::Caustic>().size()) / double(photons.emitted[MapKind::Caustic])};
 }
 
 TEST(CausticAim, AreaLightsGiveThePointLightsCausticPerWattTowardsTheSphere) {

@@ -3,6 +3,7 @@
 // walls' colour on survivors, budget splitting, and byte-identical maps for 1 and 2
 // threads.
 #include "emit/budget.h"
+#include "support/emit_fixtures.h"
 #include "emit/emit.h"
 #include "support/emit_box.h"
 #include <gtest/gtest.h>
@@ -27,12 +28,12 @@ TEST(EmitIndirect, RussianRouletteClassicStoresEveryHit) {
     scene.photons.estimator = IndirectEstimator::Classic;
     scene.photons.sampling = HemisphereSampling::Cosine;  // unweighted bounces: power stays put
     TraceScene tracer(scene);
-    PhotonMaps maps = emitPhotons(scene, tracer);
-    EXPECT_TRUE(maps.shadow.empty());
+    EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
+    EXPECT_TRUE(maps.batches.get<MapKind::Shadow>().empty());
     EXPECT_EQ(maps.emitted[MapKind::Indirect], n);
     // Hits per path: 1 + Geometric(p), mean 1/(1-p), variance p/(1-p)^2.
     const double mean = n / (1.0 - p), sd = std::sqrt(n * p) / (1.0 - p);
-    expectWithinSigmas(static_cast<double>(maps.indirect.size()), mean, sd, 4.0,
+    expectWithinSigmas(static_cast<double>(maps.batches.get<MapKind::Indirect>().size()), mean, sd, 4.0,
                        "classic, p=" + std::to_string(p));
     // With cosine sampling grey walls keep every photon at the emitted share of
     // the flux 4 pi I / n.
@@ -40,7 +41,7 @@ TEST(EmitIndirect, RussianRouletteClassicStoresEveryHit) {
     // (here every channel) of the float power, which is within the old 1e-4 of the
     // flux share; equal channels stay equal.
     const float power = 4.0f * kPi / n;
-    for (const IndirectPhoton& ph : maps.indirect) {
+    for (const IndirectPhoton& ph : maps.batches.get<MapKind::Indirect>()) {
       const Color stored = ph.power.color();
       ASSERT_NEAR(stored.r, power, power * (1e-4f + 0x1p-8f));
       ASSERT_EQ(stored.r, stored.g);
@@ -60,14 +61,14 @@ TEST(EmitIndirect, RussianRouletteDensitySkipsTheFirstHit) {
   scene.photons.maxBounces = 1000;
   scene.photons.estimator = IndirectEstimator::Density;
   TraceScene tracer(scene);
-  PhotonMaps maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   const double mean = n * p / (1.0 - p), sd = std::sqrt(n * p) / (1.0 - p);
-  expectWithinSigmas(static_cast<double>(maps.indirect.size()), mean, sd, 4.0, "density");
+  expectWithinSigmas(static_cast<double>(maps.batches.get<MapKind::Indirect>().size()), mean, sd, 4.0, "density");
   // max_bounces caps the path: with 1 bounce at most one stored photon per path,
   // and exactly the survivors of the first roulette, Binomial(n, p).
   scene.photons.maxBounces = 1;
-  PhotonMaps capped = emitPhotons(scene, tracer);
-  expectWithinSigmas(static_cast<double>(capped.indirect.size()), n * p, std::sqrt(n * p * (1 - p)), 4.0,
+  EmittedPhotons capped = emitPhotons(scene, tracer, sceneEmit(scene));
+  expectWithinSigmas(static_cast<double>(capped.batches.get<MapKind::Indirect>().size()), n * p, std::sqrt(n * p * (1 - p)), 4.0,
                      "density, max_bounces 1");
 }
 
@@ -79,7 +80,7 @@ TEST(EmitIndirect, UniformBouncesAreCosineWeighted) {
   scene.photons.maxBounces = 1;
   scene.photons.sampling = HemisphereSampling::Uniform;
   TraceScene tracer(scene);
-  PhotonMaps maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   const double p0 = 4.0 * kPi / n;
   double sum = 0.0, sum2 = 0.0;
   size_t second = 0;
@@ -89,7 +90,7 @@ TEST(EmitIndirect, UniformBouncesAreCosineWeighted) {
   // with |w - 1| < tol too: w is uniform on [0, 2], so that removes 0.4% of them,
   // symmetrically about the mean 1.
   const double tol = 1e-4 + 0x1p-8;
-  for (const IndirectPhoton& ph : maps.indirect) {
+  for (const IndirectPhoton& ph : maps.batches.get<MapKind::Indirect>()) {
     const Color stored = ph.power.color();
     if (std::abs(stored.r - p0) <= p0 * tol && std::abs(stored.g - p0) <= p0 * tol) continue;
     // A bounced photon: weight = power / p0 = 2 cos(theta) in [0, 2].
@@ -114,7 +115,7 @@ TEST(EmitIndirect, SurvivorsTakeOnTheWallColour) {
   scene.photons.maxBounces = 1000;
   scene.photons.sampling = HemisphereSampling::Cosine;
   TraceScene tracer(scene);
-  PhotonMaps maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   const float p0 = 4.0f * kPi / n;
   size_t firstHits = 0, secondHits = 0;
   // The stored power is shared-exponent RGB: every channel within 2^-8 of the largest
@@ -124,7 +125,7 @@ TEST(EmitIndirect, SurvivorsTakeOnTheWallColour) {
   // count k is the one whose colour the stored power matches; it is unambiguous for
   // the first hits (k = 0, 1, 2 differ by > 0.1 p0).
   const double tol = p0 * (1e-4 + 0x1p-8);
-  for (const IndirectPhoton& ph : maps.indirect) {
+  for (const IndirectPhoton& ph : maps.batches.get<MapKind::Indirect>()) {
     const Color stored = ph.power.color();
     ASSERT_NEAR(stored.r, p0, tol);
     int k = 0;  // bounces before this hit
@@ -164,24 +165,24 @@ TEST(Emit, ByteIdenticalForOneAndTwoThreads) {
   options.batchSize = 512;  // dozens of batches, so both threads get work
   auto run = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return emitPhotons(scene, tracer, options);
+    return emitPhotons(scene, tracer, sceneEmit(scene, options));
   };
-  PhotonMaps one = run(1), two = run(2), again = run(2);
-  EXPECT_GT(one.shadow.size(), 30000u);  // the spheres cast shadow photons
-  EXPECT_GT(one.indirect.size(), 20000u);
-  for (const PhotonMaps* m : {&two, &again}) {
-    ASSERT_EQ(m->shadow.size(), one.shadow.size());
-    ASSERT_EQ(m->indirect.size(), one.indirect.size());
-    EXPECT_EQ(std::memcmp(m->shadow.flatten().data(), one.shadow.flatten().data(),
-                          one.shadow.size() * sizeof(ShadowPhoton)), 0);
-    EXPECT_EQ(std::memcmp(m->indirect.flatten().data(), one.indirect.flatten().data(),
-                          one.indirect.size() * sizeof(IndirectPhoton)), 0);
+  EmittedPhotons one = run(1), two = run(2), again = run(2);
+  EXPECT_GT(one.batches.get<MapKind::Shadow>().size(), 30000u);  // the spheres cast shadow photons
+  EXPECT_GT(one.batches.get<MapKind::Indirect>().size(), 20000u);
+  for (const EmittedPhotons* m : {&two, &again}) {
+    ASSERT_EQ(m->batches.get<MapKind::Shadow>().size(), one.batches.get<MapKind::Shadow>().size());
+    ASSERT_EQ(m->batches.get<MapKind::Indirect>().size(), one.batches.get<MapKind::Indirect>().size());
+    EXPECT_EQ(std::memcmp(m->batches.get<MapKind::Shadow>().flatten().data(), one.batches.get<MapKind::Shadow>().flatten().data(),
+                          one.batches.get<MapKind::Shadow>().size() * sizeof(ShadowPhoton)), 0);
+    EXPECT_EQ(std::memcmp(m->batches.get<MapKind::Indirect>().flatten().data(), one.batches.get<MapKind::Indirect>().flatten().data(),
+                          one.batches.get<MapKind::Indirect>().size() * sizeof(IndirectPhoton)), 0);
     EXPECT_EQ(m->emitted[MapKind::Shadow], one.emitted[MapKind::Shadow]);
     EXPECT_EQ(m->classicScale, one.classicScale);
   }
   // Each light's lines all start with one direct hit: its share of the budget.
   size_t perLight[2] = {0, 0};
-  for (const ShadowPhoton& p : one.shadow) {
+  for (const ShadowPhoton& p : one.batches.get<MapKind::Shadow>()) {
     if (!p.shadow) ++perLight[p.light];
   }
   std::vector<uint64_t> split = splitBudget(scene, 30000);
@@ -189,10 +190,10 @@ TEST(Emit, ByteIdenticalForOneAndTwoThreads) {
   EXPECT_EQ(perLight[1], split[1]);
   // A different seed gives different photons.
   scene.render.seed = 999;
-  PhotonMaps other = run(2);
-  EXPECT_TRUE(other.shadow.size() != one.shadow.size() ||
-              std::memcmp(other.shadow.flatten().data(), one.shadow.flatten().data(),
-                          one.shadow.size() * sizeof(ShadowPhoton)) != 0);
+  EmittedPhotons other = run(2);
+  EXPECT_TRUE(other.batches.get<MapKind::Shadow>().size() != one.batches.get<MapKind::Shadow>().size() ||
+              std::memcmp(other.batches.get<MapKind::Shadow>().flatten().data(), one.batches.get<MapKind::Shadow>().flatten().data(),
+                          one.batches.get<MapKind::Shadow>().size() * sizeof(ShadowPhoton)) != 0);
 }
 
 TEST(SplitBudget, ProportionalToLuminanceAndExact) {
@@ -230,9 +231,9 @@ TEST(SplitBudget, ProportionalToLuminanceAndExact) {
   sunOnly.photons.indirectPhotons = 1000;
   EXPECT_EQ(splitBudget(sunOnly, 1000), (std::vector<uint64_t>{0, 0}));
   TraceScene tracer(sunOnly);
-  PhotonMaps maps = emitPhotons(sunOnly, tracer);
-  EXPECT_TRUE(maps.shadow.empty());
-  EXPECT_TRUE(maps.indirect.empty());
+  EmittedPhotons maps = emitPhotons(sunOnly, tracer, sceneEmit(sunOnly));
+  EXPECT_TRUE(maps.batches.get<MapKind::Shadow>().empty());
+  EXPECT_TRUE(maps.batches.get<MapKind::Indirect>().empty());
   EXPECT_EQ(maps.emitted[MapKind::Shadow], 0u);
   EXPECT_EQ(maps.emitted[MapKind::Indirect], 0u);
 }

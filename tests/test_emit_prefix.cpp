@@ -3,6 +3,7 @@
 // positions, directions, normals, lights, in the same order), with powers within
 // the packing's rounding, for several lights of different power, in both models.
 #include "emit/emit.h"
+#include "support/emit_fixtures.h"
 #include "emit/emit_physical.h"
 #include "emit/photon_prefix.h"
 #include "io/shapes.h"
@@ -69,24 +70,24 @@ TEST(EmitPrefix, ClassicCutsEqualFreshEmissions) {
   options.batchSize = 1000;
   // 12345 ends inside batches; 3000 on batch bounds for light 0; 40000 is the full one.
   options.prefixBudgets = {12345, 3000, 40000};
-  ClassicCuts cuts;
-  PhotonMaps big = emitPhotons(full, tracer, options, &cuts);
+  EmittedPhotons big = emitPhotons(full, tracer, sceneEmit(full, options));
+  const PerMap<PrefixCuts>& cuts = big.cuts;
   for (uint64_t budget : {uint64_t(3000), uint64_t(12345)}) {
     Scene small = full;
     small.photons.shadowPhotons = budget;
     small.photons.indirectPhotons = budget;
     EmitOptions fresh;
     fresh.batchSize = 1000;
-    PhotonMaps expected = emitPhotons(small, tracer, fresh);
-    const PrefixCut* s = cuts.shadow.find(budget);
-    const PrefixCut* in = cuts.indirect.find(budget);
+    EmittedPhotons expected = emitPhotons(small, tracer, sceneEmit(small, fresh));
+    const PrefixCut* s = cuts[MapKind::Shadow].find(budget);
+    const PrefixCut* in = cuts[MapKind::Indirect].find(budget);
     ASSERT_NE(s, nullptr);
     ASSERT_NE(in, nullptr);
-    expectSameShadow(takePrefix(big.shadow, *s), expected.shadow.flatten());
-    expectSameIndirect(takePrefix(big.indirect, *in), expected.indirect.flatten());
-    EXPECT_GT(expected.indirect.size(), budget / 2) << "the test needs bouncing photons";
+    expectSameShadow(takePrefix(big.batches.get<MapKind::Shadow>(), *s), expected.batches.get<MapKind::Shadow>().flatten());
+    expectSameIndirect(takePrefix(big.batches.get<MapKind::Indirect>(), *in), expected.batches.get<MapKind::Indirect>().flatten());
+    EXPECT_GT(expected.batches.get<MapKind::Indirect>().size(), budget / 2) << "the test needs bouncing photons";
   }
-  EXPECT_EQ(cuts.indirect.find(40000), nullptr) << "the full budget is not a cut";
+  EXPECT_EQ(cuts[MapKind::Indirect].find(40000), nullptr) << "the full budget is not a cut";
 }
 
 TEST(EmitPrefix, PhysicalCutsEqualFreshEmissions) {
@@ -98,18 +99,18 @@ TEST(EmitPrefix, PhysicalCutsEqualFreshEmissions) {
   EmitOptions options;
   options.batchSize = 1000;
   options.prefixBudgets = {7777};
-  PhysicalPhotons big = emitPhysicalPhotons(full, tracer, 0, options);
+  EmittedPhotons big = emitPhysicalPhotons(full, tracer, 0, sceneEmit(full, options));
   Scene small = full;
   small.photons.globalPhotons = 7777;
   small.photons.causticPhotons = 7777;
   EmitOptions fresh;
   fresh.batchSize = 1000;
-  PhysicalPhotons expected = emitPhysicalPhotons(small, tracer, 0, fresh);
-  ASSERT_NE(big.globalCuts.find(7777), nullptr);
-  ASSERT_NE(big.causticCuts.find(7777), nullptr);
-  expectSameIndirect(takePrefix(big.global, *big.globalCuts.find(7777)), expected.global.flatten());
-  expectSameIndirect(takePrefix(big.caustic, *big.causticCuts.find(7777)), expected.caustic.flatten());
-  EXPECT_GT(expected.caustic.size(), 100u) << "the test needs caustic photons";
+  EmittedPhotons expected = emitPhysicalPhotons(small, tracer, 0, sceneEmit(small, fresh));
+  ASSERT_NE(big.cuts[MapKind::Global].find(7777), nullptr);
+  ASSERT_NE(big.cuts[MapKind::Caustic].find(7777), nullptr);
+  expectSameIndirect(takePrefix(big.batches.get<MapKind::Global>(), *big.cuts[MapKind::Global].find(7777)), expected.batches.get<MapKind::Global>().flatten());
+  expectSameIndirect(takePrefix(big.batches.get<MapKind::Caustic>(), *big.cuts[MapKind::Caustic].find(7777)), expected.batches.get<MapKind::Caustic>().flatten());
+  EXPECT_GT(expected.batches.get<MapKind::Caustic>().size(), 100u) << "the test needs caustic photons";
 }
 
 // A budget whose light split is not inside the full one's is refused, not cut wrongly.

@@ -3,6 +3,7 @@
 // (its far-side hits met from behind), the kind records what was crossed, and a quad
 // light's lines fill its strata evenly and follow the cosine law.
 #include "emit/emit.h"
+#include "support/emit_fixtures.h"
 #include "support/emit_box.h"
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -21,12 +22,12 @@ TEST(EmitShadow, ClosedBoxEveryLineHitsExactlyOneWall) {
   TraceScene tracer(scene);
   EmitOptions options;
   options.batchSize = 1000;
-  PhotonMaps maps = emitPhotons(scene, tracer, options);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene, options));
   EXPECT_EQ(maps.emitted[MapKind::Shadow], 20000u);
   EXPECT_EQ(maps.emitted[MapKind::Indirect], 0u);
-  EXPECT_TRUE(maps.indirect.empty());
-  ASSERT_EQ(maps.shadow.size(), 20000u);
-  for (const ShadowPhoton& p : maps.shadow) {
+  EXPECT_TRUE(maps.batches.get<MapKind::Indirect>().empty());
+  ASSERT_EQ(maps.batches.get<MapKind::Shadow>().size(), 20000u);
+  for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
     EXPECT_EQ(p.shadow, 0);
     EXPECT_EQ(p.light, 0);
     EXPECT_NEAR(maxComponent(glm::abs(p.position)), 1.0f, 1e-5f);
@@ -38,10 +39,10 @@ TEST(EmitShadow, ClosedBoxEveryLineHitsExactlyOneWall) {
 TEST(EmitShadow, DirectionsAreUniformOverTheCubeFaces) {
   Scene scene = boxScene(1.0f, Vec3(0.0f), 60000);
   TraceScene tracer(scene);
-  PhotonMaps maps = emitPhotons(scene, tracer);
-  ASSERT_EQ(maps.shadow.size(), 60000u);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
+  ASSERT_EQ(maps.batches.get<MapKind::Shadow>().size(), 60000u);
   int faces[6] = {0, 0, 0, 0, 0, 0};
-  for (const ShadowPhoton& p : maps.shadow) {
+  for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
     Vec3 a = glm::abs(p.position);
     int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
     ++faces[2 * axis + (p.position[axis] > 0.0f ? 1 : 0)];
@@ -50,7 +51,7 @@ TEST(EmitShadow, DirectionsAreUniformOverTheCubeFaces) {
   for (int i = 0; i < 6; ++i) expectWithinSigmas(faces[i], n * f, sd, 4.0, "face " + std::to_string(i));
   // Within one face, the centre disc of radius 0.5 subtends 2 pi (1 - 1/sqrt(1.25)) / 4 pi.
   int centre = 0;
-  for (const ShadowPhoton& p : maps.shadow) {
+  for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
     if (p.position.z > 0.999f && p.position.x * p.position.x + p.position.y * p.position.y < 0.25f) ++centre;
   }
   const double fc = 0.5 * (1.0 - 1.0 / std::sqrt(1.25));
@@ -64,10 +65,10 @@ TEST(EmitShadow, SphereShadowMatchesItsSolidAngle) {
   Scene scene = boxScene(2.0f, Vec3(0.0f), 20000);
   scene.spheres.push_back(Sphere{Vec3(1.0f, 0.0f, 0.0f), 0.5f, 0});
   TraceScene tracer(scene);
-  PhotonMaps maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   size_t direct = 0, shadow = 0, onSphere = 0, shadowOnWall = 0;
   const double alpha = std::asin(0.5);
-  for (const ShadowPhoton& p : maps.shadow) {
+  for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
     bool sphere = std::abs(glm::length(p.position - Vec3(1, 0, 0)) - 0.5f) < 1e-4f;
     onSphere += sphere;
     // A line meets the sphere's near side from outside and leaves its far side from inside.
@@ -99,9 +100,9 @@ TEST(EmitShadow, SphereShadowMatchesItsSolidAngle) {
   // Keeping only the first hit per line leaves exactly one (direct) photon per line.
   EmitOptions firstOnly;
   firstOnly.maxHitsPerLine = 1;
-  PhotonMaps first = emitPhotons(scene, tracer, firstOnly);
-  ASSERT_EQ(first.shadow.size(), 20000u);
-  for (const ShadowPhoton& p : first.shadow) EXPECT_EQ(p.shadow, 0);
+  EmittedPhotons first = emitPhotons(scene, tracer, sceneEmit(scene, firstOnly));
+  ASSERT_EQ(first.batches.get<MapKind::Shadow>().size(), 20000u);
+  for (const ShadowPhoton& p : first.batches.get<MapKind::Shadow>()) EXPECT_EQ(p.shadow, 0);
 }
 
 TEST(EmitShadow, ShadowKindRecordsWhetherSomethingOpaqueWasCrossed) {
@@ -113,9 +114,9 @@ TEST(EmitShadow, ShadowKindRecordsWhetherSomethingOpaqueWasCrossed) {
   scene.spheres.push_back(Sphere{Vec3(1.0f, 0.0f, 0.0f), 0.4f, 1});   // glass towards +x
   scene.spheres.push_back(Sphere{Vec3(-1.0f, 0.0f, 0.0f), 0.4f, 0});  // opaque towards -x
   TraceScene tracer(scene);
-  PhotonMaps maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   size_t glassBehind = 0, opaqueBehind = 0;
-  for (const ShadowPhoton& p : maps.shadow) {
+  for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
     bool onWall = maxComponent(glm::abs(p.position)) > 1.99f;
     if (!onWall || p.shadow == kDirect) continue;
     // Wall photons in shadow sit behind one of the balls: glass ones at +x.
@@ -146,12 +147,12 @@ TEST(EmitShadow, AQuadLightsLinesFillItsStrataEvenlyAndFollowTheCosineLaw) {
   TraceScene tracer(scene);
   EmitOptions options;
   options.batchSize = 4096;
-  const PhotonMaps maps = emitPhotons(scene, tracer, options);
-  ASSERT_EQ(maps.shadow.size(), 16u * 4096u);  // a closed box: one direct hit per line
+  const EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene, options));
+  ASSERT_EQ(maps.batches.get<MapKind::Shadow>().size(), 16u * 4096u);  // a closed box: one direct hit per line
   const double h = 3.9, r = 2.0;
   size_t inDisc = 0, i = 0;
   std::vector<int> strata(16, 0);
-  for (const ShadowPhoton& p : maps.shadow) {
+  for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
     ++strata[p.stratum];
     if (p.position.y < -1.99f && p.position.x * p.position.x + p.position.z * p.position.z < r * r) ++inDisc;
     if (++i % 4096 == 0) {

@@ -158,7 +158,7 @@ TEST(SceneLoader, FullSceneParsesIntoExpectedValues) {
   EXPECT_EQ(s.photons.estimator, IndirectEstimator::Density);
   EXPECT_EQ(s.photons.sampling, HemisphereSampling::Cosine);
   EXPECT_EQ(s.photons.maxBounces, 8);
-  EXPECT_FALSE(s.photons.gate);
+  EXPECT_EQ(s.photons.gateMode, GateMode::Off);
 }
 
 TEST(SceneLoader, EmptySceneGetsDefaults) {
@@ -176,7 +176,7 @@ TEST(SceneLoader, EmptySceneGetsDefaults) {
   EXPECT_EQ(s.render.aov, "beauty");
   EXPECT_EQ(s.photons.shadowPhotons, 5'000'000u);
   EXPECT_EQ(s.photons.estimator, IndirectEstimator::Classic);
-  EXPECT_TRUE(s.photons.gate);
+  EXPECT_EQ(s.photons.gateMode, GateMode::Auto);
   ASSERT_EQ(s.materials.size(), 1u);
   EXPECT_EQ(s.materials[0].name, "default");
   EXPECT_EQ(s.materials[0].diffuse, Material().diffuse);
@@ -240,7 +240,7 @@ TEST(SceneLoader, OverridesChangeValues) {
   EXPECT_FLOAT_EQ(s.spheres[1].radius, 3.0f);
   EXPECT_EQ(s.camera.position, Vec3(1, 2, 3));
   EXPECT_EQ(s.name, "with space");
-  EXPECT_FALSE(s.photons.gate);
+  EXPECT_EQ(s.photons.gateMode, GateMode::Off);
 }
 
 TEST(SceneLoader, BadOverridesAreInputErrors) {

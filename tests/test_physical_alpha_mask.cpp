@@ -120,12 +120,11 @@ TEST(AlphaMask, ShadowPhotonsReachTheFloorOnlyThroughTheHoles) {
   scene.render.model = ShadingModel::Classic;
   const uint64_t n = 400000;
   scene.photons.shadowPhotons = n;
-  scene.photons.gate = true;
+  scene.photons.gateMode = GateMode::On;
   TraceScene tracer(scene);
   EmitOptions options;
-  options.budgets = MapCounts{};
-  (*options.budgets)[MapKind::Shadow] = n;
-  const PhotonMaps maps = emitPhotons(scene, tracer, options);
+  options.budgets[MapKind::Shadow] = n;
+  const EmittedPhotons maps = emitPhotons(scene, tracer, options);
   const double shrink = 0.1 * 0.5;  // 10% of a square's side off each edge
   for (int j = 0; j < kSquares; ++j) {
     for (int i = 0; i < kSquares; ++i) {
@@ -133,7 +132,7 @@ TEST(AlphaMask, ShadowPhotonsReachTheFloorOnlyThroughTheHoles) {
       const double x1 = c.x - 0.25 + shrink, x2 = c.x + 0.25 - shrink, z1 = c.z - 0.25 + shrink, z2 = c.z + 0.25 - shrink;
       const Vec3 lo = onFloor(Vec3(x1, kMaskY, z1)), hi = onFloor(Vec3(x2, kMaskY, z2));
       uint64_t direct = 0, shadow = 0;
-      for (const ShadowPhoton& p : maps.shadow) {
+      for (const ShadowPhoton& p : maps.batches.get<MapKind::Shadow>()) {
         if (p.position.y > 1e-4f || p.position.x < lo.x || p.position.x > hi.x || p.position.z < lo.z || p.position.z > hi.z) continue;
         (p.shadow == kDirect ? direct : shadow) += 1;
       }

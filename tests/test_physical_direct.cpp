@@ -4,6 +4,7 @@
 // light at its centre: uniform irradiance E0 / (1 - rho)), and the estimator on a
 // regular photon grid. Every tolerance is stated next to its assertion.
 #include "support/physical_fixtures.h"
+#include "support/emit_fixtures.h"
 
 namespace penumbra {
 namespace {
@@ -85,12 +86,12 @@ TEST_P(Furnace, GlobalMapGivesTheInterreflectionOfAClosedSphere) {
   scene.photons.maxBounces = 64;  // rho^64 < 2e-9: the cap loses nothing measurable
   Rig rig(scene);
 
-  PhysicalPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer, 0, sceneEmit(scene));
   const glm::dvec3 phi = 4.0 * kPiD * glm::dvec3(colour) * double(intensity);
   const double gain = rho / (1.0 - rho);
   EXPECT_EQ(photons.emitted[MapKind::Global], 500000u);
-  EXPECT_TRUE(photons.caustic.empty());  // nothing specular to aim at
-  const PhotonTally& t = photons.globalTally;
+  EXPECT_TRUE(photons.batches.get<MapKind::Caustic>().empty());  // nothing specular to aim at
+  const PhotonTally& t = photons.tally[MapKind::Global];
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(t.emitted[c], phi[c], 1e-4 * phi[c]);  // float shares summed in double
     EXPECT_EQ(t.escaped[c], 0.0);                      // closed: nothing leaves
@@ -103,8 +104,8 @@ TEST_P(Furnace, GlobalMapGivesTheInterreflectionOfAClosedSphere) {
   }
 
   IndirectPhotonMap map;
-  map.build(std::move(photons.global));
-  rig.ctx.globalMap = &map;
+  map.build(std::move(photons.batches.get<MapKind::Global>()));
+  rig.ctx.maps.get<MapKind::Global>() = &map;
   // Camera rays from the centre in uniformly random directions land on points
   // uniformly spread over the wall; the global view there is rho/pi E0 rho/(1-rho),
   // the direct view rho/pi E0 (normal incidence everywhere).

@@ -2,6 +2,7 @@
 // and the stored power per channel follows the truncated geometric series in
 // max_bounces, for the physical model and for the classic roulette alike.
 #include "support/physical_fixtures.h"
+#include "support/emit_fixtures.h"
 
 namespace penumbra {
 namespace {
@@ -63,9 +64,9 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   Scene scene = redBox(ShadingModel::Physical, 64);
   scene.photons.globalPhotons = 200000;
   Rig rig(scene);
-  PhysicalPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer, 0, sceneEmit(scene));
   const glm::dvec3 stored = expectedStoredPhysical(64);
-  const PhotonTally& t = photons.globalTally;
+  const PhotonTally& t = photons.tally[MapKind::Global];
   for (int c = 0; c < 3; ++c) {
     // Red: stored power per photon ~ geometric(0.9), rel. s.e. 1.05/sqrt(N) = 0.24%;
     // green/blue are dominated by the first bounce (s.e. ~0.1%). Tolerance 1%.
@@ -85,7 +86,7 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   // map against the tally at the format's bound, and the gather below against what
   // the map holds, at its old 2%.
   glm::dvec3 inMap(0.0), bound(0.0);
-  for (const IndirectPhoton& p : photons.global) {
+  for (const IndirectPhoton& p : photons.batches.get<MapKind::Global>()) {
     const Color c = p.power.color();
     inMap += glm::dvec3(c);
     bound += glm::dvec3(0x1p-8 * maxComponent(c) / (1.0 - 0x1p-8));  // 2^-8 of the float's largest
@@ -97,8 +98,8 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
               inMap.g / t.stored[MapKind::Global].g - 1.0, inMap.b / t.stored[MapKind::Global].b - 1.0);
 
   IndirectPhotonMap map;
-  map.build(std::move(photons.global));
-  rig.ctx.globalMap = &map;
+  map.build(std::move(photons.batches.get<MapKind::Global>()));
+  rig.ctx.maps.get<MapKind::Global>() = &map;
   // A fixed gather radius r (a progressive pass of photons.radius): every photon
   // within r on the same face counts, unbiased away from edges. Within r of an edge
   // the disc reaches past its face; the adjacent face's photons mark the edge and the
@@ -106,8 +107,8 @@ TEST(RedBox, PhysicalAreaMeanIndirectRadianceMatchesEnergyBalance) {
   // (without that, the area mean would be low by 8 r / (15 pi) per unit of perimeter
   // over the area: 0.44% here).
   const float r = 0.01f;
-  rig.ctx.globalK = 0;
-  rig.ctx.globalRadius = r;
+  rig.ctx.gathers[MapKind::Global].k = 0;
+  rig.ctx.gathers[MapKind::Global].maxRadius = r;
   const Vec3 inside(0.05f, 0.7f, 0.05f);  // the box is convex: it sees every wall point
   const int points = 20000;
   Rng rng(9);
@@ -137,12 +138,12 @@ TEST(RedBox, PhysicalStoredPowerFollowsTheBounceCap) {
     Scene scene = redBox(ShadingModel::Physical, m);
     scene.photons.globalPhotons = 200000;
     TraceScene tracer(scene);
-    PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer);
+    EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
     const glm::dvec3 want = expectedStoredPhysical(m);
     for (int c = 0; c < 3; ++c) {
-      EXPECT_LT(rel(photons.globalTally.stored[MapKind::Global][c], want[c]), 0.01) << "M=" << m << " ch " << c;
+      EXPECT_LT(rel(photons.tally[MapKind::Global].stored[MapKind::Global][c], want[c]), 0.01) << "M=" << m << " ch " << c;
     }
-    double red = photons.globalTally.stored[MapKind::Global].r;
+    double red = photons.tally[MapKind::Global].stored[MapKind::Global].r;
     if (m == 128) {
       EXPECT_LT(rel(red, last), 0.01) << "not converged from 64 to 128";
     }
@@ -172,9 +173,9 @@ TEST(RedBox, ClassicRouletteStoredPowerConvergesWithMaxBounces) {
       TraceScene tracer(scene);
       EmitOptions options;
       options.maps[MapKind::Shadow] = false;
-      PhotonMaps maps = emitPhotons(scene, tracer, options);
+      EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene, options));
       glm::dvec3 sum(0.0);
-      for (const IndirectPhoton& p : maps.indirect) sum += glm::dvec3(p.power.color());
+      for (const IndirectPhoton& p : maps.batches.get<MapKind::Indirect>()) sum += glm::dvec3(p.power.color());
       total[i++] = sum;
       for (int ch = 0; ch < 3; ++ch) {
         const double x = 0.5 * c[ch];

@@ -3,6 +3,7 @@
 // light puts its caustic inside the mirror's image from the virtual light, with the
 // power of its solid angle.
 #include "support/physical_fixtures.h"
+#include "support/emit_fixtures.h"
 
 namespace penumbra {
 namespace {
@@ -58,14 +59,14 @@ TEST(GlassEnergy, ClearGlassAloneLetsEveryPhotonEscape) {
   for (bool slab : {false, true}) {
     Scene scene = glassScene(Color(1.0f), slab);
     TraceScene tracer(scene);
-    PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer);
+    EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
     const char* what = slab ? "slab" : "sphere";
-    EXPECT_TRUE(photons.global.empty()) << what;
-    EXPECT_TRUE(photons.caustic.empty()) << what;
+    EXPECT_TRUE(photons.batches.get<MapKind::Global>().empty()) << what;
+    EXPECT_TRUE(photons.batches.get<MapKind::Caustic>().empty()) << what;
     EXPECT_EQ(photons.emitted[MapKind::Global], 200000u);
     EXPECT_EQ(photons.emitted[MapKind::Caustic], 200000u);
-    for (const PhotonTally* t : {&photons.globalTally, &photons.causticTally}) {
-      const char* pass = t == &photons.globalTally ? "global" : "caustic";
+    for (const PhotonTally* t : {&photons.tally[MapKind::Global], &photons.tally[MapKind::Caustic]}) {
+      const char* pass = t == &photons.tally[MapKind::Global] ? "global" : "caustic";
       for (int c = 0; c < 3; ++c) {
         EXPECT_GT(t->emitted[c], 0.0);
         EXPECT_LT(rel(t->escaped[c], t->emitted[c]), 1e-3) << what << " " << pass;
@@ -74,7 +75,7 @@ TEST(GlassEnergy, ClearGlassAloneLetsEveryPhotonEscape) {
       }
     }
     // Global photons come from the light's whole power 4 pi I.
-    EXPECT_NEAR(photons.globalTally.emitted.r, 4.0 * kPiD * 2.0, 1e-4 * 4.0 * kPiD * 2.0) << what;
+    EXPECT_NEAR(photons.tally[MapKind::Global].emitted.r, 4.0 * kPiD * 2.0, 1e-4 * 4.0 * kPiD * 2.0) << what;
   }
 }
 
@@ -87,7 +88,7 @@ TEST(GlassEnergy, TintedSphereAbsorbsHalfOfWhatEnters) {
   // light's photons hit. Tolerance: 4 binomial standard deviations.
   Scene scene = glassScene(Color(0.5f), false);
   TraceScene tracer(scene);
-  PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
   const double D = glm::length(glm::dvec3(scene.lights[0].position)), a = 1.0;
   const double enter = enteringFraction(D, a, 1.5);
   EXPECT_GT(enter, 0.85);  // sanity of the reference: mostly near-normal hits
@@ -100,8 +101,8 @@ TEST(GlassEnergy, TintedSphereAbsorbsHalfOfWhatEnters) {
     double p;
     const char* what;
   };
-  for (Case cs : {Case{&photons.causticTally, 0.5 * enter * hitAimed, "caustic"},
-                  Case{&photons.globalTally, 0.5 * enter * hitGlobal, "global"}}) {
+  for (Case cs : {Case{&photons.tally[MapKind::Caustic], 0.5 * enter * hitAimed, "caustic"},
+                  Case{&photons.tally[MapKind::Global], 0.5 * enter * hitGlobal, "global"}}) {
     const double frac = cs.t->absorbed.r / cs.t->emitted.r;
     const double sd = std::sqrt(cs.p * (1.0 - cs.p) / 200000.0);
     EXPECT_NEAR(frac, cs.p, 4.0 * sd) << cs.what;
@@ -116,10 +117,10 @@ TEST(GlassEnergy, TintedSlabAbsorbs) {
   // escapes than with clear glass; the books still balance exactly.
   Scene clear = glassScene(Color(1.0f), true), tinted = glassScene(Color(0.5f), true);
   TraceScene clearTracer(clear), tintedTracer(tinted);
-  PhysicalPhotons a = emitPhysicalPhotons(clear, clearTracer), b = emitPhysicalPhotons(tinted, tintedTracer);
+  EmittedPhotons a = emitPhysicalPhotons(clear, clearTracer, 0, sceneEmit(clear)), b = emitPhysicalPhotons(tinted, tintedTracer, 0, sceneEmit(tinted));
   for (int pass = 0; pass < 2; ++pass) {
-    const PhotonTally& ta = pass ? a.causticTally : a.globalTally;
-    const PhotonTally& tb = pass ? b.causticTally : b.globalTally;
+    const PhotonTally& ta = pass ? a.tally[MapKind::Caustic] : a.tally[MapKind::Global];
+    const PhotonTally& tb = pass ? b.tally[MapKind::Caustic] : b.tally[MapKind::Global];
     EXPECT_GT(tb.absorbed.r, 0.01 * tb.emitted.r) << pass;
     EXPECT_LT(tb.escaped.r / tb.emitted.r, ta.escaped.r / ta.emitted.r - 0.01) << pass;
     EXPECT_NEAR(tb.escaped.r + tb.absorbed.r + tb.capped.r, tb.emitted.r, 1e-9 * tb.emitted.r) << pass;
@@ -159,16 +160,16 @@ TEST(MirrorCaustic, LandsInTheMirrorsImageWithItsSolidAnglesPower) {
 
   std::vector<SceneSphere> targets = specularTargets(scene);
   ASSERT_EQ(targets.size(), 1u);  // the mirror only
-  PhysicalPhotons photons = emitPhysicalPhotons(scene, rig.tracer);
+  EmittedPhotons photons = emitPhysicalPhotons(scene, rig.tracer, 0, sceneEmit(scene));
   ASSERT_EQ(photons.emitted[MapKind::Caustic], 400000u);
-  ASSERT_FALSE(photons.caustic.empty());
+  ASSERT_FALSE(photons.batches.get<MapKind::Caustic>().empty());
   // The cone around the mirror's bounding sphere (half-diagonal 0.5 sqrt 2, x 1.001 + 1e-6).
   const double rt = 0.5 * std::sqrt(2.0) * 1.001 + 1e-6;
   const double omegaCone = 2.0 * kPiD * (1.0 - std::sqrt(1.0 - rt * rt));
   const double perPhoton = I * omegaCone / 400000.0;
   bool corner[4] = {false, false, false, false};
   glm::dvec3 total(0.0);
-  for (const IndirectPhoton& p : photons.caustic) {
+  for (const IndirectPhoton& p : photons.batches.get<MapKind::Caustic>()) {
     // On the ceiling, inside the image (1e-3 for float paths).
     ASSERT_NEAR(p.position.y, 2.0f, 1e-4f);
     ASSERT_LE(std::abs(p.position.x), 1.5f + 1e-3f);
@@ -189,13 +190,13 @@ TEST(MirrorCaustic, LandsInTheMirrorsImageWithItsSolidAnglesPower) {
   // Hits are binomial with p = Omega_mirror / Omega_cone = 0.44: rel. s.e. 0.18% at
   // N = 400k. Tolerance 1% as asked.
   for (int c = 0; c < 3; ++c) EXPECT_LT(rel(total[c], I * omegaMirror), 0.01) << c;
-  EXPECT_LT(rel(photons.causticTally.stored[MapKind::Caustic].r, I * omegaMirror), 0.01);
+  EXPECT_LT(rel(photons.tally[MapKind::Caustic].stored[MapKind::Caustic].r, I * omegaMirror), 0.01);
 
   // The caustic radiance seen from below, on a 31 x 31 grid with |X|, |Z| <= 1.2 (the
   // kNN radius is ~0.03, well inside the image's edge at 1.5): rho/pi I 3 / d^3.
   IndirectPhotonMap map;
-  map.build(std::move(photons.caustic));
-  rig.ctx.causticMap = &map;
+  map.build(std::move(photons.batches.get<MapKind::Caustic>()));
+  rig.ctx.maps.get<MapKind::Caustic>() = &map;
   double sumRatio = 0.0;
   int n = 0;
   for (int i = 0; i < 31; ++i) {
@@ -227,10 +228,10 @@ TEST(MirrorCaustic, DirectionalLightThroughTheAimedDisc) {
   scene.photons.causticPhotons = 400000;
   scene.photons.globalPhotons = 1000;
   TraceScene tracer(scene);
-  PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer);
-  ASSERT_FALSE(photons.caustic.empty());
+  EmittedPhotons photons = emitPhysicalPhotons(scene, tracer, 0, sceneEmit(scene));
+  ASSERT_FALSE(photons.batches.get<MapKind::Caustic>().empty());
   glm::dvec3 total(0.0);
-  for (const IndirectPhoton& p : photons.caustic) {
+  for (const IndirectPhoton& p : photons.batches.get<MapKind::Caustic>()) {
     ASSERT_NEAR(p.position.x, -3.0f, 1e-4f);
     ASSERT_NEAR(p.position.y, 3.0f, 0.5f + 1e-3f);
     ASSERT_LE(std::abs(p.position.z), 0.5f + 1e-3f);
@@ -239,7 +240,7 @@ TEST(MirrorCaustic, DirectionalLightThroughTheAimedDisc) {
   const double want = E * std::sqrt(0.5);
   for (int c = 0; c < 3; ++c) EXPECT_LT(rel(total[c], want), 0.01) << c << ": " << total[c] << " vs " << want;
   const double R = tracer.boundingSphere().radius;
-  EXPECT_LT(rel(photons.globalTally.emitted.r, E * kPiD * R * R), 1e-4);
+  EXPECT_LT(rel(photons.tally[MapKind::Global].emitted.r, E * kPiD * R * R), 1e-4);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // base colour, and photons bouncing off a coloured floor carrying its colour into the
 // global and indirect maps. The vertex alpha's cut-outs: test_physical_alpha_mask.
 #include "support/physical_fixtures.h"
+#include "support/emit_fixtures.h"
 
 namespace penumbra {
 namespace {
@@ -123,9 +124,9 @@ TEST(VertexColors, GlobalPhotonsOffARedFloorAreRedAndKeepTheColoursRatios) {
   Scene red = bounceScene(ShadingModel::Physical, Color(1, 0, 0));
   red.photons.globalPhotons = 20000;
   TraceScene tracer(red);
-  const PhysicalPhotons photons = emitPhysicalPhotons(red, tracer);
+  const EmittedPhotons photons = emitPhysicalPhotons(red, tracer, 0, sceneEmit(red));
   size_t stored = 0;
-  for (const IndirectPhoton& p : photons.global) {
+  for (const IndirectPhoton& p : photons.batches.get<MapKind::Global>()) {
     const Color power = p.power.color();
     EXPECT_GT(p.position.y, 1.99f);
     ASSERT_EQ(power.g, 0.0f);
@@ -138,7 +139,7 @@ TEST(VertexColors, GlobalPhotonsOffARedFloorAreRedAndKeepTheColoursRatios) {
   Scene tinted = bounceScene(ShadingModel::Physical, Color(1.0f, 0.5f, 0.25f));
   tinted.photons.globalPhotons = 20000;
   TraceScene tinter(tinted);
-  const glm::dvec3 sum = emitPhysicalPhotons(tinted, tinter).globalTally.stored[MapKind::Global];
+  const glm::dvec3 sum = emitPhysicalPhotons(tinted, tinter, 0, sceneEmit(tinted)).tally[MapKind::Global].stored[MapKind::Global];
   ASSERT_GT(sum.r, 0.0);
   EXPECT_NEAR(sum.g / sum.r, 0.5, 1e-5);
   EXPECT_NEAR(sum.b / sum.r, 0.25, 1e-5);
@@ -152,11 +153,10 @@ TEST(VertexColors, ClassicIndirectPhotonsOffTheFloorTakeItsHue) {
     const Scene scene = bounceScene(ShadingModel::Classic, c);
     TraceScene tracer(scene);
     EmitOptions options;
-    options.budgets = MapCounts{};
-    (*options.budgets)[MapKind::Indirect] = 20000;
-    const PhotonMaps maps = emitPhotons(scene, tracer, options);
+    options.budgets[MapKind::Indirect] = 20000;
+    const EmittedPhotons maps = emitPhotons(scene, tracer, options);
     size_t onCeiling = 0;
-    for (const IndirectPhoton& p : maps.indirect) {
+    for (const IndirectPhoton& p : maps.batches.get<MapKind::Indirect>()) {
       if (p.position.y < 1.0f) continue;
       const Color power = p.power.color();
       ASSERT_GT(power.r, 0.0f);

@@ -3,6 +3,7 @@
 // stratum at a point never contradicts brute-force visibility of that stratum, and
 // soft_shadows gated stays within 0.5% of the ungated image while most rays are answered.
 #include "core/light_sample.h"
+#include "support/emit_fixtures.h"
 #include "core/light_strata.h"
 #include "emit/emit.h"
 #include "gather/lookup_cache/lookup_cache.h"
@@ -81,9 +82,9 @@ Scene halfBlockedScene() {
 TEST(GateStrata, StratumVerdictsAgreeWithBruteForceVisibility) {
   const Scene scene = halfBlockedScene();
   const TraceScene tracer(scene);
-  PhotonMaps maps = emitPhotons(scene, tracer);
+  EmittedPhotons maps = emitPhotons(scene, tracer, sceneEmit(scene));
   ShadowPhotonMap map;
-  map.build(std::move(maps.shadow), scene.lights.size());
+  map.build(std::move(maps.batches.get<MapKind::Shadow>()), scene.lights.size());
   LookupCacheParams params;
   params.gate = true;
   params.cellSize = cacheCellSize(nullptr, 0, &map, params.gateParams.k, 1.5f);

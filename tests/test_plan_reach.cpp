@@ -2,6 +2,7 @@
 // angles, a light boxed in black getting no photons while the stored power stays that
 // of the power split, and the plan's reasons (issue: budgets go where they matter).
 #include "plan/render_plan.h"
+#include "support/emit_fixtures.h"
 #include "plan/photon_stage.h"
 #include "emit/emit.h"
 #include "emit/light_reach.h"
@@ -28,7 +29,6 @@ Scene boxedLightScene(uint64_t indirect) {
   scene.photons.estimator = IndirectEstimator::Density;
   scene.photons.indirectPhotons = indirect;
   scene.photons.shadowPhotons = 0;
-  scene.photons.gate = false;
   scene.render.seed = 777;
   return scene;
 }
@@ -62,9 +62,9 @@ TEST(Reach, MaterialRulesFollowWhatEachMapStores) {
   EXPECT_FALSE(reaches(scene, 2, ReachRule::Bouncing));  // p_r = p_t = 0
 }
 
-double storedPower(const PhotonMaps& maps) {
+double storedPower(const EmittedPhotons& maps) {
   double sum = 0.0;
-  for (const IndirectPhoton& ph : maps.indirect) sum += luminance(ph.power.color());
+  for (const IndirectPhoton& ph : maps.batches.get<MapKind::Indirect>()) sum += luminance(ph.power.color());
   return sum;
 }
 
@@ -77,13 +77,13 @@ TEST(Reach, ABoxedLightGetsNoPhotonsAndTheStoredPowerIsUnchanged) {
   byReach.reach[MapKind::Indirect] = measureReach(scene, tracer, ReachRule::Bouncing);
   EXPECT_EQ(splitBudget(scene, 200000), (std::vector<uint64_t>{100000, 100000}));
   EXPECT_EQ(splitBudget(scene, 200000, byReach.reach[MapKind::Indirect]), (std::vector<uint64_t>{200000, 0}));
-  const PhotonMaps power = emitPhotons(scene, tracer, bySplit);
-  const PhotonMaps reach = emitPhotons(scene, tracer, byReach);
+  const EmittedPhotons power = emitPhotons(scene, tracer, sceneEmit(scene, bySplit));
+  const EmittedPhotons reach = emitPhotons(scene, tracer, sceneEmit(scene, byReach));
   // Every stored photon is light 0's (light 1's die in the black box, unstored: the
   // density estimator stores from the second hit): twice as many of them at half
   // the power each, so the same flux with less noise.
-  const double countRatio = double(reach.indirect.size()) / double(power.indirect.size());
-  EXPECT_NEAR(countRatio, 2.0, 0.05) << reach.indirect.size() << " vs " << power.indirect.size();
+  const double countRatio = double(reach.batches.get<MapKind::Indirect>().size()) / double(power.batches.get<MapKind::Indirect>().size());
+  EXPECT_NEAR(countRatio, 2.0, 0.05) << reach.batches.get<MapKind::Indirect>().size() << " vs " << power.batches.get<MapKind::Indirect>().size();
   // ~100k stored photons on the power split's side: the flux estimates agree within
   // a few percent (roulette and direction noise, ~0.5% each).
   EXPECT_NEAR(storedPower(reach) / storedPower(power), 1.0, 0.03);

@@ -202,7 +202,6 @@ struct PhotonSettings {
   HemisphereSampling sampling = HemisphereSampling::Uniform;
   int maxBounces = 16;
   GateMode gateMode = GateMode::Auto;  // photons.gate / --gate
-  bool gate = true;  // the resolved decision: false = cast every shadow ray
   // Physical model (docs/photon-maps.md, "physical model").
   uint64_t globalPhotons = 200'000;   // emitted per pass; stored after >= 1 diffuse bounce
   uint64_t causticPhotons = 200'000;  // emitted per pass towards specular objects

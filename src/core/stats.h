@@ -62,7 +62,7 @@ struct RenderStats {
   std::string budget;      // --time-limit / --target-error as given; empty: none
   std::string budgetStop;  // ... and why the passes stopped
   MapCounts emitted, stored;  // photons per map, over every pass
-  float causticRadius = 0.0f, globalRadius = 0.0f;  // passes > 1: the last pass's typical (median k-nearest) radius
+  PerMap<float> gatherRadius;  // passes > 1: the last pass's typical (median k-nearest) radius per map
   uint64_t photonMapBytes = 0;
   std::string lookup = "exact";      // photons.lookup
   std::string gateMode = "auto";     // photons.gate as given

@@ -69,25 +69,28 @@ std::vector<double> classicWeights(const Scene& scene) {
 }
 }  // namespace
 
+PhotonTally& PhotonTally::operator+=(const PhotonTally& o) {
+  emitted += o.emitted; escaped += o.escaped; absorbed += o.absorbed; capped += o.capped;
+  for (MapKind k : kAllMaps) stored[k] += o.stored[k];
+  return *this;
+}
+
 std::vector<uint64_t> splitBudget(const Scene& scene, uint64_t total, const std::vector<float>& reach) {
   return splitByWeight(reachWeighted(classicWeights(scene), reach), total);
 }
 
-PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options,
-                       ClassicCuts* cuts) {
-  PhotonMaps maps;
+void emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, EmittedPhotons& maps) {
   const std::vector<double> weights = classicWeights(scene);
   const PhotonSettings& ps = scene.photons;
   const SceneSphere bounds = tracer.boundingSphere();
   const uint64_t seed = scene.render.seed;
   enum : uint64_t { kShadowStream = 1, kIndirectStream = 2 };
 
-  // Without the gate (or without shadows) nobody reads the shadow map: do not pay for it.
-  const MapCounts budgets = options.budgets ? *options.budgets : budgetsOf(scene);
-  bool wantShadowMap = options.maps[MapKind::Shadow] && (options.budgets || (ps.gate && scene.render.shadows));
-  const std::vector<uint64_t> shadowCounts = splitBudget(scene, wantShadowMap ? budgets[MapKind::Shadow] : 0);
-  maps.shadow = runPhotonPass<ShadowPhoton>(
-      weights, shadowCounts, options, cuts ? &cuts->shadow : nullptr, maps.emitted[MapKind::Shadow],
+  const MapCounts& budgets = options.budgets;
+  const std::vector<uint64_t> shadowCounts =
+      splitBudget(scene, options.maps[MapKind::Shadow] ? budgets[MapKind::Shadow] : 0);
+  maps.batches.get<MapKind::Shadow>() = runPhotonPass<ShadowPhoton>(
+      weights, shadowCounts, options, &maps.cuts[MapKind::Shadow], maps.emitted[MapKind::Shadow],
       [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         Rng rng(hashKey(seed, kShadowStream, batchStreamKey(batch)));
@@ -103,8 +106,8 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   const std::vector<uint64_t> indirectCounts =
       splitByWeight(indirectWeights, options.maps[MapKind::Indirect] ? budgets[MapKind::Indirect] : 0);
   const bool storeFirstHit = ps.estimator == IndirectEstimator::Classic;
-  maps.indirect = runPhotonPass<IndirectPhoton>(
-      indirectWeights, indirectCounts, options, cuts ? &cuts->indirect : nullptr, maps.emitted[MapKind::Indirect],
+  maps.batches.get<MapKind::Indirect>() = runPhotonPass<IndirectPhoton>(
+      indirectWeights, indirectCounts, options, &maps.cuts[MapKind::Indirect], maps.emitted[MapKind::Indirect],
       [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         // Each photon carries an equal share of the light's flux (4 pi I for a point light).
@@ -122,7 +125,6 @@ PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitO
   if (maps.emitted[MapKind::Indirect] > 0 && intensity > 0.0) {
     maps.classicScale = static_cast<float>(maps.emitted[MapKind::Indirect] / (4.0 * kPi * intensity));
   }
-  return maps;
 }
 
 }  // namespace penumbra

@@ -16,9 +16,7 @@
 namespace penumbra {
 
 struct EmitOptions {
-  // Empty: the scene's photons.* budgets, with shadow photons only when photons.gate
-  // and render.shadows are on.
-  std::optional<MapCounts> budgets;  // photons to emit per map
+  MapCounts budgets;  // photons to emit per map: the render plan's (plan/photon_stage.h: planBudgets)
   uint32_t batchSize = 4096;  // photons per task; each batch owns one random stream
   int maxHitsPerLine = 64;    // shadow photons kept per line at most
   // The maps to emit (false: nobody reads it, e.g. the gate's shadow photons under
@@ -35,26 +33,38 @@ struct EmitOptions {
   ProgressCounter* progress = nullptr;
 };
 
-// What the classic pass stored: each map's photons in batch order, unmerged (the map
-// build sorts straight out of the batches).
-struct PhotonMaps {
-  PhotonBatches<ShadowPhoton> shadow;
-  PhotonBatches<IndirectPhoton> indirect;
-  MapCounts emitted;  // shadow and indirect
+// Where the emitted power of a physical map's pass went, summed over all photons
+// (double, per channel): emitted = escaped + absorbed + lost at the bounce cap, in
+// expectation, and exactly when every surface's sample weight is <= 1 with survival 1 (glass).
+struct PhotonTally {
+  glm::dvec3 emitted{0.0}, escaped{0.0}, absorbed{0.0}, capped{0.0};
+  PerMap<glm::dvec3> stored;  // power of the photons stored, caustic and global
+  PhotonTally& operator+=(const PhotonTally& o);
+};
+
+// What the emitters stored, per map: its photons in batch order, unmerged (the map
+// build sorts straight out of the batches), the prefix cuts of options.prefixBudgets
+// and the photons emitted. Each emitter fills only its own kinds.
+struct EmittedPhotons {
+  MapSlots<PhotonBatches> batches;
+  PerMap<PrefixCuts> cuts;
+  MapCounts emitted;
+  PerMap<PhotonTally> tally;  // the physical maps' (tallies cover the full emission)
   // Converts stored indirect flux back into photon colour (a white light's photons -> 1):
   // emitted photons / (4 pi x summed luminous intensity). Used by the classic estimator.
   float classicScale = 1.0f;
 };
 
-// Splits each budget across point lights by luminous intensity (largest
-// remainder, so the counts add up exactly). The result is identical for any
-// thread count: the maps read the batches in batch order.
-// `cuts`, if given, receives the shadow and indirect maps' prefix cuts.
-struct ClassicCuts {
-  PrefixCuts shadow, indirect;
-};
-PhotonMaps emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options = {},
-                       ClassicCuts* cuts = nullptr);
+// The classic pass: the shadow and indirect maps into `out`. Splits each budget
+// across point lights by luminous intensity (largest remainder, so the counts add up
+// exactly). The result is identical for any thread count: the maps read the batches
+// in batch order.
+void emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, EmittedPhotons& out);
+inline EmittedPhotons emitPhotons(const Scene& scene, const TraceScene& tracer, const EmitOptions& options) {
+  EmittedPhotons out;
+  emitPhotons(scene, tracer, options, out);
+  return out;
+}
 
 // The scene's own photons.* budgets.
 inline MapCounts budgetsOf(const Scene& scene) {

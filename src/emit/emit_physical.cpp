@@ -15,12 +15,6 @@
 
 namespace penumbra {
 
-PhotonTally& PhotonTally::operator+=(const PhotonTally& o) {
-  emitted += o.emitted; escaped += o.escaped; absorbed += o.absorbed; capped += o.capped;
-  for (MapKind k : kAllMaps) stored[k] += o.stored[k];
-  return *this;
-}
-
 namespace {
 
 enum : uint64_t { kGlobalStream = 3, kCausticStream = 4 };
@@ -173,17 +167,13 @@ std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& 
   return splitByWeight(photonWeights(scene, bounds, aimsOf(scene, bounds, targets), caustic, reach), total);
 }
 
-PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass,
-                                    const EmitOptions& options) {
-  PhysicalPhotons out;
-  const MapCounts budgets = options.budgets ? *options.budgets : budgetsOf(scene);
-  out.global = runPass(scene, tracer, MapKind::Global, pass,
-                       options.maps[MapKind::Global] ? budgets[MapKind::Global] : 0, options, out.emitted[MapKind::Global],
-                       out.globalTally, out.globalCuts);
-  out.caustic = runPass(scene, tracer, MapKind::Caustic, pass,
-                        options.maps[MapKind::Caustic] ? budgets[MapKind::Caustic] : 0, options, out.emitted[MapKind::Caustic],
-                        out.causticTally, out.causticCuts);
-  return out;
+void emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass, const EmitOptions& options,
+                         EmittedPhotons& out) {
+  const MapCounts& budgets = options.budgets;
+  for (MapKind k : {MapKind::Global, MapKind::Caustic}) {
+    *out.batches.light(k) = runPass(scene, tracer, k, pass, options.maps[k] ? budgets[k] : 0, options, out.emitted[k],
+                                    out.tally[k], out.cuts[k]);
+  }
 }
 
 }  // namespace penumbra

@@ -9,26 +9,17 @@
 
 namespace penumbra {
 
-// Where the emitted power went, summed over all photons (double, per channel):
-// emitted = escaped + absorbed + lost at the bounce cap, in expectation, and
-// exactly when every surface's sample weight is <= 1 with survival 1 (glass).
-struct PhotonTally {
-  glm::dvec3 emitted{0.0}, escaped{0.0}, absorbed{0.0}, capped{0.0};
-  PerMap<glm::dvec3> stored;  // power of the photons stored, caustic and global
-  PhotonTally& operator+=(const PhotonTally& o);
-};
-
-struct PhysicalPhotons {
-  PhotonBatches<IndirectPhoton> caustic, global;
-  MapCounts emitted;  // global and caustic
-  PhotonTally causticTally, globalTally;
-  PrefixCuts causticCuts, globalCuts;  // options.prefixBudgets (tallies cover the full emission)
-};
-
-// Pass `pass` of a progressive render draws from its own random streams, so
-// passes are independent estimates. Identical for any thread count.
-PhysicalPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass = 0,
-                                    const EmitOptions& options = {});
+// The global and caustic maps, their tallies and cuts, into `out`. Pass `pass` of a
+// progressive render draws from its own random streams, so passes are independent
+// estimates. Identical for any thread count.
+void emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass, const EmitOptions& options,
+                         EmittedPhotons& out);
+inline EmittedPhotons emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass,
+                                          const EmitOptions& options) {
+  EmittedPhotons out;
+  emitPhysicalPhotons(scene, tracer, pass, options, out);
+  return out;
+}
 
 // A bounding sphere of the geometry whose BSDF has a delta lobe (mirrors, glass):
 // the caustic pass aims its photons at these.

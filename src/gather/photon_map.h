@@ -5,6 +5,7 @@
 #include "core/photon_batches.h"
 #include "gather/indirect_estimate.h"
 #include "gather/kd_tree.h"
+#include "gather/photon_map_for.h"
 #include "gather/shadow_gate.h"
 #include <cstddef>
 #include <cstdint>

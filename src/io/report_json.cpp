@@ -38,7 +38,8 @@ std::string statsToJson(const RenderStats& s) {
                 {"bias_rmse", e.biasRmse >= 0.0 ? nlohmann::json(e.biasRmse) : nlohmann::json(nullptr)},
                 {"bias_half", e.biasHalf}, {"lower_bound", e.lowerBound}, {"text", describeError(e)}};
   if (!s.budget.empty()) j["budget"] = {{"given", s.budget}, {"stopped", s.budgetStop}, {"passes", s.passes}};
-  j["photons"] = {{"final_radius_caustic", s.causticRadius}, {"final_radius_global", s.globalRadius}};
+  j["photons"] = {{"final_radius_caustic", s.gatherRadius[MapKind::Caustic]},
+                  {"final_radius_global", s.gatherRadius[MapKind::Global]}};
   for (MapKind k : kAllMaps) {
     j["photons"][std::string("emitted_") + mapName(k)] = s.emitted[k];
     j["photons"][std::string("stored_") + mapName(k)] = s.stored[k];

@@ -104,7 +104,6 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
       out.gateMode = static_cast<GateMode>(mode);
     }
   }
-  out.gate = out.gateMode != GateMode::Off;
   out.globalPhotons = node.uintOr("global", out.globalPhotons, 0, kMaxPhotons);
   out.causticPhotons = node.uintOr("caustic", out.causticPhotons, 0, kMaxPhotons);
   out.kGlobal = node.intOr("k_global", out.kGlobal, 1, 10000);

@@ -43,7 +43,7 @@ class ClassicTransport final : public TransportModel {
   void emit(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, uint32_t,
             Emission& e) const override {
     if (options.maps[MapKind::Shadow] || options.maps[MapKind::Indirect]) {
-      e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
+      emitPhotons(scene, tracer, options, e.photons);
     }
   }
   int passes(const Scene& scene, Aov aov) const override {
@@ -54,6 +54,11 @@ class ClassicTransport final : public TransportModel {
     const CachedIndirect kind = ps.estimator == IndirectEstimator::Density ? CachedIndirect::Density
                                                                            : CachedIndirect::Classic;
     return {MapKind::Indirect, kind, ps.kIndirect, ps.maxRadius};
+  }
+  PerMap<PhotonGather> gathers(const PhotonSettings& ps, uint32_t, uint32_t) const override {
+    PerMap<PhotonGather> g;
+    g[MapKind::Indirect] = {ps.kIndirect, ps.maxRadius};
+    return g;
   }
 
   std::string photonSummary(const Scene& scene, const MapCounts&, const RenderStats& stats, bool gate) const override {

@@ -3,20 +3,6 @@
 #include "trace/light_visibility.h"
 
 namespace penumbra {
-namespace {
-
-// The built map of a light-map kind the context reads (null: none).
-const IndirectPhotonMap* lightMap(const ShadingContext& ctx, MapKind k) {
-  switch (k) {
-    case MapKind::Indirect: return ctx.indirectMap;
-    case MapKind::Global: return ctx.globalMap;
-    case MapKind::Caustic: return ctx.causticMap;
-    default: return nullptr;
-  }
-}
-
-}  // namespace
-
 void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& cache, LookupCache& gateCache,
                  std::optional<LookupCacheParams>* cachedKey, std::optional<LookupCacheParams>* gateKey,
                  double* builtSeconds, ShadingContext& ctx, RenderStats& stats, ProgressPhases* meter,
@@ -24,23 +10,24 @@ void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& c
   const PhotonSettings& ps = scene.photons;
   Stopwatch phase;
   const IndirectLookup recipe = model.indirectLookup(ps);
-  const IndirectPhotonMap* map = lightMap(ctx, recipe.map);
-  const bool gate = ctx.choices.gate && ctx.choices.shadows && ctx.shadowMap;
+  const IndirectPhotonMap* map = *ctx.maps.light(recipe.map);
+  const ShadowPhotonMap* shadowMap = ctx.maps.get<MapKind::Shadow>();
+  const bool gate = ctx.choices.gate && ctx.choices.shadows && shadowMap;
   if (!gate && !map) return;  // nothing to precompute
   LookupCacheParams params;
   params.gate = gate;
   params.gateParams = gateParamsFor(scene, ctx.choices.integrator->glass);
   if (map) params.indirect = recipe.kind;
   const bool global = recipe.map == MapKind::Global;
-  params.k = global ? ctx.globalK : recipe.k;
+  params.k = global ? ctx.gathers[MapKind::Global].k : recipe.k;
   params.maxRadius = recipe.maxRadius;
-  params.radius = global ? ctx.globalRadius : 0.0f;
+  params.radius = global ? ctx.gathers[MapKind::Global].maxRadius : 0.0f;
   params.cellSize = params.k == 0 ? cacheCellSize(params.radius, recipe.k, ps.lookupCell)
-                                  : cacheCellSize(map, params.k, ctx.shadowMap, ps.kShadow, ps.lookupCell);
+                                  : cacheCellSize(map, params.k, shadowMap, ps.kShadow, ps.lookupCell);
   LookupCacheParams gateOnly;
   bool split = false;
   if (gate && map) {
-    const float gateCell = cacheCellSize(nullptr, 0, ctx.shadowMap, ps.kShadow, ps.lookupCell);
+    const float gateCell = cacheCellSize(nullptr, 0, shadowMap, ps.kShadow, ps.lookupCell);
     if (gateCell > 0.0f && (!(params.cellSize > 0.0f) || gateCell < params.cellSize)) {
       split = params.cellSize > 0.0f;
       gateOnly = params;
@@ -57,7 +44,7 @@ void buildLookup(const Scene& scene, const TransportModel& model, LookupCache& c
     if (key) key->reset();  // a build that throws leaves no key to a half-built cache
     LookupCacheParams p = wanted;
     p.progress = progress;
-    into.build(p.gate ? ctx.shadowMap : nullptr, p.indirect != CachedIndirect::None ? map : nullptr, p);
+    into.build(p.gate ? shadowMap : nullptr, p.indirect != CachedIndirect::None ? map : nullptr, p);
     if (key) *key = wanted;
   };
   if (fresh) build(params, cache, cachedKey);

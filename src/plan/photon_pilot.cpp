@@ -26,29 +26,18 @@ StoreRates measureStoreRates(const Scene& scene, const TraceScene& tracer, const
   auto margin = [](double measured, double cap) { return std::min(cap, measured * kPilotMargin); };
   using K = MapKind;
   const MapCounts& n = plan.emitted;
-  // The pilot's options for one emitter's two maps: at most kPilotPhotons each.
-  auto pilotOf = [&](K a, K b) {
-    EmitOptions options;
-    options.budgets = MapCounts();
-    for (K k : {a, b}) {
-      (*options.budgets)[k] = std::min(n[k], kPilotPhotons);
-      options.maps[k] = n[k] > 0;
-    }
-    return options;
-  };
-  auto measure = [&](K k, size_t stored, uint64_t emitted) {
-    if (n[k] > 0) r.perPhoton[k] = margin(rate(stored, emitted), bound.perPhoton[k]);
-  };
-  if (n[K::Shadow] > 0 || n[K::Indirect] > 0) {
-    const PhotonMaps maps = emitPhotons(scene, tracer, pilotOf(K::Shadow, K::Indirect));
-    measure(K::Shadow, maps.shadow.size(), maps.emitted[K::Shadow]);
-    measure(K::Indirect, maps.indirect.size(), maps.emitted[K::Indirect]);
+  // Every map the plan emits, at most kPilotPhotons each; each emitter reads its own maps.
+  EmitOptions options;
+  for (K k : kAllMaps) {
+    options.budgets[k] = std::min(n[k], kPilotPhotons);
+    options.maps[k] = n[k] > 0;
   }
-  if (n[K::Global] > 0 || n[K::Caustic] > 0) {
-    const PhysicalPhotons photons = emitPhysicalPhotons(scene, tracer, 0, pilotOf(K::Global, K::Caustic));
-    measure(K::Global, photons.global.size(), photons.emitted[K::Global]);
-    measure(K::Caustic, photons.caustic.size(), photons.emitted[K::Caustic]);
-  }
+  EmittedPhotons photons;
+  if (n[K::Shadow] > 0 || n[K::Indirect] > 0) emitPhotons(scene, tracer, options, photons);
+  if (n[K::Global] > 0 || n[K::Caustic] > 0) emitPhysicalPhotons(scene, tracer, 0, options, photons);
+  photons.batches.forEach([&](MapKind k, const auto& stored) {
+    if (n[k] > 0) r.perPhoton[k] = margin(rate(stored.size(), photons.emitted[k]), bound.perPhoton[k]);
+  });
   return r;
 }
 

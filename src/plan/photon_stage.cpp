@@ -2,7 +2,7 @@
 #include "plan/photon_stage.h"
 #include "core/stats.h"
 #include "plan/transport_model.h"
-#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_for.h>
 #include <exception>
 
 namespace penumbra {
@@ -67,8 +67,7 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
   options.progress = progress;
   progressExpect(progress, photonsAskedFor(scene, options, budgets));
   model.emit(scene, tracer, options, pass, e);
-  e.budgets = e.classic.emitted;
-  e.budgets += e.photons.emitted;
+  e.budgets = e.photons.emitted;
   e.seconds = clock.seconds();
   return e;
 }
@@ -80,13 +79,10 @@ bool buildStage(Emission& e, const MapCounts& wanted, bool consume, PhotonStage&
   auto budget = [](uint64_t emitted, uint64_t want) { return emitted == 0 ? 0 : want; };
   MapCounts b;
   for (MapKind k : kAllMaps) b[k] = budget(e.budgets[k], wanted[k]);
-  using K = MapKind;
-  auto shadow = photonsFor(e.classic.shadow, e.classicCuts.shadow, e.budgets[K::Shadow], b[K::Shadow], consume, ok);
-  auto indirect = photonsFor(e.classic.indirect, e.classicCuts.indirect, e.budgets[K::Indirect], b[K::Indirect],
-                             consume, ok);
-  auto global = photonsFor(e.photons.global, e.photons.globalCuts, e.budgets[K::Global], b[K::Global], consume, ok);
-  auto caustic = photonsFor(e.photons.caustic, e.photons.causticCuts, e.budgets[K::Caustic], b[K::Caustic],
-                            consume, ok);
+  MapSlots<PhotonBatches> taken;
+  taken.forEach([&](auto k, auto& photons) {
+    photons = photonsFor(e.photons.batches.get<decltype(k)::value>(), e.photons.cuts[k], e.budgets[k], b[k], consume, ok);
+  });
   if (!ok) return false;
 
   stage.budgets = b;
@@ -98,47 +94,50 @@ bool buildStage(Emission& e, const MapCounts& wanted, bool consume, PhotonStage&
   stage.emitSeconds = full > 0.0 ? e.seconds * part / full : e.seconds;
   stage.notes = e.notes;
   // Converts stored flux back into photon colour: emitted / (4 pi x summed intensity).
-  stage.classicScale = e.classic.classicScale;
-  if (stage.fromPrefix && e.budgets[K::Indirect] > 0) {
-    stage.classicScale = e.classic.classicScale * float(double(b[K::Indirect]) / double(e.budgets[K::Indirect]));
+  stage.classicScale = e.photons.classicScale;
+  const MapKind indirect = MapKind::Indirect;
+  if (stage.fromPrefix && e.budgets[indirect] > 0) {
+    stage.classicScale = e.photons.classicScale * float(double(b[indirect]) / double(e.budgets[indirect]));
   }
   Stopwatch clock;
   MapBuildOptions build;
   build.progress = progress;
   build.shadowTrees = false;  // a frame that votes exactly builds them (renderFrame)
-  const size_t photons = shadow.size() + indirect.size() + global.size() + caustic.size();
+  size_t photons = 0;
+  taken.forEach([&photons](MapKind, const auto& batches) { photons += batches.size(); });
   progressExpect(progress, 2 * photons);
-  auto buildShadow = [&] { stage.shadow.build(std::move(shadow), e.numLights, build); };
-  auto buildIndirect = [&] { stage.indirect.build(std::move(indirect), build); };
-  auto buildGlobal = [&] { stage.global.build(std::move(global), build); };
-  auto buildCaustic = [&] { stage.caustic.build(std::move(caustic), build); };
+  auto buildMap = [&](MapKind kind) {
+    stage.maps.with(kind, [&](auto k, auto& map) {
+      auto& batches = taken.get<decltype(k)::value>();
+      if constexpr (decltype(k)::value == MapKind::Shadow) map.build(std::move(batches), e.numLights, build);
+      else map.build(std::move(batches), build);
+    });
+  };
   if (photons <= kSideBySidePhotons) {
     // Small maps: a tree under one part builds on one thread, so only building the
     // maps side by side keeps both cores busy (cornell_physical's two maps, say).
     // Each build keeps its own exception (out of memory): one escaping would cancel
     // the others' inner loops half-way; the first is rethrown once all have ended.
-    std::exception_ptr failed[4];
-    auto guarded = [&failed](int i, auto& buildMap) {
-      return [&failed, &buildMap, i] {
-        try {
-          buildMap();
-        } catch (...) {
-          failed[i] = std::current_exception();
-        }
-      };
-    };
-    tbb::parallel_invoke(guarded(0, buildShadow), guarded(1, buildIndirect), guarded(2, buildGlobal),
-                         guarded(3, buildCaustic));
+    std::exception_ptr failed[kMapKinds];
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, kMapKinds, 1),
+        [&](const tbb::blocked_range<size_t>& kinds) {
+          for (size_t i = kinds.begin(); i != kinds.end(); ++i) {
+            try {
+              buildMap(kAllMaps[i]);
+            } catch (...) {
+              failed[i] = std::current_exception();
+            }
+          }
+        },
+        tbb::simple_partitioner());
     for (const std::exception_ptr& error : failed)
       if (error) std::rethrow_exception(error);
   } else {
     // Large maps one after another, each parallel inside (its sort by chunks, its
     // tree by parts): a map's sorted array then reuses the memory the previous map's
     // batches just freed, where building side by side asked for fresh pages for all.
-    buildShadow();
-    buildIndirect();
-    buildGlobal();
-    buildCaustic();
+    for (MapKind k : kAllMaps) buildMap(k);
   }
   stage.buildSeconds = clock.seconds();
   return true;

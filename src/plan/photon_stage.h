@@ -24,9 +24,7 @@ namespace penumbra {
 // One emission (pass 0 of the physical model, or the classic pass) with the raw
 // photons of every map the view reads, and the prefix cuts asked for.
 struct Emission {
-  PhotonMaps classic;          // classic maps; the physical model's gate photons (shadow)
-  ClassicCuts classicCuts;
-  PhysicalPhotons photons;     // physical caustic and global photons
+  EmittedPhotons photons;  // every map's (the physical model emits the gate's shadow photons too)
   MapCounts budgets;       // what was emitted
   size_t numLights = 0;
   double seconds = 0.0;
@@ -76,8 +74,7 @@ Emission emitPhotonsFor(const Scene& scene, const TraceScene& tracer, const Phot
 
 // Built photon maps and what they cost.
 struct PhotonStage {
-  ShadowPhotonMap shadow;
-  IndirectPhotonMap indirect, caustic, global;
+  MapSlots<PhotonMapFor> maps;
   float classicScale = 1.0f;
   MapCounts budgets;
   MapCounts emitted;
@@ -92,8 +89,9 @@ struct PhotonStage {
   std::optional<LookupCacheParams> lookupKey, gateLookupKey;
   double lookupSeconds = 0.0;  // what building the lookups took
   size_t bytes() const {
-    return shadow.memoryBytes() + indirect.memoryBytes() + caustic.memoryBytes() + global.memoryBytes() +
-           lookup.memoryBytes() + gateLookup.memoryBytes();
+    size_t n = lookup.memoryBytes() + gateLookup.memoryBytes();
+    maps.forEach([&n](MapKind, const auto& map) { n += map.memoryBytes(); });
+    return n;
   }
 };
 

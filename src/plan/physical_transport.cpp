@@ -50,8 +50,8 @@ class PhysicalTransport final : public TransportModel {
   }
   void emit(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, uint32_t pass,
             Emission& e) const override {
-    if (options.maps[MapKind::Shadow]) e.classic = emitPhotons(scene, tracer, options, &e.classicCuts);
-    e.photons = emitPhysicalPhotons(scene, tracer, pass, options);
+    if (options.maps[MapKind::Shadow]) emitPhotons(scene, tracer, options, e.photons);
+    emitPhysicalPhotons(scene, tracer, pass, options, e.photons);
   }
   int passes(const Scene& scene, Aov aov) const override {
     return readsLight(aov) ? std::max(1, scene.photons.passes) : 1;
@@ -60,6 +60,25 @@ class PhysicalTransport final : public TransportModel {
   IndirectLookup indirectLookup(const PhotonSettings& ps) const override {
     // Irradiance answers the Lambertian part; a glossy lobe still gathers.
     return {MapKind::Global, CachedIndirect::Irradiance, ps.kGlobal, 0.0f};
+  }
+  // Progressive pass `pass` (Knaus & Zwicker 2011): each map gathers k x passRadiusShare
+  // nearest photons, so every point's radius shrinks from its own k-nearest one;
+  // photons.radius > 0 instead fixes one radius for all points, shrunk by the same
+  // share. A frame of one pass gathers the k nearest at any distance.
+  PerMap<PhotonGather> gathers(const PhotonSettings& ps, uint32_t pass, uint32_t passes) const override {
+    const MapKind caustic = MapKind::Caustic, global = MapKind::Global;
+    PerMap<PhotonGather> g;
+    g[caustic] = {ps.kCaustic, 0.0f};
+    g[global] = {ps.kGlobal, 0.0f};
+    if (passes <= 1) return g;
+    if (ps.radius > 0.0f) {
+      const float radius = static_cast<float>(ps.radius * std::sqrt(passRadiusShare(pass, ps.alpha)));
+      g[caustic] = g[global] = PhotonGather{0, radius};
+      return g;
+    }
+    g[caustic] = PhotonGather{passK(ps.kCaustic, pass, ps.alpha), 0.0f};
+    g[global] = PhotonGather{passK(ps.kGlobal, pass, ps.alpha), 0.0f};
+    return g;
   }
 
   std::string photonSummary(const Scene& scene, const MapCounts& budgets, const RenderStats& stats,
@@ -85,8 +104,8 @@ class PhysicalTransport final : public TransportModel {
     add("photons.passes", stats.passes);
     add("photons.alpha", ps.alpha);
     add("photons.radius", ps.radius);
-    if (stats.passes > 1) add("photons.final_global_radius", stats.globalRadius);
-    if (stats.passes > 1) add("photons.final_caustic_radius", stats.causticRadius);
+    if (stats.passes > 1) add("photons.final_global_radius", stats.gatherRadius[MapKind::Global]);
+    if (stats.passes > 1) add("photons.final_caustic_radius", stats.gatherRadius[MapKind::Caustic]);
   }
 };
 

@@ -20,30 +20,18 @@ void addStage(const PhotonStage& s, RenderStats& stats) {
   stats.time.emit += s.emitSeconds;
   stats.time.buildMaps += s.buildSeconds;
   stats.emitted += s.emitted;
-  stats.stored[MapKind::Shadow] += s.shadow.size();
-  stats.stored[MapKind::Indirect] += s.indirect.size();
-  stats.stored[MapKind::Caustic] += s.caustic.size();
-  stats.stored[MapKind::Global] += s.global.size();
+  s.maps.forEach([&stats](MapKind k, const auto& map) { stats.stored[k] += map.size(); });
 }
 
-// Progressive pass `pass` of a frame (Knaus & Zwicker 2011): each map gathers
-// k x passRadiusShare nearest photons, so every point's radius shrinks from its own
-// k-nearest one; photons.radius > 0 instead fixes one radius for all points, shrunk
-// by the same share. The stats keep the typical radius of the last pass.
-void passGathers(const PhotonSettings& ps, uint32_t pass, const PhotonStage& maps, ShadingContext& ctx,
+// The stats keep each light map's typical gather radius in the last pass: its fixed
+// radius, or the median k-nearest one.
+void gatherRadii(const TransportModel& model, const PhotonStage& maps, const ShadingContext& ctx,
                  RenderStats& stats) {
-  if (ps.radius > 0.0f) {
-    ctx.causticK = ctx.globalK = 0;
-    ctx.causticRadius = ctx.globalRadius = static_cast<float>(ps.radius * std::sqrt(passRadiusShare(pass, ps.alpha)));
-    stats.causticRadius = stats.globalRadius = ctx.globalRadius;
-    return;
-  }
-  ctx.causticK = passK(ps.kCaustic, pass, ps.alpha);
-  ctx.globalK = passK(ps.kGlobal, pass, ps.alpha);
-  ctx.causticRadius = ctx.globalRadius = 0.0f;
   GatherScratch scratch;
-  stats.causticRadius = typicalKnnRadius(maps.caustic, ctx.causticK, scratch);
-  stats.globalRadius = typicalKnnRadius(maps.global, ctx.globalK, scratch);
+  for (MapKind k : model.lightMaps()) {
+    const PhotonGather& g = ctx.gathers[k];
+    stats.gatherRadius[k] = g.k == 0 ? g.maxRadius : typicalKnnRadius(*maps.maps.light(k), g.k, scratch);
+  }
 }
 
 // "render", or "render 2/4" in pass 2 of 4 progressive passes.
@@ -81,16 +69,15 @@ namespace {
 struct FrameRun {
   FrameRun(const Scene& s, const SceneAssets& a, PhotonStage& st, const FrameOptions& o, RenderResult& r)
       : scene(s), assets(a), stage(st), options(o), result(r), stats(r.stats), model(transportOf(s)),
-        ctx{s, *a.tracer} {
-    if (options.choices) ctx.choices = *options.choices;
-    precomputed = options.precomputed ? *options.precomputed : scene.photons.lookup == PhotonLookup::Precomputed;
+        ctx(s, *a.tracer, o.choices), precomputed(o.precomputed) {
     ctx.textures = assets.textures.get();
     ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
     ctx.hasGlass = sceneHasGlass(scene);
     ctx.classicScale = stage.classicScale;
-    ctx.shadowMap = stage.shadow.size() > 0 ? &stage.shadow : nullptr;
+    const ShadowPhotonMap& shadow = stage.maps.get<MapKind::Shadow>();
+    ctx.maps.get<MapKind::Shadow>() = shadow.size() > 0 ? &shadow : nullptr;  // pass 0's, for every pass
     for (const std::string& n : stage.notes) result.notes.push_back(n);
-    if (stage.emitted[MapKind::Indirect] > 0 && stage.indirect.empty()) {
+    if (stage.emitted[MapKind::Indirect] > 0 && stage.maps.get<MapKind::Indirect>().empty()) {
       result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
                              "using the ambient term");
     }
@@ -147,11 +134,12 @@ const PhotonStage& mapsForPass(FrameRun& f, int pass) {
 // The context reads `maps` in pass `pass`, with the pass's gathers.
 void bindMaps(FrameRun& f, const PhotonStage& maps, int pass) {
   if (pass == 0 || f.fresh) addStage(maps, f.stats);
-  f.ctx.indirectMap = maps.indirect.empty() ? nullptr : &maps.indirect;
-  f.ctx.causticMap = maps.caustic.empty() ? nullptr : &maps.caustic;
-  f.ctx.globalMap = maps.global.empty() ? nullptr : &maps.global;
+  maps.maps.forEach([&f](auto k, const auto& map) {
+    if constexpr (decltype(k)::value != MapKind::Shadow) f.ctx.maps.get<decltype(k)::value>() = map.empty() ? nullptr : &map;
+  });
   f.ctx.pass = static_cast<uint32_t>(pass);
-  if (f.passes > 1 && f.fresh) passGathers(f.scene.photons, f.ctx.pass, maps, f.ctx, f.stats);
+  f.ctx.gathers = f.model.gathers(f.scene.photons, f.ctx.pass, static_cast<uint32_t>(f.passes));
+  if (f.passes > 1 && f.fresh) gatherRadii(f.model, maps, f.ctx, f.stats);
 }
 
 // Pass 0 keeps its lookups with its maps, for later frames on the same maps; a pass
@@ -171,10 +159,10 @@ void prepareLookups(FrameRun& f, int pass) {
                   f.options.progress, lookups);
     }
   }
-  if (pass == 0 && f.needsLight && ctx.choices.gate && ctx.shadowMap && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
-      !stage.shadow.hasTrees()) {
+  if (pass == 0 && f.needsLight && ctx.choices.gate && ctx.maps.get<MapKind::Shadow>() && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
+      !stage.maps.get<MapKind::Shadow>().hasTrees()) {
     Stopwatch trees;
-    stage.shadow.buildTrees();
+    stage.maps.get<MapKind::Shadow>().buildTrees();
     f.stats.time.buildMaps += trees.seconds();
   }
 }

@@ -29,10 +29,9 @@ struct FrameOptions {
   Aov aov = Aov::Beauty;
   PhotonNeeds needs;    // the plan's photon passes, for progressive passes >= 1
   MapCounts budgets;   // ... and their photons per pass
-  // The plan's decisions for the tracer, and photons.lookup as planned; empty: the
-  // scene's own settings (FrameChoices::of).
-  std::optional<FrameChoices> choices;
-  std::optional<bool> precomputed;
+  // The plan's decisions for the tracer (choicesOf), and photons.lookup as planned.
+  FrameChoices choices;
+  bool precomputed = false;
   std::optional<std::pair<int, int>> tracePixel;
   ProgressPhases* progress = nullptr;  // the command's display; null: none
   // Passes until the budget is met instead of photons.passes (at least 2).

@@ -71,7 +71,7 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
     const GateDecision d = decideGate(scene);
     gate = d.gate ? on(d.reason, ps.shadowPhotons) : off(d.reason);
   } else {
-    gate = ps.gate ? on("photons.gate is on", ps.shadowPhotons) : off("photons.gate is off");
+    gate = ps.gateMode == GateMode::On ? on("photons.gate is on", ps.shadowPhotons) : off("photons.gate is off");
     if (gate.on && !f.photonLight) gate = off("only directional or environment lights: they emit no shadow photons");
   }
   if (gate.on) gate.perLight = splitBudget(scene, gate.budget);

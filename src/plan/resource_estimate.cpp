@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace penumbra {
 namespace {
@@ -98,6 +99,16 @@ double textureBytes(const Scene& scene) {
   return std::min(bytes, kTextureCacheBytes);
 }
 
+// `n` stored photons per kind at its record's size (sizeof(PhotonOf<K>)) plus `extra`
+// bytes each. Kinds sharing a record size are counted together first, in kAllMaps order.
+double photonBytes(const PerMap<double>& n, double extra) {
+  std::map<size_t, double> bySize;
+  forEachKind([&](auto k) { bySize[sizeof(PhotonOf<decltype(k)::value>)] += n[k]; });
+  double bytes = 0.0;
+  for (const auto& [size, count] : bySize) bytes += count * (double(size) + extra);
+  return bytes;
+}
+
 }  // namespace
 
 StoreRates analyticStoreRates(const Scene& scene) {
@@ -133,22 +144,22 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   };
   PerMap<double> n;
   for (MapKind k : kAllMaps) n[k] = stored(p.emitted[k], rates.perPhoton[k]);
-  const double shadow = n[MapKind::Shadow], indirect = n[MapKind::Indirect];
-  const double global = n[MapKind::Global], caustic = n[MapKind::Caustic];
-  e.storedPhotons = shadow + indirect + global + caustic;
-  e.photonBytes = shadow * (sizeof(ShadowPhoton) + kIndexBytes) +
-                  (indirect + global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
+  const double shadow = n[MapKind::Shadow];
+  for (MapKind k : kAllMaps) e.storedPhotons += n[k];
+  e.photonBytes = photonBytes(n, kIndexBytes);
   const PhotonSettings& ps = scene.photons;
   const IndirectLookup lookup = transportOf(scene).indirectLookup(ps);
   const double lookupPhotons = options.precomputed ? n[lookup.map] : 0.0;
   // The emitters' blocks and the sorted arrays each hold a copy while the maps build
   // (one map after another, so this bounds the peak from above); then a lookup cache's
   // build holds an entry per photon it bins, twice while it sorts them.
-  const double mapCopy = shadow * sizeof(ShadowPhoton) + (indirect + global + caustic) * sizeof(IndirectPhoton);
+  const double mapCopy = photonBytes(n, 0.0);
   const double cacheSort = options.precomputed ? 2.0 * sizeof(CacheEntry) * (shadow + lookupPhotons) : 0.0;
   e.photonPeakBytes = e.photonBytes + std::max(mapCopy, cacheSort);
-  // A progressive pass emits its photons while the previous pass's maps still stand.
-  if (p.photonPasses > 1) e.photonPeakBytes += (global + caustic) * (sizeof(IndirectPhoton) + kIndexBytes);
+  // A progressive pass emits its photons (all but the gate's) while the previous pass's maps still stand.
+  PerMap<double> fresh = n;
+  fresh[MapKind::Shadow] = 0.0;
+  if (p.photonPasses > 1) e.photonPeakBytes += photonBytes(fresh, kIndexBytes);
   if (options.precomputed) {
     // A record per occupied cell, whose size is a multiple of the typical gather
     // radius: the lookup map's cells and the gate's (finer ones get a cache of their
@@ -280,7 +291,7 @@ std::string estimateToJson(const ResourceEstimate& e) {
 double shardCostNs(const Scene& s, size_t views) {
   const double samples = double(s.camera.width) * s.camera.height * s.camera.spp * double(views);
   const PhotonSettings& ps = s.photons;
-  const double photons = double(ps.indirectPhotons + ps.globalPhotons + ps.causticPhotons + (ps.gate ? ps.shadowPhotons : 0));
+  const double photons = double(ps.indirectPhotons + ps.globalPhotons + ps.causticPhotons + (ps.gateMode != GateMode::Off ? ps.shadowPhotons : 0));
   return (samples + photons) * cost::kCameraSampleNs;  // a camera sample and a photon cost about the same
 }
 

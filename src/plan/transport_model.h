@@ -9,6 +9,7 @@
 #include "core/view.h"
 #include "emit/emit.h"
 #include "gather/lookup_cache/lookup_cache.h"
+#include "gather/radiance_estimate.h"
 #include "io/image_io.h"
 #include "trace/integrator.h"
 #include <vector>
@@ -57,6 +58,8 @@ class TransportModel {
   // reads pass 0's maps and only takes new camera samples.
   virtual bool freshPhotonsEachPass() const = 0;
   virtual IndirectLookup indirectLookup(const PhotonSettings& ps) const = 0;
+  // Each light map's gather (k nearest, radius) in progressive pass `pass` of `passes`.
+  virtual PerMap<PhotonGather> gathers(const PhotonSettings& ps, uint32_t pass, uint32_t passes) const = 0;
 
   // The image's settings line (its photon part) and EXR keys for the settings only
   // this model reads.

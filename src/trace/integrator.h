@@ -31,9 +31,4 @@ struct Integrator {
 const Integrator& whittedIntegrator();   // trace/whitted.cpp
 const Integrator& physicalIntegrator();  // trace/physical.cpp
 
-// The integrator of a scene's own model: what a frame without a plan (a test) uses.
-inline const Integrator& integratorFor(ShadingModel model) {
-  return model == ShadingModel::Physical ? physicalIntegrator() : whittedIntegrator();
-}
-
 }  // namespace penumbra

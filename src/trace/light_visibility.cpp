@@ -97,7 +97,8 @@ const CachedAnswer* lookupAt(const ShadingContext& ctx, const SurfaceRecord& s,
 
 GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                         const CachedAnswer* cached, ThreadState& ts, std::string* note) {
-  if (!ctx.choices.gate || !ctx.shadowMap || !ctx.shadowMap->hasPhotons(lightIndex)) return GateVerdict::Mixed;
+  const ShadowPhotonMap* shadowMap = ctx.maps.get<MapKind::Shadow>();
+  if (!ctx.choices.gate || !shadowMap || !shadowMap->hasPhotons(lightIndex)) return GateVerdict::Mixed;
   ++ts.counts.gateQueries;
   GateVerdict v;
   const bool precomputed = cached && ctx.gateLookup && ctx.gateLookup->hasGate();
@@ -106,7 +107,7 @@ GateVerdict gateVerdict(const ShadingContext& ctx, const SurfaceRecord& s, uint3
     v = cached->verdicts ? static_cast<GateVerdict>(cached->verdicts[lightIndex]) : GateVerdict::Mixed;
   } else {
     const GateParams params = gateParamsFor(ctx.scene, ctx.choices.integrator->glass);
-    v = ctx.shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch, !s.frontFace);
+    v = shadowMap->classify(s.position, s.ng, lightIndex, params, *ts.scratch, !s.frontFace);
   }
   // Shadowed means every voter sits behind something opaque; photons behind
   // glass alone make the vote Mixed, since only a ray can measure the tint.
@@ -137,7 +138,8 @@ Color litClosedForm(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t 
   // samples, all of which missed, were the estimate, and 0 is its unbiased value.
   if (isDeltaLight(*sampler.light)) return Color(0.0f);
   // Without a gate for this light its verdict is mixed: not worth a closed form.
-  if (!asked && !(ctx.choices.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(li))) return Color(0.0f);
+  const ShadowPhotonMap* shadowMap = ctx.maps.get<MapKind::Shadow>();
+  if (!asked && !(ctx.choices.gate && shadowMap && shadowMap->hasPhotons(li))) return Color(0.0f);
   const Color kd = lambertCoefficient(bsdf);
   Color E;
   if (!(maxComponent(kd) > 0.0f) || !unoccludedIrradiance(sampler, s.ns, s.ng, E) || !(maxComponent(E) > 0.0f))
@@ -167,8 +169,10 @@ Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t ligh
 
 Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
                   const CachedAnswer* cached, ThreadState& ts) {
-  if (!ctx.indirectMap || ctx.indirectMap->empty()) return m.ambient * ctx.scene.render.ambient;
+  const IndirectPhotonMap* map = ctx.maps.get<MapKind::Indirect>();
+  if (!map || map->empty()) return m.ambient * ctx.scene.render.ambient;
   const PhotonSettings& ps = ctx.scene.photons;
+  const PhotonGather gather = ctx.gathers[MapKind::Indirect];
   if (cached && ctx.lookup->indirectKind() != CachedIndirect::None) {
     if (cached->hasIndirect) {
       return ctx.lookup->indirectKind() == CachedIndirect::Density
@@ -178,7 +182,7 @@ Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Mater
     // No cell near the point: its own cell's estimate, computed once and kept (a
     // gather per point here was a large share of the showcase's render).
     ++ts.counts.cacheFallbacks;
-    const Color v = ctx.lookup->lazyIndirect(*ctx.indirectMap, s.position, s.ng, *ts.scratch);
+    const Color v = ctx.lookup->lazyIndirect(*map, s.position, s.ng, *ts.scratch);
     return ctx.lookup->indirectKind() == CachedIndirect::Density ? m.diffuse * v
                                                                   : m.ambient * v * ctx.classicScale;
   }
@@ -186,14 +190,14 @@ Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Mater
   if (ps.estimator == IndirectEstimator::Density) {
     // Irradiance from the cone-filtered density, reflected like direct light
     // (k_d E), so direct and indirect share the same units.
-    auto e = ctx.indirectMap->density(s.position, s.ng, ps.kIndirect, ps.maxRadius, *ts.scratch);
+    auto e = map->density(s.position, s.ng, gather.k, gather.maxRadius, *ts.scratch);
     ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
     return m.diffuse * e.value;
   }
   // Classic (the report's): the cone-weighted sum of photon colours over the
   // photon count replaces the global ambient light; the material's ambient
   // colour still filters it.
-  auto e = ctx.indirectMap->classic(s.position, s.ng, ps.kIndirect, ps.maxRadius, *ts.scratch);
+  auto e = map->classic(s.position, s.ng, gather.k, gather.maxRadius, *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
   return m.ambient * e.value * ctx.classicScale;
 }
@@ -210,7 +214,8 @@ uint32_t packetShadowLights(const ShadingContext& ctx, bool direct) {
     const Light& light = scene.lights[li];
     if (!isDeltaLight(light) || maxComponent(light.radiance()) <= 0.0f) continue;
     // As gateVerdict: with a gate for this light the verdict, not the ray, comes first.
-    const bool gated = ctx.choices.gate && ctx.shadowMap && ctx.shadowMap->hasPhotons(li);
+    const ShadowPhotonMap* shadowMap = ctx.maps.get<MapKind::Shadow>();
+    const bool gated = ctx.choices.gate && shadowMap && shadowMap->hasPhotons(li);
     if (!gated) mask |= 1u << li;
   }
   return mask;

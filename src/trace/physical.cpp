@@ -40,9 +40,10 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
   return sum;
 }
 
-Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k, float radius,
-                 const SurfaceRecord& s, const Bsdf& bsdf, const BsdfFrame& frame, const Vec3& wo,
-                 const CachedAnswer* cached, ThreadState& ts) {
+template <MapKind K>
+Color photonTerm(const ShadingContext& ctx, MapKindTag<K> kind, const SurfaceRecord& s, const Bsdf& bsdf,
+                 const BsdfFrame& frame, const Vec3& wo, const CachedAnswer* cached, ThreadState& ts) {
+  const IndirectPhotonMap* map = ctx.maps.get<K>();
   if (!map || map->empty() || !hasGatheredLobe(bsdf)) return Color(0.0f);
   // The cache holds irradiance / pi: it answers a Lambertian BSDF exactly; a glossy
   // lobe needs the photons' directions, so it gathers.
@@ -53,7 +54,7 @@ Color photonTerm(const ShadingContext& ctx, const IndirectPhotonMap* map, int k,
     return (1.0f - bsdf.kr) * bsdf.diffuse * ctx.lookup->lazyIndirect(*map, s.position, s.ng, *ts.scratch);
   }
   ++ts.counts.gatherQueries;
-  RadianceEstimate e = photonRadiance(*map, gatheredPart(bsdf), frame, s.position, wo, PhotonGather{k, radius}, *ts.scratch);
+  RadianceEstimate e = photonRadiance(*map, gatheredPart(bsdf), frame, s.position, wo, ctx.gathers[kind], *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
   return e.value;
 }
@@ -125,11 +126,9 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
     if (terms & kTermDirect)
       color += directLight(ctx, s, bsdf, frame, wo, cached, ts, recIndex >= 0 ? &note : nullptr);
     if (terms & kTermCaustic)  // caustics are sharp: always the direct gather
-      color += photonTerm(ctx, ctx.causticMap, ctx.causticK, ctx.causticRadius, s, bsdf, frame, wo,
-                          nullptr, ts);
+      color += photonTerm(ctx, MapKindTag<MapKind::Caustic>{}, s, bsdf, frame, wo, nullptr, ts);
     if (terms & kTermGlobal)
-      color += photonTerm(ctx, ctx.globalMap, ctx.globalK, ctx.globalRadius, s, bsdf, frame, wo,
-                          cached, ts);
+      color += photonTerm(ctx, MapKindTag<MapKind::Global>{}, s, bsdf, frame, wo, cached, ts);
   }
 
   const RenderSettings& rs = ctx.scene.render;

@@ -4,21 +4,21 @@
 #include "core/ray_record.h"
 #include "core/scene.h"
 #include "core/stats.h"
+#include "core/map_kind.h"
+#include "gather/photon_map_for.h"
+#include "gather/radiance_estimate.h"
 #include "geometry/trace_scene.h"
 #include "trace/integrator.h"
 #include <memory>
 
 namespace penumbra {
 
-class ShadowPhotonMap;
-class IndirectPhotonMap;
 class LookupCache;
 class TextureLookup;
 struct GatherScratch;
 
 // What the render plan decided for a frame (plan/render_plan.h: choicesOf), read by
-// the tracer beside the scene's settings, which stay as the user gave them. Without
-// a plan (tests), the settings themselves.
+// the tracer beside the scene's settings, which stay as the user gave them.
 struct FrameChoices {
   bool gate = true;         // ask the shadow photon map before casting a shadow ray
   bool shadows = true;      // false: lights reach every surface facing them
@@ -27,32 +27,29 @@ struct FrameChoices {
   int lightSamples = 16;    // per area light and shading point
   bool packets = true;      // camera rays and their shadow rays as Embree packets
   const Integrator* integrator = nullptr;  // the transport model's shading
-  static FrameChoices of(const Scene& scene) {
-    return {scene.photons.gate, scene.render.shadows, true, true, scene.render.lightSamples, scene.render.packets,
-            &integratorFor(scene.render.model)};
-  }
 };
+
+template <class Photon>
+using ConstMapPtr = const PhotonMapFor<Photon>*;
 
 // Read-only inputs shared by all render threads.
 struct ShadingContext {
+  ShadingContext(const Scene& s, const TraceScene& t, const FrameChoices& c) : scene(s), tracer(t), choices(c) {}
   const Scene& scene;
   const TraceScene& tracer;
-  FrameChoices choices = FrameChoices::of(scene);
-  const ShadowPhotonMap* shadowMap = nullptr;      // null: every shadow test is a ray
-  const IndirectPhotonMap* indirectMap = nullptr;  // null: the ambient term is used
+  FrameChoices choices;
+  // The maps the frame reads, null where none is stored: no shadow map, every shadow
+  // test is a ray; no indirect map, the ambient term is used.
+  MapSlots<ConstMapPtr> maps{};
+  // Each map's gather in this pass (the transport model's): the k nearest (a progressive
+  // pass's k shrinks) within the radius (0: any distance), or with k = 0 every photon within it.
+  PerMap<PhotonGather> gathers;
   const TextureLookup* textures = nullptr;
   // photons.lookup = precomputed: the indirect (classic) or global (physical,
   // Lambertian part) estimate read from `lookup`, the gate verdicts from `gateLookup`
   // (the same cache, or one of finer cells); one query of each per shading point.
   const LookupCache* lookup = nullptr;
   const LookupCache* gateLookup = nullptr;
-  // Physical model: caustic and global photon maps, each estimate's PhotonGather
-  // (gather/radiance_estimate.h): the k nearest (a progressive pass's k shrinks)
-  // within the radius (0: any distance), or with k = 0 every photon within it.
-  const IndirectPhotonMap* causticMap = nullptr;
-  const IndirectPhotonMap* globalMap = nullptr;
-  float causticRadius = 0.0f, globalRadius = 0.0f;
-  int causticK = scene.photons.kCaustic, globalK = scene.photons.kGlobal;
   uint32_t pass = 0;  // progressive pass: sample streams continue after earlier passes'
   uint32_t passes = 1;  // of the frame: more than one draws camera samples from a sequence over all
   float classicScale = 1.0f;  // turns stored photon flux back into photon colour

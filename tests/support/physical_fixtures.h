@@ -31,7 +31,6 @@ inline Scene physicalScene() {
   Scene s;
   s.render.model = ShadingModel::Physical;
   s.render.seed = 20261201;
-  s.photons.gate = false;
   s.photons.globalPhotons = 0;
   s.photons.causticPhotons = 0;
   s.photons.shadowPhotons = 0;

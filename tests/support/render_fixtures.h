@@ -9,9 +9,28 @@
 
 namespace penumbra {
 
+// What a frame without a render plan decides: the scene's own settings (a gate unless
+// photons.gate is off) and its model's integrator.
+inline FrameChoices sceneChoices(const Scene& scene) {
+  const Integrator& integrator =
+      scene.render.model == ShadingModel::Physical ? physicalIntegrator() : whittedIntegrator();
+  return {scene.photons.gateMode != GateMode::Off, scene.render.shadows, true, true, scene.render.lightSamples,
+          scene.render.packets, &integrator};
+}
+
+// Each map's gather in a frame of one pass (both models' maps).
+inline PerMap<PhotonGather> sceneGathers(const PhotonSettings& ps) {
+  PerMap<PhotonGather> g;
+  g[MapKind::Indirect] = {ps.kIndirect, ps.maxRadius};
+  g[MapKind::Global] = {ps.kGlobal, 0.0f};
+  g[MapKind::Caustic] = {ps.kCaustic, 0.0f};
+  return g;
+}
+
 // Everything a render needs, built from a Scene owned by the caller.
 struct Rig {
-  explicit Rig(const Scene& s) : scene(s), tracer(s), ctx{s, tracer} {
+  explicit Rig(const Scene& s) : scene(s), tracer(s), ctx(s, tracer, sceneChoices(s)) {
+    ctx.gathers = sceneGathers(s.photons);
     ctx.hasGlass = sceneHasGlass(s);
     ctx.pixelSpread = CameraRays(s.camera).pixelSpread();
   }
