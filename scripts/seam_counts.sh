@@ -13,9 +13,10 @@ grep -rn 'LightType::' src | grep -v "$seam" | cut -d: -f1 | sort | uniq -c | so
 
 echo "M2 members naming one photon map, and their uses"
 echo "   members: $(grep -rnE '^\s*(ShadowPhotonMap|IndirectPhotonMap|PhotonBatches<\w+>|PrefixCuts|PhotonTally|PhotonMaps|ClassicCuts|PhysicalPhotons|const (Shadow|Indirect)PhotonMap\*) +\w+[^(]*;' src --include=*.h | wc -l)"
-# LookupCacheParams' `indirect` (params, gateOnly, p) is the estimate a cache cell keeps, not a map.
+# LookupCacheParams' `indirect` (params, gateOnly, p) is the estimate a cache cell keeps, not a map;
+# comments (the sweep's knobs name the JSON keys photons.global and photons.caustic) are not uses.
 echo "   uses: $(grep -rnE '(\.|->)(shadow|indirect|global|caustic)(Map|Cuts|Tally)?\b|\.(caustic|global)(K|Radius)\b' src/emit src/trace src/plan |
-  grep -v '"' | grep -vE '(counts|ph|params|gateOnly|p|a|b|cached|slot|rays)(\.|->)(shadow|indirect)' | wc -l)"
+  grep -v '"' | grep -vE ':[0-9]+:\s*//' | grep -vE '(counts|ph|params|gateOnly|p|a|b|cached|slot|rays)(\.|->)(shadow|indirect)' | wc -l)"
 
 echo "M3 readers of render.model: $(grep -rn 'render\.model' src | grep -v '//.*render\.model' | grep -v '"[^"]*render\.model' | wc -l)"
 
