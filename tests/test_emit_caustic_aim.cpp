@@ -5,7 +5,7 @@
 // for the targets (overlapping cones, targets cut by or behind the emitting side).
 #include "core/emission_map.h"
 #include "core/math.h"
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "core/rng.h"
 #include "emit/caustic_aim.h"
 #include "emit/emit_physical.h"

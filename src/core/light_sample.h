@@ -49,7 +49,7 @@ LightSampler prepareLight(const Light& light, const Vec3& p);
 // A delta light's incidence (u1, u2 unused), or one sample of an area light: a
 // quad uniformly over its area (pdf d^2 / (A cos_l)), a sphere uniformly over the
 // cone it subtends (pdf 1 / (2 pi (1 - cos_max))), a mesh uniformly by area over
-// all its triangles (core/mesh_light.h); invalid where the quad (the sampled
+// all its triangles (core/lights/emissive_mesh.h); invalid where the quad (the sampled
 // triangle) faces away or the point is inside the sphere.
 LightIncidence sampleLight(const LightSampler& sampler, float u1, float u2);
 inline LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
@@ -98,7 +98,7 @@ struct PhotonRay {
   Vec3 normal{0.0f};  // an area light's surface normal at the origin (0 for delta lights)
   float error = 0.0f;  // an area light's origin: its rounding error along normal
   // Per channel, on the light's power / count: 1 but for an environment map's photons,
-  // whose power follows the map's colour at the drawn direction (core/environment.h).
+  // whose power follows the map's colour at the drawn direction (core/lights/environment_map.h).
   Color weight{1.0f};
   uint8_t stratum = 0;  // the part of the light it left from (core/light_strata.h)
 };

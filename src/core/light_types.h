@@ -15,7 +15,7 @@ namespace penumbra {
 // emitters, sampled light_samples times per shading point and visible to rays. A mesh
 // light is the triangles of every mesh whose material has an emission. An environment
 // (at most one, always the last light) lights from every direction at infinity and is
-// what rays leaving the scene see (core/environment.h).
+// what rays leaving the scene see (core/lights/environment_map.h).
 // A new type: an enumerator here, its header and its AllLights entry below.
 enum class LightType : uint8_t { Point, Directional, Quad, Sphere, Mesh, Environment };
 

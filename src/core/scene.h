@@ -27,7 +27,7 @@ struct Camera {
   int spp = 1;  // samples per pixel and pass (one pass at spp 1: the pixel centre)
 };
 
-struct EnvironmentMap;  // core/environment.h
+struct EnvironmentMap;  // core/lights/environment_map.h
 struct MeshEmission;    // core/emission_map.h
 
 struct Light {

@@ -2,7 +2,7 @@
 // area lights, whose surfaces also join the scene as emitting objects.
 #include "core/light_sample.h"
 #include "core/emission_map.h"
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "io/emission_map_reader.h"
 #include "io/float_checks.h"
 #include "io/scene_sections.h"

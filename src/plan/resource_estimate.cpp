@@ -5,7 +5,7 @@
 #include "plan/cost_model.h"
 #include "plan/gate_decision.h"
 #include "geometry/trace_scene.h"
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/light_sample.h"
 #include "core/light_strata.h"
 #include "gather/lookup_cache.h"

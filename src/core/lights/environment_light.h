@@ -1,4 +1,4 @@
-// The environment light's entry in the light list: forwards to core/environment.h,
+// The environment light's entry in the light list: forwards to core/lights/environment_map.h,
 // which holds its map, sampling and photons. Included by core/light_types.h only.
 #pragma once
 

@@ -1,5 +1,5 @@
 // The mesh light's entry in the light list; its code (construction, sampling by area,
-// the closed form, photons) is core/mesh_light.cpp. Included by core/light_types.h only.
+// the closed form, photons) is core/lights/emissive_mesh.cpp. Included by core/light_types.h only.
 #pragma once
 
 namespace penumbra {

@@ -2,7 +2,7 @@
 // closed form, area and photons.
 #include "core/light_sample.h"
 #include "core/light_strata.h"
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "core/sampling.h"
 #include <algorithm>
 

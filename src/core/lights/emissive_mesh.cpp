@@ -1,7 +1,7 @@
 // Mesh lights (emissive triangle meshes): construction, and MeshLight's answers
 // (core/lights/mesh_light.h): sampling by area, closed-form irradiance, photon
 // emission; and the clipped Lambert polygon formula.
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "core/emission_map.h"
 #include "core/sampling.h"
 #include <algorithm>
