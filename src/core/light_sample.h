@@ -6,6 +6,7 @@
 // (W/(sr m^2)).
 #pragma once
 #include "core/scene.h"
+#include <optional>
 
 namespace penumbra {
 
@@ -79,11 +80,31 @@ inline bool answersGate(const Light& light) {
   return lightTraits(light).emitsShadowPhotons && maxComponent(light.radiance()) > 0.0f;
 }
 
+// The surface an area light adds to the scene as an emitting object (io's addEmitters
+// gives it a black material that glows): a mesh or a sphere, neither for the rest.
+struct EmitterShape {
+  std::optional<TriangleMesh> mesh;
+  std::optional<Sphere> sphere;
+  bool twoSided = false;  // it glows on both sides (a sphere, seen from inside too)
+};
+EmitterShape emitterOf(const Light& light);
+
+// Entries one sample of the light searches (a mesh light's cumulative areas), 0 for a
+// light that draws a sample without a search: the resource estimate's cost per sample.
+size_t lightSampleTable(const Light& light);
+
+// The lights a model file can hold (glTF's punctual lights), at colour 1 and intensity 1:
+// a point; a spot shining along the unit `direction` with cone angles in radians
+// (setSpotCone); a directional light travelling along the unit `direction`.
+Light makePointLight(const Vec3& position);
+Light makeSpotLight(const Vec3& position, const Vec3& direction, float innerAngle, float outerAngle);
+Light makeDirectionalLight(const Vec3& direction);
+
 // A spot's share of its intensity towards `dir` (the way light leaves it): glTF's
 // falloff, the square of a linear ramp between the outer and inner cone; 1 for
 // every other light.
 float spotFalloff(const Light& light, const Vec3& dir);
-// Makes a point light a spot with glTF's cone angles (radians, 0 <= inner < outer <= pi/2).
+// Makes a light a spot (its type and cone) with glTF's cone angles (radians, 0 <= inner < outer <= pi/2).
 void setSpotCone(Light& light, float innerAngle, float outerAngle);
 // The falloff integrated over directions: a spot's power is this times its intensity.
 float spotSolidAngle(const Light& light);

@@ -31,7 +31,7 @@ struct EnvironmentMap;  // core/lights/environment_map.h
 struct MeshEmission;    // core/emission_map.h
 
 struct Light {
-  LightType type = LightType::Point;
+  LightType type{};  // the first of core/light_types.h's list: a point light
   Vec3 position{0.0f};              // point light; quad corner; sphere centre
   Vec3 direction{0.0f, -1.0f, 0.0f};  // directional, spot: the way the light travels (unit)
   Vec3 edge1{0.0f}, edge2{0.0f};    // quad: it emits on the side of edge1 x edge2
@@ -52,10 +52,10 @@ struct Light {
   // texture with the tables that draw triangles by luminance (null: uniform radiance).
   bool twoSided = false;
   std::shared_ptr<const MeshEmission> emission;
-  // A point light with a cone is a spot: full intensity within `spotCosInner` of
-  // `direction`, falling to 0 at `spotCosOuter` (glTF's cone angles, as cosines).
+  // Spot: full intensity within `spotCosInner` of `direction`, falling to 0 at
+  // `spotCosOuter` (glTF's cone angles, as cosines). setSpotCone sets them and the type.
   float spotCosInner = -1.0f, spotCosOuter = -1.0f;
-  bool isSpot() const { return type == LightType::Point && spotCosOuter > -1.0f; }
+  bool isSpot() const { return spotCosOuter > -1.0f; }
   // Environment: the lat-long map and its sampling tables, shared by the copies of a
   // scene a sweep or batch makes (null: a constant sky).
   std::shared_ptr<const EnvironmentMap> environment;

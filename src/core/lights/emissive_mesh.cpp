@@ -93,6 +93,8 @@ float MeshLight::classicWeight(const Light& light) {
   return luminance(light.radiance()) * meshLightPowerFactor(light) * 0.25f;
 }
 
+size_t MeshLight::sampleTable(const Light& light) { return light.areaCdf.size(); }
+
 LightIncidence MeshLight::sample(const LightSampler& s, float u1, float u2) {
   const Light& light = *s.light;
   LightIncidence in;

@@ -1,5 +1,5 @@
 // The quad light: set-up per shading point, uniform samples by area, Lambert's
-// closed form, area and photons.
+// closed form, area, photons and its surface.
 #include "core/light_sample.h"
 #include "core/light_strata.h"
 #include "core/lights/emissive_mesh.h"
@@ -60,6 +60,25 @@ float QuadLight::area(const Light& light) {
   const float area = glm::length(c);
   return std::isfinite(area) ? area
                              : static_cast<float>(glm::length(glm::cross(glm::dvec3(light.edge1), glm::dvec3(light.edge2))));
+}
+
+EmitterShape QuadLight::emitter(const Light& light) {
+  EmitterShape e;
+  e.mesh = makeQuad(light.position, light.edge1, light.edge2);
+  return e;
+}
+
+TriangleMesh makeQuad(const Vec3& corner, const Vec3& edge1, const Vec3& edge2, int material) {
+  TriangleMesh mesh;
+  mesh.name = "quad";
+  mesh.material = material;
+  mesh.positions = {corner, corner + edge1, corner + edge1 + edge2, corner + edge2};
+  // Triangle (0,1,2) has edges e1 and e1+e2, whose cross product is cross(e1, e2).
+  Vec3 normal = unitCross(edge1, edge2);
+  mesh.normals.assign(4, normal);
+  mesh.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return mesh;
 }
 
 PhotonRay QuadLight::photon(const Light& light, const SceneSphere&, float u1, float u2, float u3, float u4) {
