@@ -53,6 +53,10 @@ LightSampler prepareLight(const Light& light, const Vec3& p);
 // all its triangles (core/lights/emissive_mesh.h); invalid where the quad (the sampled
 // triangle) faces away or the point is inside the sphere.
 LightIncidence sampleLight(const LightSampler& sampler, float u1, float u2);
+// For the planar area lights' samples (core/lights/): the incidence from point y of a
+// one-sided emitter uniform by area (the sampler's normal, area and band set by prepare):
+// L cos_l A / d^2, invalid behind it, stopping short of the rounding band about its plane.
+LightIncidence planarIncidence(const LightSampler& sampler, const Vec3& y);
 inline LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
   return sampleLight(prepareLight(light, p), u1, u2);
 }

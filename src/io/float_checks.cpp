@@ -49,8 +49,8 @@ SceneSphere geometryBounds(const Scene& scene) {
   return bounds;
 }
 
-// The sphere's surface points c + r n are rounded to the float grid at |c|: a radius
-// below a few dozen ulps of the centre collapses the sphere onto it.
+}  // namespace
+
 void checkRadius(const JsonNode& radius, float r, const Vec3& center) {
   const float m = largestAbs(center);
   const double least = kMinRadiusRatio * m;
@@ -60,6 +60,8 @@ void checkRadius(const JsonNode& radius, float r, const Vec3& center) {
                 ": its surface could not be told from its centre in single precision");
   }
 }
+
+namespace {
 
 // Where a light's brightness was given, so the message points at the key to change.
 JsonNode brightnessNode(const JsonNode& light) {

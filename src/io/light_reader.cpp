@@ -29,6 +29,15 @@ void readEmission(const JsonNode& item, Light& light) {
   }
 }
 
+// A unit vector from a non-zero one, normalised in double (a float's squared length
+// overflows beyond ~1e19).
+Vec3 readDirection(const JsonNode& dir) {
+  const glm::dvec3 d(dir.asVec3());
+  const double length = glm::length(d);
+  if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
+  return Vec3(d / length);
+}
+
 void readPointLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "position", "color", "intensity"});
   light.position = readPosition(item.required("position", " for a point light"));
@@ -36,11 +45,7 @@ void readPointLight(const JsonNode& item, Light& light) {
 
 void readDirectionalLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "direction", "color", "intensity"});
-  JsonNode dir = item.required("direction", " for a directional light");
-  glm::dvec3 d(dir.asVec3());
-  double length = glm::length(d);
-  if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
-  light.direction = Vec3(d / length);
+  light.direction = readDirection(item.required("direction", " for a directional light"));
 }
 
 void readQuadLight(const JsonNode& item, Light& light) {
@@ -60,11 +65,7 @@ void readQuadLight(const JsonNode& item, Light& light) {
 void readSpotLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "position", "direction", "inner_angle", "outer_angle", "color", "intensity"});
   light.position = readPosition(item.required("position", " for a spot light"));
-  JsonNode dir = item.required("direction", " for a spot light (the way it shines)");
-  const glm::dvec3 d(dir.asVec3());
-  const double length = glm::length(d);
-  if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
-  light.direction = Vec3(d / length);
+  light.direction = readDirection(item.required("direction", " for a spot light (the way it shines)"));
   const float outer = item.floatOr("outer_angle", 45.0f, Range::between(0.0, 90.0));
   if (!(outer > 0.0f)) item.child("outer_angle").fail("must be above 0 degrees");
   const float inner = item.floatOr("inner_angle", 0.0f, Range::between(0.0, 90.0));
@@ -72,13 +73,17 @@ void readSpotLight(const JsonNode& item, Light& light) {
   setSpotCone(light, inner * kPi / 180.0f, outer * kPi / 180.0f);
 }
 
+// A round light's radius: above 0, with its centre +- radius inside the coordinate limits.
+float readRadius(const JsonNode& radius, const Vec3& center) {
+  const float r = radius.asFloat(Range::above(0.0));
+  checkPositions(radius, {center - Vec3(r), center + Vec3(r)}, "center +- radius");
+  return r;
+}
+
 void readSphereLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "center", "radius", "color", "radiance", "power"});
   light.position = readPosition(item.required("center", " for a sphere light"));
-  JsonNode radius = item.required("radius", " for a sphere light");
-  light.radius = radius.asFloat(Range::above(0.0));
-  checkPositions(radius, {light.position - Vec3(light.radius), light.position + Vec3(light.radius)},
-                 "center +- radius");
+  light.radius = readRadius(item.required("radius", " for a sphere light"), light.position);
 }
 
 // The types a scene file names, each with its reader of the type's own keys ("color"

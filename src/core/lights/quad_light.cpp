@@ -24,8 +24,13 @@ void QuadLight::prepare(const Light& light, const Vec3&, LightSampler& s) {
 
 LightIncidence QuadLight::sample(const LightSampler& s, float u1, float u2) {
   const Light& light = *s.light;
+  return planarIncidence(s, light.position + u1 * light.edge1 + u2 * light.edge2);
+}
+
+// Defined beside its first user, so the quad's sample inlines it.
+LightIncidence planarIncidence(const LightSampler& s, const Vec3& y) {
+  const Light& light = *s.light;
   LightIncidence in;
-  const Vec3 y = light.position + u1 * light.edge1 + u2 * light.edge2;
   const Vec3 d = y - s.p;
   const float d2 = glm::dot(d, d);
   if (!(d2 > 0.0f) || !std::isfinite(d2)) return in;
