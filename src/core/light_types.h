@@ -11,13 +11,13 @@
 
 namespace penumbra {
 
-// Point, spot and directional lights are deltas; quad, sphere and mesh lights are area
+// Point, spot and directional lights are deltas; quad, disk, sphere and mesh lights are area
 // emitters, sampled light_samples times per shading point and visible to rays. A mesh
 // light is the triangles of every mesh whose material has an emission. An environment
 // (at most one, always the last light) lights from every direction at infinity and is
 // what rays leaving the scene see (core/lights/environment_map.h).
 // A new type: an enumerator here, its header and its AllLights entry below.
-enum class LightType : uint8_t { Point, Directional, Quad, Sphere, Mesh, Environment, Spot };
+enum class LightType : uint8_t { Point, Directional, Quad, Sphere, Mesh, Environment, Spot, Disk };
 
 // Where a light's emission comes from, as pbrt names it: a point or a direction
 // (deltas, one sample per shading point), a surface, or every direction at infinity.
@@ -113,6 +113,7 @@ struct LightDefaults {
 #include "core/lights/mesh_light.h"
 #include "core/lights/environment_light.h"
 #include "core/lights/spot_light.h"
+#include "core/lights/disk_light.h"
 
 namespace penumbra {
 
@@ -120,7 +121,8 @@ template <class... Ts>
 struct LightTypeList {};
 // In the enum's order: the i-th type handles LightType value i.
 using AllLights =
-    LightTypeList<PointLight, DirectionalLight, QuadLight, SphereLight, MeshLight, EnvironmentLight, SpotLight>;
+    LightTypeList<PointLight, DirectionalLight, QuadLight, SphereLight, MeshLight, EnvironmentLight, SpotLight,
+                  DiskLight>;
 
 namespace light_list {
 template <class... Ts, size_t... I>

@@ -86,6 +86,18 @@ void readSphereLight(const JsonNode& item, Light& light) {
   light.radius = readRadius(item.required("radius", " for a sphere light"), light.position);
 }
 
+// A disk: its centre, the normal of its emitting side, its radius.
+void readDiskLight(const JsonNode& item, Light& light) {
+  item.allowKeys({"type", "center", "normal", "radius", "color", "radiance", "power"});
+  light.position = readPosition(item.required("center", " for a disk light"));
+  light.direction = readDirection(item.required("normal", " for a disk light (the side it emits on)"));
+  const JsonNode radius = item.required("radius", " for a disk light");
+  light.radius = readRadius(radius, light.position);
+  checkRadius(radius, light.radius, light.position);
+  // Its area pi r^2 divides power and weights photons: it must not underflow.
+  if (!(lightArea(light) > 0.0f)) radius.fail("is too small: pi r^2 is 0 in single precision");
+}
+
 // The types a scene file names, each with its reader of the type's own keys ("color"
 // and the brightness are read for all). The names come from the types' traits.
 struct LightReader {
@@ -95,7 +107,7 @@ struct LightReader {
 constexpr LightReader kLightReaders[] = {
     {LightType::Point, readPointLight}, {LightType::Directional, readDirectionalLight},
     {LightType::Quad, readQuadLight},   {LightType::Sphere, readSphereLight},
-    {LightType::Spot, readSpotLight},
+    {LightType::Spot, readSpotLight},   {LightType::Disk, readDiskLight},
 };
 
 std::vector<std::string> readerNames() {
