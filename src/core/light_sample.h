@@ -2,7 +2,7 @@
 // emitted photons, total power, delta-ness; each dispatched to the light's type
 // (core/light_types.h, the code in core/lights/). Units: a
 // point light's colour x intensity is its radiant intensity (W/sr), a directional
-// light's its irradiance (W/m^2), a quad, sphere, mesh or environment light's its radiance
+// light's its irradiance (W/m^2), an area or environment light's its radiance
 // (W/(sr m^2)).
 #pragma once
 #include "core/scene.h"
@@ -47,11 +47,11 @@ struct LightSampler {
   bool outside = false;
 };
 LightSampler prepareLight(const Light& light, const Vec3& p);
-// A delta light's incidence (u1, u2 unused), or one sample of an area light: a
-// quad uniformly over its area (pdf d^2 / (A cos_l)), a sphere uniformly over the
-// cone it subtends (pdf 1 / (2 pi (1 - cos_max))), a mesh uniformly by area over
-// all its triangles (core/lights/emissive_mesh.h); invalid where the quad (the sampled
-// triangle) faces away or the point is inside the sphere.
+// A delta light's incidence (u1, u2 unused), or one sample of an area light, as its
+// type's header says: e.g. a quad or disk uniformly over its area (pdf d^2 / (A cos_l)),
+// a sphere uniformly over the cone it subtends (pdf 1 / (2 pi (1 - cos_max))), a mesh
+// uniformly by area over all its triangles (core/lights/emissive_mesh.h); invalid where
+// the emitter faces away or the point is inside the sphere.
 LightIncidence sampleLight(const LightSampler& sampler, float u1, float u2);
 // For the planar area lights' samples (core/lights/): the incidence from point y of a
 // one-sided emitter uniform by area (the sampler's normal, area and band set by prepare):
@@ -62,9 +62,10 @@ inline LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, f
 }
 // The unoccluded irradiance E = integral of L cos(theta) over the light, at the
 // sampler's point with unit shading normal n and geometric normal ng, in closed
-// form: a quad (each triangle of a small mesh light) by Lambert's polygon formula
-// (clipped to the hemispheres of n and ng), a sphere wholly above both horizons as pi L sin^2(alpha) cos(beta). False
-// where there is none (a delta light, a sphere cut by a horizon): sample instead.
+// form where its type has one (its header says): e.g. a quad (each triangle of a small
+// mesh light) by Lambert's polygon formula (clipped to the hemispheres of n and ng), a
+// sphere or disk wholly above both horizons. False where there is none (a delta light,
+// a sphere or disk cut by a horizon): sample instead.
 bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, const Vec3& ng, Color& E);
 
 // Surface area of an area light (0 for a delta light).
@@ -116,7 +117,8 @@ float spotSolidAngle(const Light& light);
 // Where and which way one emitted photon starts, from two (point) or four
 // (directional, area) uniform numbers; every photon of a light carries power /
 // count. An area light's photons start uniformly over its surface, cosine-weighted
-// about its normal (a quad's or a mesh triangle's emitting side; a sphere's outward normal).
+// about its normal (a planar light's or a mesh triangle's emitting side; a sphere's
+// outward normal).
 struct PhotonRay {
   Vec3 origin{0.0f};
   Vec3 dir{0.0f, 0.0f, -1.0f};

@@ -32,13 +32,14 @@ struct MeshEmission;    // core/emission_map.h
 
 struct Light {
   LightType type{};  // the first of core/light_types.h's list: a point light
-  Vec3 position{0.0f};              // point light; quad corner; sphere centre
-  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional, spot: the way the light travels (unit)
+  // Its shape; each type's header (core/lights/) says which fields it reads.
+  Vec3 position{0.0f};              // point, spot; quad corner; sphere, disk centre
+  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional, spot: the way the light travels; disk: its normal (unit)
   Vec3 edge1{0.0f}, edge2{0.0f};    // quad: it emits on the side of edge1 x edge2
-  float radius = 0.0f;              // sphere
+  float radius = 0.0f;              // sphere, disk
   Color color{1.0f};
-  // Point: radiant intensity (W/sr); directional: irradiance (W/m^2); quad and
-  // sphere: emitted radiance (W/(sr m^2)), uniform over the surface; environment: its
+  // Point, spot: radiant intensity (W/sr); directional: irradiance (W/m^2); an area
+  // light: emitted radiance (W/(sr m^2)), uniform over the surface; environment: its
   // radiance, times the map's texel when there is one.
   float intensity = 1.0f;
   // Mesh: the emitting triangles in world space, 3 corners each, emitting on the side
@@ -102,7 +103,7 @@ struct Material {
   // An area light's own surface: the radiance camera and specular rays see on its
   // emitting side (the light's sampling accounts for it everywhere else).
   Color emission{0.0f};
-  bool twoSidedEmission = false;  // a sphere emits all round, a quad on one side
+  bool twoSidedEmission = false;  // a sphere emits all round, a quad or disk on one side
   int light = -1;                 // the area light this surface belongs to, -1 = none
   int emissionTexture = -1;       // times emission (colour, sRGB-decoded), -1 = none
   // glTF's model adds emission to the surface's BSDF; a scene file's emitting material
