@@ -2,7 +2,7 @@
 // file that a scene's "environment" names, loaded through parseScene; then the map
 // invariants the samplers rely on. The scene fuzzer only names files, so it never
 // mutates the headers OpenImageIO and the map reader judge.
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
 #include "fuzz_scratch.h"
@@ -26,7 +26,7 @@ constexpr uint64_t kFuzzBudgetBytes = 64ull << 20;
   std::abort();
 }
 
-// core/environment.h: width x height texels, finite and >= 0, CDFs of the documented
+// core/lights/environment_map.h: width x height texels, finite and >= 0, CDFs of the documented
 // sizes ending at 1.
 void checkMap(const penumbra::Scene& scene) {
   const penumbra::Light* sky = penumbra::environmentOf(scene);

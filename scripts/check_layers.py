@@ -57,6 +57,24 @@ for top in ("src", "tests", "bench", "fuzz"):
                 line = text[: m.start()].count("\n") + 1
                 problems.append(f"{f.relative_to(root)}:{line}: includes geometry/embree_impl.h (private to "
                                 "src/geometry)")
+
+
+def light_type_outside_seam(root):
+    """A light type is named (LightType::) only in the light seam (src/core/light*,
+    src/core/lights/) and in io/light_reader.cpp's reader table; the rest asks its traits."""
+    found = []
+    for f in sorted((root / "src").rglob("*")):
+        rel = f.relative_to(root).as_posix()
+        if f.suffix not in (".h", ".cpp") or rel.startswith("src/core/light") or rel == "src/io/light_reader.cpp":
+            continue
+        for n, text in enumerate(f.read_text().splitlines(), 1):
+            if "LightType::" in text:
+                found.append(f"{rel}:{n}: names LightType:: outside the light seam (ask lightTraits or a "
+                             "core/light_sample.h function)")
+    return found
+
+
+problems += light_type_outside_seam(root)
 for p in problems:
     print(p)
 print(f"layers: {len(parts)} parts checked, {len(problems)} problem(s)")

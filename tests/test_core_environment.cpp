@@ -3,7 +3,7 @@
 // the piecewise-constant pdf integrates exactly by the midpoint rule), the pdf's
 // integral over the sphere, the photon weights' mean, and importance sampling against
 // uniform sampling at equal samples (RMSE of the irradiance under one bright patch).
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "support/chi2.h"

@@ -1,7 +1,7 @@
 // The light seam (core/light_types.h): the type list dispatches each LightType to the
 // struct that names it, a photon's start draws only the numbers its light reads, and
 // the per-type answers add up to the light's power and the gate's rule.
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/light_sample.h"
 #include "core/rng.h"
 #include "core/sampling.h"

@@ -2,7 +2,7 @@
 // against pdfBsdf (the physical model's Lambert and normalised Phong lobes, with and
 // without a mirror lobe, whose delta samples are left out) and against the classic
 // model's documented photon bounce; sampleLight against the solid-angle pdf its
-// radiance divides by (quad: d^2 / (A cos_l); sphere: uniform over the cone).
+// radiance divides by (quad and disk: d^2 / (A cos_l); sphere: uniform over the cone).
 //
 // Each case draws kSamples directions with a fixed seed and bins them on a
 // (theta, phi) grid about an axis (the shading normal; the direction to the light);
@@ -167,11 +167,23 @@ Light sphere(const Vec3& centre, float radius) {
   return l;
 }
 
+// A disc of radius r about `centre` emitting along `normal`.
+Light disk(const Vec3& centre, const Vec3& normal, float radius) {
+  Light l = sphere(centre, radius);
+  l.type = LightType::Disk;
+  l.direction = glm::normalize(normal);
+  return l;
+}
+
 std::vector<LightCase> lightCases() {
   // A 2 x 1 quad at y = 2 emitting downwards (edge1 x edge2 points to -y).
   const Light q = quad(Vec3(-1.0f, 2.0f, -0.5f), Vec3(2.0f, 0.0f, 0.0f), Vec3(0.0f, 0.0f, 1.0f));
   const Light s = sphere(Vec3(0.3f, 1.0f, -0.2f), 0.5f);
+  const Light d = disk(Vec3(0.2f, 2.0f, -0.3f), Vec3(0.2f, -1.0f, 0.1f), 0.6f);
   return {
+      {"disk_below", d, Vec3(0.0f, 0.0f, 0.1f)},
+      {"disk_close", d, Vec3(0.5f, 1.4f, -0.1f)},
+      {"disk_grazing", d, Vec3(4.0f, 2.5f, 0.3f)},
       {"quad_below", q, Vec3(0.1f, 0.0f, 0.2f)},
       {"quad_close", q, Vec3(0.4f, 1.6f, 0.1f)},   // solid-angle pdf varies ~10x over it
       {"quad_grazing", q, Vec3(4.0f, 1.5f, 0.3f)},  // seen almost edge on
@@ -251,6 +263,16 @@ double lightPdf(const Light& l, const Vec3& pf, const Vec3& wf, double slack = 0
     const double cosLight = -denom / area;
     return t * t / (area * cosLight);
   }
+  if (l.type == LightType::Disk) {
+    const glm::dvec3 c(l.position), n(l.direction);
+    const double denom = glm::dot(n, w);
+    if (denom >= 0.0) return 0.0;  // parallel, or its back
+    const double t = glm::dot(n, c - p) / denom;
+    if (t <= 0.0) return 0.0;
+    const glm::dvec3 q = p + t * w - c;
+    if (glm::length(q) > l.radius * (1.0 + slack)) return 0.0;
+    return t * t / (kPiD * double(l.radius) * l.radius * -denom);
+  }
   const glm::dvec3 toCentre = glm::dvec3(l.position) - p;
   const double d2 = glm::dot(toCentre, toCentre), r2 = double(l.radius) * l.radius;
   const double cosMax = std::sqrt(1.0 - r2 / d2);
@@ -265,6 +287,17 @@ double lightConeAngle(const Light& l, const Vec3& p, const Vec3& axis) {
     return std::asin(l.radius / d);
   }
   double widest = 0.0;
+  if (l.type == LightType::Disk) {  // over its rim, finely
+    Vec3 t, b;
+    orthonormalBasis(l.direction, t, b);
+    for (int k = 0; k < 3600; ++k) {
+      const double phi = 2.0 * kPiD * k / 3600;
+      const Vec3 rim = l.position + l.radius * float(std::cos(phi)) * t + l.radius * float(std::sin(phi)) * b;
+      const glm::dvec3 d = glm::normalize(glm::dvec3(rim) - glm::dvec3(p));
+      widest = std::max(widest, std::acos(std::clamp(glm::dot(d, glm::dvec3(axis)), -1.0, 1.0)));
+    }
+    return widest;
+  }
   for (const Vec3& corner : {l.position, l.position + l.edge1, l.position + l.edge2,
                              l.position + l.edge1 + l.edge2}) {
     const glm::dvec3 d = glm::normalize(glm::dvec3(corner) - glm::dvec3(p));
@@ -279,8 +312,8 @@ TEST(Chi2Sampling, SampleLightFollowsTheSolidAnglePdfOfItsRadiance) {
     const Light& l = c.light;
     const Vec3 centre = l.type == LightType::Quad ? l.position + 0.5f * (l.edge1 + l.edge2) : l.position;
     const Vec3 axis = glm::normalize(centre - c.p);
-    // The sphere's cone edge on a cell boundary; the quad inside the grid with a margin.
-    const double range = lightConeAngle(l, c.p, axis) * (l.type == LightType::Quad ? 1.05 : 1.0);
+    // The sphere's cone edge on a cell boundary; a quad or disk inside the grid with a margin.
+    const double range = lightConeAngle(l, c.p, axis) * (l.type == LightType::Sphere ? 1.0 : 1.05);
     const Grid grid(axis, range);
     const LightSampler sampler = prepareLight(l, c.p);
     std::vector<double> binned(grid.cells(), 0.0);

@@ -6,7 +6,7 @@
 #include "core/emission_map.h"
 #include "support/emit_fixtures.h"
 #include "core/math.h"
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "core/rng.h"
 #include "emit/caustic_aim.h"
 #include "emit/emit_physical.h"

@@ -3,7 +3,7 @@
 // one note; LoadOptions{false} (--no-defaults) keeps the file as it is, and a camera
 // or light the user gave is never replaced. Models are written with tinygltf's writer.
 #include "core/camera_frame.h"
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "io/scene_defaults.h"
 #include "io/scene_loader.h"
 #include "support/gltf_build.h"

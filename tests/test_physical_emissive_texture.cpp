@@ -3,7 +3,7 @@
 // power, a mostly-dark texture that glows without lighting, and an emitter that also
 // reflects (glTF's model).
 #include "core/emission_map.h"
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "io/image_io.h"
 #include "io/scene_sections.h"
 #include "support/physical_fixtures.h"

@@ -2,7 +2,7 @@
 // sphere alone in a constant sky (physical rho L, classic k_d pi L at every point),
 // rays that leave the scene seeing the sky, and a plane under a lat-long map whose
 // MIS estimate (light and BSDF samples) converges to rho / pi x the map's irradiance.
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "support/physical_fixtures.h"
 
 namespace penumbra {

@@ -4,7 +4,7 @@
 // seen by camera rays on the emitting side only.
 #include "support/form_factor.h"
 #include "core/light_sample.h"
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "io/scene_sections.h"
 #include "support/physical_fixtures.h"
 

@@ -5,7 +5,7 @@
 // sampled rays under a uniform sky (its directional albedo), the white furnace in
 // a constant environment, and the JSON keys.
 #include "core/bsdf.h"
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
 #include "support/bsdf_sampling.h"

@@ -1,7 +1,7 @@
 // The "environment" key from JSON to pixels: a map read through OpenImageIO becomes the
 // last light, every bad value is refused in one line naming the file and JSON path
 // (exit 2 from the CLI), and the shipped example renders in both models.
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "io/scene_loader.h"
 #include "support/cli_run.h"
 #include "support/scratch_dir.h"

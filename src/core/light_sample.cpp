@@ -21,6 +21,17 @@ Vec3 LightDefaults::photonOrigin(const Light&, const PhotonRay& r, const SceneSp
   return offsetRayOrigin(r.origin, r.normal, r.error, r.dir);
 }
 
+EmitterShape LightDefaults::emitter(const Light&) { return {}; }
+size_t LightDefaults::sampleTable(const Light&) { return 0; }
+
+EmitterShape emitterOf(const Light& light) {
+  return dispatchLight(light.type, [&](auto t) { return decltype(t)::emitter(light); });
+}
+
+size_t lightSampleTable(const Light& light) {
+  return dispatchLight(light.type, [&](auto t) { return decltype(t)::sampleTable(light); });
+}
+
 LightSampler prepareLight(const Light& light, const Vec3& p) {
   LightSampler s;
   s.light = &light;

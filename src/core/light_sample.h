@@ -2,10 +2,11 @@
 // emitted photons, total power, delta-ness; each dispatched to the light's type
 // (core/light_types.h, the code in core/lights/). Units: a
 // point light's colour x intensity is its radiant intensity (W/sr), a directional
-// light's its irradiance (W/m^2), a quad, sphere, mesh or environment light's its radiance
+// light's its irradiance (W/m^2), an area or environment light's its radiance
 // (W/(sr m^2)).
 #pragma once
 #include "core/scene.h"
+#include <optional>
 
 namespace penumbra {
 
@@ -46,20 +47,25 @@ struct LightSampler {
   bool outside = false;
 };
 LightSampler prepareLight(const Light& light, const Vec3& p);
-// A delta light's incidence (u1, u2 unused), or one sample of an area light: a
-// quad uniformly over its area (pdf d^2 / (A cos_l)), a sphere uniformly over the
-// cone it subtends (pdf 1 / (2 pi (1 - cos_max))), a mesh uniformly by area over
-// all its triangles (core/mesh_light.h); invalid where the quad (the sampled
-// triangle) faces away or the point is inside the sphere.
+// A delta light's incidence (u1, u2 unused), or one sample of an area light, as its
+// type's header says: e.g. a quad or disk uniformly over its area (pdf d^2 / (A cos_l)),
+// a sphere uniformly over the cone it subtends (pdf 1 / (2 pi (1 - cos_max))), a mesh
+// uniformly by area over all its triangles (core/lights/emissive_mesh.h); invalid where
+// the emitter faces away or the point is inside the sphere.
 LightIncidence sampleLight(const LightSampler& sampler, float u1, float u2);
+// For the planar area lights' samples (core/lights/): the incidence from point y of a
+// one-sided emitter uniform by area (the sampler's normal, area and band set by prepare):
+// L cos_l A / d^2, invalid behind it, stopping short of the rounding band about its plane.
+LightIncidence planarIncidence(const LightSampler& sampler, const Vec3& y);
 inline LightIncidence sampleLight(const Light& light, const Vec3& p, float u1, float u2) {
   return sampleLight(prepareLight(light, p), u1, u2);
 }
 // The unoccluded irradiance E = integral of L cos(theta) over the light, at the
 // sampler's point with unit shading normal n and geometric normal ng, in closed
-// form: a quad (each triangle of a small mesh light) by Lambert's polygon formula
-// (clipped to the hemispheres of n and ng), a sphere wholly above both horizons as pi L sin^2(alpha) cos(beta). False
-// where there is none (a delta light, a sphere cut by a horizon): sample instead.
+// form where its type has one (its header says): e.g. a quad (each triangle of a small
+// mesh light) by Lambert's polygon formula (clipped to the hemispheres of n and ng), a
+// sphere or disk wholly above both horizons. False where there is none (a delta light,
+// a sphere or disk cut by a horizon): sample instead.
 bool unoccludedIrradiance(const LightSampler& sampler, const Vec3& n, const Vec3& ng, Color& E);
 
 // Surface area of an area light (0 for a delta light).
@@ -79,11 +85,31 @@ inline bool answersGate(const Light& light) {
   return lightTraits(light).emitsShadowPhotons && maxComponent(light.radiance()) > 0.0f;
 }
 
+// The surface an area light adds to the scene as an emitting object (io's addEmitters
+// gives it a black material that glows): a mesh or a sphere, neither for the rest.
+struct EmitterShape {
+  std::optional<TriangleMesh> mesh;
+  std::optional<Sphere> sphere;
+  bool twoSided = false;  // it glows on both sides (a sphere, seen from inside too)
+};
+EmitterShape emitterOf(const Light& light);
+
+// Entries one sample of the light searches (a mesh light's cumulative areas), 0 for a
+// light that draws a sample without a search: the resource estimate's cost per sample.
+size_t lightSampleTable(const Light& light);
+
+// The lights a model file can hold (glTF's punctual lights), at colour 1 and intensity 1:
+// a point; a spot shining along the unit `direction` with cone angles in radians
+// (setSpotCone); a directional light travelling along the unit `direction`.
+Light makePointLight(const Vec3& position);
+Light makeSpotLight(const Vec3& position, const Vec3& direction, float innerAngle, float outerAngle);
+Light makeDirectionalLight(const Vec3& direction);
+
 // A spot's share of its intensity towards `dir` (the way light leaves it): glTF's
 // falloff, the square of a linear ramp between the outer and inner cone; 1 for
 // every other light.
 float spotFalloff(const Light& light, const Vec3& dir);
-// Makes a point light a spot with glTF's cone angles (radians, 0 <= inner < outer <= pi/2).
+// Makes a light a spot (its type and cone) with glTF's cone angles (radians, 0 <= inner < outer <= pi/2).
 void setSpotCone(Light& light, float innerAngle, float outerAngle);
 // The falloff integrated over directions: a spot's power is this times its intensity.
 float spotSolidAngle(const Light& light);
@@ -91,14 +117,15 @@ float spotSolidAngle(const Light& light);
 // Where and which way one emitted photon starts, from two (point) or four
 // (directional, area) uniform numbers; every photon of a light carries power /
 // count. An area light's photons start uniformly over its surface, cosine-weighted
-// about its normal (a quad's or a mesh triangle's emitting side; a sphere's outward normal).
+// about its normal (a planar light's or a mesh triangle's emitting side; a sphere's
+// outward normal).
 struct PhotonRay {
   Vec3 origin{0.0f};
   Vec3 dir{0.0f, 0.0f, -1.0f};
   Vec3 normal{0.0f};  // an area light's surface normal at the origin (0 for delta lights)
   float error = 0.0f;  // an area light's origin: its rounding error along normal
   // Per channel, on the light's power / count: 1 but for an environment map's photons,
-  // whose power follows the map's colour at the drawn direction (core/environment.h).
+  // whose power follows the map's colour at the drawn direction (core/lights/environment_map.h).
   Color weight{1.0f};
   uint8_t stratum = 0;  // the part of the light it left from (core/light_strata.h)
 };

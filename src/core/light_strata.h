@@ -1,5 +1,5 @@
-// The strata of an area light that the shadow gate votes on separately: a quad's
-// 4x4 cells of its (u, v) parameters (the grid render.light_samples stratifies),
+// The strata of an area light that the shadow gate votes on separately: a quad's or
+// disk's 4x4 cells of its (u, v) parameters (the grid render.light_samples stratifies),
 // a sphere's 4x4 equal-area cells of its surface; every other light is one stratum.
 #pragma once
 #include "core/scene.h"

@@ -11,13 +11,13 @@
 
 namespace penumbra {
 
-// Point and directional lights are deltas; quad, sphere and mesh lights are area
+// Point, spot and directional lights are deltas; quad, disk, sphere and mesh lights are area
 // emitters, sampled light_samples times per shading point and visible to rays. A mesh
 // light is the triangles of every mesh whose material has an emission. An environment
 // (at most one, always the last light) lights from every direction at infinity and is
-// what rays leaving the scene see (core/environment.h).
+// what rays leaving the scene see (core/lights/environment_map.h).
 // A new type: an enumerator here, its header and its AllLights entry below.
-enum class LightType : uint8_t { Point, Directional, Quad, Sphere, Mesh, Environment };
+enum class LightType : uint8_t { Point, Directional, Quad, Sphere, Mesh, Environment, Spot, Disk };
 
 // Where a light's emission comes from, as pbrt names it: a point or a direction
 // (deltas, one sample per shading point), a surface, or every direction at infinity.
@@ -55,13 +55,26 @@ struct LightTraits {
   // directional light does not, though it emits physical photons when another light
   // keeps them on (as the renderer has always done).
   bool opensPhysicalMaps;
+  // The resource estimate's cost model: the gate's verdicts spare most of its shadow
+  // rays (not a mesh light's: a large emitter near what it lights leaves most points mixed).
+  bool gateAvoidsRays;
+  // Its "type" in the scene file's "lights" (null: it comes from elsewhere, a mesh's
+  // emission or the environment).
+  const char* name;
+  // Its total power as the float checks' messages spell it.
+  const char* powerFormula;
 };
+
+// The power formula of a Lambertian area emitter (pi A L), as the messages spell it.
+inline constexpr const char* kLambertianPower = "pi x area x color x radiance";
 
 struct Light;
 struct LightSampler;
 struct LightIncidence;
 struct PhotonRay;
 struct SceneSphere;
+struct EmitterShape;
+struct TriangleMesh;
 
 // The answers a type leaves out (defined in light_sample.cpp). Each type is a struct
 // of static functions deriving from this; the dispatchers in light_sample.cpp call
@@ -83,6 +96,11 @@ struct LightDefaults {
   // An area (or infinite) light's photon leaves from its drawn point lifted off the
   // surface along its normal, so its first ray misses the emitter.
   static Vec3 photonOrigin(const Light& light, const PhotonRay& r, const SceneSphere& bounds);
+  // The surface that joins the scene as an emitting object: none (a delta light; a mesh
+  // light's triangles are in the scene already; the environment is what rays leaving see).
+  static EmitterShape emitter(const Light& light);
+  // Entries one sample searches (a binary search's table); 0: it draws without one.
+  static size_t sampleTable(const Light& light);
 };
 
 }  // namespace penumbra
@@ -94,13 +112,17 @@ struct LightDefaults {
 #include "core/lights/sphere_light.h"
 #include "core/lights/mesh_light.h"
 #include "core/lights/environment_light.h"
+#include "core/lights/spot_light.h"
+#include "core/lights/disk_light.h"
 
 namespace penumbra {
 
 template <class... Ts>
 struct LightTypeList {};
 // In the enum's order: the i-th type handles LightType value i.
-using AllLights = LightTypeList<PointLight, DirectionalLight, QuadLight, SphereLight, MeshLight, EnvironmentLight>;
+using AllLights =
+    LightTypeList<PointLight, DirectionalLight, QuadLight, SphereLight, MeshLight, EnvironmentLight, SpotLight,
+                  DiskLight>;
 
 namespace light_list {
 template <class... Ts, size_t... I>

@@ -30,6 +30,18 @@ inline Vec3 cosineHemisphere(float u1, float u2) {
   return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))};
 }
 
+// Shirley and Chiu's concentric map of [0,1)^2 onto the unit disc. It preserves area,
+// so equal cells of (u1, u2) are equal parts of the disc (a planar light's strata), and
+// keeps neighbouring cells neighbours, as a grid of a square's samples expects.
+inline Vec2 concentricDisk(float u1, float u2) {
+  const float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+  if (a == 0.0f && b == 0.0f) return Vec2(0.0f);
+  const bool wide = std::fabs(a) > std::fabs(b);
+  const float r = wide ? a : b;
+  const float phi = wide ? 0.25f * kPi * (b / a) : 0.5f * kPi - 0.25f * kPi * (a / b);
+  return Vec2(r * std::cos(phi), r * std::sin(phi));
+}
+
 // Expresses a +z-frame direction in the frame whose z axis is unit vector n.
 inline Vec3 toWorld(const Vec3& local, const Vec3& n) {
   Vec3 t, b;

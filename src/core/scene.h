@@ -27,18 +27,19 @@ struct Camera {
   int spp = 1;  // samples per pixel and pass (one pass at spp 1: the pixel centre)
 };
 
-struct EnvironmentMap;  // core/environment.h
+struct EnvironmentMap;  // core/lights/environment_map.h
 struct MeshEmission;    // core/emission_map.h
 
 struct Light {
-  LightType type = LightType::Point;
-  Vec3 position{0.0f};              // point light; quad corner; sphere centre
-  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional, spot: the way the light travels (unit)
+  LightType type{};  // the first of core/light_types.h's list: a point light
+  // Its shape; each type's header (core/lights/) says which fields it reads.
+  Vec3 position{0.0f};              // point, spot; quad corner; sphere, disk centre
+  Vec3 direction{0.0f, -1.0f, 0.0f};  // directional, spot: the way the light travels; disk: its normal (unit)
   Vec3 edge1{0.0f}, edge2{0.0f};    // quad: it emits on the side of edge1 x edge2
-  float radius = 0.0f;              // sphere
+  float radius = 0.0f;              // sphere, disk
   Color color{1.0f};
-  // Point: radiant intensity (W/sr); directional: irradiance (W/m^2); quad and
-  // sphere: emitted radiance (W/(sr m^2)), uniform over the surface; environment: its
+  // Point, spot: radiant intensity (W/sr); directional: irradiance (W/m^2); an area
+  // light: emitted radiance (W/(sr m^2)), uniform over the surface; environment: its
   // radiance, times the map's texel when there is one.
   float intensity = 1.0f;
   // Mesh: the emitting triangles in world space, 3 corners each, emitting on the side
@@ -52,10 +53,10 @@ struct Light {
   // texture with the tables that draw triangles by luminance (null: uniform radiance).
   bool twoSided = false;
   std::shared_ptr<const MeshEmission> emission;
-  // A point light with a cone is a spot: full intensity within `spotCosInner` of
-  // `direction`, falling to 0 at `spotCosOuter` (glTF's cone angles, as cosines).
+  // Spot: full intensity within `spotCosInner` of `direction`, falling to 0 at
+  // `spotCosOuter` (glTF's cone angles, as cosines). setSpotCone sets them and the type.
   float spotCosInner = -1.0f, spotCosOuter = -1.0f;
-  bool isSpot() const { return type == LightType::Point && spotCosOuter > -1.0f; }
+  bool isSpot() const { return spotCosOuter > -1.0f; }
   // Environment: the lat-long map and its sampling tables, shared by the copies of a
   // scene a sweep or batch makes (null: a constant sky).
   std::shared_ptr<const EnvironmentMap> environment;
@@ -102,7 +103,7 @@ struct Material {
   // An area light's own surface: the radiance camera and specular rays see on its
   // emitting side (the light's sampling accounts for it everywhere else).
   Color emission{0.0f};
-  bool twoSidedEmission = false;  // a sphere emits all round, a quad on one side
+  bool twoSidedEmission = false;  // a sphere emits all round, a quad or disk on one side
   int light = -1;                 // the area light this surface belongs to, -1 = none
   int emissionTexture = -1;       // times emission (colour, sRGB-decoded), -1 = none
   // glTF's model adds emission to the surface's BSDF; a scene file's emitting material

@@ -1,6 +1,6 @@
 // The "environment" section: a constant sky or an HDR lat-long map (OpenEXR or Radiance
 // HDR, as OpenImageIO finds it), decoded and checked whole at load, appended as the last light.
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "io/input_file.h"
 #include "core/byte_size.h"
 #include "io/image_header.h"

@@ -49,8 +49,8 @@ SceneSphere geometryBounds(const Scene& scene) {
   return bounds;
 }
 
-// The sphere's surface points c + r n are rounded to the float grid at |c|: a radius
-// below a few dozen ulps of the centre collapses the sphere onto it.
+}  // namespace
+
 void checkRadius(const JsonNode& radius, float r, const Vec3& center) {
   const float m = largestAbs(center);
   const double least = kMinRadiusRatio * m;
@@ -60,6 +60,8 @@ void checkRadius(const JsonNode& radius, float r, const Vec3& center) {
                 ": its surface could not be told from its centre in single precision");
   }
 }
+
+namespace {
 
 // Where a light's brightness was given, so the message points at the key to change.
 JsonNode brightnessNode(const JsonNode& light) {
@@ -73,24 +75,15 @@ bool withinPower(const Color& c, float limit) {
   return isFinite(c) && maxComponent(c) <= limit;
 }
 
-std::string powerFormula(const Light& light) {
-  switch (light.type) {
-    case LightType::Point: return "4 pi x color x intensity";
-    case LightType::Directional: return "pi R^2 x color x intensity over the scene's bounding disc";
-    case LightType::Environment: return "pi R^2 x the integral of color x intensity (x map) over all directions";
-    default: return "pi x area x color x radiance";
-  }
-}
-
 // Lights past the JSON "lights" array come from a model file (glTF punctual lights)
 // or from emitting materials (mesh lights): name the material, or the light's index.
 [[noreturn]] void failOther(const JsonNode& root, const Scene& scene, size_t i, const std::string& problem) {
   const Light& light = scene.lights[i];
-  if (light.type == LightType::Environment && root.has("environment")) {
+  if (lightTraits(light).support == LightSupport::Infinite && root.has("environment")) {
     const JsonNode env = root.child("environment");
     (env.has("intensity") ? env.child("intensity") : env).fail(problem);
   }
-  if (light.type == LightType::Mesh && light.material >= 0) {
+  if (light.material >= 0) {  // a mesh light names its emitting material
     const std::string& name = scene.materials[light.material].name;
     if (root.has("materials") && root.child("materials").has(name.c_str())) {
       const JsonNode m = root.child("materials").child(name);
@@ -128,7 +121,7 @@ void checkLights(const JsonNode& root, const Scene& scene) {
     const Color power = lightPower(light, bounds);
     if (!withinPower(power, kMaxPower)) {
       const std::string shown = isFinite(power) ? number(maxComponent(power)) : "inf";
-      node.fail("light power " + powerFormula(light) + " = " + shown + " W exceeds 1e+30" +
+      node.fail("light power " + std::string(lightTraits(light).powerFormula) + " = " + shown + " W exceeds 1e+30" +
                 headroom);
     }
     total += power;
@@ -158,7 +151,8 @@ void checkTriangleEdges(const JsonNode& root, const Scene& scene) {
 
 void checkSpheres(const JsonNode& root, const Scene& scene) {
   // Scene::spheres holds the objects' spheres in "objects" order, then (from
-  // addEmitters) the sphere lights': walk both lists to name the JSON path.
+  // addEmitters) the emitting spheres of lights, whose material names the light: walk
+  // both lists to name the JSON path.
   size_t sphere = 0;
   if (root.has("objects")) {
     const JsonNode objects = root.child("objects");
@@ -169,9 +163,11 @@ void checkSpheres(const JsonNode& root, const Scene& scene) {
       checkRadius(object.child("radius"), sp.radius, sp.center);
     }
   }
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
+  for (; sphere < scene.spheres.size(); ++sphere) {
+    const int li = scene.materials[size_t(scene.spheres[sphere].material)].light;
+    if (li < 0) continue;
+    const size_t i = static_cast<size_t>(li);
     const Light& light = scene.lights[i];
-    if (light.type != LightType::Sphere) continue;
     const JsonNode radius = root.child("lights").element(i).child("radius");
     checkRadius(radius, light.radius, light.position);
     // Its area 4 pi r^2 divides power and weights photons: it must not underflow.

@@ -61,6 +61,11 @@ Vec3 readPosition(const JsonNode& node);
 // in the message ("transformed positions").
 void checkPositions(const JsonNode& node, const std::vector<Vec3>& points, const char* what);
 
+// Fails at `radius` when r is below kMinRadiusRatio x the largest coordinate of
+// `center`: the points c + r n of a sphere's (or a disc's) rim are rounded to the float
+// grid at |c|, and a few dozen ulps of it collapse the shape onto its centre.
+void checkRadius(const JsonNode& radius, float r, const Vec3& center);
+
 // The checks that need the whole scene, computed in float as the renderer does:
 // every sphere's radius against the scene's extent, each light's radiance and
 // power, the sum of all lights' power, and every triangle's edges. Runs after

@@ -144,33 +144,35 @@ void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std
   if (index < 0 || static_cast<size_t>(index) >= m.lights.size()) gltfFail(path, ref, "light " + std::to_string(index) + " does not exist");
   const std::string where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
   const tinygltf::Light& g = m.lights[index];
-  Light light;
-  light.color = g.color.size() >= 3 ? Color(float(g.color[0]), float(g.color[1]), float(g.color[2])) : Color(1.0f);
-  light.intensity = static_cast<float>(g.intensity);
-  if (!(light.intensity >= 0.0f) || !std::isfinite(light.intensity) || !isFinite(light.color) ||
-      std::min({light.color.r, light.color.g, light.color.b}) < 0.0f) {
+  const Color color =
+      g.color.size() >= 3 ? Color(float(g.color[0]), float(g.color[1]), float(g.color[2])) : Color(1.0f);
+  const float intensity = static_cast<float>(g.intensity);
+  if (!(intensity >= 0.0f) || !std::isfinite(intensity) || !isFinite(color) ||
+      std::min({color.r, color.g, color.b}) < 0.0f) {
     gltfFail(path, where, "has a negative or non-finite colour or intensity");
   }
+  // Node scales compose: a deep enough tree makes the axis overflow, not vanish.
+  auto axis = [&] {
+    const Vec3 d(glm::normalize(glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0)));
+    if (!isFinite(d)) gltfFail(path, where, "its node's transform leaves it no finite direction");
+    return d;
+  };
+  const Vec3 position(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+  Light light;
   if (g.type == "directional") {
-    light.type = LightType::Directional;
-    const glm::dvec3 d = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
-    // Node scales compose: a deep enough tree makes the axis overflow, not vanish.
-    light.direction = Vec3(glm::normalize(d));
-    if (!isFinite(light.direction)) gltfFail(path, where, "its node's transform leaves it no finite direction");
-  } else {
-    light.type = LightType::Point;
-    light.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
-    if (g.type == "spot") {
-      const glm::dvec3 d = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
-      light.direction = Vec3(glm::normalize(d));
-      if (!isFinite(light.direction)) gltfFail(path, where, "its node's transform leaves it no finite direction");
-      const double outer = g.spot.outerConeAngle, inner = g.spot.innerConeAngle;
-      if (!(inner >= 0.0 && inner < outer && outer <= 0.5 * M_PI)) {
-        gltfFail(path, where, "spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
-      }
-      setSpotCone(light, float(inner), float(outer));
+    light = makeDirectionalLight(axis());
+  } else if (g.type == "spot") {
+    const Vec3 direction = axis();
+    const double outer = g.spot.outerConeAngle, inner = g.spot.innerConeAngle;
+    if (!(inner >= 0.0 && inner < outer && outer <= 0.5 * M_PI)) {
+      gltfFail(path, where, "spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
     }
+    light = makeSpotLight(position, direction, float(inner), float(outer));
+  } else {
+    light = makePointLight(position);
   }
+  light.color = color;
+  light.intensity = intensity;
   out.lights.push_back(light);
 }
 

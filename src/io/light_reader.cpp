@@ -1,12 +1,11 @@
-// The "lights" section: point and directional lights, and the quad and sphere
-// area lights, whose surfaces also join the scene as emitting objects.
+// The "lights" section: one reader per type the file names (its "type" is the type's
+// traits name), and the area lights' surfaces joining the scene as emitting objects.
 #include "core/light_sample.h"
 #include "core/emission_map.h"
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "io/emission_map_reader.h"
 #include "io/float_checks.h"
 #include "io/scene_sections.h"
-#include "io/shapes.h"
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -30,6 +29,25 @@ void readEmission(const JsonNode& item, Light& light) {
   }
 }
 
+// A unit vector from a non-zero one, normalised in double (a float's squared length
+// overflows beyond ~1e19).
+Vec3 readDirection(const JsonNode& dir) {
+  const glm::dvec3 d(dir.asVec3());
+  const double length = glm::length(d);
+  if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
+  return Vec3(d / length);
+}
+
+void readPointLight(const JsonNode& item, Light& light) {
+  item.allowKeys({"type", "position", "color", "intensity"});
+  light.position = readPosition(item.required("position", " for a point light"));
+}
+
+void readDirectionalLight(const JsonNode& item, Light& light) {
+  item.allowKeys({"type", "direction", "color", "intensity"});
+  light.direction = readDirection(item.required("direction", " for a directional light"));
+}
+
 void readQuadLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "corner", "edge1", "edge2", "color", "radiance", "power"});
   light.position = readPosition(item.required("corner", " for a quad light"));
@@ -47,11 +65,7 @@ void readQuadLight(const JsonNode& item, Light& light) {
 void readSpotLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "position", "direction", "inner_angle", "outer_angle", "color", "intensity"});
   light.position = readPosition(item.required("position", " for a spot light"));
-  JsonNode dir = item.required("direction", " for a spot light (the way it shines)");
-  const glm::dvec3 d(dir.asVec3());
-  const double length = glm::length(d);
-  if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
-  light.direction = Vec3(d / length);
+  light.direction = readDirection(item.required("direction", " for a spot light (the way it shines)"));
   const float outer = item.floatOr("outer_angle", 45.0f, Range::between(0.0, 90.0));
   if (!(outer > 0.0f)) item.child("outer_angle").fail("must be above 0 degrees");
   const float inner = item.floatOr("inner_angle", 0.0f, Range::between(0.0, 90.0));
@@ -59,13 +73,56 @@ void readSpotLight(const JsonNode& item, Light& light) {
   setSpotCone(light, inner * kPi / 180.0f, outer * kPi / 180.0f);
 }
 
+// A round light's radius: above 0, with its centre +- radius inside the coordinate limits.
+float readRadius(const JsonNode& radius, const Vec3& center) {
+  const float r = radius.asFloat(Range::above(0.0));
+  checkPositions(radius, {center - Vec3(r), center + Vec3(r)}, "center +- radius");
+  return r;
+}
+
 void readSphereLight(const JsonNode& item, Light& light) {
   item.allowKeys({"type", "center", "radius", "color", "radiance", "power"});
   light.position = readPosition(item.required("center", " for a sphere light"));
-  JsonNode radius = item.required("radius", " for a sphere light");
-  light.radius = radius.asFloat(Range::above(0.0));
-  checkPositions(radius, {light.position - Vec3(light.radius), light.position + Vec3(light.radius)},
-                 "center +- radius");
+  light.radius = readRadius(item.required("radius", " for a sphere light"), light.position);
+}
+
+// A disk: its centre, the normal of its emitting side, its radius.
+void readDiskLight(const JsonNode& item, Light& light) {
+  item.allowKeys({"type", "center", "normal", "radius", "color", "radiance", "power"});
+  light.position = readPosition(item.required("center", " for a disk light"));
+  light.direction = readDirection(item.required("normal", " for a disk light (the side it emits on)"));
+  const JsonNode radius = item.required("radius", " for a disk light");
+  light.radius = readRadius(radius, light.position);
+  checkRadius(radius, light.radius, light.position);
+  // Its area pi r^2 divides power and weights photons: it must not underflow.
+  if (!(lightArea(light) > 0.0f)) radius.fail("is too small: pi r^2 is 0 in single precision");
+}
+
+// The types a scene file names, each with its reader of the type's own keys ("color"
+// and the brightness are read for all). The names come from the types' traits.
+struct LightReader {
+  LightType type;
+  void (*read)(const JsonNode& item, Light& light);
+};
+constexpr LightReader kLightReaders[] = {
+    {LightType::Point, readPointLight}, {LightType::Directional, readDirectionalLight},
+    {LightType::Quad, readQuadLight},   {LightType::Sphere, readSphereLight},
+    {LightType::Spot, readSpotLight},   {LightType::Disk, readDiskLight},
+};
+
+std::vector<std::string> readerNames() {
+  std::vector<std::string> names;
+  for (const LightReader& r : kLightReaders) names.push_back(lightTraits(r.type).name);
+  return names;
+}
+
+// ' ("point", "directional", ... or "spot")': what "type" may be.
+std::string namesInWords(const std::vector<std::string>& names) {
+  std::string list;
+  for (size_t i = 0; i < names.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + ("\"" + names[i] + "\"");
+  }
+  return " (" + list + ")";
 }
 
 // The mean of a map's texels (the light of a textured mesh that has no uvs).
@@ -91,30 +148,14 @@ void readLights(const JsonNode& node, std::vector<Light>& out) {
   if (count > kMaxLights) {
     node.fail("at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(count));
   }
+  static const std::vector<std::string> names = readerNames();
   for (size_t i = 0; i < count; ++i) {
     JsonNode item = node.element(i);
     item.requireObject();
     Light light;
-    size_t type = item.required("type", " (\"point\", \"directional\", \"quad\", \"sphere\" or \"spot\")")
-                      .asEnum({"point", "directional", "quad", "sphere", "spot"});
-    light.type = type == 4 ? LightType::Point : static_cast<LightType>(type);
-    if (type == 4) {
-      readSpotLight(item, light);
-    } else if (light.type == LightType::Point) {
-      item.allowKeys({"type", "position", "color", "intensity"});
-      light.position = readPosition(item.required("position", " for a point light"));
-    } else if (light.type == LightType::Directional) {
-      item.allowKeys({"type", "direction", "color", "intensity"});
-      JsonNode dir = item.required("direction", " for a directional light");
-      glm::dvec3 d(dir.asVec3());
-      double length = glm::length(d);
-      if (!(length > 0.0) || !std::isfinite(length)) dir.fail("must be a non-zero vector");
-      light.direction = Vec3(d / length);
-    } else if (light.type == LightType::Quad) {
-      readQuadLight(item, light);
-    } else {
-      readSphereLight(item, light);
-    }
+    const LightReader& reader = kLightReaders[item.required("type", namesInWords(names)).asEnum(names)];
+    light.type = reader.type;
+    reader.read(item, light);
     light.color = item.colorOr("color", light.color);
     if (isDeltaLight(light)) {
       light.intensity = item.floatOr("intensity", light.intensity, Range::atLeast(0.0));
@@ -128,23 +169,25 @@ void readLights(const JsonNode& node, std::vector<Light>& out) {
 void addEmitters(Scene& scene) {
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& light = scene.lights[i];
-    if (isDeltaLight(light)) continue;
+    EmitterShape shape = emitterOf(light);
+    if (!shape.mesh && !shape.sphere) continue;
     // A black surface that glows: photons landing on it are absorbed, and camera
     // and specular rays see its radiance on the emitting side.
     Material m;
     m.name = "light " + std::to_string(i);
     m.ambient = m.diffuse = m.specular = Color(0.0f);
     m.emission = light.radiance();
-    m.twoSidedEmission = light.type == LightType::Sphere;
+    m.twoSidedEmission = shape.twoSided;
     m.light = static_cast<int>(i);
     const int material = static_cast<int>(scene.materials.size());
     scene.materials.push_back(m);
-    if (light.type == LightType::Quad) {
-      TriangleMesh quad = makeQuad(light.position, light.edge1, light.edge2, material);
-      quad.name = m.name;
-      scene.meshes.push_back(std::move(quad));
+    if (shape.mesh) {
+      shape.mesh->material = material;
+      shape.mesh->name = m.name;
+      scene.meshes.push_back(std::move(*shape.mesh));
     } else {
-      scene.spheres.push_back({light.position, light.radius, material});
+      shape.sphere->material = material;
+      scene.spheres.push_back(*shape.sphere);
     }
   }
 }

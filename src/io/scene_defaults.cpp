@@ -2,7 +2,7 @@
 // bounding box's corners fit the image, in double) and the neutral sky.
 #include "io/scene_defaults.h"
 
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/error.h"
 #include "io/camera_checks.h"
 

@@ -26,12 +26,12 @@ void addEmitters(Scene& scene);
 
 // Every material with an emission (JSON "emission", MTL Ke, glTF emissive) that no
 // light owns yet becomes one mesh light over the triangles of all meshes using it
-// (core/mesh_light.h); its surface then only glows, like a quad light's. After
+// (core/lights/emissive_mesh.h); its surface then only glows, like a quad light's. After
 // addEmitters. Throws InputError past 65535 lights in all.
 void addMeshEmitters(Scene& scene);
 
 // "environment": a constant sky or an HDR lat-long map, appended as the last light
-// (core/environment.h); after addMeshEmitters, so every other light keeps its index.
+// (core/lights/environment_map.h); after addMeshEmitters, so every other light keeps its index.
 void readEnvironment(const JsonNode& environment, Scene& scene);
 
 // A path from the scene file made absolute against the scene's folder.

@@ -3,19 +3,6 @@
 
 namespace penumbra {
 
-TriangleMesh makeQuad(const Vec3& corner, const Vec3& edge1, const Vec3& edge2, int material) {
-  TriangleMesh mesh;
-  mesh.name = "quad";
-  mesh.material = material;
-  mesh.positions = {corner, corner + edge1, corner + edge1 + edge2, corner + edge2};
-  // Triangle (0,1,2) has edges e1 and e1+e2, whose cross product is cross(e1, e2).
-  Vec3 normal = unitCross(edge1, edge2);
-  mesh.normals.assign(4, normal);
-  mesh.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
-  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-  return mesh;
-}
-
 TriangleMesh makeBox(const Vec3& min, const Vec3& max, int material) {
   TriangleMesh mesh;
   mesh.name = "box";

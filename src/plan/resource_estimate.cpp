@@ -5,7 +5,7 @@
 #include "plan/cost_model.h"
 #include "plan/gate_decision.h"
 #include "geometry/trace_scene.h"
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/light_sample.h"
 #include "core/light_strata.h"
 #include "gather/lookup_cache/lookup_cache.h"
@@ -75,10 +75,11 @@ std::string gib(double bytes) { return formatBytes(bytes); }
 
 // Drawing one sample of a light, before any shadow ray: a mesh light picks its
 // triangle by binary search over the cumulative areas (a cache miss a level once
-// the table outgrows the cache), then a point on it.
+// the table outgrows the cache), then a point on it; the rest draw without a search.
 double lightSampleNs(const Light& light) {
-  if (light.type != LightType::Mesh) return 0.0;
-  return kMeshLightSampleNs + kMeshLightLevelNs * std::log2(1.0 + light.areaCdf.size());
+  const size_t table = lightSampleTable(light);
+  if (table == 0) return 0.0;
+  return kMeshLightSampleNs + kMeshLightLevelNs * std::log2(1.0 + table);
 }
 
 // From the file's header only (no pixels are read); a builtin texture from its name.
@@ -237,8 +238,8 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
       // closed form (over 64 triangles) still draws every sample on a lit verdict.
       // An environment is never gated, and the physical model adds a BSDF sample to
       // each of its light samples (trace/environment_light.h): count both.
-      if (l.type == LightType::Environment) raysPerPoint += 2.0 * count;
-      else if (gated && l.type != LightType::Mesh) raysPerPoint += count * (1.0 - avoidableShare(l, options.precomputed));
+      if (lightTraits(l).direct == DirectSampling::EnvironmentMis) raysPerPoint += 2.0 * count;
+      else if (gated && lightTraits(l).gateAvoidsRays) raysPerPoint += count * (1.0 - avoidableShare(l, options.precomputed));
       else raysPerPoint += count;
     }
     if (gated) lookupNs += options.precomputed ? kLookupNs : kExactVoteNs * scene.lights.size();

@@ -1,7 +1,7 @@
 // Environment direct light (light and BSDF samples, power heuristic) and the
 // radiance of rays that leave the scene.
 #include "trace/environment_light.h"
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/sampling.h"
 #include "trace/light_visibility.h"
 

@@ -9,7 +9,7 @@
 namespace penumbra {
 
 // Direct light from environment light `li` at s: render.light_samples light samples
-// (core/environment.h: a map by luminance, a constant sky cosine-weighted about the
+// (core/lights/environment_map.h: a map by luminance, a constant sky cosine-weighted about the
 // shading normal) and, where the BSDF draws its own directions (physical Opaque and
 // MetalRough: pdfBsdf > 0), as many BSDF samples that leave the scene; the two are
 // weighted by the power heuristic, so neither a small bright patch nor a tight glossy

@@ -4,7 +4,7 @@
 // reflectance and Fresnel (both branches of glass, as the Whitted tracer does).
 #include "trace/physical.h"
 #include "core/bsdf.h"
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/light_sample.h"
 #include "core/optics.h"
 #include "core/rng.h"

@@ -2,7 +2,7 @@
 // than the file holds or rows wider than any decoder buffer, and an 8k map under a
 // memory budget. Refused with one line before anything large is allocated (the
 // process's peak RSS, from wait4, is the assertion), and counted in the estimate.
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "hard/hard_cli.h"
 #include "hard/hard_support.h"
 #include "io/scene_loader.h"

@@ -1,6 +1,6 @@
 // Hard cases, class "gate": a "lit" verdict for an area light must give all of the
 // light that reaches the point, however few light samples land on its visible part
-// (a quad half below the floor, a cube lamp in an open box): gated direct light
+// (a quad or disk half below the floor, a cube lamp in an open box): gated direct light
 // equals ungated within the ungated render's own noise, at 1, 4 and 16 samples,
 // in both models; and a small quad over a plane matches Lambert's formula.
 #include "hard/hard_support.h"
@@ -96,6 +96,25 @@ TEST(HardGateArea, QuadHalfBelowTheFloor) {
     return gateJson(model, kFloorCamera,
                     R"({"type": "quad", "corner": [-0.5, -0.5, 0], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "radiance": 4})",
                     "");
+  });
+}
+
+// A disk light facing +z, standing half below the floor as the quad above: the floor's
+// horizon cuts it, so a lit verdict keeps its samples (without rays), as the sphere's
+// below; at 1 sample only those landing on the upper half ask the gate.
+TEST(HardGateArea, DiskHalfBelowTheFloor) {
+  expectGatedEqualsUngated("disk half below the floor", [](const std::string& model) {
+    return gateJson(model, kFloorCamera,
+                    R"({"type": "disk", "center": [0, 0, 0], "normal": [0, 0, 1], "radius": 0.5, "radiance": 4})", "");
+  }, 0.25);
+}
+
+// A disk facing down over the floor: above every floor point's horizon, so a lit
+// verdict answers with its closed form.
+TEST(HardGateArea, DiskOverTheFloorByItsClosedForm) {
+  expectGatedEqualsUngated("disk over the floor", [](const std::string& model) {
+    return gateJson(model, kFloorCamera,
+                    R"({"type": "disk", "center": [0, 0.6, 0.6], "normal": [0, -1, 0.2], "radius": 0.3, "radiance": 4})", "");
   });
 }
 

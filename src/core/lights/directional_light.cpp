@@ -35,4 +35,11 @@ Vec3 DirectionalLight::photonOrigin(const Light&, const PhotonRay& r, const Scen
 // The classic model lights by it through shadow rays only.
 float DirectionalLight::classicWeight(const Light&) { return 0.0f; }
 
+Light makeDirectionalLight(const Vec3& direction) {
+  Light light;
+  light.type = LightType::Directional;
+  light.direction = direction;
+  return light;
+}
+
 }  // namespace penumbra

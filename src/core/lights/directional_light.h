@@ -9,7 +9,8 @@ struct DirectionalLight : LightDefaults {
   static constexpr LightTraits kTraits = {
       LightSupport::Direction, StrataKind::One, AimKind::Disc,
       ShadowTest::Segment, DirectSampling::Gated,
-      /*emitsShadowPhotons*/ false, /*opensPhysicalMaps*/ false};
+      /*emitsShadowPhotons*/ false, /*opensPhysicalMaps*/ false,
+      /*gateAvoidsRays*/ true, "directional", "pi R^2 x color x intensity over the scene's bounding disc"};
   static LightIncidence sample(const LightSampler& s, float u1, float u2);
   static Color power(const Light& light, const SceneSphere& bounds);
   static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);

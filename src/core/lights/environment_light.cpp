@@ -1,5 +1,5 @@
-// The environment light's list entry, forwarding to core/environment.h.
-#include "core/environment.h"
+// The environment light's list entry, forwarding to core/lights/environment_map.h.
+#include "core/lights/environment_map.h"
 
 namespace penumbra {
 

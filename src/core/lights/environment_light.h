@@ -1,4 +1,4 @@
-// The environment light's entry in the light list: forwards to core/environment.h,
+// The environment light's entry in the light list: forwards to core/lights/environment_map.h,
 // which holds its map, sampling and photons. Included by core/light_types.h only.
 #pragma once
 
@@ -9,7 +9,8 @@ struct EnvironmentLight : LightDefaults {
   static constexpr LightTraits kTraits = {
       LightSupport::Infinite, StrataKind::One, AimKind::None,
       ShadowTest::Segment, DirectSampling::EnvironmentMis,
-      /*emitsShadowPhotons*/ false, /*opensPhysicalMaps*/ true};
+      /*emitsShadowPhotons*/ false, /*opensPhysicalMaps*/ true,
+      /*gateAvoidsRays*/ false, nullptr, "pi R^2 x the integral of color x intensity (x map) over all directions"};
   // Without a normal: the map by luminance, a constant sky uniformly (the tracers
   // sample it about the normal instead, trace/environment_light.h).
   static LightIncidence sample(const LightSampler& s, float u1, float u2);

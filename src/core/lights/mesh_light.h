@@ -1,5 +1,5 @@
 // The mesh light's entry in the light list; its code (construction, sampling by area,
-// the closed form, photons) is core/mesh_light.cpp. Included by core/light_types.h only.
+// the closed form, photons) is core/lights/emissive_mesh.cpp. Included by core/light_types.h only.
 #pragma once
 
 namespace penumbra {
@@ -11,7 +11,8 @@ struct MeshLight : LightDefaults {
   static constexpr LightTraits kTraits = {
       LightSupport::Area, StrataKind::One, AimKind::Surface,
       ShadowTest::Segment, DirectSampling::Gated,
-      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true};
+      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true,
+      /*gateAvoidsRays*/ false, nullptr, kLambertianPower};
   static void prepare(const Light& light, const Vec3& p, LightSampler& s);
   // One sample uniform by area (pdf_A = 1 / A; textured: by area x luminance): the
   // incidence L cos_l / (pdf_A d^2), invalid behind the sampled triangle's emitting side
@@ -29,6 +30,7 @@ struct MeshLight : LightDefaults {
   // its texel over the triangle's density.
   static PhotonRay photon(const Light& light, const SceneSphere& bounds, float u1, float u2, float u3, float u4);
   static float classicWeight(const Light& light);
+  static size_t sampleTable(const Light& light);  // its cumulative areas
 };
 
 }  // namespace penumbra

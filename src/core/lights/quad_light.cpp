@@ -1,8 +1,8 @@
 // The quad light: set-up per shading point, uniform samples by area, Lambert's
-// closed form, area and photons.
+// closed form, area, photons and its surface.
 #include "core/light_sample.h"
 #include "core/light_strata.h"
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "core/sampling.h"
 #include <algorithm>
 
@@ -24,8 +24,13 @@ void QuadLight::prepare(const Light& light, const Vec3&, LightSampler& s) {
 
 LightIncidence QuadLight::sample(const LightSampler& s, float u1, float u2) {
   const Light& light = *s.light;
+  return planarIncidence(s, light.position + u1 * light.edge1 + u2 * light.edge2);
+}
+
+// Defined beside its first user, so the quad's sample inlines it.
+LightIncidence planarIncidence(const LightSampler& s, const Vec3& y) {
+  const Light& light = *s.light;
   LightIncidence in;
-  const Vec3 y = light.position + u1 * light.edge1 + u2 * light.edge2;
   const Vec3 d = y - s.p;
   const float d2 = glm::dot(d, d);
   if (!(d2 > 0.0f) || !std::isfinite(d2)) return in;
@@ -60,6 +65,25 @@ float QuadLight::area(const Light& light) {
   const float area = glm::length(c);
   return std::isfinite(area) ? area
                              : static_cast<float>(glm::length(glm::cross(glm::dvec3(light.edge1), glm::dvec3(light.edge2))));
+}
+
+EmitterShape QuadLight::emitter(const Light& light) {
+  EmitterShape e;
+  e.mesh = makeQuad(light.position, light.edge1, light.edge2);
+  return e;
+}
+
+TriangleMesh makeQuad(const Vec3& corner, const Vec3& edge1, const Vec3& edge2, int material) {
+  TriangleMesh mesh;
+  mesh.name = "quad";
+  mesh.material = material;
+  mesh.positions = {corner, corner + edge1, corner + edge1 + edge2, corner + edge2};
+  // Triangle (0,1,2) has edges e1 and e1+e2, whose cross product is cross(e1, e2).
+  Vec3 normal = unitCross(edge1, edge2);
+  mesh.normals.assign(4, normal);
+  mesh.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return mesh;
 }
 
 PhotonRay QuadLight::photon(const Light& light, const SceneSphere&, float u1, float u2, float u3, float u4) {

@@ -70,4 +70,11 @@ PhotonRay SphereLight::start(const Light& light, const Vec3& n) {
   return r;
 }
 
+EmitterShape SphereLight::emitter(const Light& light) {
+  EmitterShape e;
+  e.sphere = Sphere{light.position, light.radius, 0};
+  e.twoSided = true;
+  return e;
+}
+
 }  // namespace penumbra

@@ -9,7 +9,8 @@ struct SphereLight : LightDefaults {
   static constexpr LightTraits kTraits = {
       LightSupport::Area, StrataKind::Surface, AimKind::SphereCaps,
       ShadowTest::FirstHitIsEmitter, DirectSampling::Gated,
-      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true};
+      /*emitsShadowPhotons*/ true, /*opensPhysicalMaps*/ true,
+      /*gateAvoidsRays*/ true, "sphere", kLambertianPower};
   static void prepare(const Light& light, const Vec3& p, LightSampler& s);
   static LightIncidence sample(const LightSampler& s, float u1, float u2);
   static bool irradiance(const LightSampler& s, const Vec3& n, const Vec3& ng, Color& E);
@@ -18,6 +19,7 @@ struct SphereLight : LightDefaults {
   // A photon's start at the unit outward normal n: its surface point and rounding
   // error (no direction yet).
   static PhotonRay start(const Light& light, const Vec3& n);
+  static EmitterShape emitter(const Light& light);  // the sphere itself, two-sided
 };
 
 }  // namespace penumbra

@@ -1,6 +1,6 @@
 // The environment light: a constant sky or a lat-long map, its luminance
 // distribution, pdfs in solid angle and photons from a disc over the scene.
-#include "core/environment.h"
+#include "core/lights/environment_map.h"
 #include "core/sampling.h"
 #include <algorithm>
 #include <cmath>

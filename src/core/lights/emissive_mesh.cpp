@@ -1,7 +1,7 @@
 // Mesh lights (emissive triangle meshes): construction, and MeshLight's answers
 // (core/lights/mesh_light.h): sampling by area, closed-form irradiance, photon
 // emission; and the clipped Lambert polygon formula.
-#include "core/mesh_light.h"
+#include "core/lights/emissive_mesh.h"
 #include "core/emission_map.h"
 #include "core/sampling.h"
 #include <algorithm>
@@ -92,6 +92,8 @@ Color MeshLight::power(const Light& light, const SceneSphere&) {
 float MeshLight::classicWeight(const Light& light) {
   return luminance(light.radiance()) * meshLightPowerFactor(light) * 0.25f;
 }
+
+size_t MeshLight::sampleTable(const Light& light) { return light.areaCdf.size(); }
 
 LightIncidence MeshLight::sample(const LightSampler& s, float u1, float u2) {
   const Light& light = *s.light;
