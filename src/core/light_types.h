@@ -143,7 +143,7 @@ constexpr size_t countOf(LightTypeList<Ts...>) {
 template <class F, class... Ts>
 decltype(auto) dispatch(LightType type, F&& f, LightTypeList<Ts...>) {
   constexpr size_t n = sizeof...(Ts);
-  static_assert(n <= 8, "dispatch switches over at most 8 types: add cases");
+  static_assert(n <= 16, "dispatch switches over at most 16 types: add cases");
   using List = std::tuple<Ts...>;
   // Cases past the list are discarded at compile time (if constexpr), not dispatched.
 #define PENUMBRA_LIGHT_CASE(i) \
@@ -153,6 +153,8 @@ decltype(auto) dispatch(LightType type, F&& f, LightTypeList<Ts...>) {
   switch (static_cast<size_t>(type)) {
     PENUMBRA_LIGHT_CASE(0) PENUMBRA_LIGHT_CASE(1) PENUMBRA_LIGHT_CASE(2) PENUMBRA_LIGHT_CASE(3)
     PENUMBRA_LIGHT_CASE(4) PENUMBRA_LIGHT_CASE(5) PENUMBRA_LIGHT_CASE(6) PENUMBRA_LIGHT_CASE(7)
+    PENUMBRA_LIGHT_CASE(8) PENUMBRA_LIGHT_CASE(9) PENUMBRA_LIGHT_CASE(10) PENUMBRA_LIGHT_CASE(11)
+    PENUMBRA_LIGHT_CASE(12) PENUMBRA_LIGHT_CASE(13) PENUMBRA_LIGHT_CASE(14) PENUMBRA_LIGHT_CASE(15)
   }
 #undef PENUMBRA_LIGHT_CASE
   __builtin_unreachable();  // a LightType value with no entry in AllLights
