@@ -143,6 +143,33 @@ TEST(Batch, JobsFileErrorsNameTheJsonPath) {
   EXPECT_NE(error("{\"scenes\": \"nothing*.json\", \"output\": \"x.png\"}").find("matches no file"), std::string::npos);
 }
 
+// {i:0N} pads an orbit's index to N digits (ffmpeg globs sort turn_002 before turn_010);
+// {i} stays as it was, and a malformed width is named before anything renders.
+TEST(Batch, OrbitIndexIsZeroPaddedWhenAsked) {
+  testing::ScratchDir dir;
+  auto names = [&](const std::string& output) {
+    std::vector<std::string> out;
+    for (const BatchJob& job : readJobsFile(writeJobs(dir, "{\"scene\": \"a.json\", \"output\": \"" + output +
+                                                            "\", \"orbit\": {\"count\": 11}}").string()))
+      out.push_back(fs::path(job.outputs[0].path).filename().string());
+    return out;
+  };
+  const std::vector<std::string> padded = names("turn_{i:03}.png");
+  ASSERT_EQ(padded.size(), 11u);
+  EXPECT_EQ(padded[2], "turn_002.png");
+  EXPECT_EQ(padded[10], "turn_010.png");
+  EXPECT_EQ(names("turn_{i}.png")[10], "turn_10.png");
+  EXPECT_EQ(names("a{i:01}_{i}.png")[10], "a10_10.png");
+  for (const char* bad : {"turn_{i:3}.png", "turn_{i:00}.png", "turn_{i:0}.png", "turn_{i:04.png"}) {
+    try {
+      names(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("jobs[0].output"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Batch, ShardsSplitByCostAndAppendingMovesNoJob) {
   const std::vector<double> costs = {5, 1, 1, 1, 1, 1};
   EXPECT_EQ(shardJobs(costs, 0, 2), (std::vector<size_t>{0}));

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 namespace penumbra {
 namespace {
@@ -36,6 +37,32 @@ std::vector<std::string> stringList(const json& node, const std::string& file, c
 std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
   for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
   return s;
+}
+
+// An orbit frame's index in a file name: {i} as it is, {i:0N} zero-padded to N digits
+// (1-9), so that ffmpeg's globs and file browsers sort frame 2 before frame 10.
+// False for a malformed {i:...}; other braces ({name}, {view}) pass through.
+bool expandIndex(const std::string& pattern, int i, std::string& out) {
+  out.clear();
+  size_t at = 0;
+  for (size_t open = pattern.find("{i", at); open != std::string::npos; open = pattern.find("{i", at)) {
+    out.append(pattern, at, open - at);
+    const std::string_view rest = std::string_view(pattern).substr(open);
+    if (rest.substr(0, 3) == "{i}") {
+      out += std::to_string(i);
+      at = open + 3;
+    } else if (rest.size() >= 6 && rest.substr(0, 4) == "{i:0" && rest[4] >= '1' && rest[4] <= '9' && rest[5] == '}') {
+      out += fmt::format("{:0{}}", i, rest[4] - '0');
+      at = open + 6;
+    } else if (rest.substr(0, 3) == "{i:") {
+      return false;
+    } else {
+      out += "{i";
+      at = open + 2;
+    }
+  }
+  out.append(pattern, at, std::string::npos);
+  return true;
 }
 
 // Every view's file: {name} and {view} substituted; views without {view} in a .exr share it.
@@ -178,7 +205,12 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
       }
       const int count = static_cast<int>(o["count"].get<int64_t>());
       const std::string pattern = node["output"].get<std::string>();
-      if (count > 1 && pattern.find("{i}") == std::string::npos && pattern.find("{name}") == std::string::npos) {
+      std::string first, second;
+      if (!expandIndex(pattern, 0, first)) {
+        fail(path, where + ".output", "an orbit index is written {i} or {i:0N} with N from 1 to 9 (e.g. {i:04})");
+      }
+      expandIndex(pattern, 1, second);
+      if (count > 1 && first == second && pattern.find("{name}") == std::string::npos) {
         fail(path, where + ".output", fmt::format("an orbit of {} views needs {{i}} or {{name}} in the file name", count));
       }
       const double radius = num("radius", 5.0), height = num("height", 0.0);
@@ -197,7 +229,9 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
         job.overrides.push_back("camera.look_at=" + vec3(c.x, c.y, c.z));
         // The file camera's roll is dropped: every frame's horizon is level about `up`.
         job.overrides.push_back("camera.up=" + vec3(frame.up.x, frame.up.y, frame.up.z));
-        job.outputs = outputsFor(replaceAll(output, "{i}", std::to_string(i)), job.name, views, path, where);
+        std::string named;
+        expandIndex(output, i, named);
+        job.outputs = outputsFor(named, job.name, views, path, where);
         job.where = fmt::format("{} (orbit {})", where, i);
         job.budget = budget;
         jobs.push_back(std::move(job));
