@@ -47,6 +47,7 @@ TEST(CliHabits, MistakesGetOneLineAndExitTwo) {
   const auto help = runCli("--help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.out.find("Exit codes: 0 done; 1 internal error"), std::string::npos);
+  EXPECT_NE(help.out.find("3 batch: some jobs failed"), std::string::npos) << help.out;
 }
 
 TEST(CliHabits, CheckValidatesWithoutRendering) {

@@ -116,7 +116,7 @@ int BatchCommand::run() {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
     std::cerr << batchSummary(out);
   }
-  return out.failed > 0 ? 1 : 0;
+  return out.failed > 0 ? kExitJobsFailed : 0;
 }
 
 }  // namespace penumbra

@@ -1,5 +1,5 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
-// 0 ok, 2 bad input (one-line message), 1 internal error.
+// 0 ok, 2 bad input (one-line message), 1 internal error, 3 a batch's jobs failed.
 #include "plan/command_support.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
@@ -135,7 +135,8 @@ int runCommandLine(int argc, char** argv) {
   CLI::App app{"penumbra: a CPU photon-mapping renderer (Whitted core + shadow and indirect photon maps)"};
   app.require_subcommand(1);
   app.footer("Exit codes: 0 done; 1 internal error (a bug: please report it); 2 bad input or a job refused "
-             "before any work (one line says which file, JSON path and problem).");
+             "before any work (one line says which file, JSON path and problem); " +
+             std::to_string(kExitJobsFailed) + " batch: some jobs failed, the others finished.");
   // A bad option is bad input like any other: one line, exit 2.
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string(e.what()) + " (see --help)\n"; });
   app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION);
