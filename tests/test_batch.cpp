@@ -1,7 +1,7 @@
 // penumbra batch against independent renders: every job's image equals a plain
 // runRender of the same scene and overrides, camera variants share one photon
 // build, layered EXRs hold every view, reruns skip up-to-date jobs, a failing job
-// does not stop the batch, shards split jobs stably, and outputs carry a render's header.
+// does not stop the batch, and outputs carry a render's header.
 #include "plan/batch/batch_jobs.h"
 #include "plan/batch/batch_run.h"
 #include "plan/pipeline.h"
@@ -49,6 +49,7 @@ TEST(Batch, CameraVariantsShareOnePhotonBuildAndMatchStandaloneRenders) {
   EXPECT_EQ(out.photonBuilds, 1u);
   EXPECT_EQ(out.photonReuses, 2u);
   EXPECT_EQ(out.sceneBuilds, 1u);
+  EXPECT_EQ(out.sceneReads, 1u);  // three frames, one scene file read
   EXPECT_EQ(out.jobs[1].reused, "scene+photons");
   for (const BatchJob& job : req.jobs) {
     RenderRequest alone;
@@ -62,6 +63,7 @@ TEST(Batch, CameraVariantsShareOnePhotonBuildAndMatchStandaloneRenders) {
     // Its header says what the render's does (every setting), and names the job.
     std::map<std::string, std::string> header = penumbraHeader(job.outputs[0].path);
     EXPECT_EQ(header.erase("penumbra:job"), 1u) << job.name;
+    EXPECT_EQ(header.erase("penumbra:inputs"), 1u) << job.name;
     EXPECT_EQ(header, penumbraHeader(alone.outputPath)) << job.name;
     EXPECT_GT(header.count("penumbra:photons.indirect"), 0u) << job.name;
   }
@@ -69,6 +71,7 @@ TEST(Batch, CameraVariantsShareOnePhotonBuildAndMatchStandaloneRenders) {
   const BatchOutcome again = runBatch(req);
   EXPECT_EQ(again.upToDate, 3u);
   EXPECT_EQ(again.rendered, 0u);
+  EXPECT_EQ(again.sceneReads, 0u);  // decided from the outputs alone
   req.force = true;
   EXPECT_EQ(runBatch(req).rendered, 3u);
 }
@@ -168,23 +171,6 @@ TEST(Batch, OrbitIndexIsZeroPaddedWhenAsked) {
       EXPECT_NE(std::string(e.what()).find("jobs[0].output"), std::string::npos) << e.what();
     }
   }
-}
-
-TEST(Batch, ShardsSplitByCostAndAppendingMovesNoJob) {
-  const std::vector<double> costs = {5, 1, 1, 1, 1, 1};
-  EXPECT_EQ(shardJobs(costs, 0, 2), (std::vector<size_t>{0}));
-  EXPECT_EQ(shardJobs(costs, 1, 2), (std::vector<size_t>{1, 2, 3, 4, 5}));
-  std::vector<double> more = costs;
-  more.push_back(2);
-  more.push_back(3);
-  for (size_t s = 0; s < 2; ++s) {
-    const auto before = shardJobs(costs, s, 2), after = shardJobs(more, s, 2);
-    EXPECT_TRUE(std::equal(before.begin(), before.end(), after.begin())) << "shard " << s;
-  }
-  EXPECT_EQ(parseShard("2/4"), (std::pair<size_t, size_t>{1, 4}));
-  EXPECT_THROW(parseShard("0/4"), InputError);
-  EXPECT_THROW(parseShard("5/4"), InputError);
-  EXPECT_THROW(parseShard("1/4x"), InputError);
 }
 
 }  // namespace

@@ -3,6 +3,9 @@
 #include "plan/batch/batch_jobs.h"
 #include "cli/progress_line.h"
 #include "plan/batch/batch_run.h"
+#include "plan/batch/batch_stats.h"
+#include "plan/command_support.h"
+#include "plan/output_safety.h"
 #include "cli/session_args.h"
 #include "cli/progress_meter.h"
 #include "plan/cpu_report.h"
@@ -21,8 +24,9 @@ struct BatchCommand::Options {
   CLI::App* command = nullptr;
   std::vector<std::string> inputs;
   SessionArgs session;  // its budget is every job's
-  std::string out, views, format = "png", shard, listShard, mapCache;
-  bool force = false, keepGoing = false;
+  std::string out, views, format = "png", shard, listShard, mapCache, shardIndex, shardFile, stats;
+  size_t shardCount = 0, planShards = 0;
+  bool force = false, keepGoing = false, status = false, mapsOnly = false, listGiven = false;
 };
 
 BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
@@ -35,7 +39,24 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--format", o.format, "Image format of scene files given directly: png or exr (several views: one layered exr)")
       ->check(CLI::IsMember({"png", "exr"}));
   c->add_option("--shard", o.shard, "Render only shard I of N (1-based), e.g. 2/4");
-  c->add_option("--list-shard", o.listShard, "Print the jobs shard I/N would take, and exit");
+  c->add_option("--shard-index", o.shardIndex,
+                "This task's shard, 0-based: I, or env to read SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX or "
+                "AWS_BATCH_JOB_ARRAY_INDEX (needs --shard-count)");
+  c->add_option("--shard-count", o.shardCount, "How many shards the batch is split into (with --shard-index)")
+      ->check(CLI::Range(1, 100000));
+  c->add_option("--shard-file", o.shardFile,
+                "Take this task's jobs from a split written by --plan-shards (only those jobs' scenes are read)");
+  c->add_option("--plan-shards", o.planShards, "Split the jobs into N balanced shards, write the split to -o FILE, and exit")
+      ->check(CLI::Range(1, 100000));
+  c->add_option("--list-shard", o.listShard,
+                "Print the jobs of shard I/N (or of the shard the other options choose) with their estimated "
+                "seconds, and each shard's total, and exit")
+      ->expected(0, 1);
+  c->add_flag("--status", o.status,
+              "Render nothing: list every job as up to date, missing or stale (and why); exit 0 only when all are "
+              "up to date, else " + std::to_string(kExitNotUpToDate));
+  c->add_flag("--maps-only", o.mapsOnly, "Build the photon maps of the jobs to render (into --map-dir), render nothing");
+  c->add_option("--stats", o.stats, "Write the batch's counts (jobs, scenes read, maps built) as JSON to this file (- : stdout)");
   c->add_option("--map-cache", o.mapCache,
                 "Photon maps kept for later jobs, at most this much (LRU), e.g. 2G (default: " +
                     formatBytes(static_cast<double>(kStageCacheBytes)) + ")");
@@ -61,11 +82,47 @@ std::string batchSummary(const BatchOutcome& o) {
     s += fmt::format("{:<24} {:>7.2f}s {:>7.2f}s {:>5}  {:<14} {:<12} {}\n", j.name, j.seconds, j.cpu.cpuSeconds,
                      share, j.reused.empty() ? "-" : j.reused, status, j.outputs.empty() ? "" : j.outputs.front());
   }
-  s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s; {}; scenes built {}, photon maps "
+  if (!o.shardLabel.empty()) s += o.shardLabel + ": ";
+  s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s; {}; scene files read {}, scenes built {}, photon maps "
                    "built {} (reused {} times, {} evicted, cache peak {:.1f} MB)\n",
-                   o.jobs.size(), o.rendered, o.upToDate, o.failed, o.seconds, cpuLine(o.cpu), o.sceneBuilds,
+                   o.jobs.size(), o.rendered, o.upToDate, o.failed, o.seconds, cpuLine(o.cpu), o.sceneReads, o.sceneBuilds,
                    o.photonBuilds, o.photonReuses, o.evictions, o.peakCacheBytes / 1e6);
   return s;
+}
+
+}  // namespace
+
+namespace {
+
+// The shard this task renders, from --shard, --shard-index/--shard-count or neither.
+std::optional<ShardChoice> shardChoice(const std::string& slash, const std::string& index, size_t count) {
+  if (!slash.empty() && !index.empty()) throw InputError("--shard and --shard-index: give one of them");
+  if (!index.empty() && count == 0) throw InputError("--shard-index needs --shard-count N");
+  if (index.empty() && count > 0) throw InputError("--shard-count needs --shard-index (env, or a 0-based index)");
+  if (!slash.empty()) return shardFromSlash(slash);
+  if (!index.empty()) return shardFromIndex(index, count);
+  return std::nullopt;
+}
+
+// --list-shard: the shard's jobs with their outputs and estimates, then every shard's total.
+void printShardList(const BatchOutcome& out) {
+  for (const BatchJobResult& j : out.jobs) {
+    std::cout << j.name << "\t" << (j.outputs.empty() ? "" : j.outputs.front()) << "\t"
+              << fmt::format("{:.2f} s", j.estimate) << "\n";
+  }
+  for (size_t s = 0; s < out.split.seconds.size(); ++s) {
+    std::cout << fmt::format("# shard {}/{}: {:.2f} s estimated on one thread\n", s + 1, out.split.seconds.size(),
+                             out.split.seconds[s]);
+  }
+}
+
+// --status: every job's state, and the counts.
+void printStatus(const BatchOutcome& out) {
+  for (const BatchJobResult& j : out.jobs) {
+    std::cout << fmt::format("{:<24} {:<12} {}\n", j.name, out.shardLabel.empty() ? "-" : out.shardLabel, j.status);
+  }
+  std::cout << fmt::format("{} jobs: {} up to date, {} missing or stale, {} failed\n", out.jobs.size(), out.upToDate,
+                           out.notUpToDate, out.failed);
 }
 
 }  // namespace
@@ -77,29 +134,50 @@ int BatchCommand::run() {
   req.session = session.options();  // contradicting options: refused before any scene is read
   const std::string gate = session.plan.gateSetting();
   const bool jobsFile = o.inputs.size() == 1 && isJobsFile(o.inputs[0]);
+  o.listGiven = o.command->count("--list-shard") > 0;
+  const int modes = int(o.status) + int(o.mapsOnly) + int(o.planShards > 0) + int(o.listGiven);
+  if (modes > 1) throw InputError("--status, --maps-only, --plan-shards and --list-shard: give at most one");
+  if (o.planShards > 0) {
+    if (o.out.empty()) throw InputError("--plan-shards N writes the split to -o FILE: give -o");
+    if (!jobsFile) throw InputError("--plan-shards splits a jobs file");
+    if (!o.shard.empty() || !o.shardIndex.empty() || !o.shardFile.empty())
+      throw InputError("--plan-shards splits every job: it takes no --shard, --shard-index or --shard-file");
+  }
   if (jobsFile) {
     req.jobs = readJobsFile(o.inputs[0]);
     // The command line's gate wins over a job's own photons.gate.
     if (!gate.empty()) for (BatchJob& j : req.jobs) j.overrides.push_back(gate);
-    req.extraInputs.push_back(o.inputs[0]);
+    req.protectedFiles.push_back(o.inputs[0]);
   } else {
     if (o.out.empty()) throw InputError("batch: -o DIR is required when scene files are given directly");
+    req.jobs = jobsForScenes(o.inputs, o.out, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
+  }
+  req.shard = shardChoice(o.listShard.empty() ? o.shard : o.listShard, o.shardIndex, o.shardCount);
+  if (!o.shardFile.empty()) {
+    if (!req.shard) throw InputError("--shard-file needs the task's shard: --shard-index env --shard-count N");
+    req.shardFile = readShardFile(o.shardFile);
+  }
+  if (o.listGiven && !req.shard) throw InputError("--list-shard needs a shard: I/N, or --shard-index with --shard-count");
+  req.mode = o.status ? BatchMode::Status
+             : o.mapsOnly ? BatchMode::MapsOnly
+             : o.planShards > 0 ? BatchMode::PlanShards
+             : o.listGiven ? BatchMode::ListShard
+                           : BatchMode::Render;
+  req.planShards = o.planShards;
+  if (req.mode == BatchMode::PlanShards) {
+    checkOutputs({{o.out, "-o", false}}, req.protectedFiles);
+  } else if (!jobsFile && req.mode == BatchMode::Render) {
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);
     if (ec) throw InputError(o.out + ": cannot create the output folder (" + ec.message() + ")");
-    req.jobs = jobsForScenes(o.inputs, o.out, o.views.empty() ? std::vector<std::string>{""} : splitValues(o.views, "--views"), "." + o.format);
-  }
-  const std::string shardArg = !o.listShard.empty() ? o.listShard : o.shard;
-  if (!shardArg.empty()) {
-    const auto [index, count] = parseShard(shardArg);
-    req.shard = BatchShard{index, count};
-    req.listShard = !o.listShard.empty();
   }
   req.force = o.force;
   req.keepGoing = o.keepGoing;
   if (!o.mapCache.empty()) req.session.stageCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
   std::optional<ItemProgress> progress;
-  if (!session.quiet) {
+  const bool listing = req.mode == BatchMode::ListShard || req.mode == BatchMode::Status;
+  if (!session.quiet && !listing) {
+    if (req.shard) std::cerr << req.shard->label << "\n";
     progress.emplace();
     req.session.progress = progress->phases();
     req.progress = [&](const BatchProgress& p) {
@@ -108,9 +186,31 @@ int BatchCommand::run() {
   }
   const BatchOutcome out = runBatch(req);
   if (progress) progress->finish();
-  if (req.listShard) {
-    for (size_t j : out.shardJobs) std::cout << req.jobs[j].name << "\t" << req.jobs[j].outputs.front().path << "\n";
-    return 0;
+  if (!o.stats.empty()) {
+    if (o.stats == "-") std::cout << batchStatsJson(out);
+    else writeTextOutput(o.stats, batchStatsJson(out));
+  }
+  switch (req.mode) {
+    case BatchMode::ListShard:
+      printShardList(out);
+      return 0;
+    case BatchMode::Status:
+      printStatus(out);
+      return out.upToDate == out.jobs.size() ? 0 : kExitNotUpToDate;
+    case BatchMode::PlanShards: {
+      ShardFile file = out.split;
+      file.jobsFile = o.inputs[0];
+      writeTextOutput(o.out, shardFileText(file));
+      if (!session.quiet) {
+        for (size_t s = 0; s < file.shards.size(); ++s) {
+          std::cerr << fmt::format("shard {}/{}: {} jobs, {:.2f} s estimated on one thread\n", s + 1,
+                                   file.shards.size(), file.shards[s].size(), file.seconds[s]);
+        }
+      }
+      return 0;
+    }
+    default:
+      break;
   }
   if (!session.quiet) {
     for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";

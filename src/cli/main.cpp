@@ -1,5 +1,6 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
-// 0 ok, 2 bad input (one-line message), 1 internal error, 3 a batch's jobs failed.
+// 0 ok, 2 bad input (one-line message), 1 internal error, 3 a batch's jobs failed,
+// 4 batch --status: not every job is up to date.
 #include "plan/command_support.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
@@ -136,7 +137,8 @@ int runCommandLine(int argc, char** argv) {
   app.require_subcommand(1);
   app.footer("Exit codes: 0 done; 1 internal error (a bug: please report it); 2 bad input or a job refused "
              "before any work (one line says which file, JSON path and problem); " +
-             std::to_string(kExitJobsFailed) + " batch: some jobs failed, the others finished.");
+             std::to_string(kExitJobsFailed) + " batch: some jobs failed, the others finished; " +
+             std::to_string(kExitNotUpToDate) + " batch --status: some job is missing, stale or broken.");
   // A bad option is bad input like any other: one line, exit 2.
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string(e.what()) + " (see --help)\n"; });
   app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION);

@@ -2,6 +2,7 @@
 // as bytes (OIIO's float-to-byte conversion rounds and clamps to 0..255), so the
 // geometry layer reads plain memory and never an image library.
 #include "io/alpha_mask_reader.h"
+#include "io/load_cache.h"
 
 #include "io/json_reader.h"
 #include "io/texture_check.h"
@@ -31,7 +32,7 @@ int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, b
   bool checked = false;
   for (const Texture& t : scene.textures) checked = checked || t.path == path;
   if (!checked) {
-    const std::string problem = textureFileProblem(path);
+    const std::string problem = textureProblemFor(where.context(), path);
     if (!problem.empty()) where.fail(problem);
     scene.inputs.push_back(path);
   }

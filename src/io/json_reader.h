@@ -14,11 +14,14 @@
 namespace penumbra {
 
 // What every node needs to phrase an error and resolve a relative path.
+class LoadCache;
+
 struct LoadContext {
   std::string file;                    // the scene file as given, for messages
   std::filesystem::path baseDir;       // relative paths in the scene resolve here
   std::vector<std::string> overridden;  // JSON paths set by --set, to say so in errors
   LoadLimits limits;                    // what the scene's files may cost (io/load_limits.h)
+  LoadCache* cache = nullptr;           // files shared with earlier loads (io/load_cache.h)
 };
 
 // An inclusive or exclusive numeric interval; the defaults accept any finite number.

@@ -2,6 +2,7 @@
 // Russian-roulette probabilities, the textures materials reference, normal maps and
 // alpha cut-outs.
 #include "io/scene_sections.h"
+#include "io/load_cache.h"
 #include "io/input_file.h"
 #include "core/color.h"
 #include "io/alpha_mask_reader.h"
@@ -69,7 +70,7 @@ int textureIndex(const JsonNode& fileNode, bool data, Scene& scene, TextureIndex
   auto [it, inserted] = index.try_emplace({path, data}, static_cast<int>(scene.textures.size()));
   if (inserted) {
     // Decoded now, once per file: a truncated image must fail here, not render black.
-    const std::string problem = builtin ? builtinTextureProblem(file) : textureFileProblem(path);
+    const std::string problem = builtin ? builtinTextureProblem(file) : textureProblemFor(fileNode.context(), path);
     if (!problem.empty()) fileNode.fail(problem);
     scene.textures.push_back(Texture{path, data});
     if (!builtin) scene.inputs.push_back(path);

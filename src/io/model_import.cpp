@@ -1,6 +1,7 @@
 // Model files into the scene: their materials made valid for the shading model,
 // their textures checked, their meshes transformed and bound to materials.
 #include "io/model_import.h"
+#include "io/load_cache.h"
 #include "io/input_file.h"
 
 #include "core/color.h"
@@ -74,7 +75,7 @@ int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene,
     if (scene.textures[i] == Texture{path, data}) return static_cast<int>(i);
   }
   if (const std::string why = unreadableFileReason(path); !why.empty()) where.fail("texture file " + path + ": " + why);
-  const std::string problem = textureFileProblem(path);
+  const std::string problem = textureProblemFor(where.context(), path);
   if (!problem.empty()) where.fail(problem);
   scene.textures.push_back(Texture{path, data});
   scene.inputs.push_back(path);

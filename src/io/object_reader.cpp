@@ -5,6 +5,7 @@
 
 #include "io/float_checks.h"
 #include "io/mesh_cleanup.h"
+#include "io/load_cache.h"
 #include "io/model_import.h"
 #include "io/shapes.h"
 #include "io/suggest.h"
@@ -138,7 +139,7 @@ const LoadedModel& cachedModel(const JsonNode& fileNode, const std::string& file
   auto cached = cache.models.find(path);
   if (cached == cache.models.end()) {
     try {
-      cached = cache.models.emplace(path, loadModel(path, fileNode.context().limits)).first;
+      cached = cache.models.emplace(path, loadModelFor(fileNode.context(), path)).first;
     } catch (const ModelError& e) {
       fileNode.fail(e.what());
     }

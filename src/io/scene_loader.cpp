@@ -9,6 +9,7 @@
 #include "io/json_parse.h"
 #include "io/json_reader.h"
 #include "io/mesh_tangents.h"
+#include "io/load_cache.h"
 #include "io/model_import.h"
 #include "io/overrides.h"
 #include "io/scene_defaults.h"
@@ -72,7 +73,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   LoadedModel model;
   if (!modelPath.empty()) {
     try {
-      model = loadModel(modelPath, context.limits);
+      model = loadModelFor(context, modelPath);
     } catch (const ModelError& e) {
       throwInputError(e.what());
     }
@@ -171,6 +172,7 @@ Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
                      const LoadLimits& limits, const LoadOptions& options = {}) {
   LoadContext context;
   context.limits = limits;
+  context.cache = options.cache;
   context.file = fileName.empty() ? "<scene>" : fileName;
   context.baseDir = folderOf(fileName);
   json document = jsonText.empty() && !modelPath.empty() ? json::object()
@@ -200,13 +202,17 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   if (path == "-") {
     return parseScene(readSceneText(std::cin, "<stdin>"), "<stdin>", overrides, limits);
   }
-  if (!isGltfPath(path)) return parseScene(readText(path), path, overrides, limits);
+  // Read through the cache, where there is one: the text is read once per process.
+  auto text = [&](const std::string& file) {
+    return options.cache ? options.cache->sceneText(file, [&] { return readText(file); }) : readText(file);
+  };
+  if (!isGltfPath(path)) return parseSceneWith(text(path), path, overrides, "", limits, options);
   if (const std::string why = unreadableFileReason(path); !why.empty()) throwInputError(path + ": cannot open scene file: " + why);
   std::error_code ec;
   // model.glb renders with model.json's settings when there is one.
   const std::string sidecar = fs::path(path).replace_extension(".json").string();
   const bool hasSidecar = fs::is_regular_file(sidecar, ec);
-  Scene scene = parseSceneWith(hasSidecar ? readText(sidecar) : "", hasSidecar ? sidecar : path,
+  Scene scene = parseSceneWith(hasSidecar ? text(sidecar) : "", hasSidecar ? sidecar : path,
                                overrides, path, limits, options);
   scene.file = path;
   return scene;

@@ -8,10 +8,14 @@
 namespace penumbra {
 
 // What loading may add to a file: decided once per command (--no-defaults).
+class LoadCache;
+
 struct LoadOptions {
   // A .gltf/.glb scene without a camera gets one framing it, without a light a
   // neutral sky (io/scene_defaults.h); false keeps the file as it is.
   bool defaults = true;
+  // Files earlier loads of this process read (io/load_cache.h); null: read them all.
+  LoadCache* cache = nullptr;
 };
 
 // Loads `path`, applying `overrides` ("render.max_depth=8", JSON-typed values)

@@ -89,27 +89,4 @@ void checkOutputs(const std::vector<OutputPath>& outputs, const std::vector<std:
   }
 }
 
-std::string jobStamp(const std::string& scenePath, const std::vector<std::string>& overrides,
-                     const std::vector<std::pair<std::string, std::string>>& viewFiles) {
-  std::string s = scenePath;
-  for (const std::string& o : overrides) s += "\n" + o;
-  for (const auto& [view, path] : viewFiles) s += "\n" + view + ">" + path;
-  return fmt::format("{:016x}", std::hash<std::string>{}(s));
-}
-
-bool outputsUpToDate(const std::vector<std::string>& outputs, const std::string& stamp,
-                     const std::vector<std::string>& inputs) {
-  std::error_code ec;
-  for (const std::string& out : outputs) {
-    if (!fs::exists(out, ec) || readImageAttribute(out, "penumbra:job") != stamp) return false;
-    // The stamp sits in the header: a file cut short after it is no render of the job.
-    if (!imageComplete(out)) return false;
-    const auto written = fs::last_write_time(out, ec);
-    for (const std::string& in : inputs) {
-      if (fs::exists(in, ec) && fs::last_write_time(in, ec) >= written) return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace penumbra

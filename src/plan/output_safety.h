@@ -32,13 +32,4 @@ struct JobFiles {
 // any job reads (checkOutputs has compared each job with itself).
 void checkJobsApart(const std::vector<JobFiles>& jobs);
 
-// A job's stamp, written into each of its outputs: the scene path, the overrides and
-// every view and file, hashed, so an edited job makes its outputs stale.
-std::string jobStamp(const std::string& scenePath, const std::vector<std::string>& overrides,
-                     const std::vector<std::pair<std::string, std::string>>& viewFiles);
-// True when every output exists whole (imageComplete), carries `stamp` and is newer
-// than every input.
-bool outputsUpToDate(const std::vector<std::string>& outputs, const std::string& stamp,
-                     const std::vector<std::string>& inputs);
-
 }  // namespace penumbra

@@ -35,7 +35,10 @@ PlannedJob RenderSession::plan(const JobRequest& asked) {
   job.request.overrides = jobOverrides(options_, asked.overrides);
   const JobRequest& request = job.request;
   Stopwatch clock;
-  job.scene = loadScene(request.scenePath, request.overrides, loadLimits(options_.maxMemoryBytes), options_.load);
+  LoadOptions load = options_.load;
+  load.cache = loads_.get();
+  if (request.scenePath == "-") ++sceneReads_;
+  job.scene = loadScene(request.scenePath, request.overrides, loadLimits(options_.maxMemoryBytes), load);
   job.notes = job.scene.load.notes;
   job.loadSeconds = clock.seconds();
   if (request.scenePath == "-") {
@@ -61,6 +64,11 @@ PlannedJob RenderSession::plan(const JobRequest& asked) {
   }
   job.scene.meshes = g->scene.meshes;
   return job;
+}
+
+void RenderSession::forgetLoads() {
+  sceneReads_ = sceneReads();
+  loads_ = std::make_unique<LoadCache>();
 }
 
 PlannedJob RenderSession::planView(const PlannedJob& base, const std::string& view) {

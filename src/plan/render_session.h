@@ -14,6 +14,7 @@
 #include "plan/render_plan.h"
 #include "plan/reuse_key.h"
 #include "plan/session_options.h"
+#include "io/load_cache.h"
 #include "io/scene_loader.h"
 #include <functional>
 #include <list>
@@ -104,6 +105,11 @@ class RenderSession {
   RenderResult frame(const PlannedJob& job, PhotonStage& stage, std::function<double()> clock = {},
                      std::function<void(int, const Image&, const ErrorEstimate&)> afterPass = {});
 
+  // Files loads share are read once (io/load_cache.h); once every job is planned,
+  // forgetLoads frees what the cache holds (its counts stay).
+  void forgetLoads();
+  // Scene and model files read from disk, each once however many jobs name it.
+  size_t sceneReads() const { return sceneReads_ + loads_->sceneReads() + loads_->modelReads(); }
   size_t sceneBuilds() const { return sceneBuilds_; }
   size_t photonBuilds() const { return photonBuilds_; }
   size_t emissions() const { return emissions_; }
@@ -128,6 +134,8 @@ class RenderSession {
 
   SessionOptions options_;  // threads resolved (> 0)
   tbb::global_control limit_;  // TBB's parallelism for the session's lifetime
+  std::unique_ptr<LoadCache> loads_ = std::make_unique<LoadCache>();
+  size_t sceneReads_ = 0;  // counted by caches already forgotten, and stdin's scenes
   std::map<std::string, std::unique_ptr<Geometry>> geometry_;
   std::list<CachedStage> stages_;  // most recently used first
   uint64_t peakStageBytes_ = 0;

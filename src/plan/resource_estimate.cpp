@@ -289,11 +289,4 @@ std::string estimateToJson(const ResourceEstimate& e) {
   return j.dump();
 }
 
-double shardCostNs(const Scene& s, size_t views) {
-  const double samples = double(s.camera.width) * s.camera.height * s.camera.spp * double(views);
-  const PhotonSettings& ps = s.photons;
-  const double photons = double(ps.indirectPhotons + ps.globalPhotons + ps.causticPhotons + (ps.gateMode != GateMode::Off ? ps.shadowPhotons : 0));
-  return (samples + photons) * cost::kCameraSampleNs;  // a camera sample and a photon cost about the same
-}
-
 }  // namespace penumbra

@@ -66,10 +66,6 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
 // "~64 h": for messages (bytes: core/byte_size.h).
 std::string formatDuration(double seconds);
 
-// A job's cost for splitting a batch into shards, in nanoseconds: the camera samples
-// of its `views` plus the photons it emits. Constants only, so every machine that
-// renders a shard computes the same split.
-double shardCostNs(const Scene& scene, size_t views);
 std::string describeMemory(const ResourceEstimate& e);
 // The `estimate` object of the --stats JSON.
 std::string estimateToJson(const ResourceEstimate& e);

@@ -270,14 +270,4 @@ std::vector<BatchJob> jobsForScenes(const std::vector<std::string>& scenes, cons
   return jobs;
 }
 
-std::pair<size_t, size_t> parseShard(const std::string& text) {
-  size_t i = 0, n = 0;
-  char slash = 0, extra = 0;
-  std::istringstream in(text);
-  if (!(in >> i >> slash >> n) || slash != '/' || (in >> extra) || n == 0 || i == 0 || i > n || n > 100000) {
-    throw InputError("--shard: expected I/N with 1 <= I <= N, got '" + text + "'");
-  }
-  return {i - 1, n};
-}
-
 }  // namespace penumbra

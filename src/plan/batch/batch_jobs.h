@@ -1,5 +1,5 @@
 // penumbra batch's jobs: a jobs file (or a list of scenes) expanded into plain
-// jobs (plan/batch/batch_run.h), and the deterministic split of a batch into shards.
+// jobs (plan/batch/batch_run.h).
 #pragma once
 #include "plan/batch/batch_run.h"
 #include <cstdint>
@@ -24,8 +24,5 @@ std::vector<BatchJob> readJobsFile(const std::string& path);
 // One job per scene, every view into DIR/<scene stem>[_<view>].<ext>.
 std::vector<BatchJob> jobsForScenes(const std::vector<std::string>& scenes, const std::string& dir,
                                     const std::vector<std::string>& views, const std::string& ext);
-
-// "2/4" -> {1, 4} (1-based on the command line); throws InputError.
-std::pair<size_t, size_t> parseShard(const std::string& text);
 
 }  // namespace penumbra

@@ -1,20 +1,20 @@
-// The batch loop: plan and admit every job, then render each through the render
-// session, which shares scenes and photon stages between jobs; a job's views are
-// rendered from the same maps.
+// The batch loop: decide from each job's outputs whether it is up to date (no
+// scene loaded), choose the shard's jobs, then load, plan and admit the jobs to
+// render before the first of them renders through the render session, which
+// shares scenes and photon stages between jobs.
 #include "plan/batch/batch_run.h"
+#include "plan/batch/job_cost.h"
+#include "plan/batch/job_render.h"
+#include "plan/batch/job_state.h"
+#include "plan/batch/shard_split.h"
 #include "plan/cpu_report.h"
-#include "plan/image_metadata.h"
-#include "plan/memory_limit.h"
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
-#include "plan/resource_estimate.h"
 #include "core/error.h"
 #include "io/image_io.h"
-#include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <algorithm>
 #include <filesystem>
-#include <map>
 #include <numeric>
 
 namespace penumbra {
@@ -24,228 +24,328 @@ namespace fs = std::filesystem;
 
 struct PreparedJob {
   const BatchJob* job = nullptr;
-  std::vector<PlannedJob> views;  // one per output, planned and admitted
-  std::vector<std::string> inputs;
   std::vector<std::string> outputs;  // each file once (views may share a layered EXR)
-  std::string stamp;  // written into every output: a changed job makes them stale
-  std::string error;  // validation failure (keepGoing)
+  std::string stamp;                 // written into every output: a changed job makes them stale
+  OutputsVerdict verdict;            // from the outputs, before anything loads
+  std::vector<PlannedJob> views;     // one per output, planned and admitted (jobs to render or cost)
+  std::vector<InputRecord> inputs;   // what the views read, as it was when loaded
+  double estimate = 0.0;             // seconds on one thread, once costed
+  std::string error;                 // validation failure (keepGoing)
 };
 
-// The command line's budget wins over a job's own, field by field.
-RenderBudget budgetOf(const BatchJob& job, const RenderBudget& command) {
-  RenderBudget b = job.budget;
-  if (command.seconds > 0.0) b.seconds = command.seconds;
-  if (command.targetError > 0.0) b.targetError = command.targetError;
-  return b;
-}
+class BatchRun {
+ public:
+  BatchRun(const BatchRequest& req) : req_(req), session_(req.session), jobs_(req.jobs.size()) {}
+  BatchOutcome run();
 
-}  // namespace
-
-std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count) {
-  std::vector<double> load(count, 0.0);
-  std::vector<size_t> mine;
-  for (size_t j = 0; j < costs.size(); ++j) {
-    const size_t s = static_cast<size_t>(std::min_element(load.begin(), load.end()) - load.begin());
-    load[s] += costs[j];
-    if (s == index) mine.push_back(j);
+ private:
+  void fail(PreparedJob& p, const std::string& why, bool input);
+  void report(size_t done, size_t total, const std::string& job, const char* phase) {
+    if (req_.progress) req_.progress({done, total, job, phase, clock_.wallSeconds()});
   }
-  return mine;
+  // Loads, plans and admits the job's views; `forRender` also makes its output folders.
+  void plan(PreparedJob& p, bool forRender);
+  void planAll(const std::vector<size_t>& which, bool forRender);
+  std::vector<JobCost> costs(const std::vector<size_t>& which);
+  std::vector<size_t> chooseShard();
+  void checkApart() const;
+  void finish(BatchOutcome& out);
+
+  const BatchRequest& req_;
+  const CpuSpan clock_;
+  RenderSession session_;
+  std::vector<PreparedJob> jobs_;
+  BatchOutcome out_;
+};
+
+void BatchRun::fail(PreparedJob& p, const std::string& why, bool input) {
+  p.error = why;
+  p.views.clear();
+  if (input && !req_.keepGoing) throw InputError("batch job '" + p.job->name + "' (" + p.job->where + "): " + why);
 }
 
-BatchOutcome runBatch(const BatchRequest& req) {
-  const CpuSpan clock;
-  BatchOutcome out;
-  RenderSession session(req.session);
-
-  // 1. Every job loaded, planned and admitted, its outputs checked, before the first render.
-  std::vector<PreparedJob> prepared(req.jobs.size());
-  for (size_t j = 0; j < req.jobs.size(); ++j) {
-    PreparedJob& p = prepared[j];
-    p.job = &req.jobs[j];
-    try {
-      std::vector<OutputPath> outputs;
-      std::vector<std::pair<std::string, std::string>> viewFiles;
-      for (const BatchOutput& o : p.job->outputs) {
-        viewFiles.push_back({o.view, o.path});
-        if (std::find(p.outputs.begin(), p.outputs.end(), o.path) != p.outputs.end()) continue;
-        p.outputs.push_back(o.path);
-        outputs.push_back({o.path, "output", true});
-      }
-      if (p.job->outputs.empty()) throw InputError("the job writes no output");
-      checkOutputs(outputs, req.extraInputs);  // the jobs file
+void BatchRun::plan(PreparedJob& p, bool forRender) {
+  if (!p.error.empty()) return;
+  try {
+    if (p.views.empty()) {
       JobRequest first;
       first.scenePath = p.job->scene;
       first.overrides = p.job->overrides;
       first.view = p.job->outputs.front().view;
-      first.outputs = outputs;
-      first.budget = budgetOf(*p.job, req.session.budget);
-      p.views.push_back(session.plan(first));
+      first.budget = jobBudget(*p.job, req_.session.budget);
+      p.views.push_back(session_.plan(first));
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
-        p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
+        p.views.push_back(session_.planView(p.views.front(), p.job->outputs[v].view));
       }
       for (const std::string& n : p.views.front().notes) {
-        if (std::find(out.notes.begin(), out.notes.end(), n) == out.notes.end()) out.notes.push_back(n);
+        if (std::find(out_.notes.begin(), out_.notes.end(), n) == out_.notes.end()) out_.notes.push_back(n);
       }
-      p.inputs = p.views.front().inputs;
-      p.inputs.insert(p.inputs.end(), req.extraInputs.begin(), req.extraInputs.end());
-      // --no-defaults changes the picture of a glTF scene: outputs of the other choice are stale.
-      std::vector<std::string> stamped = p.views.front().request.overrides;  // -D, then the job's own
-      if (!req.session.load.defaults) stamped.push_back("--no-defaults");
-      p.stamp = jobStamp(p.job->scene, stamped, viewFiles);
-    } catch (const InputError& e) {
-      p.error = e.what();
-      p.views.clear();
-      if (!req.keepGoing) throw InputError("batch job '" + p.job->name + "' (" + p.job->where + "): " + e.what());
+      p.inputs = recordInputs(p.views.front().inputs);
     }
+    if (!forRender) return;
+    std::vector<OutputPath> outputs;
+    for (const std::string& path : p.outputs) {
+      // Folders a jobs file names are made, as -o DIR's is.
+      const fs::path folder = fs::path(path).parent_path();
+      std::error_code ec;
+      if (!folder.empty() && !fs::is_directory(folder, ec)) fs::create_directories(folder, ec);
+      if (ec) throw InputError(path + ": cannot create its folder (" + ec.message() + ")");
+      outputs.push_back({path, "output", true});
+    }
+    std::vector<std::string> reads = p.views.front().inputs;
+    reads.insert(reads.end(), req_.protectedFiles.begin(), req_.protectedFiles.end());
+    checkOutputs(outputs, reads);
+  } catch (const InputError& e) {
+    fail(p, e.what(), true);
   }
-  // No job may write what another writes or reads, whatever their order.
-  std::vector<JobFiles> jobFiles;
-  for (const PreparedJob& p : prepared) {
+}
+
+void BatchRun::planAll(const std::vector<size_t>& which, bool forRender) {
+  size_t done = 0;
+  for (size_t j : which) {
+    report(done++, which.size(), jobs_[j].job->name, "load");
+    plan(jobs_[j], forRender);
+  }
+  // Every job is planned: what the loads shared is no longer needed.
+  session_.forgetLoads();
+}
+
+// Each job's cost, with jobs of equal photon keys in one group.
+std::vector<JobCost> BatchRun::costs(const std::vector<size_t>& which) {
+  std::vector<PhotonStageKey> keys;
+  std::vector<JobCost> out;
+  for (size_t j : which) {
+    PreparedJob& p = jobs_[j];
+    PhotonStageKey key;
+    JobCost c;
+    if (p.views.empty()) {
+      key.geometry = "not loaded: " + p.job->name;  // costs nothing, in a group of its own
+    } else {
+      key = photonKeyOf(p.views);
+      c = jobCostOf(p.views);
+    }
+    const auto known = std::find(keys.begin(), keys.end(), key);
+    c.group = static_cast<size_t>(known - keys.begin());
+    if (known == keys.end()) keys.push_back(key);
+    p.estimate = c.frameSeconds + c.photonSeconds;
+    out.push_back(c);
+  }
+  return out;
+}
+
+// No job may write what another writes or reads, whatever their order and shard:
+// every job's outputs are known from the file, its inputs once loaded or recorded
+// in its outputs, else its scene file.
+void BatchRun::checkApart() const {
+  std::vector<JobFiles> files;
+  for (const PreparedJob& p : jobs_) {
     if (!p.error.empty()) continue;
-    jobFiles.push_back({p.job->name, p.outputs, p.views.front().inputs});
+    std::vector<std::string> reads = !p.views.empty() ? p.views.front().inputs : p.verdict.inputs;
+    if (reads.empty()) reads.push_back(p.job->scene);
+    files.push_back({p.job->name, p.outputs, reads});
   }
-  checkJobsApart(jobFiles);
-  // Checked as a whole, the file is cut into shards. Every shard must cut it alike, so a
-  // job refused on this machine (its memory, a full disk) is costed from its scene all
-  // the same; only a scene that does not load costs nothing. It is reported by its shard.
-  std::vector<size_t> order(prepared.size());
-  std::iota(order.begin(), order.end(), size_t(0));
-  if (req.shard) {
-    std::vector<double> costs;
-    for (const PreparedJob& p : prepared) {
-      const size_t views = p.job->outputs.size();
-      if (p.error.empty()) {
-        costs.push_back(shardCostNs(p.views.front().scene, views));
-        continue;
-      }
-      try {
-        costs.push_back(shardCostNs(
-            loadScene(p.job->scene, jobOverrides(req.session, p.job->overrides), loadLimits(0), req.session.load), views));
-      } catch (const InputError&) {
-        costs.push_back(0.0);
+  checkJobsApart(files);
+}
+
+// The indices of the jobs this process takes: all, its shard's in the shard file
+// (nothing else loaded), or its shard of a split of every job made here.
+std::vector<size_t> BatchRun::chooseShard() {
+  std::vector<size_t> all(jobs_.size());
+  std::iota(all.begin(), all.end(), size_t(0));
+  if (!req_.shard) return all;
+  out_.shardLabel = req_.shard->label;
+  if (req_.shardFile) {
+    std::vector<std::string> names;
+    for (const BatchJob& j : req_.jobs) names.push_back(j.name);
+    size_t unplaced = 0;
+    if (req_.shardFile->shards.size() != req_.shard->count) {
+      throw InputError(fmt::format("--shard-count {} but the shard file has {} shards", req_.shard->count,
+                                   req_.shardFile->shards.size()));
+    }
+    std::vector<size_t> mine = jobsOfShardFile(*req_.shardFile, names, req_.shard->index, &unplaced);
+    for (const auto& shard : req_.shardFile->shards) {
+      for (const ShardFile::Job& fj : shard) {
+        auto it = std::find(names.begin(), names.end(), fj.name);
+        if (it != names.end()) jobs_[it - names.begin()].estimate = fj.seconds;
       }
     }
-    order = shardJobs(costs, req.shard->index, req.shard->count);
-    out.shardJobs = order;
-    if (req.listShard) return out;
+    out_.split.seconds = req_.shardFile->seconds;
+    if (unplaced > 0) {
+      out_.notes.push_back(fmt::format("{} jobs are not in the shard file: each went to the least-loaded shard "
+                                       "(plan the shards again to balance them)", unplaced));
+    }
+    return mine;
   }
-  // Up to date or not is decided once, before any job writes.
-  std::vector<bool> current(prepared.size(), false);
-  for (size_t j : order) {
-    current[j] = prepared[j].error.empty() && !req.force && outputsUpToDate(prepared[j].outputs, prepared[j].stamp, prepared[j].inputs);
+  planAll(all, false);
+  const ShardSplit split = splitShards(costs(all), req_.shard->count);
+  out_.split.seconds = split.shardSeconds;
+  return split.jobsOf(req_.shard->index);
+}
+
+BatchOutcome BatchRun::run() {
+  // 1. What each job writes and its stamp, from the jobs file alone.
+  for (size_t j = 0; j < jobs_.size(); ++j) {
+    PreparedJob& p = jobs_[j];
+    p.job = &req_.jobs[j];
+    for (const BatchOutput& o : p.job->outputs) {
+      if (std::find(p.outputs.begin(), p.outputs.end(), o.path) == p.outputs.end()) p.outputs.push_back(o.path);
+    }
+    if (p.outputs.empty()) fail(p, "the job writes no output", true);
+    p.stamp = jobStamp(definitionOf(*p.job, req_.session));
   }
-  std::vector<bool> builtScene(prepared.size(), false);  // this job's prepare built its BVH
-  // 2. The jobs to render prepared (BVH, light split, the photon estimate against the
-  // memory limit) before the first photon of any of them.
-  for (size_t j : order) {
-    PreparedJob& p = prepared[j];
-    if (!p.error.empty() || current[j]) continue;
-    const size_t builds = session.sceneBuilds();
+  auto row = [&](size_t j) {
+    BatchJobResult r;
+    r.name = jobs_[j].job->name;
+    r.outputs = jobs_[j].outputs;
+    r.estimate = jobs_[j].estimate;
+    return r;
+  };
+  if (req_.mode == BatchMode::PlanShards) {
+    std::vector<size_t> all(jobs_.size());
+    std::iota(all.begin(), all.end(), size_t(0));
+    planAll(all, false);
+    checkApart();
+    const ShardSplit split = splitShards(costs(all), req_.planShards);
+    out_.split.seconds = split.shardSeconds;
+    out_.split.shards.resize(split.shardSeconds.size());
+    for (size_t j : all) {
+      out_.split.shards[split.shardOf[j]].push_back({jobs_[j].job->name, jobs_[j].estimate});
+      out_.jobs.push_back(row(j));
+      out_.jobs.back().shard = split.shardOf[j];
+    }
+    finish(out_);
+    return out_;
+  }
+
+  // 2. This process's jobs.
+  const std::vector<size_t> mine = chooseShard();
+  checkApart();
+  if (req_.shard) out_.shardJobs = mine;
+  if (req_.mode == BatchMode::ListShard) {
+    for (size_t j : mine) out_.jobs.push_back(row(j));
+    finish(out_);
+    return out_;
+  }
+
+  // 3. Up to date or not, from the outputs alone, decided before any job writes.
+  size_t checked = 0;
+  std::vector<size_t> todo;
+  for (size_t j : mine) {
+    PreparedJob& p = jobs_[j];
+    if (!p.error.empty()) continue;
+    report(checked++, mine.size(), p.job->name, "check");
+    p.verdict = req_.force ? OutputsVerdict{JobState::Stale, "--force", {}} : judgeOutputs(p.outputs, p.stamp);
+    if (p.verdict.state != JobState::UpToDate) todo.push_back(j);
+  }
+  if (req_.mode == BatchMode::Status) {
+    for (size_t j : mine) {
+      const PreparedJob& p = jobs_[j];
+      BatchJobResult r = row(j);
+      r.shard = req_.shard ? req_.shard->index : 0;
+      if (!p.error.empty()) {
+        r.status = "failed: " + p.error;
+        ++out_.failed;
+      } else if (p.verdict.state == JobState::UpToDate) {
+        r.status = jobStateName(p.verdict.state);
+        ++out_.upToDate;
+      } else {
+        r.status = std::string(jobStateName(p.verdict.state)) + ": " + p.verdict.why;
+        ++out_.notUpToDate;
+      }
+      out_.jobs.push_back(r);
+    }
+    finish(out_);
+    return out_;
+  }
+
+  // 4. The jobs to render loaded, planned and admitted (a scene file read once).
+  planAll(todo, true);
+  checkApart();
+
+  // 5. Prepared (BVH, light split, the photon estimate against the memory limit)
+  // before the first photon of any of them.
+  std::vector<bool> builtScene(jobs_.size(), false);  // this job's prepare built its BVH
+  for (size_t j : todo) {
+    PreparedJob& p = jobs_[j];
+    if (!p.error.empty()) continue;
+    const size_t builds = session_.sceneBuilds();
     try {
-      for (PlannedJob& v : p.views) session.prepare(v);
+      for (PlannedJob& v : p.views) session_.prepare(v);
     } catch (const InputError& e) {
-      p.error = e.what();
-      if (!req.keepGoing) throw InputError("batch job '" + p.job->name + "' (" + p.job->where + "): " + e.what());
+      fail(p, e.what(), true);
     } catch (const std::exception& e) {
       p.error = e.what();  // out of memory or an Embree failure: this job fails, the batch goes on
     }
-    builtScene[j] = session.sceneBuilds() > builds;
+    builtScene[j] = session_.sceneBuilds() > builds;
   }
 
-  // 3. Render, sharing what the keys allow.
+  // 6. Render (or build the maps), sharing what the keys allow.
   size_t done = 0;
-  for (size_t j : order) {
-    PreparedJob& p = prepared[j];
-    BatchJobResult r;
-    r.name = p.job->name;
-    for (const BatchOutput& o : p.job->outputs) r.outputs.push_back(o.path);
+  for (size_t j : mine) {
+    PreparedJob& p = jobs_[j];
+    BatchJobResult r = row(j);
     const CpuSpan jobClock;
-    auto report = [&](const char* phase) {
-      if (!req.progress) return;
-      req.progress({done, order.size(), p.job->name, phase, clock.wallSeconds()});
-    };
     if (!p.error.empty()) {
       r.status = "failed: " + p.error;
-    } else if (current[j]) {
-      r.status = "up to date";
-      ++out.upToDate;
+    } else if (p.verdict.state == JobState::UpToDate) {
+      r.status = jobStateName(JobState::UpToDate);
+      ++out_.upToDate;
     } else {
       try {
         // The disk may have filled (or the folder gone) since the jobs were checked:
         // fail now rather than after the render.
         for (const std::string& path : p.outputs) checkImageOutputPath(path);
-        report("render");
+        report(done, mine.size(), p.job->name, req_.mode == BatchMode::MapsOnly ? "photons" : "render");
         std::vector<std::string> reused;
-        std::vector<const PlannedJob*> views;
-        for (const PlannedJob& v : p.views) views.push_back(&v);
         if (!builtScene[j]) reused.push_back("scene");
-        bool stageReused = false;
-        PhotonStage& stage = session.photons(views, &stageReused);
-        if (stageReused) {
+        JobRender rendered;
+        if (req_.mode == BatchMode::MapsOnly) {
+          std::vector<const PlannedJob*> views;
+          for (const PlannedJob& v : p.views) views.push_back(&v);
+          session_.photons(views, &rendered.photonsReused);
+          r.status = "maps ready";
+        } else {
+          rendered = renderJob(session_, *p.job, p.views, p.stamp, p.inputs);
+          r.status = "rendered";
+          ++out_.rendered;
+        }
+        if (rendered.photonsReused) {
           reused.push_back("photons");
-          ++out.photonReuses;
+          ++out_.photonReuses;
         }
-        std::map<std::string, std::vector<std::pair<std::string, Image>>> files;
-        struct Header {
-          ImageMetadata meta;
-          bool readsLight = false;
-        };
-        std::map<std::string, Header> headers;
-        for (size_t v = 0; v < p.views.size(); ++v) {
-          RenderResult result = session.frame(p.views[v], stage);
-          // A file's header is a render's (the same keys, error and budget), from its
-          // first view that reads light, else its first view; and the job's stamp.
-          const std::string& path = p.job->outputs[v].path;
-          const bool readsLight = result.stats.error.source != ErrorSource::None;
-          auto known = headers.find(path);
-          if (known == headers.end() || (readsLight && !known->second.readsLight)) {
-            Header& h = headers[path];
-            h.meta = renderMetadata(p.views[v].scene, p.views[v].plan, result.stats, p.views[v].viewName, path);
-            h.meta.emplace_back("penumbra:job", p.stamp);
-            h.readsLight = readsLight;
-          }
-          files[path].push_back({p.views[v].viewName, std::move(result.image)});
-        }
-        for (auto& [path, layers] : files) {
-          ImageMetadata& meta = headers[path].meta;
-          if (layers.size() == 1) {
-            writeImage(path, layers.front().second, meta);
-            continue;
-          }
-          // One header for several layers: its view is theirs, named in layer order.
-          std::vector<std::string> names;
-          for (const auto& layer : layers) names.push_back(layer.first);
-          for (auto& [key, value] : meta)
-            if (key == "penumbra:aov") value = fmt::format("{}", fmt::join(names, ","));
-          writeLayeredExr(path, layers, meta);
-        }
-        r.status = "rendered";
         r.reused = reused.empty() ? "-" : fmt::format("{}", fmt::join(reused, "+"));
-        ++out.rendered;
       } catch (const std::exception& e) {
         r.status = std::string("failed: ") + e.what();
       }
     }
-    if (r.status.rfind("failed", 0) == 0) ++out.failed;
-    r.cpu = jobClock.timing(session.options().threads);
+    if (r.status.rfind("failed", 0) == 0) ++out_.failed;
+    r.cpu = jobClock.timing(session_.options().threads);
     r.seconds = r.cpu.wallSeconds;
-    out.jobs.push_back(r);
-    ++done;
-    report("done");
+    out_.jobs.push_back(r);
+    report(++done, mine.size(), p.job->name, "done");
   }
-  out.sceneBuilds = session.sceneBuilds();
-  out.photonBuilds = session.photonBuilds();
-  out.evictions = session.evictions();
-  out.peakCacheBytes = session.peakStageBytes();
   std::vector<CpuTiming> rendered;
-  for (const BatchJobResult& j : out.jobs) {
+  for (const BatchJobResult& j : out_.jobs) {
     if (j.status == "rendered") rendered.push_back(j.cpu);
   }
   const std::string contended = contendedNote(rendered, "job");
-  if (!contended.empty()) out.notes.push_back(contended);
-  out.cpu = clock.timing(session.options().threads);
-  out.seconds = out.cpu.wallSeconds;
-  return out;
+  if (!contended.empty()) out_.notes.push_back(contended);
+  finish(out_);
+  return out_;
 }
+
+void BatchRun::finish(BatchOutcome& out) {
+  out.sceneReads = session_.sceneReads();
+  out.sceneBuilds = session_.sceneBuilds();
+  out.photonBuilds = session_.photonBuilds();
+  out.evictions = session_.evictions();
+  out.peakCacheBytes = session_.peakStageBytes();
+  out.cpu = clock_.timing(session_.options().threads);
+  out.seconds = out.cpu.wallSeconds;
+}
+
+}  // namespace
+
+BatchOutcome runBatch(const BatchRequest& request) { return BatchRun(request).run(); }
 
 }  // namespace penumbra

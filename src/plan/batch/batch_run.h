@@ -1,9 +1,11 @@
 // A batch: renders many jobs in one process, sharing the loaded scene,
 // BVH and textures between jobs of the same geometry and the photon maps between
 // jobs whose photon inputs are equal (plan/reuse_key.h), in an LRU cache with a
-// byte cap; skips jobs whose outputs are up to date; reports every job.
+// byte cap; skips jobs whose outputs are up to date (plan/batch/job_state.h)
+// without loading their scenes; splits a file into shards; reports every job.
 #pragma once
 #include "core/cpu_time.h"
+#include "plan/batch/batch_shards.h"
 #include "plan/render_budget.h"
 #include "plan/session_options.h"
 #include <functional>
@@ -35,9 +37,13 @@ struct BatchProgress {
   double seconds = 0.0;
 };
 
-// Shard `index` (0-based) of `count`: the jobs this process renders out of the whole file.
-struct BatchShard {
-  size_t index = 0, count = 1;
+// What a batch run does with its jobs.
+enum class BatchMode {
+  Render,      // render the jobs not up to date
+  MapsOnly,    // build (and with --map-dir write) their photon maps, render nothing
+  ListShard,   // name the shard's jobs and their estimates
+  PlanShards,  // split every job into planShards shards (BatchOutcome::split)
+  Status,      // say of every job whether it is up to date, and why not
 };
 
 struct BatchRequest {
@@ -45,22 +51,26 @@ struct BatchRequest {
   // the budget (over each job's own, field by field), the phases inside each render.
   SessionOptions session;
   std::vector<BatchJob> jobs;  // the whole jobs file, also when one shard renders
-  // Set: validate and clash-check every job, then render only this shard's; an unset
-  // shard renders every job.
-  std::optional<BatchShard> shard;
-  bool listShard = false;  // stop after choosing the shard's jobs (BatchOutcome::shardJobs)
-  std::vector<std::string> extraInputs;  // the jobs file: its edits make every output stale
+  BatchMode mode = BatchMode::Render;
+  size_t planShards = 0;  // PlanShards: how many
+  // Set: only this shard's jobs, from `shardFile` when given (no other job is
+  // loaded), else from a split of every job made here.
+  std::optional<ShardChoice> shard;
+  std::optional<ShardFile> shardFile;
+  std::vector<std::string> protectedFiles;  // no output may overwrite these (the jobs file)
   bool force = false;       // render even jobs whose outputs are up to date
   bool keepGoing = false;   // a job that fails validation is reported, not fatal
-  // Told on the batch's own thread as each job starts ("render") and ends ("done").
+  // Told on the batch's own thread as each job is loaded ("load"), starts ("render") and ends ("done").
   std::function<void(const BatchProgress&)> progress;
 };
 
 struct BatchJobResult {
   std::string name;
-  std::string status;   // "rendered", "up to date", "failed: ..."
+  std::string status;   // "rendered", "up to date", "missing: ...", "stale: ...", "failed: ..."
   std::string reused;   // "scene", "photons", "scene+photons" or "-"
   double seconds = 0.0;
+  double estimate = 0.0;  // seconds on one thread, where the job was costed (shards)
+  size_t shard = 0;       // 0-based, with a shard
   CpuTiming cpu;  // the process's CPU time over the same span
   std::vector<std::string> outputs;
 };
@@ -68,8 +78,10 @@ struct BatchJobResult {
 struct BatchOutcome {
   std::vector<BatchJobResult> jobs;  // the jobs rendered or checked: the shard's, else all
   std::vector<size_t> shardJobs;     // with a shard: indices into BatchRequest::jobs
-  size_t failed = 0, rendered = 0, upToDate = 0;
-  size_t sceneBuilds = 0, photonBuilds = 0, photonReuses = 0, evictions = 0;
+  std::string shardLabel;            // "shard 1/4 (SLURM_ARRAY_TASK_ID=0)"; "" without one
+  ShardFile split;                   // PlanShards
+  size_t failed = 0, rendered = 0, upToDate = 0, notUpToDate = 0;
+  size_t sceneReads = 0, sceneBuilds = 0, photonBuilds = 0, photonReuses = 0, evictions = 0;
   uint64_t peakCacheBytes = 0;
   double seconds = 0.0;
   CpuTiming cpu;  // over the whole batch
@@ -77,12 +89,8 @@ struct BatchOutcome {
   std::vector<std::string> notes;
 };
 
-// Validates every job (InputError naming the job unless keepGoing), then renders.
+// Decides which jobs are up to date from their outputs, then loads, validates
+// (InputError naming the job unless keepGoing) and renders the others.
 BatchOutcome runBatch(const BatchRequest& request);
-
-// The jobs of shard `index` (0-based) of `count`: jobs in order, each to the shard
-// with the least estimated cost so far (ties to the lowest index), so appending
-// jobs never moves an earlier one.
-std::vector<size_t> shardJobs(const std::vector<double>& costs, size_t index, size_t count);
 
 }  // namespace penumbra

@@ -1,0 +1,33 @@
+// A batch job's estimated cost and photon key (plan/batch/job_cost.h).
+#include "plan/batch/job_cost.h"
+#include "plan/resource_estimate.h"
+#include <algorithm>
+
+namespace penumbra {
+
+JobCost jobCostOf(const std::vector<PlannedJob>& views) {
+  JobCost c;
+  for (const PlannedJob& v : views) {
+    // One thread: CPU seconds, the same on every machine whatever its cores.
+    EstimateOptions o = v.admission.options;
+    o.threads = 1;
+    const ResourceEstimate e = estimateResources(v.scene, o, v.admission.bound);
+    c.frameSeconds += e.renderSeconds - e.bvhSeconds;
+    c.photonSeconds = std::max(c.photonSeconds, e.photonSeconds + e.bvhSeconds);
+  }
+  return c;
+}
+
+PhotonStageKey photonKeyOf(const std::vector<PlannedJob>& views) {
+  PhotonStageKey key;
+  key.geometry = views.front().keys.geometry;
+  key.photons = views.front().keys.photons;
+  for (const PlannedJob& v : views) {
+    key.budgets.maxWith(planBudgets(v.plan));
+    const PhotonNeeds needs = photonNeeds(v.plan);
+    for (MapKind k : kAllMaps) key.maps[k] = key.maps[k] || needs.maps[k];
+  }
+  return key;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,18 @@
+// What a planned batch job costs a shard, from the estimate a render prints, and
+// the photon key that decides which jobs share its maps.
+#pragma once
+#include "plan/batch/shard_split.h"
+#include "plan/photon_stage.h"
+#include "plan/render_session.h"
+#include <vector>
+
+namespace penumbra {
+
+// Seconds on one thread: the views' frames (every pass, the gate and lookups as
+// planned), and the maps they share (with the BVH they need), charged once.
+JobCost jobCostOf(const std::vector<PlannedJob>& views);
+
+// The key of the photon stage the views share (RenderSession::photons' key).
+PhotonStageKey photonKeyOf(const std::vector<PlannedJob>& views);
+
+}  // namespace penumbra

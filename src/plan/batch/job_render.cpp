@@ -1,0 +1,54 @@
+// A batch job's views rendered and written (plan/batch/job_render.h).
+#include "plan/batch/job_render.h"
+#include "plan/image_metadata.h"
+#include "io/image_io.h"
+#include <fmt/format.h>
+#include <map>
+
+namespace penumbra {
+
+JobRender renderJob(RenderSession& session, const BatchJob& job, const std::vector<PlannedJob>& views,
+                    const std::string& stamp, const std::vector<InputRecord>& inputs) {
+  JobRender r;
+  std::vector<const PlannedJob*> shared;
+  for (const PlannedJob& v : views) shared.push_back(&v);
+  PhotonStage& stage = session.photons(shared, &r.photonsReused);
+  std::map<std::string, std::vector<std::pair<std::string, Image>>> files;
+  struct Header {
+    ImageMetadata meta;
+    bool readsLight = false;
+  };
+  std::map<std::string, Header> headers;
+  for (size_t v = 0; v < views.size(); ++v) {
+    RenderResult result = session.frame(views[v], stage);
+    // A file's header is a render's (the same keys, error and budget), from its
+    // first view that reads light, else its first view; and the job's stamp and inputs.
+    const std::string& path = job.outputs[v].path;
+    const bool readsLight = result.stats.error.source != ErrorSource::None;
+    auto known = headers.find(path);
+    if (known == headers.end() || (readsLight && !known->second.readsLight)) {
+      Header& h = headers[path];
+      h.meta = renderMetadata(views[v].scene, views[v].plan, result.stats, views[v].viewName, path);
+      h.meta.emplace_back(kJobStampAttribute, stamp);
+      h.meta.emplace_back(kJobInputsAttribute, inputsAttribute(inputs));
+      h.readsLight = readsLight;
+    }
+    files[path].push_back({views[v].viewName, std::move(result.image)});
+  }
+  for (auto& [path, layers] : files) {
+    ImageMetadata& meta = headers[path].meta;
+    if (layers.size() == 1) {
+      writeImage(path, layers.front().second, meta);
+      continue;
+    }
+    // One header for several layers: its view is theirs, named in layer order.
+    std::vector<std::string> names;
+    for (const auto& layer : layers) names.push_back(layer.first);
+    for (auto& [key, value] : meta)
+      if (key == "penumbra:aov") value = fmt::format("{}", fmt::join(names, ","));
+    writeLayeredExr(path, layers, meta);
+  }
+  return r;
+}
+
+}  // namespace penumbra

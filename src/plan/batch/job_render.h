@@ -1,0 +1,21 @@
+// One batch job's frames: every view rendered from the same photon maps, and its
+// files written with the job's stamp and the record of what it read.
+#pragma once
+#include "plan/batch/batch_run.h"
+#include "plan/batch/job_state.h"
+#include "plan/render_session.h"
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct JobRender {
+  bool sceneReused = false, photonsReused = false;
+};
+
+// Renders `views` (planned and prepared, one per output of `job`) and writes each
+// output file once (several views of one .exr as its layers).
+JobRender renderJob(RenderSession& session, const BatchJob& job, const std::vector<PlannedJob>& views,
+                    const std::string& stamp, const std::vector<InputRecord>& inputs);
+
+}  // namespace penumbra

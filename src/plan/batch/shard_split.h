@@ -1,0 +1,26 @@
+// The split of a batch into shards: jobs that share photon maps kept together
+// (the maps built once), groups larger than a fair share cut into contiguous
+// runs, and the pieces placed largest first on the least-loaded shard.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+namespace penumbra {
+
+// One job's cost in seconds on one thread, from the estimate a render prints.
+struct JobCost {
+  size_t group = 0;           // jobs with equal photon keys share a group
+  double photonSeconds = 0.0;  // the group's maps: paid once by each shard that renders the group
+  double frameSeconds = 0.0;   // the job's own frames: every view, every pass
+};
+
+struct ShardSplit {
+  std::vector<size_t> shardOf;       // per job
+  std::vector<double> shardSeconds;  // per shard: its frames plus each photon stage it builds
+  std::vector<size_t> jobsOf(size_t shard) const;  // in job order
+};
+
+// Deterministic: equal costs give an equal split on every machine.
+ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count);
+
+}  // namespace penumbra
