@@ -16,7 +16,6 @@ constexpr double kGatherNsPerNeighbour = 60.0;  // exact gathers, per neighbour
 constexpr double kLookupNs = 80.0;          // one precomputed query per shading point, all lights
 constexpr double kExactVoteNs = 3000.0;     // one exact k-nearest gate vote per light
 constexpr double kShadowPhotonNs = 520.0;   // emit + build + cache, per emitted shadow photon
-constexpr double kCameraSampleNs = 500.0;   // batch's shard balance: a camera sample or a photon
 constexpr double kStartupSeconds = 0.2;     // load, BVH, set-up of a small scene (large BVHs: below)
 constexpr double kBvhBuildNsPerPrimitive = 1200.0;  // Embree's build, per triangle or sphere
 constexpr double kMeshLightSampleNs = 40.0;   // one sample of a mesh light: a point on a triangle

@@ -122,12 +122,20 @@ std::vector<JobCost> BatchRun::costs(const std::vector<size_t>& which) {
       key.geometry = "not loaded: " + p.job->name;  // costs nothing, in a group of its own
     } else {
       key = photonKeyOf(p.views);
-      c = jobCostOf(p.views);
+      const TraceScene* tracer = nullptr;
+      try {
+        for (PlannedJob& v : p.views) session_.prepare(v);
+        tracer = session_.assets(p.views.front()).tracer.get();
+      } catch (const std::exception&) {
+        // Refused on this machine (its memory): costed from the bounds.
+      }
+      c = jobCostOf(p.views, tracer);
     }
     const auto known = std::find(keys.begin(), keys.end(), key);
     c.group = static_cast<size_t>(known - keys.begin());
+    // A group's maps are charged to its first job, as the split charges them once.
+    p.estimate = c.frameSeconds + (known == keys.end() ? c.photonSeconds : 0.0);
     if (known == keys.end()) keys.push_back(key);
-    p.estimate = c.frameSeconds + c.photonSeconds;
     out.push_back(c);
   }
   return out;

@@ -1,17 +1,20 @@
 // A batch job's estimated cost and photon key (plan/batch/job_cost.h).
 #include "plan/batch/job_cost.h"
+#include "plan/photon_pilot.h"
 #include "plan/resource_estimate.h"
 #include <algorithm>
 
 namespace penumbra {
 
-JobCost jobCostOf(const std::vector<PlannedJob>& views) {
+JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer) {
   JobCost c;
   for (const PlannedJob& v : views) {
     // One thread: CPU seconds, the same on every machine whatever its cores.
     EstimateOptions o = v.admission.options;
     o.threads = 1;
-    const ResourceEstimate e = estimateResources(v.scene, o, v.admission.bound);
+    // The analytic rates bound the stores per photon, loosely; a pilot measures them.
+    const StoreRates rates = tracer ? measureStoreRates(v.scene, *tracer, o.photons, v.admission.bound) : v.admission.bound;
+    const ResourceEstimate e = estimateResources(v.scene, o, rates);
     c.frameSeconds += e.renderSeconds - e.bvhSeconds;
     c.photonSeconds = std::max(c.photonSeconds, e.photonSeconds + e.bvhSeconds);
   }

@@ -9,8 +9,10 @@
 namespace penumbra {
 
 // Seconds on one thread: the views' frames (every pass, the gate and lookups as
-// planned), and the maps they share (with the BVH they need), charged once.
-JobCost jobCostOf(const std::vector<PlannedJob>& views);
+// planned), and the maps they share (with the BVH they need), charged once. With
+// the views' BVH, the photons stored per emitted one come from a pilot emission
+// (deterministic, so every machine costs alike), else from the analytic bounds.
+JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer);
 
 // The key of the photon stage the views share (RenderSession::photons' key).
 PhotonStageKey photonKeyOf(const std::vector<PlannedJob>& views);
