@@ -273,8 +273,10 @@ BatchOutcome BatchRun::run() {
   // 5. Prepared (BVH, light split, the photon estimate against the memory limit)
   // before the first photon of any of them.
   std::vector<bool> builtScene(jobs_.size(), false);  // this job's prepare built its BVH
+  size_t prepared = 0;
   for (size_t j : todo) {
     PreparedJob& p = jobs_[j];
+    report(prepared++, todo.size(), p.job->name, "prepare");
     if (!p.error.empty()) continue;
     const size_t builds = session_.sceneBuilds();
     try {

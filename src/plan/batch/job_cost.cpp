@@ -1,5 +1,6 @@
 // A batch job's estimated cost and photon key (plan/batch/job_cost.h).
 #include "plan/batch/job_cost.h"
+#include "plan/cost_model.h"
 #include "plan/photon_pilot.h"
 #include "plan/resource_estimate.h"
 #include <algorithm>
@@ -15,8 +16,10 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
     // The analytic rates bound the stores per photon, loosely; a pilot measures them.
     const StoreRates rates = tracer ? measureStoreRates(v.scene, *tracer, o.photons, v.admission.bound) : v.admission.bound;
     const ResourceEstimate e = estimateResources(v.scene, o, rates);
-    c.frameSeconds += e.renderSeconds - e.bvhSeconds;
-    c.photonSeconds = std::max(c.photonSeconds, e.photonSeconds + e.bvhSeconds);
+    // The scene's load and BVH are paid once by the jobs that share its maps.
+    const double setup = cost::kStartupSeconds + e.bvhSeconds;
+    c.frameSeconds += std::max(0.0, e.renderSeconds - setup);
+    c.photonSeconds = std::max(c.photonSeconds, e.photonSeconds + setup);
   }
   return c;
 }
