@@ -16,10 +16,10 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
     // The analytic rates bound the stores per photon, loosely; a pilot measures them.
     const StoreRates rates = tracer ? measureStoreRates(v.scene, *tracer, o.photons, v.admission.bound) : v.admission.bound;
     const ResourceEstimate e = estimateResources(v.scene, o, rates);
-    // The scene's load and BVH are paid once by the jobs that share its maps.
-    const double setup = cost::kStartupSeconds + e.bvhSeconds;
-    c.frameSeconds += std::max(0.0, e.renderSeconds - setup);
-    c.photonSeconds = std::max(c.photonSeconds, e.photonSeconds + setup);
+    // The BVH is paid once by the jobs that share its maps; the process's start-up
+    // (in renderSeconds) once by each shard whatever its jobs, so it is left out.
+    c.frameSeconds += std::max(0.0, e.renderSeconds - cost::kStartupSeconds - e.bvhSeconds);
+    c.photonSeconds = std::max(c.photonSeconds, e.photonSeconds + e.bvhSeconds);
   }
   return c;
 }
