@@ -62,6 +62,21 @@ TEST(HardBatchFarm, UpToDateIsDecidedPerJobWithoutLoadingAScene) {
   EXPECT_EQ(occurrences(stale.out, "scene.json changed"), 4u) << stale.out;
 }
 
+TEST(HardBatchFarm, ARerunOfAnUpToDateOrbitReadsNoScene) {
+  ScratchDir dir;
+  dir.write("scene.json", kFloorScene);
+  dir.write("jobs.json", R"({"jobs": [{"scene": "scene.json", "output": "out/t_{i:02}.png",
+    "orbit": {"count": 64, "radius": 4, "height": 2}}]})");
+  const std::string batch = "batch " + at(dir, "jobs.json") + " -q --stats - ";
+  const nlohmann::json first = stats(runCli(batch));
+  EXPECT_EQ(first["jobs"]["rendered"], 64);
+  EXPECT_EQ(first["scene_files_read"], 1);  // 64 frames, one scene file read
+  const nlohmann::json again = stats(runCli(batch));
+  EXPECT_EQ(again["jobs"]["up_to_date"], 64);
+  EXPECT_EQ(again["scene_files_read"], 0);
+  EXPECT_EQ(again["scenes_built"], 0);
+}
+
 TEST(HardBatchFarm, AnOrbitIsPlannedIntoShardsReadingItsSceneOnce) {
   ScratchDir dir;
   dir.write("scene.json", kFloorScene);
