@@ -8,6 +8,7 @@
 #include "io/temp_file.h"
 #include <fmt/format.h>
 #include <zlib.h>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -147,11 +148,13 @@ uint64_t writeMapFile(const std::string& path, const std::string& keyText, const
 
 std::string readMapFile(const std::string& path, const std::string& keyText, Emission* out, uint64_t* bytes) {
   std::error_code ec;
-  const uint64_t size = fs::file_size(path, ec);
-  if (ec) return fs::exists(path, ec) ? "cannot read its size" : kMapFileMissing;
+  if (!fs::exists(path, ec)) return kMapFileMissing;
+  // The size of the file opened, not of the name: another process may rename a new one onto it.
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in || fs::is_directory(path, ec)) return "cannot open it";
+  const uint64_t size = static_cast<uint64_t>(in.tellg());
+  in.seekg(0);
   if (bytes) *bytes = size;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "cannot open it";
   std::string front(kPreambleBytes, '\0');
   if (size < kPreambleBytes || !in.read(front.data(), kPreambleBytes)) return "truncated: no header";
   if (std::memcmp(front.data(), kMagic, sizeof kMagic) != 0) return "not a penumbra photon map file";
@@ -182,6 +185,10 @@ std::string readMapFile(const std::string& path, const std::string& keyText, Emi
     MapExtent& x = extents[kind];
     x.recordBytes = header.get<uint32_t>();
     x.count = header.get<uint64_t>();
+    if (x.recordBytes == 0 || x.count > UINT64_MAX / kMapKinds / x.recordBytes) {  // so the sum below cannot wrap
+      x.count = 0;
+      header.ok = false;
+    }
     if (header.ok && x.recordBytes != sizeof(Photon) && problem.empty()) {
       problem = fmt::format("{} photons of {} bytes, this penumbra's have {}", mapName(kind), x.recordBytes,
                             sizeof(Photon));

@@ -97,9 +97,9 @@ class RenderSession {
   PhotonStage& photons(const PlannedJob& job, bool* reused = nullptr) { return photons({&job}, reused); }
 
   // The map file of the stage photons(jobs) would return, without building any map
-  // (batch --maps-only): a sound file is only checked (outcome.loaded), else the photons
-  // are emitted and written (outcome.written; its note says why a file there was not
-  // used). Needs SessionOptions::mapDir and prepared jobs.
+  // (batch --maps-only): a sound file is only checked (outcome.loaded, counted in
+  // mapLoads), else the photons are emitted and written (outcome.written; its note says
+  // why a file there was not used). Needs SessionOptions::mapDir and prepared jobs.
   MapFileOutcome storeMaps(const std::vector<const PlannedJob*>& jobs);
 
   // The maps of jobs with equal keys that differ only in photon budgets (a sweep's
