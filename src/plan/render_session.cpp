@@ -154,7 +154,7 @@ PhotonStageKey RenderSession::stageKey(const std::vector<const PlannedJob*>& job
 
 Emission RenderSession::stageEmission(const PlannedJob& job, const PhotonStageKey& key, const PhotonNeeds& needs,
                                  const std::function<Emission()>& emit, MapFileOutcome& file, bool keep) {
-  if (!usesMapFiles(job)) return emit();
+  if (!usesMapFile(job, needs)) return emit();
   beginPhase(options_.progress, "map file");
   Emission e = loadOrEmit(options_.mapDir, mapFileKey(key, needs, options_.load.defaults), emit, file, keep);
   if (file.loaded) ++mapLoads_;
@@ -212,6 +212,7 @@ MapFileOutcome RenderSession::storeMaps(const std::vector<const PlannedJob*>& jo
     file.note = "photon maps: a scene read from standard input has no map file";
     return file;
   }
+  if (!needs.any()) return file;  // nothing to emit, nothing to store
   const PhaseGuard phases(options_.progress);
   stageEmission(job, key, needs, [&] {
     ++emissions_;
@@ -252,7 +253,7 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
     };
     if (budgets.size() == 1) return stageEmission(lead, key, needs, emit, file);
     Emission e = emit();
-    if (usesMapFiles(lead) && std::find(budgets.begin(), budgets.end(), top) != budgets.end()) {
+    if (usesMapFile(lead, needs) && std::find(budgets.begin(), budgets.end(), top) != budgets.end()) {
       const std::string text = mapFileKey(key, needs, options_.load.defaults);
       const std::string path = mapFilePath(options_.mapDir, text);
       if (!std::filesystem::exists(path)) {

@@ -99,7 +99,8 @@ class RenderSession {
   // The map file of the stage photons(jobs) would return, without building any map
   // (batch --maps-only): a sound file is only checked (outcome.loaded, counted in
   // mapLoads), else the photons are emitted and written (outcome.written; its note says
-  // why a file there was not used). Needs SessionOptions::mapDir and prepared jobs.
+  // why a file there was not used); neither for jobs that emit no photons. Needs
+  // SessionOptions::mapDir and prepared jobs.
   MapFileOutcome storeMaps(const std::vector<const PlannedJob*>& jobs);
 
   // The maps of jobs with equal keys that differ only in photon budgets (a sweep's
@@ -143,6 +144,8 @@ class RenderSession {
   // Whether the job's stages go through map files: --map-dir, and a scene with a path
   // (one read from stdin has no key another process could match).
   bool usesMapFiles(const PlannedJob& job) const { return !options_.mapDir.empty() && job.request.scenePath != "-"; }
+  // ... and the stage has photons to store (a stage without any has no file).
+  bool usesMapFile(const PlannedJob& job, const PhotonNeeds& needs) const { return usesMapFiles(job) && needs.any(); }
   // The emission of `key`: from its map file where the job uses them (then `file`
   // says what happened and the counters follow), else emitted.
   // `keep` false: a sound file is only checked (storeMaps).

@@ -250,6 +250,17 @@ TEST_F(MapFiles, AFullMapDiskFailsTheRenderWithOneLine) {
   EXPECT_FALSE(fs::exists(dir_ / "full.png"));
 }
 
+// fig03's gate is auto, off for point lights, and it has no indirect map: no photons,
+// so nothing to store and no file.
+TEST_F(MapFiles, AStageWithoutPhotonsHasNoFile) {
+  const SceneCase none{"fig03_shadows.json", "-D camera.width=32 -D camera.height=24"};
+  const CliResult r = render(none, "x.png", "--map-dir " + maps());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.err.find("photon maps"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_directory(mapDir()));
+  EXPECT_TRUE(mapFiles(mapDir()).empty());
+}
+
 TEST_F(MapFiles, AMapDirThatCannotBeCreatedIsRefusedBeforeAnyWork) {
   std::ofstream(dir_ / "plain-file") << "x";
   const CliResult r = render(kGated, "x.png", "--map-dir " + quote((dir_ / "plain-file" / "maps").string()));
