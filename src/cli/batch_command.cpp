@@ -63,7 +63,9 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_flag("--force", o.force, "Render every job, even those whose outputs are up to date");
   c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
   addSessionOptions(*c, o.session,
-                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption, "job");
+                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption |
+                        kMapDirOption,
+                    "job");
 }
 
 BatchCommand::~BatchCommand() = default;

@@ -164,7 +164,9 @@ int runCommandLine(int argc, char** argv) {
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-v,--verbose", verbose, "The summary also gives the reasons of automatic decisions (the gate)");
   addSessionOptions(*render, session,
-                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption, "");
+                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption |
+                        kMapDirOption,
+                    "");
   std::string toneArg;
   render->add_option("--exposure", req.display.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
       ->check(CLI::Range(-64.0, 64.0));

@@ -101,6 +101,7 @@ SessionOptions SessionArgs::options(const std::vector<std::string>& own) const {
   o.load = plan.load();
   o.maxMemoryBytes = maxMemoryBytes();
   o.budget = budget;
+  o.mapDir = mapDir;
   o.overrides = overrides;
   o.overrides.insert(o.overrides.end(), own.begin(), own.end());
   if (!plan.gateSetting().empty()) o.overrides.push_back(plan.gateSetting());
@@ -130,6 +131,12 @@ void addSessionOptions(CLI::App& command, SessionArgs& args, unsigned which, con
   if (which & kPlanOption) addPlanOptions(command, args.plan);
   if (which & kDefaultsOption) addDefaultsOption(command, args.plan.noDefaults);
   if (which & kBudgetOption) addBudgetOptions(command, args.budget);
+  if (which & kMapDirOption) {
+    command.add_option("--map-dir", args.mapDir,
+                       "Photon map files: load each photon stage from DIR by its key, or build it and write it "
+                       "there for the next process (created if missing; see docs/photon-maps.md)")
+        ->type_name("DIR");
+  }
 }
 
 }  // namespace penumbra

@@ -1,6 +1,6 @@
 // The options the commands share, registered once: threads, memory, scene overrides,
 // quiet, the plan's overrides (--enable/--disable/--gate/--no-gate), loading
-// (--no-defaults) and budgets (--time-limit/--target-error). Each command asks for its set.
+// (--no-defaults), budgets (--time-limit/--target-error) and map files (--map-dir). Each command asks for its set.
 #pragma once
 #include "plan/session_options.h"
 #include <CLI/CLI.hpp>
@@ -33,6 +33,7 @@ enum SessionOption : unsigned {
   kPlanOption = 1u << 4,       // --enable, --disable, --gate, --no-gate, --no-defaults
   kDefaultsOption = 1u << 5,   // --no-defaults alone (check: no plan)
   kBudgetOption = 1u << 6,     // --time-limit, --target-error
+  kMapDirOption = 1u << 7,     // --map-dir
 };
 
 struct SessionArgs {
@@ -43,12 +44,13 @@ struct SessionArgs {
   bool quiet = false;
   PlanArgs plan;
   RenderBudget budget;
+  std::string mapDir;  // --map-dir: photon map files are loaded from and written to it
   // The one thread count of -t (0: all cores); a list or a count outside 1..1024 is refused.
   int threadCount() const;
   // --max-memory in bytes; 0: the memory available.
   uint64_t maxMemoryBytes() const;
   // Every job's options, checked (InputError): the thread count (0 where -t is a list),
-  // memory, plan overrides, loading, budget, and -D, then `own` (a command's options
+  // memory, plan overrides, loading, budget, the map folder, and -D, then `own` (a command's options
   // that stand for scene values, e.g. render's --seed), then --gate.
   SessionOptions options(const std::vector<std::string>& own = {}) const;
 };

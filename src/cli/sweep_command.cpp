@@ -48,7 +48,9 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
   c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
   addSessionOptions(*c, o.session,
-                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption, "run",
+                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption |
+                        kMapDirOption,
+                    "run",
                     "Worker threads (default: all cores); a list, e.g. 1,2, is a knob: every run at each count, each "
                     "count in its own session");
   c->add_option("--repeat", o.repeat, "Render each run's frame N times on its maps; keep the fastest and the median "

@@ -99,16 +99,22 @@ constexpr int kTempNameAttempts = 64;
 // What a temp name adds at most: ".tmp", the pid and "-" and the counter at full width.
 constexpr size_t kTempTagMax = 4 + 10 + 1 + 10;
 
-// Writes all `size` bytes (write(2) may take fewer, or be interrupted); 0 or the errno.
-// `failAfter` < SIZE_MAX: the disk-full hook's ENOSPC once that many bytes are written.
-int writeAll(int fd, const unsigned char* data, size_t size, size_t failAfter) {
-  const size_t end = std::min(size, failAfter);
-  for (size_t done = 0; done < end;) {
-    const ssize_t n = ::write(fd, data + done, std::min<size_t>(end - done, size_t{1} << 30));
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return errno;
-    if (n == 0) return EIO;
-    done += static_cast<size_t>(n);
+// Writes every piece's bytes in order (write(2) may take fewer, or be interrupted); 0 or
+// the errno. `failAfter` < SIZE_MAX: the disk-full hook's ENOSPC once that many bytes are written.
+int writeAll(int fd, const std::vector<FilePiece>& pieces, size_t failAfter) {
+  size_t written = 0;
+  for (const FilePiece& piece : pieces) {
+    const auto* data = static_cast<const unsigned char*>(piece.data);
+    const size_t end = std::min(piece.size, failAfter - written);
+    for (size_t done = 0; done < end;) {
+      const ssize_t n = ::write(fd, data + done, std::min<size_t>(end - done, size_t{1} << 30));
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) return errno;
+      if (n == 0) return EIO;
+      done += static_cast<size_t>(n);
+    }
+    written += end;
+    if (written == failAfter) break;
   }
   return failAfter < SIZE_MAX ? ENOSPC : 0;
 }
@@ -171,6 +177,10 @@ std::string tempPathFor(const std::string& path) {
 }
 
 void writeFileAtomic(const std::string& path, const void* data, size_t size, const std::string& what) {
+  writeFileAtomic(path, std::vector<FilePiece>{{data, size}}, what);
+}
+
+void writeFileAtomic(const std::string& path, const std::vector<FilePiece>& pieces, const std::string& what) {
   const fs::path target(path);
   fs::path temp;
   auto fail = [&](int err) {
@@ -190,8 +200,10 @@ void writeFileAtomic(const std::string& path, const void* data, size_t size, con
     fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0 && (errno != EEXIST || attempt + 1 == kTempNameAttempts)) fail(errno);
   }
+  size_t size = 0;
+  for (const FilePiece& piece : pieces) size += piece.size;
   const size_t failAfter = gDiskFullHook.fires(temp.string()) ? size / 2 : SIZE_MAX;
-  int err = writeAll(fd, static_cast<const unsigned char*>(data), size, failAfter);
+  int err = writeAll(fd, pieces, failAfter);
   // A network or delayed-allocation file system may report the lost bytes only here.
   if (err == 0 && ::fsync(fd) != 0) err = errno;
   if (::close(fd) != 0 && err == 0) err = errno;

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace penumbra {
 
@@ -37,6 +38,12 @@ void removeRegisteredTempFiles() noexcept;
 // old file or the whole new one and no temp file is left. Throws InputError
 // "PATH: cannot write WHAT: REASON" (a full disk, an I/O error, a missing directory).
 void writeFileAtomic(const std::string& path, const void* data, size_t size, const std::string& what = "file");
+// The same for a file written from pieces in order (a header and arrays it does not copy).
+struct FilePiece {
+  const void* data = nullptr;
+  size_t size = 0;
+};
+void writeFileAtomic(const std::string& path, const std::vector<FilePiece>& pieces, const std::string& what);
 void writeTextFileAtomic(const std::string& path, const std::string& text);
 
 // The temp name the next write of `path` takes: beside it, ".tmp<pid>-<counter>"

@@ -30,6 +30,8 @@ RenderResult runRender(const RenderRequest& request) {
   session.prepare(planned);
   PhotonStage& stage = session.photons(planned);
   RenderResult result = session.frame(planned, stage, request.jobClock);
+  if (session.mapLoads() > 0) result.notes.push_back("photon maps: loaded from --map-dir " + request.session.mapDir);
+  if (session.mapWrites() > 0) result.notes.push_back("photon maps: written to --map-dir " + request.session.mapDir);
   RenderStats& stats = result.stats;
   stats.time.buildBvh = session.assets(planned).bvhSeconds;
 

@@ -9,6 +9,7 @@
 #include "plan/output_safety.h"
 #include <fmt/format.h>
 #include <algorithm>
+#include <filesystem>
 #include <tbb/info.h>
 #include <stdexcept>
 
@@ -23,11 +24,22 @@ SessionOptions resolved(SessionOptions o) {
   return o;
 }
 
+// --map-dir is created if missing (as -o DIR is); one that cannot be is refused before any work.
+void makeMapDir(const std::string& dir) {
+  if (dir.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(fmt::format("--map-dir {}: cannot create it: {}", dir, ec.message()));
+  if (!std::filesystem::is_directory(dir, ec)) throw InputError(fmt::format("--map-dir {}: not a directory", dir));
+}
+
 }  // namespace
 
 RenderSession::RenderSession(SessionOptions options)
     : options_(resolved(std::move(options))),
-      limit_(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(options_.threads)) {}
+      limit_(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(options_.threads)) {
+  makeMapDir(options_.mapDir);
+}
 
 PlannedJob RenderSession::plan(const JobRequest& asked) {
   PlannedJob job;
@@ -101,6 +113,10 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
   }
   job.admission = admitJob(scene, job.plan, options_.threads, request.tracePixel.has_value(), options_.maxMemoryBytes,
                           request.budget);
+  if (usesMapFiles(job)) {  // the estimate counts the file on disk
+    job.admission.options.mapFile = true;
+    job.admission.estimate = estimateResources(scene, job.admission.options, job.admission.bound);
+  }
 }
 
 RenderSession::Geometry& RenderSession::geometryOf(const PlannedJob& job) {
@@ -132,9 +148,8 @@ void RenderSession::prepare(PlannedJob& job) {
   job.prepared = true;
 }
 
-PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, bool* reused) {
+PhotonStageKey RenderSession::stageKey(const std::vector<const PlannedJob*>& jobs, PhotonNeeds& needs) const {
   const PlannedJob& job = *jobs.front();
-  PhotonNeeds needs;
   MapCounts budgets;
   for (const PlannedJob* j : jobs) {
     if (!j->prepared) throw std::logic_error("photons of a job not prepared");
@@ -142,7 +157,23 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
     needs |= photonNeeds(j->plan);
     budgets.maxWith(planBudgets(j->plan));
   }
-  const PhotonStageKey key{job.keys.geometry, job.keys.photons, budgets, needs.maps};
+  return {job.keys.geometry, job.keys.photons, budgets, needs.maps};
+}
+
+Emission RenderSession::stageEmission(const PlannedJob& job, const PhotonStageKey& key, const PhotonNeeds& needs,
+                                 const std::function<Emission()>& emit, MapFileOutcome& file, bool keep) {
+  if (!usesMapFile(job, needs)) return emit();
+  beginPhase(options_.progress, "map file");
+  Emission e = loadOrEmit(options_.mapDir, mapFileKey(key, needs, options_.load.defaults), emit, file, keep);
+  if (file.loaded) ++mapLoads_;
+  if (file.written) ++mapWrites_;
+  return e;
+}
+
+PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, bool* reused) {
+  const PlannedJob& job = *jobs.front();
+  PhotonNeeds needs;
+  const PhotonStageKey key = stageKey(jobs, needs);
   auto hit = std::find_if(stages_.begin(), stages_.end(), [&](const CachedStage& c) { return c.key == key; });
   if (hit != stages_.end()) {
     stages_.splice(stages_.begin(), stages_, hit);
@@ -154,10 +185,17 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
   const Scene& scene = job.scene;
   auto stage = std::make_unique<PhotonStage>();
   const PhaseGuard phases(options_.progress);
-  Emission e = emitPhotonsFor(scene, *a.tracer, needs, key.budgets, 0, {}, beginPhase(options_.progress, "photons"));
+  MapFileOutcome file;
+  Emission e = stageEmission(job, key, needs, [&] {
+    return emitPhotonsFor(scene, *a.tracer, needs, key.budgets, 0, {}, beginPhase(options_.progress, "photons"));
+  }, file);
   buildStage(e, e.budgets, true, *stage, beginPhase(options_.progress, "maps"));
-  ++emissions_;
-  ++photonBuilds_;
+  stage->buildSeconds += file.seconds;  // reading or writing the file is the maps' cost
+  if (!file.note.empty()) stage->notes.push_back(file.note);
+  if (!file.loaded) {
+    ++emissions_;
+    ++photonBuilds_;
+  }
   stages_.push_front({key, std::move(stage)});
   // Counted afresh: a stage grows after it is cached (its frames add lookup caches).
   uint64_t cached = 0;
@@ -170,6 +208,27 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
   }
   peakStageBytes_ = std::max(peakStageBytes_, cached);
   return *stages_.front().stage;
+}
+
+MapFileOutcome RenderSession::storeMaps(const std::vector<const PlannedJob*>& jobs) {
+  if (options_.mapDir.empty()) throw std::logic_error("map files without --map-dir");
+  const PlannedJob& job = *jobs.front();
+  PhotonNeeds needs;
+  const PhotonStageKey key = stageKey(jobs, needs);
+  MapFileOutcome file;
+  if (!usesMapFiles(job)) {
+    file.note = "photon maps: a scene read from standard input has no map file";
+    return file;
+  }
+  if (!needs.any()) return file;  // nothing to emit, nothing to store
+  const PhaseGuard phases(options_.progress);
+  stageEmission(job, key, needs, [&] {
+    ++emissions_;
+    ++photonBuilds_;
+    return emitPhotonsFor(job.scene, *assets(job).tracer, needs, key.budgets, 0, {},
+                          beginPhase(options_.progress, "photons"));
+  }, file, false);
+  return file;
 }
 
 void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
@@ -190,11 +249,29 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
   }
   const TraceScene& tracer = *assets(lead).tracer;
   const CpuSpan emitting;
+  // Map files hold what a render of the largest budget emits: a group of one budget
+  // loads or writes its file; a larger group emits (its prefixes need the emission)
+  // and writes the largest budget's file if there is none. A prefix is never written.
+  const PhotonStageKey key{lead.keys.geometry, lead.keys.photons, top, needs.maps};
+  MapFileOutcome file;
   Emission emission = [&] {
     const PhaseGuard phase(options_.progress);
-    return emitPhotonsFor(lead.scene, tracer, needs, top, 0, smaller, beginPhase(options_.progress, "photons"));
+    auto emit = [&] {
+      return emitPhotonsFor(lead.scene, tracer, needs, top, 0, smaller, beginPhase(options_.progress, "photons"));
+    };
+    if (budgets.size() == 1) return stageEmission(lead, key, needs, emit, file);
+    Emission e = emit();
+    if (usesMapFile(lead, needs) && std::find(budgets.begin(), budgets.end(), top) != budgets.end()) {
+      const std::string text = mapFileKey(key, needs, options_.load.defaults);
+      const std::string path = mapFilePath(options_.mapDir, text);
+      if (!std::filesystem::exists(path)) {
+        writeMapFile(path, text, e);
+        ++mapWrites_;
+      }
+    }
+    return e;
   }();
-  ++emissions_;
+  if (!file.loaded) ++emissions_;
   std::stable_sort(budgets.begin(), budgets.end(),
                    [](const MapCounts& a, const MapCounts& b) { return a.total() > b.total(); });
   // The shared emission is charged to the first budget, in wall and CPU time alike.
@@ -212,7 +289,9 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
         ++prefixCuts_;
       }
     }
-    ++photonBuilds_;
+    if (!file.loaded) ++photonBuilds_;
+    s.stage.buildSeconds += file.seconds;  // the one budget's file, read or written
+    if (!file.note.empty()) s.stage.notes.push_back(file.note);
     s.cpuSeconds = build.cpuSeconds() + sharedCpu;
     s.seconds = build.wallSeconds() + shared;
     shared = sharedCpu = 0.0;

@@ -7,6 +7,7 @@
 #include "core/progress.h"
 #include <tbb/global_control.h>
 #include "plan/job_admission.h"
+#include "plan/map_file.h"
 #include "plan/output_safety.h"
 #include "plan/photon_stage.h"
 #include "plan/render_budget.h"
@@ -90,8 +91,18 @@ class RenderSession {
   // The photon maps of jobs that share them (views of one scene and settings): the
   // union of the maps they read at the largest budgets, emitted and built once and
   // kept under the byte cap for later jobs; `reused` is set when they came from it.
+  // With SessionOptions::mapDir the stage's emission is loaded from its map file, or
+  // emitted and written there first (plan/map_file.h); a file that does not match is
+  // never used: it is emitted again and rewritten, and the stage's notes say why.
   PhotonStage& photons(const std::vector<const PlannedJob*>& jobs, bool* reused = nullptr);
   PhotonStage& photons(const PlannedJob& job, bool* reused = nullptr) { return photons({&job}, reused); }
+
+  // The map file of the stage photons(jobs) would return, without building any map
+  // (batch --maps-only): a sound file is only checked (outcome.loaded, counted in
+  // mapLoads), else the photons are emitted and written (outcome.written; its note says
+  // why a file there was not used); neither for jobs that emit no photons. Needs
+  // SessionOptions::mapDir and prepared jobs.
+  MapFileOutcome storeMaps(const std::vector<const PlannedJob*>& jobs);
 
   // The maps of jobs with equal keys that differ only in photon budgets (a sweep's
   // runs): one emission at each map's largest budget, then each budget's maps cut
@@ -115,6 +126,10 @@ class RenderSession {
   size_t emissions() const { return emissions_; }
   size_t prefixCuts() const { return prefixCuts_; }
   size_t evictions() const { return evictions_; }
+  // Photon stages read from map files, and map files written, in this process
+  // (photonBuilds counts only the stages emitted here).
+  size_t mapLoads() const { return mapLoads_; }
+  size_t mapWrites() const { return mapWrites_; }
   uint64_t peakStageBytes() const { return peakStageBytes_; }
   const SessionOptions& options() const { return options_; }
 
@@ -130,6 +145,18 @@ class RenderSession {
     std::unique_ptr<PhotonStage> stage;
   };
   Geometry& geometryOf(const PlannedJob& job);
+  // The key of the stage that jobs share, and the union of the maps they read.
+  PhotonStageKey stageKey(const std::vector<const PlannedJob*>& jobs, PhotonNeeds& needs) const;
+  // Whether the job's stages go through map files: --map-dir, and a scene with a path
+  // (one read from stdin has no key another process could match).
+  bool usesMapFiles(const PlannedJob& job) const { return !options_.mapDir.empty() && job.request.scenePath != "-"; }
+  // ... and the stage has photons to store (a stage without any has no file).
+  bool usesMapFile(const PlannedJob& job, const PhotonNeeds& needs) const { return usesMapFiles(job) && needs.any(); }
+  // The emission of `key`: from its map file where the job uses them (then `file`
+  // says what happened and the counters follow), else emitted.
+  // `keep` false: a sound file is only checked (storeMaps).
+  Emission stageEmission(const PlannedJob& job, const PhotonStageKey& key, const PhotonNeeds& needs,
+                    const std::function<Emission()>& emit, MapFileOutcome& file, bool keep = true);
   void planAndAdmit(PlannedJob& job) const;  // view, plan and estimate of a loaded job
 
   SessionOptions options_;  // threads resolved (> 0)
@@ -140,6 +167,7 @@ class RenderSession {
   std::list<CachedStage> stages_;  // most recently used first
   uint64_t peakStageBytes_ = 0;
   size_t sceneBuilds_ = 0, photonBuilds_ = 0, evictions_ = 0, emissions_ = 0, prefixCuts_ = 0;
+  size_t mapLoads_ = 0, mapWrites_ = 0;
   size_t stdinJobs_ = 0;
 };
 

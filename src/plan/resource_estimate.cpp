@@ -157,6 +157,9 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   const double mapCopy = photonBytes(n, 0.0);
   const double cacheSort = options.precomputed ? 2.0 * sizeof(CacheEntry) * (shadow + lookupPhotons) : 0.0;
   e.photonPeakBytes = e.photonBytes + std::max(mapCopy, cacheSort);
+  // The file holds the records as emitted (no index), written from the emission's own
+  // blocks and read into the arrays the maps build from: disk, and no memory beyond.
+  if (options.mapFile) e.mapFileBytes = mapCopy;
   // A progressive pass emits its photons (all but the gate's) while the previous pass's maps still stand.
   PerMap<double> fresh = n;
   fresh[MapKind::Shadow] = 0.0;
@@ -268,9 +271,10 @@ std::string formatDuration(double s) {
 }
 
 std::string describeMemory(const ResourceEstimate& e) {
-  return fmt::format("~{} (photons {} for {:.3g} stored, image {}, bvh {}, cache {}, scene {}, base {})",
+  const std::string disk = e.mapFileBytes > 0.0 ? fmt::format("; map file {} on disk", gib(e.mapFileBytes)) : "";
+  return fmt::format("~{} (photons {} for {:.3g} stored, image {}, bvh {}, cache {}, scene {}, base {}{})",
                      gib(e.totalBytes()), gib(e.photonPeakBytes), e.storedPhotons, gib(e.imageBytes),
-                     gib(e.bvhBytes), gib(e.cacheBytes), gib(e.sceneBytes), gib(e.baseBytes));
+                     gib(e.bvhBytes), gib(e.cacheBytes), gib(e.sceneBytes), gib(e.baseBytes), disk);
 }
 
 std::string estimateToJson(const ResourceEstimate& e) {
@@ -279,6 +283,7 @@ std::string estimateToJson(const ResourceEstimate& e) {
                 {"photon_peak", e.photonPeakBytes}, {"lookup_cache", e.cacheBytes},
                 {"image", e.imageBytes},       {"bvh", e.bvhBytes},
                 {"scene", e.sceneBytes},       {"base", e.baseBytes}};
+  if (e.mapFileBytes > 0.0) j["disk"] = {{"map_file", e.mapFileBytes}};
   j["stored_photons"] = e.storedPhotons;
   j["store_rates"] = {{"measured", e.rates.measured}};
   for (MapKind k : kAllMaps) j["store_rates"][mapName(k)] = e.rates.perPhoton[k];

@@ -36,6 +36,8 @@ struct ResourceEstimate {
   double totalBytes() const {
     return photonPeakBytes + cacheBytes + imageBytes + bvhBytes + sceneBytes + baseBytes;
   }
+  // Disk, not memory: the photon map file --map-dir writes (pass 0's records; 0 without).
+  double mapFileBytes = 0.0;
   // What the time rests on, for the whole render (every pass): light samples drawn
   // and shadow rays cast (after the gate's share), triangles and spheres in the BVH.
   double lightSamples = 0.0, shadowRays = 0.0, primitives = 0.0;
@@ -55,6 +57,7 @@ struct EstimateOptions {
   Aov aov = Aov::Beauty;
   int threads = 1;
   bool tracePixel = false;  // one pixel's ray tree: no image, no passes
+  bool mapFile = false;     // --map-dir: pass 0's photons are stored in a file too
 };
 
 // Upper bounds on stores per emitted photon from geometry and materials only.

@@ -1,5 +1,5 @@
 // The options every job of a command shares (threads, memory, the plan's overrides,
-// budgets, loading, -D, the stage cache, progress): declared for the command line
+// budgets, loading, -D, the stage cache and map files, progress): declared for the command line
 // once (cli/session_args) and embedded by value in every request.
 #pragma once
 #include "core/progress.h"
@@ -25,6 +25,9 @@ struct SessionOptions {
   // (a batch job's own budget yields to it field by field).
   RenderBudget budget;
   LoadOptions load;  // --no-defaults: a glTF scene gets no framed camera or default sky
+  // --map-dir: photon stages are loaded from files there by key, or built and written
+  // there (plan/map_file.h); empty: built in the process only.
+  std::string mapDir;
   // -D and the options that stand for scene values (--gate), applied to every job
   // before the job's own overrides (RenderSession::plan).
   std::vector<std::string> overrides;
