@@ -55,7 +55,9 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_flag("--status", o.status,
               "Render nothing: list every job as up to date, missing or stale (and why); exit 0 only when all are "
               "up to date, else " + std::to_string(kExitNotUpToDate));
-  c->add_flag("--maps-only", o.mapsOnly, "Build the photon maps of the jobs to render (into --map-dir), render nothing");
+  c->add_flag("--maps-only", o.mapsOnly,
+              "Emit the photons of the jobs to render into --map-dir files, once per photon key, and render nothing "
+              "(a farm's prepass)");
   c->add_option("--stats", o.stats, "Write the batch's counts (jobs, scenes read, maps built) as JSON to this file (- : stdout)");
   c->add_option("--map-cache", o.mapCache,
                 "Photon maps kept for later jobs, at most this much (LRU), e.g. 2G (default: " +
@@ -86,9 +88,12 @@ std::string batchSummary(const BatchOutcome& o) {
   }
   if (!o.shardLabel.empty()) s += o.shardLabel + ": ";
   s += fmt::format("{} jobs: {} rendered, {} up to date, {} failed in {:.1f} s; {}; scene files read {}, scenes built {}, photon maps "
-                   "built {} (reused {} times, {} evicted, cache peak {:.1f} MB)\n",
+                   "built {} (reused {} times, {} evicted, cache peak {:.1f} MB){}\n",
                    o.jobs.size(), o.rendered, o.upToDate, o.failed, o.seconds, cpuLine(o.cpu), o.sceneReads, o.sceneBuilds,
-                   o.photonBuilds, o.photonReuses, o.evictions, o.peakCacheBytes / 1e6);
+                   o.photonBuilds, o.photonReuses, o.evictions, o.peakCacheBytes / 1e6,
+                   o.mapLoads + o.mapWrites > 0
+                       ? fmt::format("; map files loaded {}, written {}", o.mapLoads, o.mapWrites)
+                       : "");
   return s;
 }
 
@@ -166,6 +171,7 @@ int BatchCommand::run() {
              : o.listGiven ? BatchMode::ListShard
                            : BatchMode::Render;
   req.planShards = o.planShards;
+  if (o.mapsOnly && req.session.mapDir.empty()) throw InputError("--maps-only writes map files: give --map-dir DIR");
   if (req.mode == BatchMode::PlanShards) {
     checkOutputs({{o.out, "-o", false}}, req.protectedFiles);
   } else if (!jobsFile && req.mode == BatchMode::Render) {

@@ -267,7 +267,7 @@ BatchOutcome BatchRun::run() {
   }
 
   // 4. The jobs to render loaded, planned and admitted (a scene file read once).
-  planAll(todo, true);
+  planAll(todo, req_.mode == BatchMode::Render);
   checkApart();
 
   // 5. Prepared (BVH, light split, the photon estimate against the memory limit)
@@ -291,6 +291,7 @@ BatchOutcome BatchRun::run() {
 
   // 6. Render (or build the maps), sharing what the keys allow.
   size_t done = 0;
+  std::vector<PhotonStageKey> storedKeys;  // --maps-only
   for (size_t j : mine) {
     PreparedJob& p = jobs_[j];
     BatchJobResult r = row(j);
@@ -304,7 +305,7 @@ BatchOutcome BatchRun::run() {
       try {
         // The disk may have filled (or the folder gone) since the jobs were checked:
         // fail now rather than after the render.
-        for (const std::string& path : p.outputs) checkImageOutputPath(path);
+        if (req_.mode == BatchMode::Render) for (const std::string& path : p.outputs) checkImageOutputPath(path);
         report(done, mine.size(), p.job->name, req_.mode == BatchMode::MapsOnly ? "photons" : "render");
         std::vector<std::string> reused;
         if (!builtScene[j]) reused.push_back("scene");
@@ -312,8 +313,16 @@ BatchOutcome BatchRun::run() {
         if (req_.mode == BatchMode::MapsOnly) {
           std::vector<const PlannedJob*> views;
           for (const PlannedJob& v : p.views) views.push_back(&v);
-          session_.photons(views, &rendered.photonsReused);
-          r.status = "maps ready";
+          // Each photon key once: an orbit's frames share one file.
+          const PhotonStageKey key = photonKeyOf(p.views);
+          if (std::find(storedKeys.begin(), storedKeys.end(), key) != storedKeys.end()) {
+            r.status = "maps shared";
+          } else {
+            storedKeys.push_back(key);
+            const MapFileOutcome file = session_.storeMaps(views);
+            r.status = file.written ? "maps written" : file.loaded ? "maps on disk" : "no photons";
+            if (!file.note.empty()) out_.notes.push_back(file.note);
+          }
         } else {
           rendered = renderJob(session_, *p.job, p.views, p.stamp, p.inputs);
           r.status = "rendered";
@@ -348,6 +357,8 @@ void BatchRun::finish(BatchOutcome& out) {
   out.sceneReads = session_.sceneReads();
   out.sceneBuilds = session_.sceneBuilds();
   out.photonBuilds = session_.photonBuilds();
+  out.mapLoads = session_.mapLoads();
+  out.mapWrites = session_.mapWrites();
   out.evictions = session_.evictions();
   out.peakCacheBytes = session_.peakStageBytes();
   out.cpu = clock_.timing(session_.options().threads);

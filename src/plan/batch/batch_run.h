@@ -40,7 +40,7 @@ struct BatchProgress {
 // What a batch run does with its jobs.
 enum class BatchMode {
   Render,      // render the jobs not up to date
-  MapsOnly,    // build (and with --map-dir write) their photon maps, render nothing
+  MapsOnly,    // emit their photons into --map-dir files (a farm's prepass), render nothing
   ListShard,   // name the shard's jobs and their estimates
   PlanShards,  // split every job into planShards shards (BatchOutcome::split)
   Status,      // say of every job whether it is up to date, and why not
@@ -82,6 +82,7 @@ struct BatchOutcome {
   ShardFile split;                   // PlanShards
   size_t failed = 0, rendered = 0, upToDate = 0, notUpToDate = 0;
   size_t sceneReads = 0, sceneBuilds = 0, photonBuilds = 0, photonReuses = 0, evictions = 0;
+  size_t mapLoads = 0, mapWrites = 0;  // photon map files (--map-dir) read and written
   uint64_t peakCacheBytes = 0;
   double seconds = 0.0;
   CpuTiming cpu;  // over the whole batch

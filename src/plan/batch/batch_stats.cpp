@@ -12,7 +12,8 @@ std::string batchStatsJson(const BatchOutcome& o) {
   j["scene_files_read"] = o.sceneReads;
   j["scenes_built"] = o.sceneBuilds;
   j["photon_maps"] = {{"built", o.photonBuilds}, {"reused", o.photonReuses}, {"evicted", o.evictions},
-                      {"cache_peak_bytes", o.peakCacheBytes}};
+                      {"cache_peak_bytes", o.peakCacheBytes},
+                      {"files_loaded", o.mapLoads}, {"files_written", o.mapWrites}};
   j["seconds"] = o.seconds;
   j["cpu_seconds"] = o.cpu.cpuSeconds;
   j["job_list"] = nlohmann::json::array();
