@@ -22,7 +22,7 @@ struct BatchCommand::Options {
   std::vector<std::string> inputs;
   SessionArgs session;  // its budget is every job's
   std::string out, views, format = "png", shard, listShard, mapCache;
-  bool force = false, keepGoing = false;
+  bool keepGoing = false;
 };
 
 BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
@@ -39,10 +39,11 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--map-cache", o.mapCache,
                 "Photon maps kept for later jobs, at most this much (LRU), e.g. 2G (default: " +
                     formatBytes(static_cast<double>(kStageCacheBytes)) + ")");
-  c->add_flag("--force", o.force, "Render every job, even those whose outputs are up to date");
   c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
   addSessionOptions(*c, o.session,
-                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption, "job");
+                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption |
+                        kForceOption,
+                    "job");
 }
 
 BatchCommand::~BatchCommand() = default;
@@ -95,7 +96,7 @@ int BatchCommand::run() {
     req.shard = BatchShard{index, count};
     req.listShard = !o.listShard.empty();
   }
-  req.force = o.force;
+  req.force = session.force;
   req.keepGoing = o.keepGoing;
   if (!o.mapCache.empty()) req.session.stageCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
   std::optional<ItemProgress> progress;

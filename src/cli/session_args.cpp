@@ -101,6 +101,7 @@ SessionOptions SessionArgs::options(const std::vector<std::string>& own) const {
   o.load = plan.load();
   o.maxMemoryBytes = maxMemoryBytes();
   o.budget = budget;
+  o.force = force;
   o.overrides = overrides;
   o.overrides.insert(o.overrides.end(), own.begin(), own.end());
   if (!plan.gateSetting().empty()) o.overrides.push_back(plan.gateSetting());
@@ -130,6 +131,13 @@ void addSessionOptions(CLI::App& command, SessionArgs& args, unsigned which, con
   if (which & kPlanOption) addPlanOptions(command, args.plan);
   if (which & kDefaultsOption) addDefaultsOption(command, args.plan.noDefaults);
   if (which & kBudgetOption) addBudgetOptions(command, args.budget);
+  if (which & kForceOption) {
+    command.add_flag("--force", args.force,
+                     *each ? fmt::format("Render every {}, even those whose outputs are up to date, from pass 1: "
+                                         "discard the passes an interrupted {} saved (OUTPUT.passes)", each, each)
+                           : std::string("Render from pass 1: discard the passes an interrupted render saved "
+                                         "(OUTPUT.passes)"));
+  }
 }
 
 }  // namespace penumbra

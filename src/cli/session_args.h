@@ -1,6 +1,6 @@
 // The options the commands share, registered once: threads, memory, scene overrides,
 // quiet, the plan's overrides (--enable/--disable/--gate/--no-gate), loading
-// (--no-defaults) and budgets (--time-limit/--target-error). Each command asks for its set.
+// (--no-defaults), budgets (--time-limit/--target-error) and --force. Each command asks for its set.
 #pragma once
 #include "plan/session_options.h"
 #include <CLI/CLI.hpp>
@@ -33,6 +33,7 @@ enum SessionOption : unsigned {
   kPlanOption = 1u << 4,       // --enable, --disable, --gate, --no-gate, --no-defaults
   kDefaultsOption = 1u << 5,   // --no-defaults alone (check: no plan)
   kBudgetOption = 1u << 6,     // --time-limit, --target-error
+  kForceOption = 1u << 7,      // --force: discard saved passes (batch: and render up-to-date jobs)
 };
 
 struct SessionArgs {
@@ -43,6 +44,7 @@ struct SessionArgs {
   bool quiet = false;
   PlanArgs plan;
   RenderBudget budget;
+  bool force = false;
   // The one thread count of -t (0: all cores); a list or a count outside 1..1024 is refused.
   int threadCount() const;
   // --max-memory in bytes; 0: the memory available.

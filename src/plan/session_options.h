@@ -25,6 +25,7 @@ struct SessionOptions {
   // (a batch job's own budget yields to it field by field).
   RenderBudget budget;
   LoadOptions load;  // --no-defaults: a glTF scene gets no framed camera or default sky
+  bool force = false;  // --force: a progressive frame's saved passes are discarded, not resumed
   // -D and the options that stand for scene values (--gate), applied to every job
   // before the job's own overrides (RenderSession::plan).
   std::vector<std::string> overrides;

@@ -8,6 +8,7 @@
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
 #include "plan/resource_estimate.h"
+#include "plan/saved_passes.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
@@ -82,6 +83,13 @@ BatchOutcome runBatch(const BatchRequest& req) {
       p.views.push_back(session.plan(first));
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
         p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
+      }
+      // Each view's passes file, beside its output (named by view where views share one).
+      for (size_t v = 0; v < p.views.size(); ++v) {
+        const std::string& path = p.job->outputs[v].path;
+        const bool shared = std::count_if(p.job->outputs.begin(), p.job->outputs.end(),
+                                          [&](const BatchOutput& o) { return o.path == path; }) > 1;
+        p.views[v].request.savedPasses = savedPassesPath(path, shared ? p.views[v].viewName : "");
       }
       for (const std::string& n : p.views.front().notes) {
         if (std::find(out.notes.begin(), out.notes.end(), n) == out.notes.end()) out.notes.push_back(n);
@@ -193,6 +201,9 @@ BatchOutcome runBatch(const BatchRequest& req) {
         std::map<std::string, Header> headers;
         for (size_t v = 0; v < p.views.size(); ++v) {
           RenderResult result = session.frame(p.views[v], stage);
+          for (const std::string& n : result.notes) {  // resumed, or why saved passes were not used
+            if (n.rfind(p.views[v].request.savedPasses + ": ", 0) == 0) out.notes.push_back(n);
+          }
           // A file's header is a render's (the same keys, error and budget), from its
           // first view that reads light, else its first view; and the job's stamp.
           const std::string& path = p.job->outputs[v].path;
@@ -219,6 +230,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
             if (key == "penumbra:aov") value = fmt::format("{}", fmt::join(names, ","));
           writeLayeredExr(path, layers, meta);
         }
+        for (const PlannedJob& v : p.views) removeSavedPasses(v.request.savedPasses);  // done: nothing to resume
         r.status = "rendered";
         r.reused = reused.empty() ? "-" : fmt::format("{}", fmt::join(reused, "+"));
         ++out.rendered;
