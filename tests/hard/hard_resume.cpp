@@ -133,6 +133,33 @@ TEST_F(Resume, AfterAnyPassTheResumedImageIsTheUninterruptedOnesBytes) {
   }
 }
 
+// Where a pass's maps and lookups come from differs by model: the classic model's
+// passes read pass 0's maps and precomputed lookups, the gate's shadow photons (and
+// their KD-trees) are pass 0's in both; a resumed frame builds them itself.
+TEST_F(Resume, PassZerosMapsAndLookupsAreRebuiltAlike) {
+  const std::string scenes = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/";
+  const std::vector<std::vector<std::string>> jobs = {
+      {scenes + "fig14_cornell.json", "-D", "photons.passes=4", "-D", "photons.lookup=precomputed", "-D",
+       "photons.gate=on", "-D", "photons.shadow=5000", "-D", "photons.indirect=5000"},
+      {cornell(), "-D", "photons.passes=4", "-D", "photons.gate=on", "-D", "photons.shadow=5000"},
+  };
+  for (const std::vector<std::string>& job : jobs) {
+    SCOPED_TRACE(job.front());
+    auto args = [&](const fs::path& out) {
+      std::vector<std::string> a = {"render", job.front(), "-o", out.string()};
+      a.insert(a.end(), kSmall.begin(), kSmall.end());
+      a.insert(a.end(), job.begin() + 1, job.end());
+      return a;
+    };
+    ASSERT_EQ(run(args(dir / "whole.png")).exitCode(), 0);
+    ASSERT_EQ(run(args(dir / "part.png"), 2).exitCode(), kExitTerminated);
+    const Outcome r = run(args(dir / "part.png"));
+    ASSERT_EQ(r.exitCode(), 0) << r.err;
+    EXPECT_EQ(occurrences(r.err, "resumed at pass 3 of 4"), 1u) << r.err;
+    EXPECT_TRUE(readFile(dir / "part.png") == readFile(dir / "whole.png"));
+  }
+}
+
 TEST_F(Resume, InterruptedTwiceStillEndsWithTheSameBytes) {
   const fs::path out = dir / "frame.exr";
   interrupt(out, 3);
@@ -201,6 +228,15 @@ TEST_F(Resume, ForceDiscardsTheSavedPasses) {
   EXPECT_EQ(listing(dir.path()), std::vector<std::string>{"frame.exr"});
 }
 
+// After the last pass there is nothing to save: the image is written and the render is done.
+TEST_F(Resume, ASigtermAsTheLastPassEndsStillWritesTheImage) {
+  const fs::path out = dir / "frame.exr";
+  const Outcome r = run(render(out), 12);
+  ASSERT_EQ(r.exitCode(), 0) << r.err;
+  EXPECT_TRUE(bytesOf(out) == reference(".exr"));
+  EXPECT_EQ(listing(dir.path()), std::vector<std::string>{"frame.exr"});
+}
+
 // A frame of one pass, or a SIGTERM while nothing progressive runs, keeps the old way:
 // temp files removed, death by the signal, nothing saved.
 TEST_F(Resume, AFrameThatIsNotProgressiveStillDiesOfTheSignal) {
@@ -245,6 +281,19 @@ TEST_F(Resume, ABatchJobResumesAndItsPassesFileGoesWhenItIsDone) {
   EXPECT_TRUE(bytesOf(dir / "physical.exr") == physical) << "the resumed job's image differs";
   EXPECT_TRUE(bytesOf(dir / "depth.exr") == depth);
   EXPECT_EQ(listing(dir.path()), (std::vector<std::string>{"depth.exr", "jobs.json", "physical.exr"}));
+
+  // SIGTERM as the last pass ends: that job is whole and written, the next is not begun.
+  fs::remove(dir / "physical.exr");
+  fs::remove(dir / "depth.exr");
+  const Outcome late = run(batch({"-t", "1"}), 12);
+  ASSERT_EQ(late.exitCode(), kExitTerminated) << late.err;
+  EXPECT_EQ(occurrences(late.err, "SIGTERM: stopped before job 'depth'"), 1u) << late.err;
+  EXPECT_TRUE(bytesOf(dir / "physical.exr") == physical);
+  EXPECT_EQ(listing(dir.path()), (std::vector<std::string>{"jobs.json", "physical.exr"}));
+  const Outcome rest = run(batch({"-t", "1"}));
+  ASSERT_EQ(rest.exitCode(), 0) << rest.err;
+  EXPECT_NE(rest.err.find("1 rendered, 1 up to date"), std::string::npos) << rest.err;
+  EXPECT_TRUE(bytesOf(dir / "depth.exr") == depth);
 }
 
 }  // namespace

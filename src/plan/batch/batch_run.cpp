@@ -11,6 +11,7 @@
 #include "plan/saved_passes.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/temp_file.h"
 #include "io/scene_loader.h"
 #include <fmt/format.h>
 #include <algorithm>
@@ -178,6 +179,8 @@ BatchOutcome runBatch(const BatchRequest& req) {
       r.status = "up to date";
       ++out.upToDate;
     } else {
+      // A SIGTERM that came as the last job's last pass ended: stop before this one's photons.
+      if (terminationRequested()) throw Terminated{"SIGTERM: stopped before job '" + p.job->name + "'"};
       try {
         // The disk may have filled (or the folder gone) since the jobs were checked:
         // fail now rather than after the render.
