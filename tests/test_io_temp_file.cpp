@@ -69,6 +69,29 @@ TEST_F(TempFileTest, SignalRemovesTheRegisteredTempFileAndStillKills) {
   }
 }
 
+// While a TermDeferral lives, the first SIGTERM only sets the flag (the temp file
+// stays for its owner); a second one, or SIGINT, removes it and kills as before.
+TEST_F(TempFileTest, ADeferredSigtermSetsTheFlagAndASecondOneStillKills) {
+  for (int second : {SIGTERM, SIGINT}) {
+    const std::string temp = make("out.tmp7-0.passes", "partial");
+    const pid_t child = fork();
+    if (child == 0) {
+      installTempFileCleanup();
+      TempFileGuard guard(temp);
+      const TermDeferral deferring;
+      if (terminationRequested()) _exit(3);
+      std::raise(SIGTERM);
+      if (!terminationRequested() || !fs::exists(temp)) _exit(4);
+      std::raise(second);
+      _exit(0);  // the second signal should have ended us
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == second) << "status " << status;
+    EXPECT_FALSE(fs::exists(temp));
+  }
+}
+
 TEST_F(TempFileTest, UnregisteredFilesSurviveTheSignal) {
   const std::string keep = make("keep.tmp1-0.png", "not ours any more");
   const int status = dieOf(SIGINT, keep, false);
@@ -119,7 +142,7 @@ TEST_F(TempFileTest, ALeftoverTempFileOfTheSamePidIsPassedOverAndKept) {
 }
 
 TEST_F(TempFileTest, LongestLegalNamesAreWritten) {
-  for (const std::string name :
+  for (const std::string& name :
        {std::string(250, 'n') + ".json", std::string(255, 'x'), std::string(251, 'e') + ".exr"}) {
     const std::string path = (dir / name).string();
     EXPECT_EQ(outputPathProblem(path), "") << name.size();

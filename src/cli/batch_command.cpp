@@ -26,7 +26,7 @@ struct BatchCommand::Options {
   SessionArgs session;  // its budget is every job's
   std::string out, views, format = "png", shard, listShard, mapCache, shardIndex, shardFile, stats;
   size_t shardCount = 0, planShards = 0;
-  bool force = false, keepGoing = false, status = false, mapsOnly = false, listGiven = false;
+  bool keepGoing = false, status = false, mapsOnly = false, listGiven = false;
 };
 
 BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
@@ -62,11 +62,10 @@ BatchCommand::BatchCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--map-cache", o.mapCache,
                 "Photon maps kept for later jobs, at most this much (LRU), e.g. 2G (default: " +
                     formatBytes(static_cast<double>(kStageCacheBytes)) + ")");
-  c->add_flag("--force", o.force, "Render every job, even those whose outputs are up to date");
   c->add_flag("--keep-going", o.keepGoing, "Report a job that fails validation and go on");
   addSessionOptions(*c, o.session,
                     kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption |
-                        kMapDirOption,
+                        kMapDirOption | kForceOption,
                     "job");
 }
 
@@ -179,7 +178,7 @@ int BatchCommand::run() {
     std::filesystem::create_directories(o.out, ec);
     if (ec) throw InputError(o.out + ": cannot create the output folder (" + ec.message() + ")");
   }
-  req.force = o.force;
+  req.force = session.force;
   req.keepGoing = o.keepGoing;
   if (!o.mapCache.empty()) req.session.stageCacheBytes = parseMemorySize(o.mapCache, "--map-cache");
   std::optional<ItemProgress> progress;

@@ -1,10 +1,11 @@
 // The penumbra command line: a thin shell over the pipeline. Exit codes:
 // 0 ok, 2 bad input (one-line message), 1 internal error, 3 a batch's jobs failed,
-// 4 batch --status: not every job is up to date.
+// 4 batch --status: not every job is up to date, 143 stopped by SIGTERM.
 #include "plan/command_support.h"
 #include "plan/cpu_report.h"
 #include "plan/memory_limit.h"
 #include "plan/pipeline.h"
+#include "plan/saved_passes.h"
 #include "cli/progress_meter.h"
 #include "cli/batch_command.h"
 #include "cli/bench_command.h"
@@ -138,7 +139,9 @@ int runCommandLine(int argc, char** argv) {
   app.footer("Exit codes: 0 done; 1 internal error (a bug: please report it); 2 bad input or a job refused "
              "before any work (one line says which file, JSON path and problem); " +
              std::to_string(kExitJobsFailed) + " batch: some jobs failed, the others finished; " +
-             std::to_string(kExitNotUpToDate) + " batch --status: some job is missing, stale or broken.");
+             std::to_string(kExitNotUpToDate) + " batch --status: some job is missing, stale or broken; " +
+             std::to_string(kExitTerminated) + " stopped by SIGTERM (a progressive frame saved its passes as "
+             "OUTPUT.passes: the same command resumes it).");
   // A bad option is bad input like any other: one line, exit 2.
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string(e.what()) + " (see --help)\n"; });
   app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION);
@@ -165,7 +168,7 @@ int runCommandLine(int argc, char** argv) {
   render->add_flag("-v,--verbose", verbose, "The summary also gives the reasons of automatic decisions (the gate)");
   addSessionOptions(*render, session,
                     kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption |
-                        kMapDirOption,
+                        kMapDirOption | kForceOption,
                     "");
   std::string toneArg;
   render->add_option("--exposure", req.display.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
@@ -239,6 +242,9 @@ int runCommandLine(int argc, char** argv) {
   } catch (const InputError& e) {
     std::cerr << "penumbra: " << e.what() << "\n";
     return 2;
+  } catch (const Terminated& t) {
+    std::cerr << "penumbra: " << t.message << "\n";
+    return kExitTerminated;
   } catch (const std::exception& e) {
     std::cerr << "penumbra: internal error: " << e.what() << "\n";
     return 1;

@@ -102,6 +102,7 @@ SessionOptions SessionArgs::options(const std::vector<std::string>& own) const {
   o.maxMemoryBytes = maxMemoryBytes();
   o.budget = budget;
   o.mapDir = mapDir;
+  o.force = force;
   o.overrides = overrides;
   o.overrides.insert(o.overrides.end(), own.begin(), own.end());
   if (!plan.gateSetting().empty()) o.overrides.push_back(plan.gateSetting());
@@ -136,6 +137,13 @@ void addSessionOptions(CLI::App& command, SessionArgs& args, unsigned which, con
                        "Photon map files: load each photon stage from DIR by its key, or build it and write it "
                        "there for the next process (created if missing; see docs/photon-maps.md)")
         ->type_name("DIR");
+  }
+  if (which & kForceOption) {
+    command.add_flag("--force", args.force,
+                     *each ? fmt::format("Render every {}, even those whose outputs are up to date, from pass 1: "
+                                         "discard the passes an interrupted {} saved (OUTPUT.passes)", each, each)
+                           : std::string("Render from pass 1: discard the passes an interrupted render saved "
+                                         "(OUTPUT.passes)"));
   }
 }
 

@@ -1,6 +1,6 @@
 // The options the commands share, registered once: threads, memory, scene overrides,
 // quiet, the plan's overrides (--enable/--disable/--gate/--no-gate), loading
-// (--no-defaults), budgets (--time-limit/--target-error) and map files (--map-dir). Each command asks for its set.
+// (--no-defaults), budgets (--time-limit/--target-error), map files (--map-dir) and --force. Each command asks for its set.
 #pragma once
 #include "plan/session_options.h"
 #include <CLI/CLI.hpp>
@@ -34,6 +34,7 @@ enum SessionOption : unsigned {
   kDefaultsOption = 1u << 5,   // --no-defaults alone (check: no plan)
   kBudgetOption = 1u << 6,     // --time-limit, --target-error
   kMapDirOption = 1u << 7,     // --map-dir
+  kForceOption = 1u << 8,      // --force: discard saved passes (batch: and render up-to-date jobs)
 };
 
 struct SessionArgs {
@@ -45,6 +46,7 @@ struct SessionArgs {
   PlanArgs plan;
   RenderBudget budget;
   std::string mapDir;  // --map-dir: photon map files are loaded from and written to it
+  bool force = false;
   // The one thread count of -t (0: all cores); a list or a count outside 1..1024 is refused.
   int threadCount() const;
   // --max-memory in bytes; 0: the memory available.

@@ -3,6 +3,7 @@
 #include "core/error_estimate.h"
 #include <fmt/format.h>
 #include <cmath>
+#include <utility>
 
 namespace penumbra {
 namespace {
@@ -96,6 +97,20 @@ Image PassSpread::standardError() const {
     for (int c = 0; c < 3; ++c) out.pixels[i][c] = float(std::sqrt(varianceOfMean(i, c)));
   }
   return out;
+}
+
+PassSpread::Moments PassSpread::moments() const {
+  return {even_, odd_, snapshot_, snapshotPasses_, passes_, biasHalf_, biasRmse_};
+}
+
+void PassSpread::restore(Moments m) {
+  even_ = std::move(m.even);
+  odd_ = std::move(m.odd);
+  snapshot_ = std::move(m.snapshot);
+  snapshotPasses_ = m.snapshotPasses;
+  passes_ = m.passes;
+  biasHalf_ = m.biasHalf;
+  biasRmse_ = m.biasRmse;
 }
 
 ErrorEstimate sampleError(const Image& standardError, int spp) {

@@ -54,6 +54,16 @@ class PassSpread {
   // Per pixel, the standard error of the mean of the passes (0 with one pass).
   Image standardError() const;
 
+  // Everything add() has accumulated: a frame's saved passes carry it to another
+  // process, which restore()s it and continues at the next pass.
+  struct Moments {
+    Image even, odd, snapshot;
+    int snapshotPasses = 0, passes = 0, biasHalf = 0;
+    double biasRmse = -1.0;
+  };
+  Moments moments() const;
+  void restore(Moments m);
+
  private:
   double varianceOfMean(size_t pixel, int channel) const;
 

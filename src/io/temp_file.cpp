@@ -81,9 +81,22 @@ void signalHook(const std::string& path) {
   std::raise(SIGINT);
 }
 
+// Live TermDeferrals, and whether a SIGTERM came while one lived.
+std::atomic<int> gTermDeferrals{0};
+std::atomic<bool> gTermRequested{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the handler needs lock-free atomics");
+// PENUMBRA_TEST_TERM_AFTER_PASS, read once; 0: unset.
+std::atomic<int> gTermAfterPass{0};
+
 extern "C" void onTerminatingSignal(int sig) {
+  if (sig == SIGTERM && gTermDeferrals.load() > 0 && !gTermRequested.exchange(true)) return;
   removeRegisteredTempFiles();
-  // SA_RESETHAND restored the default action; SA_NODEFER lets this raise take it now.
+  // The default action back, then SA_NODEFER lets this raise take it now.
+  struct sigaction dfl;
+  std::memset(&dfl, 0, sizeof dfl);
+  dfl.sa_handler = SIG_DFL;
+  sigemptyset(&dfl.sa_mask);
+  sigaction(sig, &dfl, nullptr);
   std::raise(sig);
 }
 
@@ -150,11 +163,23 @@ void installTempFileCleanup() {
   std::memset(&action, 0, sizeof action);
   action.sa_handler = onTerminatingSignal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND | SA_NODEFER;
+  // Not SA_RESETHAND: a deferred SIGTERM returns, and the next one must find the handler.
+  action.sa_flags = SA_NODEFER;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   gSignalHook.read("PENUMBRA_TEST_SIGNAL_AT", "temp-file");
   gDiskFullHook.read("PENUMBRA_TEST_DISK_FULL_AT", "write");
+  if (const char* pass = std::getenv("PENUMBRA_TEST_TERM_AFTER_PASS")) gTermAfterPass.store(std::max(0, std::atoi(pass)));
+}
+
+TermDeferral::TermDeferral() { gTermDeferrals.fetch_add(1); }
+TermDeferral::~TermDeferral() { gTermDeferrals.fetch_sub(1); }
+
+bool terminationRequested() noexcept { return gTermRequested.load(); }
+
+void termHookAfterPass(int passesDone) {
+  const int k = gTermAfterPass.load(std::memory_order_relaxed);
+  if (k > 0 && passesDone == k) std::raise(SIGTERM);
 }
 
 // Same directory (so the rename is atomic on one filesystem), pid + counter (so

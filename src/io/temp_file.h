@@ -22,13 +22,34 @@ class TempFileGuard {
 };
 
 // SIGINT and SIGTERM remove every registered temp file, then die of the signal as
-// before (default action, so the parent sees the usual exit status). Also reads the
+// before (default action, so the parent sees the usual exit status); SIGTERM while a
+// TermDeferral lives only sets its flag. Also reads the
 // test-only hooks (temp_file.cpp), each of the form PHASE[:PREFIX[:N]] and acting on
 // the Nth (default first; "*": every) temp file whose name starts with PREFIX:
 //   PENUMBRA_TEST_SIGNAL_AT=temp-file[:PREFIX[:N]]  SIGINT as soon as it exists;
 //   PENUMBRA_TEST_DISK_FULL_AT=write[:PREFIX[:N]]   its write fails with ENOSPC
-//                                                   after half its bytes.
+//                                                   after half its bytes;
+// and PENUMBRA_TEST_TERM_AFTER_PASS=K: SIGTERM right after pass K of a frame (termHookAfterPass).
 void installTempFileCleanup();
+
+// While one lives, SIGTERM (a scheduler's time limit or preemption) does not kill the
+// process: the handler sets a flag the owner polls at a point where it can save its
+// work and stop (a progressive frame, between passes). A second SIGTERM, or one when
+// none lives, removes the temp files and dies as before; SIGINT always does.
+class TermDeferral {
+ public:
+  TermDeferral();
+  ~TermDeferral();
+  TermDeferral(const TermDeferral&) = delete;
+  TermDeferral& operator=(const TermDeferral&) = delete;
+};
+
+// A SIGTERM arrived while a TermDeferral lived and nobody has died of it yet: it stays
+// set, so whoever runs next (the next job of a batch) stops too.
+bool terminationRequested() noexcept;
+
+// The test hook: raises SIGTERM when `passesDone` is PENUMBRA_TEST_TERM_AFTER_PASS.
+void termHookAfterPass(int passesDone);
 
 // The handler's body: unlinks every registered temp file. Async-signal-safe.
 void removeRegisteredTempFiles() noexcept;

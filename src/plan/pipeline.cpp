@@ -5,6 +5,7 @@
 #include "plan/cpu_report.h"
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
+#include "plan/saved_passes.h"
 #include "io/image_io.h"
 
 namespace penumbra {
@@ -25,6 +26,8 @@ RenderResult runRender(const RenderRequest& request) {
     job.outputs.push_back({request.outputPath, "-o", !request.tracePixel});
   }
   for (const std::string& stats : request.statsPaths) job.outputs.push_back({stats, "--stats", false});
+  const bool image = !request.outputPath.empty() && !request.tracePixel;
+  if (image) job.savedPasses = savedPassesPath(request.outputPath);
   PlannedJob planned = session.plan(job);
 
   session.prepare(planned);
@@ -35,10 +38,11 @@ RenderResult runRender(const RenderRequest& request) {
   RenderStats& stats = result.stats;
   stats.time.buildBvh = session.assets(planned).bvhSeconds;
 
-  if (!request.outputPath.empty() && !request.tracePixel) {
+  if (image) {
     Stopwatch phase;
     writeImage(request.outputPath, result.image,
                renderMetadata(planned.scene, planned.plan, stats, planned.viewName, request.outputPath), request.display);
+    removeSavedPasses(job.savedPasses);  // the job is done: nothing to resume
     stats.time.write = phase.seconds();
   }
   stats.cpu = total.timing(stats.threads);

@@ -2,6 +2,7 @@
 // precomputed lookups, and the physical model's progressive passes.
 #include "plan/render_frame.h"
 #include "plan/frame_lookups.h"
+#include "plan/saved_passes.h"
 #include "plan/transport_model.h"
 #include "gather/lookup_cache/lookup_cache.h"
 #include "gather/radiance_estimate.h"
@@ -9,9 +10,13 @@
 #include "trace/light_visibility.h"
 #include "trace/probe_error.h"
 #include "trace/shading.h"
+#include "core/error.h"
 #include "core/error_estimate.h"
+#include "io/temp_file.h"
 #include "io/texture_gen.h"
 #include <fmt/format.h>
+#include <filesystem>
+#include <optional>
 
 namespace penumbra {
 namespace {
@@ -107,6 +112,7 @@ struct FrameRun {
   ShadingContext ctx;
   bool precomputed = false, needsLight = false, budgeted = false, fresh = false;
   int passes = 1, done = 0;
+  int first = 0;  // the first pass this run renders: after the saved ones
   const Stopwatch wall;
   std::function<double()> clock;
   double passStart = 0.0;
@@ -148,9 +154,9 @@ void bindMaps(FrameRun& f, const PhotonStage& maps, int pass) {
 void prepareLookups(FrameRun& f, int pass) {
   ShadingContext& ctx = f.ctx;
   PhotonStage& stage = f.stage;
-  if (f.needsLight && f.precomputed && (pass == 0 || f.fresh)) {
+  if (f.needsLight && f.precomputed && (f.fresh || pass == f.first)) {
     const std::string lookups = phaseName("lookups", pass, f.passes);
-    if (pass == 0) {
+    if (pass == 0 || !f.fresh) {
       buildLookup(f.scene, f.model, stage.lookup, stage.gateLookup, &stage.lookupKey, &stage.gateLookupKey,
                   &stage.lookupSeconds, ctx, f.stats, f.options.progress, lookups);
     } else {
@@ -159,7 +165,7 @@ void prepareLookups(FrameRun& f, int pass) {
                   f.options.progress, lookups);
     }
   }
-  if (pass == 0 && f.needsLight && ctx.choices.gate && ctx.maps.get<MapKind::Shadow>() && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
+  if (pass == f.first && f.needsLight && ctx.choices.gate && ctx.maps.get<MapKind::Shadow>() && !(ctx.gateLookup && ctx.gateLookup->hasGate()) &&
       !stage.maps.get<MapKind::Shadow>().hasTrees()) {
     Stopwatch trees;
     stage.maps.get<MapKind::Shadow>().buildTrees();
@@ -195,6 +201,65 @@ bool budgetStops(FrameRun& f) {
   return stop != nullptr;
 }
 
+// Continues the frame after its saved passes when they are this frame's (a note says
+// so, or why they are not used); --force removes them instead.
+void resumeFrame(FrameRun& f) {
+  const FrameOptions::Resume& r = f.options.resume;
+  std::vector<std::string>& notes = f.result.notes;
+  if (r.discard) {
+    std::error_code ec;
+    if (std::filesystem::exists(r.path, ec)) notes.push_back(r.path + ": saved passes discarded (--force)");
+    removeSavedPasses(r.path);
+    return;
+  }
+  std::string why;
+  const Stopwatch reading;
+  std::optional<SavedPasses> s = loadPasses(r.path, r.identity, f.passes, f.scene.camera.width,
+                                            f.scene.camera.height, why);
+  if (!s) {
+    if (!why.empty()) notes.push_back(fmt::format("{}: saved passes not used ({}): starting at pass 1", r.path, why));
+    return;
+  }
+  f.first = f.done = s->done;
+  f.result.image = std::move(s->sum);
+  f.spread.restore(std::move(s->spread));
+  f.stats.emitted = s->emitted;
+  f.stats.stored = s->stored;
+  f.stats.rays = s->rays;
+  f.stats.gatherRadius = s->gatherRadius;
+  // A time limit counts the job's seconds in every run.
+  f.clock = [clock = std::move(f.clock), before = s->seconds] { return before + clock(); };
+  f.passStart = f.clock();
+  notes.push_back(fmt::format("{}: resumed at pass {} of {} (read in {:.2f} s)", r.path, f.done + 1, f.passes,
+                              reading.seconds()));
+}
+
+// SIGTERM came: the finished passes are saved for a later run, and the frame stops.
+[[noreturn]] void saveAndStop(FrameRun& f) {
+  const FrameOptions::Resume& r = f.options.resume;
+  const std::string passes = f.budgeted ? fmt::format("{} passes", f.done) : fmt::format("{} of {} passes", f.done, f.passes);
+  SavedPasses s;
+  s.identity = r.identity;
+  s.done = f.done;
+  s.passes = f.passes;
+  s.seconds = f.clock();
+  s.sum = std::move(f.result.image);
+  s.spread = f.spread.moments();
+  s.emitted = f.stats.emitted;
+  s.stored = f.stats.stored;
+  s.rays = f.stats.rays;
+  s.gatherRadius = f.stats.gatherRadius;
+  const Stopwatch saving;
+  uint64_t bytes = 0;
+  try {
+    bytes = savePasses(r.path, s);
+  } catch (const InputError& e) {
+    throw Terminated{fmt::format("SIGTERM: {} not saved: {}", passes, e.what())};
+  }
+  throw Terminated{fmt::format("SIGTERM: saved {} to {} ({:.1f} MB, {:.2f} s); the same command resumes at pass {}",
+                               passes, r.path, bytes / 1e6, saving.seconds(), f.done + 1)};
+}
+
 // The image as the mean of its passes, and its error estimate.
 void finishFrame(FrameRun& f) {
   RenderStats& stats = f.stats;
@@ -228,8 +293,17 @@ void finishFrame(FrameRun& f) {
 
 void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& stage,
                  const FrameOptions& options, RenderResult& result) {
+  // A SIGTERM that came during an earlier frame of this process (a batch's) stops the next.
+  if (terminationRequested()) throw Terminated{"SIGTERM: stopped before the next frame"};
   FrameRun f(scene, assets, stage, options, result);
-  for (int pass = 0; pass < f.passes; ++pass) {
+  // Between passes, SIGTERM saves the passes instead of killing them.
+  const bool resumable = !options.resume.path.empty() && f.passes > 1 && !options.tracePixel;
+  std::optional<TermDeferral> deferTerm;
+  if (resumable) {
+    deferTerm.emplace();
+    resumeFrame(f);
+  }
+  for (int pass = f.first; pass < f.passes; ++pass) {
     bindMaps(f, mapsForPass(f, pass), pass);
     prepareLookups(f, pass);
     if (options.tracePixel) {
@@ -238,7 +312,9 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
       break;
     }
     renderPass(f, pass);
+    termHookAfterPass(f.done);
     if (budgetStops(f)) break;
+    if (resumable && f.done < f.passes && terminationRequested()) saveAndStop(f);
   }
   finishFrame(f);
 }

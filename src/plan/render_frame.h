@@ -45,6 +45,14 @@ struct FrameOptions {
   // Called after each pass on the calling thread with the passes done, their sum and
   // the estimate so far (tests compare a prefix of passes with the whole).
   std::function<void(int passes, const Image& sum, const ErrorEstimate& error)> afterPass;
+  // A progressive frame whose passes a later run may continue (plan/saved_passes.h):
+  // SIGTERM saves its finished passes to `path` between passes and throws Terminated;
+  // a run with the same `identity` starts after them. Empty path: SIGTERM kills as
+  // anywhere else. `discard` (--force): the saved passes are removed, not read.
+  struct Resume {
+    std::string path, identity;
+    bool discard = false;
+  } resume;
 };
 
 // Renders every pass of `scene` into result.image (or its ray tree), pass 0 from

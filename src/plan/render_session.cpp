@@ -19,6 +19,19 @@ namespace {
 
 const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m == GateMode::On ? "on" : "off"; }
 
+// What a frame's saved passes must have been saved by: the scene file and the files
+// it read (path, size, time: in both keys), every override, loading, the view, the
+// camera and the plan. The thread count is left out: passes are seeded by index.
+std::string passesIdentity(const PlannedJob& job, const SessionOptions& o) {
+  const Camera& c = job.scene.camera;
+  auto vec = [](const Vec3& v) { return fmt::format("{} {} {}", v.x, v.y, v.z); };
+  return fmt::format("scene {}\noverrides {}\ndefaults {}\nview {} error {}\ncamera {} / {} / {} fov {} ortho {} "
+                     "{}x{} spp {}\nseed {}\nplan {}\ngeometry {}\nphotons {}",
+                     job.request.scenePath, fmt::join(job.request.overrides, " "), o.load.defaults, job.viewName,
+                     job.errorView, vec(c.position), vec(c.lookAt), vec(c.up), c.fovY, c.orthoHeight, c.width,
+                     c.height, c.spp, job.scene.render.seed, planJson(job.plan), job.keys.geometry, job.keys.photons);
+}
+
 SessionOptions resolved(SessionOptions o) {
   if (o.threads <= 0) o.threads = tbb::info::default_concurrency();
   return o;
@@ -346,6 +359,10 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage, std
   }
   frame.errorView = job.errorView;
   frame.afterPass = std::move(afterPass);
+  // A scene read from stdin cannot be told from another: its passes are not kept.
+  if (!job.request.savedPasses.empty() && job.request.scenePath != "-") {
+    frame.resume = {job.request.savedPasses, passesIdentity(job, options_), options_.force};
+  }
   const PhaseGuard phases(options_.progress);
   renderFrame(scene, a, stage, frame, result);
   return result;

@@ -37,6 +37,9 @@ struct JobRequest {
   std::vector<OutputPath> outputs;
   std::optional<std::pair<int, int>> tracePixel;
   RenderBudget budget;  // --time-limit / --target-error: passes until it is met
+  // Where a progressive frame saves its finished passes on SIGTERM and resumes from
+  // (plan/saved_passes.h); empty: nowhere (SIGTERM kills it).
+  std::string savedPasses;
 };
 
 // A job loaded, planned and admitted: nothing large is allocated yet. Its scene

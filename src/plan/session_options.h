@@ -28,6 +28,7 @@ struct SessionOptions {
   // --map-dir: photon stages are loaded from files there by key, or built and written
   // there (plan/map_file.h); empty: built in the process only.
   std::string mapDir;
+  bool force = false;  // --force: a progressive frame's saved passes are discarded, not resumed
   // -D and the options that stand for scene values (--gate), applied to every job
   // before the job's own overrides (RenderSession::plan).
   std::vector<std::string> overrides;

@@ -10,8 +10,10 @@
 #include "plan/cpu_report.h"
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
+#include "plan/saved_passes.h"
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/temp_file.h"
 #include <fmt/format.h>
 #include <algorithm>
 #include <filesystem>
@@ -76,6 +78,13 @@ void BatchRun::plan(PreparedJob& p, bool forRender) {
       p.views.push_back(session_.plan(first));
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
         p.views.push_back(session_.planView(p.views.front(), p.job->outputs[v].view));
+      }
+      // Each view's passes file, beside its output (named by view where views share one).
+      for (size_t v = 0; v < p.views.size(); ++v) {
+        const std::string& path = p.job->outputs[v].path;
+        const bool shared = std::count_if(p.job->outputs.begin(), p.job->outputs.end(),
+                                          [&](const BatchOutput& o) { return o.path == path; }) > 1;
+        p.views[v].request.savedPasses = savedPassesPath(path, shared ? p.views[v].viewName : "");
       }
       for (const std::string& n : p.views.front().notes) {
         if (std::find(out_.notes.begin(), out_.notes.end(), n) == out_.notes.end()) out_.notes.push_back(n);
@@ -302,6 +311,8 @@ BatchOutcome BatchRun::run() {
       r.status = jobStateName(JobState::UpToDate);
       ++out_.upToDate;
     } else {
+      // A SIGTERM that came as the last job's last pass ended: stop before this one's photons.
+      if (terminationRequested()) throw Terminated{"SIGTERM: stopped before job '" + p.job->name + "'"};
       try {
         // The disk may have filled (or the folder gone) since the jobs were checked:
         // fail now rather than after the render.
@@ -325,6 +336,7 @@ BatchOutcome BatchRun::run() {
           }
         } else {
           rendered = renderJob(session_, *p.job, p.views, p.stamp, p.inputs);
+          out_.notes.insert(out_.notes.end(), rendered.notes.begin(), rendered.notes.end());
           r.status = "rendered";
           ++out_.rendered;
         }

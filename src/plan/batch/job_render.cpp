@@ -1,6 +1,7 @@
 // A batch job's views rendered and written (plan/batch/job_render.h).
 #include "plan/batch/job_render.h"
 #include "plan/image_metadata.h"
+#include "plan/saved_passes.h"
 #include "io/image_io.h"
 #include <fmt/format.h>
 #include <map>
@@ -21,6 +22,9 @@ JobRender renderJob(RenderSession& session, const BatchJob& job, const std::vect
   std::map<std::string, Header> headers;
   for (size_t v = 0; v < views.size(); ++v) {
     RenderResult result = session.frame(views[v], stage);
+    for (const std::string& n : result.notes) {
+      if (n.rfind(views[v].request.savedPasses + ": ", 0) == 0) r.notes.push_back(n);
+    }
     // A file's header is a render's (the same keys, error and budget), from its
     // first view that reads light, else its first view; and the job's stamp and inputs.
     const std::string& path = job.outputs[v].path;
@@ -48,6 +52,7 @@ JobRender renderJob(RenderSession& session, const BatchJob& job, const std::vect
       if (key == "penumbra:aov") value = fmt::format("{}", fmt::join(names, ","));
     writeLayeredExr(path, layers, meta);
   }
+  for (const PlannedJob& v : views) removeSavedPasses(v.request.savedPasses);
   return r;
 }
 

@@ -11,10 +11,12 @@ namespace penumbra {
 
 struct JobRender {
   bool sceneReused = false, photonsReused = false;
+  std::vector<std::string> notes;  // a view resumed from saved passes, or why they were not used
 };
 
 // Renders `views` (planned and prepared, one per output of `job`) and writes each
-// output file once (several views of one .exr as its layers).
+// output file once (several views of one .exr as its layers); then the views'
+// saved passes are removed: nothing is left to resume.
 JobRender renderJob(RenderSession& session, const BatchJob& job, const std::vector<PlannedJob>& views,
                     const std::string& stamp, const std::vector<InputRecord>& inputs);
 
