@@ -54,14 +54,25 @@ class PassSpread {
   // Per pixel, the standard error of the mean of the passes (0 with one pass).
   Image standardError() const;
 
+  // What a tile of the frame keeps for the merge: the sums of the even and odd passes
+  // (per pixel, so the merged noise is the whole frame's to the bit), and the bias
+  // check's sums over the tile's pixels at its last power of two (biasHalf > 0).
+  const Image& evenSum() const { return even_; }
+  const Image& oddSum() const { return odd_; }
+  double biasSquareSum() const { return biasSquareSum_; }
+  double biasNoiseSum() const { return biasNoiseSum_; }
+  // The estimate of `passes` passes whose even and odd sums are these, with the bias
+  // check from its sums over `values` pixel channels (biasHalf 0: none).
+  static ErrorEstimate fromHalves(const Image& even, const Image& odd, int passes, double biasSquareSum,
+                                  double biasNoiseSum, size_t values, int biasHalf);
+
  private:
-  double varianceOfMean(size_t pixel, int channel) const;
 
   Image even_, odd_;  // the sums of the even and of the odd passes
   Image snapshot_;  // the sum of the first `snapshotPasses_` passes
   int snapshotPasses_ = 0;
   int passes_ = 0;
-  double biasRmse_ = -1.0;
+  double biasSquareSum_ = 0.0, biasNoiseSum_ = 0.0;
   int biasHalf_ = 0;
 };
 

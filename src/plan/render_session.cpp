@@ -18,6 +18,25 @@ namespace {
 
 const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m == GateMode::On ? "on" : "off"; }
 
+// A tile's bounds in the frame, and what a tile cannot be: a budget's passes would
+// differ between tiles, and the error view of one sample per pixel probes by the
+// whole frame's contrast.
+void checkTile(PlannedJob& job) {
+  const Scene& scene = job.scene;
+  const JobRequest& request = job.request;
+  const char* option = request.tile->count > 0 ? "--tile" : "--pixel-bounds";
+  job.bounds = resolveTile(*request.tile, scene.camera.width, scene.camera.height);
+  if (request.budget.any()) {
+    throw InputError(fmt::format("{}: a tile cannot run to a budget (--time-limit, --target-error): each tile would "
+                                 "stop after its own passes; set photons.passes instead", option));
+  }
+  if (request.tracePixel) throw InputError(fmt::format("{} and --trace-pixel: give one of them", option));
+  if (job.errorView && scene.camera.spp == 1 && transportOf(scene).passes(scene, job.aov) == 1) {
+    throw InputError(fmt::format("{}: the error view of one sample per pixel probes by the whole frame's contrast; "
+                                 "render it whole, or with --spp 2 or more", option));
+  }
+}
+
 SessionOptions resolved(SessionOptions o) {
   if (o.threads <= 0) o.threads = tbb::info::default_concurrency();
   return o;
@@ -86,6 +105,7 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
                                  physical, physical));
   }
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
+  if (request.tile) checkTile(job);
   // Before any work: what runs and why (photons.gate = auto is decided here too).
   job.plan = makePlan(scene, job.aov, options_.plan);
   for (const PassDecision& d : job.plan.passes) {
@@ -258,6 +278,7 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage, std
     frame.clock = [spent, wall = Stopwatch()] { return spent + wall.seconds(); };
   }
   frame.errorView = job.errorView;
+  frame.bounds = job.bounds;
   frame.afterPass = std::move(afterPass);
   const PhaseGuard phases(options_.progress);
   renderFrame(scene, a, stage, frame, result);
