@@ -3,6 +3,7 @@
 // rendered from the same maps.
 #include "plan/batch/batch_run.h"
 #include "plan/cpu_report.h"
+#include "plan/frame_part.h"
 #include "plan/image_metadata.h"
 #include "plan/memory_limit.h"
 #include "plan/output_safety.h"
@@ -28,6 +29,7 @@ struct PreparedJob {
   std::vector<std::string> inputs;
   std::vector<std::string> outputs;  // each file once (views may share a layered EXR)
   std::string stamp;  // written into every output: a changed job makes them stale
+  std::string frameStamp;  // a tile's: the whole frame's stamp, which its parts share
   std::string error;  // validation failure (keepGoing)
 };
 
@@ -37,6 +39,23 @@ RenderBudget budgetOf(const BatchJob& job, const RenderBudget& command) {
   if (command.seconds > 0.0) b.seconds = command.seconds;
   if (command.targetError > 0.0) b.targetError = command.targetError;
   return b;
+}
+
+// The whole frame's view files, as the job without "tiles" would have them.
+std::vector<std::pair<std::string, std::string>> frameViewFiles(const BatchTile& tile) {
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const BatchOutput& o : tile.frame) files.push_back({o.view, o.path});
+  return files;
+}
+
+// A tile's part file: the merged frame gets the header the whole job's output would
+// have (penumbra:job the frame's stamp); the part itself carries the tile's stamp.
+void writeTile(const PreparedJob& p, size_t v, const RenderResult& result) {
+  const PlannedJob& view = p.views[v];
+  ImageMetadata exr = renderMetadata(view.scene, view.plan, result.stats, view.viewName, "frame.exr");
+  ImageMetadata png = renderMetadata(view.scene, view.plan, result.stats, view.viewName, "frame.png");
+  for (ImageMetadata* m : {&exr, &png}) m->emplace_back("penumbra:job", p.frameStamp);
+  writeFramePart(p.job->outputs[v].path, result, *view.bounds, p.frameStamp, exr, png, {{"penumbra:job", p.stamp}});
 }
 
 }  // namespace
@@ -79,6 +98,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
       first.view = p.job->outputs.front().view;
       first.outputs = outputs;
       first.budget = budgetOf(*p.job, req.session.budget);
+      if (p.job->tile) first.tile = TileRequest{p.job->tile->index, p.job->tile->count, std::nullopt};
       p.views.push_back(session.plan(first));
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
         p.views.push_back(session.planView(p.views.front(), p.job->outputs[v].view));
@@ -92,6 +112,7 @@ BatchOutcome runBatch(const BatchRequest& req) {
       std::vector<std::string> stamped = p.views.front().request.overrides;  // -D, then the job's own
       if (!req.session.load.defaults) stamped.push_back("--no-defaults");
       p.stamp = jobStamp(p.job->scene, stamped, viewFiles);
+      if (p.job->tile) p.frameStamp = jobStamp(p.job->scene, stamped, frameViewFiles(*p.job->tile));
     } catch (const InputError& e) {
       p.error = e.what();
       p.views.clear();
@@ -193,6 +214,10 @@ BatchOutcome runBatch(const BatchRequest& req) {
         std::map<std::string, Header> headers;
         for (size_t v = 0; v < p.views.size(); ++v) {
           RenderResult result = session.frame(p.views[v], stage);
+          if (p.job->tile) {  // one view per part file (readJobsFile)
+            writeTile(p, v, result);
+            continue;
+          }
           // A file's header is a render's (the same keys, error and budget), from its
           // first view that reads light, else its first view; and the job's stamp.
           const std::string& path = p.job->outputs[v].path;
