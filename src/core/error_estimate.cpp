@@ -73,20 +73,33 @@ void PassSpread::add(const Image& sumBefore, const Image& image, int pass) {
     return;
   }
   if (passes_ != 2 * snapshotPasses_) return;
-  const double h = snapshotPasses_;
-  biasSquareSum_ = sumOver(image, [&](size_t i, int c) {
-    const double first = snapshot_.pixels[i][c] / h;
-    const double second = (double(sumBefore.pixels[i][c]) + image.pixels[i][c] - snapshot_.pixels[i][c]) / h;
-    return (first - second) * (first - second);
-  });
-  biasNoiseSum_ = sumOver(image, [&](size_t i, int c) { return varianceOfMean(even_, odd_, passes_, i, c); });
+  biasSums(snapshot_, sumBefore, image, even_, odd_, passes_, snapshotPasses_, biasSquareSum_, biasNoiseSum_);
   biasHalf_ = snapshotPasses_;
+  if (keep_) checkpoint_ = {snapshot_, sumBefore, image, even_, odd_, passes_, snapshotPasses_};
   for (size_t i = 0; i < image.pixels.size(); ++i) snapshot_.pixels[i] = sumBefore.pixels[i] + image.pixels[i];
   snapshotPasses_ = passes_;
 }
 
-ErrorEstimate PassSpread::fromHalves(const Image& even, const Image& odd, int passes, double biasSquareSum,
-                                     double biasNoiseSum, size_t values, int biasHalf) {
+void PassSpread::biasSums(const Image& first, const Image& before, const Image& pass, const Image& even,
+                          const Image& odd, int passes, int half, double& squares, double& noise) {
+  const double h = half;
+  squares = sumOver(pass, [&](size_t i, int c) {
+    const double a = first.pixels[i][c] / h;
+    const double b = (double(before.pixels[i][c]) + pass.pixels[i][c] - first.pixels[i][c]) / h;
+    return (a - b) * (a - b);
+  });
+  noise = sumOver(pass, [&](size_t i, int c) { return varianceOfMean(even, odd, passes, i, c); });
+}
+
+ErrorEstimate PassSpread::fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& cp) {
+  double squares = 0.0, noise = 0.0;
+  if (cp.half > 0) biasSums(cp.first, cp.before, cp.pass, cp.even, cp.odd, cp.passes, cp.half, squares, noise);
+  return estimateFrom(even, odd, passes, squares, noise, cp.half);
+}
+
+ErrorEstimate PassSpread::estimateFrom(const Image& even, const Image& odd, int passes, double biasSquareSum,
+                                       double biasNoiseSum, int biasHalf) {
+  const size_t values = 3 * even.pixels.size();
   ErrorEstimate e;
   if (passes < 2) return e;
   e.source = ErrorSource::Passes;
@@ -101,7 +114,7 @@ ErrorEstimate PassSpread::fromHalves(const Image& even, const Image& odd, int pa
 }
 
 ErrorEstimate PassSpread::estimate() const {
-  return fromHalves(even_, odd_, passes_, biasSquareSum_, biasNoiseSum_, 3 * even_.pixels.size(), biasHalf_);
+  return estimateFrom(even_, odd_, passes_, biasSquareSum_, biasNoiseSum_, biasHalf_);
 }
 
 Image PassSpread::standardError() const {

@@ -37,6 +37,14 @@ struct ErrorEstimate {
 std::string describeError(const ErrorEstimate& e);
 
 // The noise of progressive passes' mean, and the bias check at each power of two.
+// The bias check's inputs at its last power of two, 2h passes: the sum of the first h
+// (`first`), the sum before the last pass, the last pass, and the even and odd sums
+// after it. A tile keeps them so the merge computes the whole frame's check to the bit.
+struct PassCheckpoint {
+  Image first, before, pass, even, odd;
+  int passes = 0, half = 0;  // 2h and h; half 0: no check yet
+};
+
 // Even and odd passes take their camera samples from two independently scrambled
 // sequences, each stratified in itself, so their means are independent estimates of
 // the pixel: with n_e and n_o passes, the mean's variance is n_e n_o / P^2 times
@@ -54,19 +62,24 @@ class PassSpread {
   // Per pixel, the standard error of the mean of the passes (0 with one pass).
   Image standardError() const;
 
-  // What a tile of the frame keeps for the merge: the sums of the even and odd passes
-  // (per pixel, so the merged noise is the whole frame's to the bit), and the bias
-  // check's sums over the tile's pixels at its last power of two (biasHalf > 0).
+  // What a tile of the frame keeps for the merge, per pixel so the merged figure is
+  // the whole frame's to the bit: the sums of the even and odd passes, and (after
+  // keepCheckpoint) the bias check's inputs.
   const Image& evenSum() const { return even_; }
   const Image& oddSum() const { return odd_; }
-  double biasSquareSum() const { return biasSquareSum_; }
-  double biasNoiseSum() const { return biasNoiseSum_; }
+  void keepCheckpoint() { keep_ = true; }
+  const PassCheckpoint& checkpoint() const { return checkpoint_; }
   // The estimate of `passes` passes whose even and odd sums are these, with the bias
-  // check from its sums over `values` pixel channels (biasHalf 0: none).
-  static ErrorEstimate fromHalves(const Image& even, const Image& odd, int passes, double biasSquareSum,
-                                  double biasNoiseSum, size_t values, int biasHalf);
+  // check of `checkpoint`.
+  static ErrorEstimate fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& checkpoint);
 
  private:
+  static ErrorEstimate estimateFrom(const Image& even, const Image& odd, int passes, double biasSquareSum,
+                                    double biasNoiseSum, int biasHalf);
+  // The bias check's sums over pixels and channels (squared difference of the halves,
+  // and the variance of the mean then).
+  static void biasSums(const Image& first, const Image& before, const Image& pass, const Image& even,
+                       const Image& odd, int passes, int half, double& squares, double& noise);
 
   Image even_, odd_;  // the sums of the even and of the odd passes
   Image snapshot_;  // the sum of the first `snapshotPasses_` passes
@@ -74,6 +87,8 @@ class PassSpread {
   int passes_ = 0;
   double biasSquareSum_ = 0.0, biasNoiseSum_ = 0.0;
   int biasHalf_ = 0;
+  bool keep_ = false;
+  PassCheckpoint checkpoint_;
 };
 
 // An estimate from one pass's per-pixel standard error of the mean (from its samples:

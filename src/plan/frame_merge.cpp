@@ -67,16 +67,16 @@ ErrorEstimate pooledError(const std::vector<PartHeader>& parts, const std::vecto
   if (source == static_cast<int>(ErrorSource::Samples)) {
     e = sampleError(layer("se"), count);
   } else if (source == static_cast<int>(ErrorSource::Passes)) {
-    double squares = 0.0, noise = 0.0;
-    int half = 0;
-    for (const PartHeader& p : parts) {
-      const std::string bias = need(p, kPartBias);
-      char* at = nullptr;
-      squares += std::strtod(bias.c_str(), &at);
-      noise += std::strtod(at, &at);
-      half = static_cast<int>(std::strtol(at, nullptr, 10));
+    PassCheckpoint c;
+    std::istringstream(need(parts.front(), kPartBias)) >> c.passes >> c.half;
+    if (c.half > 0) {
+      c.first = layer("bias_first");
+      c.before = layer("bias_before");
+      c.pass = layer("bias_pass");
+      c.even = layer("bias_even");
+      c.odd = layer("bias_odd");
     }
-    e = PassSpread::fromHalves(layer("even"), layer("odd"), count, squares, noise, 3 * pixels, half);
+    e = PassSpread::fromHalves(layer("even"), layer("odd"), count, c);
   } else if (source == static_cast<int>(ErrorSource::Probes)) {
     double squares = 0.0;
     for (const PartHeader& p : parts) {

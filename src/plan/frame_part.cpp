@@ -52,7 +52,13 @@ void writeFramePart(const std::string& path, const RenderResult& result, const P
   if (e.source == ErrorSource::Passes) {
     layers.push_back({"even", &e.even});
     layers.push_back({"odd", &e.odd});
-    m.emplace_back(kPartBias, fmt::format("{:a} {:a} {}", e.biasSquareSum, e.biasNoiseSum, e.biasHalf));
+    const PassCheckpoint& c = e.checkpoint;
+    m.emplace_back(kPartBias, fmt::format("{} {}", c.passes, c.half));
+    if (c.half > 0) {
+      for (const auto& [name, image] : {std::pair{"bias_first", &c.first}, {"bias_before", &c.before},
+                                        {"bias_pass", &c.pass}, {"bias_even", &c.even}, {"bias_odd", &c.odd}})
+        layers.push_back({name, image});
+    }
   }
   if (e.source == ErrorSource::Probes) m.emplace_back(kPartProbes, fmt::format("{:a} {}", e.probeSquareSum, e.probed));
   m.emplace_back(kPartExrKeys, keyList(exr));

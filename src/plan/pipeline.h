@@ -40,8 +40,7 @@ struct TileError {
   int count = 0;         // samples per pixel or passes
   Image standardError;   // Samples: each pixel's standard error
   Image even, odd;       // Passes: the sums of the even and of the odd passes
-  double biasSquareSum = 0.0, biasNoiseSum = 0.0;  // Passes: the bias check's sums
-  int biasHalf = 0;
+  PassCheckpoint checkpoint;  // Passes: the bias check's inputs
   double probeSquareSum = 0.0;  // Probes: the tile's mean square error times its pixels
   int probed = 0;
 };

@@ -92,6 +92,7 @@ struct FrameRun {
     clock = options.clock ? options.clock : [this] { return wall.seconds(); };
     render.aov = options.aov;
     render.bounds = options.bounds;
+    if (options.bounds) spread.keepCheckpoint();
     if (needsLight && passes == 1 && scene.camera.spp > 1) render.standardError = &sampleSpread;
     passStart = clock();
   }
@@ -205,9 +206,7 @@ void keepTileError(FrameRun& f, const ErrorEstimate& e) {
   if (e.source == ErrorSource::Passes) {
     t.even = f.spread.evenSum();
     t.odd = f.spread.oddSum();
-    t.biasSquareSum = f.spread.biasSquareSum();
-    t.biasNoiseSum = f.spread.biasNoiseSum();
-    t.biasHalf = e.biasHalf;
+    t.checkpoint = f.spread.checkpoint();
   }
   if (e.source == ErrorSource::Probes) {
     t.probeSquareSum = e.noiseRmse * e.noiseRmse * double(f.options.bounds->pixels());
