@@ -170,12 +170,8 @@ int runCommandLine(int argc, char** argv) {
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-v,--verbose", verbose, "The summary also gives the reasons of automatic decisions (the gate)");
   addSessionOptions(*render, session,
-                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption, "");
-  std::string toneArg;
-  render->add_option("--exposure", req.display.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
-      ->check(CLI::Range(-64.0, 64.0));
-  render->add_option("--tonemap", toneArg, "PNG tone curve: clamp (default), reinhard or filmic; EXR stays linear")
-      ->check(CLI::IsMember({"clamp", "reinhard", "filmic"}));
+                    kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption |
+                        kDisplayOption, "");
 
   std::string textureName, textureOut;
   int textureWidth = 2048;
@@ -229,7 +225,7 @@ int runCommandLine(int argc, char** argv) {
       if (!seedArg.empty()) own.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) own.push_back("camera.spp=" + std::to_string(*spp));
       req.session = session.options(own);
-      if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
+      req.display = session.display();
       if (!tileArg.empty()) {
         const auto [i, n] = parseTile(tileArg);
         req.tile = TileRequest{i, n, std::nullopt};

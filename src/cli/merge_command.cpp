@@ -11,12 +11,12 @@ MergeCommand::MergeCommand(CLI::App& app) {
                                          "\"tiles\") into one frame, byte-identical to the whole render");
   command_->add_option("parts", parts_, "Part files (.exr), in any order")->required();
   command_->add_option("-o,--output", output_, "The frame: .png or .exr")->required();
-  command_->add_flag("-q,--quiet", quiet_, "No summary on stderr");
+  addSessionOptions(*command_, args_, kQuietOption | kDisplayOption, "");
 }
 
 int MergeCommand::run() {
-  const MergeOutcome m = mergeFrame(parts_, output_);
-  if (!quiet_) {
+  const MergeOutcome m = mergeFrame(parts_, output_, args_.display());
+  if (!args_.quiet) {
     std::cerr << "merged " << m.parts << " parts into " << output_ << " (" << m.width << "x" << m.height
               << "); error: " << m.error << "\n";
   }

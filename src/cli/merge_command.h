@@ -1,5 +1,6 @@
 // `penumbra merge PART... -o FRAME`: the parts of a tiled render into one frame.
 #pragma once
+#include "cli/session_args.h"
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
@@ -16,7 +17,7 @@ class MergeCommand {
   CLI::App* command_ = nullptr;
   std::vector<std::string> parts_;
   std::string output_;
-  bool quiet_ = false;
+  SessionArgs args_;  // -q, --exposure, --tonemap
 };
 
 }  // namespace penumbra

@@ -58,7 +58,20 @@ void addBudgetOptions(CLI::App& command, RenderBudget& budget) {
       ->check(budgetValue(&RenderBudget::targetError));
 }
 
+void addDisplayOptions(CLI::App& command, SessionArgs& args) {
+  command.add_option("--exposure", args.displayValues.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
+      ->check(CLI::Range(-64.0, 64.0));
+  command.add_option("--tonemap", args.tonemap, "PNG tone curve: clamp (default), reinhard or filmic; EXR stays linear")
+      ->check(CLI::IsMember({"clamp", "reinhard", "filmic"}));
+}
+
 }  // namespace
+
+DisplayOptions SessionArgs::display() const {
+  DisplayOptions d = displayValues;
+  if (!tonemap.empty()) d.tone = parseToneMap(tonemap);
+  return d;
+}
 
 PlanOverrides PlanArgs::passes() const {
   PlanOverrides o;
@@ -130,6 +143,7 @@ void addSessionOptions(CLI::App& command, SessionArgs& args, unsigned which, con
   if (which & kPlanOption) addPlanOptions(command, args.plan);
   if (which & kDefaultsOption) addDefaultsOption(command, args.plan.noDefaults);
   if (which & kBudgetOption) addBudgetOptions(command, args.budget);
+  if (which & kDisplayOption) addDisplayOptions(command, args);
 }
 
 }  // namespace penumbra

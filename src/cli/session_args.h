@@ -2,6 +2,7 @@
 // quiet, the plan's overrides (--enable/--disable/--gate/--no-gate), loading
 // (--no-defaults) and budgets (--time-limit/--target-error). Each command asks for its set.
 #pragma once
+#include "plan/pipeline.h"
 #include "plan/session_options.h"
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -33,6 +34,7 @@ enum SessionOption : unsigned {
   kPlanOption = 1u << 4,       // --enable, --disable, --gate, --no-gate, --no-defaults
   kDefaultsOption = 1u << 5,   // --no-defaults alone (check: no plan)
   kBudgetOption = 1u << 6,     // --time-limit, --target-error
+  kDisplayOption = 1u << 7,    // --exposure, --tonemap (a PNG's display transform)
 };
 
 struct SessionArgs {
@@ -43,6 +45,10 @@ struct SessionArgs {
   bool quiet = false;
   PlanArgs plan;
   RenderBudget budget;
+  DisplayOptions displayValues;  // --exposure; the tone curve is `tonemap`'s
+  std::string tonemap;
+  // --exposure and --tonemap for a PNG output (default: exposure 0, clamp).
+  DisplayOptions display() const;
   // The one thread count of -t (0: all cores); a list or a count outside 1..1024 is refused.
   int threadCount() const;
   // --max-memory in bytes; 0: the memory available.

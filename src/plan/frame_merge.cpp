@@ -112,7 +112,8 @@ ImageMetadata mergedMetadata(const PartHeader& first, const ErrorEstimate& error
 
 }  // namespace
 
-MergeOutcome mergeFrame(const std::vector<std::string>& paths, const std::string& output) {
+MergeOutcome mergeFrame(const std::vector<std::string>& paths, const std::string& output,
+                        const DisplayOptions& display) {
   if (paths.empty()) throw InputError("merge: name the part files to merge");
   checkImageOutputPath(output);
   std::vector<PartHeader> parts;
@@ -146,7 +147,7 @@ MergeOutcome mergeFrame(const std::vector<std::string>& paths, const std::string
   const ErrorEstimate error = pooledError(parts, images, static_cast<size_t>(width) * height);
   std::string ext = output.substr(output.find_last_of('.') + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  writeImage(output, image, mergedMetadata(first, error, ext == "png"));
+  writeImage(output, image, mergedMetadata(first, error, ext == "png"), display);
   return {width, height, parts.size(), describeError(error)};
 }
 

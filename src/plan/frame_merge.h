@@ -1,6 +1,7 @@
 // penumbra merge: part files of one frame checked (one job, one frame size, every
 // pixel in exactly one part) and pasted into the frame, its error figure pooled.
 #pragma once
+#include "io/tone_map.h"
 #include <string>
 #include <vector>
 
@@ -13,7 +14,9 @@ struct MergeOutcome {
 };
 
 // Throws InputError (one line naming the parts or pixels) before writing anything when
-// the parts do not make one frame; writes `output` (.png or .exr) whole or not at all.
-MergeOutcome mergeFrame(const std::vector<std::string>& parts, const std::string& output);
+// the parts do not make one frame; writes `output` (.png or .exr) whole or not at all,
+// a PNG through `display` as render's --exposure and --tonemap do.
+MergeOutcome mergeFrame(const std::vector<std::string>& parts, const std::string& output,
+                        const DisplayOptions& display = {});
 
 }  // namespace penumbra

@@ -71,6 +71,14 @@ TEST(Tiles, ClassicSamplesMergeToTheSameFiles) {
   expectSamePixels(dir / "whole.exr", dir / "merged.exr");
   expectSameKeys(dir / "whole.exr", dir / "merged.exr");
   EXPECT_NE(readImageAttribute((dir / "merged.exr").string(), "penumbra:error.noise_rmse"), "");
+  // The display transform is the merge's: the parts stay linear.
+  const std::string scene = quote(kScenes + "soft_shadows.json") + " -D camera.width=64 -D camera.height=40 -q";
+  const std::string tone = " --exposure 1.5 --tonemap filmic -o ";
+  ASSERT_EQ(runCli("render " + scene + tone + quote((dir / "filmic.png").string())).exitCode, 0);
+  std::string parts;
+  for (int i = 1; i <= 4; ++i) parts += " " + quote((dir / ("part" + std::to_string(i) + ".exr")).string());
+  ASSERT_EQ(runCli("merge -q" + parts + tone + quote((dir / "merged_filmic.png").string())).exitCode, 0);
+  EXPECT_EQ(readFile(dir / "filmic.png"), readFile(dir / "merged_filmic.png"));
 }
 
 TEST(Tiles, ClassicOneSampleMergesPixelsAndPoolsItsProbes) {
@@ -154,11 +162,11 @@ TEST(Tiles, BadTilesAreRefusedBeforeAnyWork) {
   writeText(dir / "s.json", kFloorScene);
   const fs::path out = dir / "part.exr";
   const std::string scene = "render " + quote((dir / "s.json").string()) + " -o " + quote(out.string()) + " ";
-  for (const std::string& bad : {"--tile 0/4", "--tile 5/4", "--tile 1/0", "--tile 2", "--tile 1/13",
+  for (const char* bad : {"--tile 0/4", "--tile 5/4", "--tile 1/0", "--tile 2", "--tile 1/13",
                                  "--pixel-bounds 0,16,0,13", "--pixel-bounds 4,4,0,12", "--pixel-bounds -1,3,0,2",
                                  "--pixel-bounds 1,2,3", "--tile 1/2 --time-limit 5", "--tile 1/2 --aov error"}) {
     SCOPED_TRACE(bad);
-    expectRefused(runCli(scene + bad), out, bad.substr(0, 6));
+    expectRefused(runCli(scene + bad), out, std::string(bad).substr(0, 6));
   }
   expectRefused(runCli("render " + quote((dir / "s.json").string()) + " --tile 1/2 -o " +
                        quote((dir / "part.png").string())),
