@@ -9,6 +9,7 @@
 #include "cli/progress_meter.h"
 #include "cli/batch_command.h"
 #include "cli/bench_command.h"
+#include "cli/merge_command.h"
 #include "cli/plan_command.h"
 #include "cli/session_args.h"
 #include "cli/sweep_command.h"
@@ -163,18 +164,20 @@ int runCommandLine(int argc, char** argv) {
   render->add_option("--aov", req.aov,
                      "What to render: beauty, depth, normal, indirect, direct, caustic, or error (the beauty's "
                      "per-pixel standard error) (default: the scene's render.aov, else beauty)");
+  std::string tileArg, boundsArg;
+  render->add_option("--tile", tileArg,
+                     "Render tile I of N (1-based, as batch --shard): a band of whole rows, written as a part file "
+                     "(.exr) for penumbra merge");
+  render->add_option("--pixel-bounds", boundsArg,
+                     "Render only pixels [x0,x1) x [y0,y1) (pbrt-v4's convention), written as a part file (.exr)")
+      ->excludes("--tile");
   render->add_option("--trace-pixel", tracePixelArg,
                      "Write the ray tree of pixel X,Y as JSON instead of rendering an image");
   render->add_flag("-v,--verbose", verbose, "The summary also gives the reasons of automatic decisions (the gate)");
   addSessionOptions(*render, session,
                     kThreadsOption | kMaxMemoryOption | kSetOption | kQuietOption | kPlanOption | kBudgetOption |
-                        kMapDirOption | kForceOption,
+                        kMapDirOption | kForceOption | kDisplayOption,
                     "");
-  std::string toneArg;
-  render->add_option("--exposure", req.display.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
-      ->check(CLI::Range(-64.0, 64.0));
-  render->add_option("--tonemap", toneArg, "PNG tone curve: clamp (default), reinhard or filmic; EXR stays linear")
-      ->check(CLI::IsMember({"clamp", "reinhard", "filmic"}));
 
   std::string textureName, textureOut;
   int textureWidth = 2048;
@@ -190,6 +193,7 @@ int runCommandLine(int argc, char** argv) {
   CheckCommand check(app);
   BatchCommand batch(app);
   BenchCommand bench(app);
+  MergeCommand merge(app);
 
   // From here on an interrupt removes our temp files, never an old output.
   installOutputCleanup();
@@ -227,7 +231,12 @@ int runCommandLine(int argc, char** argv) {
       if (!seedArg.empty()) own.push_back("render.seed=" + std::to_string(parseSeed(seedArg)));
       if (spp) own.push_back("camera.spp=" + std::to_string(*spp));
       req.session = session.options(own);
-      if (!toneArg.empty()) req.display.tone = parseToneMap(toneArg);
+      req.display = session.display();
+      if (!tileArg.empty()) {
+        const auto [i, n] = parseTile(tileArg);
+        req.tile = TileRequest{i, n, std::nullopt};
+      }
+      if (!boundsArg.empty()) req.tile = TileRequest{0, 0, parsePixelBounds(boundsArg)};
       return runRenderCommand(req, statsPath, tracePixelArg, session.quiet, verbose);
     }
     if (sweep.selected()) return sweep.run();
@@ -235,6 +244,7 @@ int runCommandLine(int argc, char** argv) {
     if (check.selected()) return check.run();
     if (batch.selected()) return batch.run();
     if (bench.selected()) return bench.run();
+    if (merge.selected()) return merge.run();
     if (*texture) {
       writeProceduralTexture(textureName, textureWidth, textureSeed, textureOut);
       return 0;

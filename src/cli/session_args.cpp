@@ -58,7 +58,20 @@ void addBudgetOptions(CLI::App& command, RenderBudget& budget) {
       ->check(budgetValue(&RenderBudget::targetError));
 }
 
+void addDisplayOptions(CLI::App& command, SessionArgs& args) {
+  command.add_option("--exposure", args.displayValues.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
+      ->check(CLI::Range(-64.0, 64.0));
+  command.add_option("--tonemap", args.tonemap, "PNG tone curve: clamp (default), reinhard or filmic; EXR stays linear")
+      ->check(CLI::IsMember({"clamp", "reinhard", "filmic"}));
+}
+
 }  // namespace
+
+DisplayOptions SessionArgs::display() const {
+  DisplayOptions d = displayValues;
+  if (!tonemap.empty()) d.tone = parseToneMap(tonemap);
+  return d;
+}
 
 PlanOverrides PlanArgs::passes() const {
   PlanOverrides o;
@@ -145,6 +158,7 @@ void addSessionOptions(CLI::App& command, SessionArgs& args, unsigned which, con
                            : std::string("Render from pass 1: discard the passes an interrupted render saved "
                                          "(OUTPUT.passes)"));
   }
+  if (which & kDisplayOption) addDisplayOptions(command, args);
 }
 
 }  // namespace penumbra

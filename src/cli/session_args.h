@@ -2,6 +2,7 @@
 // quiet, the plan's overrides (--enable/--disable/--gate/--no-gate), loading
 // (--no-defaults), budgets (--time-limit/--target-error), map files (--map-dir) and --force. Each command asks for its set.
 #pragma once
+#include "plan/pipeline.h"
 #include "plan/session_options.h"
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -35,6 +36,7 @@ enum SessionOption : unsigned {
   kBudgetOption = 1u << 6,     // --time-limit, --target-error
   kMapDirOption = 1u << 7,     // --map-dir
   kForceOption = 1u << 8,      // --force: discard saved passes (batch: and render up-to-date jobs)
+  kDisplayOption = 1u << 9,    // --exposure, --tonemap (a PNG's display transform)
 };
 
 struct SessionArgs {
@@ -47,6 +49,10 @@ struct SessionArgs {
   RenderBudget budget;
   std::string mapDir;  // --map-dir: photon map files are loaded from and written to it
   bool force = false;
+  DisplayOptions displayValues;  // --exposure; the tone curve is `tonemap`'s
+  std::string tonemap;
+  // --exposure and --tonemap for a PNG output (default: exposure 0, clamp).
+  DisplayOptions display() const;
   // The one thread count of -t (0: all cores); a list or a count outside 1..1024 is refused.
   int threadCount() const;
   // --max-memory in bytes; 0: the memory available.

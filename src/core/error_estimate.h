@@ -37,6 +37,14 @@ struct ErrorEstimate {
 std::string describeError(const ErrorEstimate& e);
 
 // The noise of progressive passes' mean, and the bias check at each power of two.
+// The bias check's inputs at its last power of two, 2h passes: the sum of the first h
+// (`first`), the sum before the last pass, the last pass, and the even and odd sums
+// after it. A tile keeps them so the merge computes the whole frame's check to the bit.
+struct PassCheckpoint {
+  Image first, before, pass, even, odd;
+  int passes = 0, half = 0;  // 2h and h; half 0: no check yet
+};
+
 // Even and odd passes take their camera samples from two independently scrambled
 // sequences, each stratified in itself, so their means are independent estimates of
 // the pixel: with n_e and n_o passes, the mean's variance is n_e n_o / P^2 times
@@ -59,20 +67,39 @@ class PassSpread {
   struct Moments {
     Image even, odd, snapshot;
     int snapshotPasses = 0, passes = 0, biasHalf = 0;
-    double biasRmse = -1.0;
+    double biasSquareSum = 0.0, biasNoiseSum = 0.0;
+    bool keep = false;  // a tile's: the checkpoint too
+    PassCheckpoint checkpoint;
   };
   Moments moments() const;
   void restore(Moments m);
+  // What a tile of the frame keeps for the merge, per pixel so the merged figure is
+  // the whole frame's to the bit: the sums of the even and odd passes, and (after
+  // keepCheckpoint) the bias check's inputs.
+  const Image& evenSum() const { return even_; }
+  const Image& oddSum() const { return odd_; }
+  void keepCheckpoint() { keep_ = true; }
+  const PassCheckpoint& checkpoint() const { return checkpoint_; }
+  // The estimate of `passes` passes whose even and odd sums are these, with the bias
+  // check of `checkpoint`.
+  static ErrorEstimate fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& checkpoint);
 
  private:
-  double varianceOfMean(size_t pixel, int channel) const;
+  static ErrorEstimate estimateFrom(const Image& even, const Image& odd, int passes, double biasSquareSum,
+                                    double biasNoiseSum, int biasHalf);
+  // The bias check's sums over pixels and channels (squared difference of the halves,
+  // and the variance of the mean then).
+  static void biasSums(const Image& first, const Image& before, const Image& pass, const Image& even,
+                       const Image& odd, int passes, int half, double& squares, double& noise);
 
   Image even_, odd_;  // the sums of the even and of the odd passes
   Image snapshot_;  // the sum of the first `snapshotPasses_` passes
   int snapshotPasses_ = 0;
   int passes_ = 0;
-  double biasRmse_ = -1.0;
+  double biasSquareSum_ = 0.0, biasNoiseSum_ = 0.0;
   int biasHalf_ = 0;
+  bool keep_ = false;
+  PassCheckpoint checkpoint_;
 };
 
 // An estimate from one pass's per-pixel standard error of the mean (from its samples:

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "io/aov_display.h"
+#include "io/image_encode.h"
 #include "io/temp_file.h"
 
 #include <OpenImageIO/filesystem.h>
@@ -124,6 +125,8 @@ std::string oneLine(std::string text) {
   throw InputError(path + ": cannot write image: " + oneLine(reason));
 }
 
+}  // namespace
+
 // Encodes the image in memory (the writer chosen by the target's extension), then
 // writes the bytes through the one checked write-and-rename (temp_file.h): OIIO's
 // PNG writer does not report a short write, so it never touches the disk itself.
@@ -148,6 +151,8 @@ void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO:
   out.reset();  // the writer may still hold the proxy until it is destroyed
   writeFileAtomic(path, bytes.data(), bytes.size(), "image");
 }
+
+namespace {
 
 // A PNG's last chunk: length 0, "IEND", its CRC.
 constexpr unsigned char kPngEnd[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};

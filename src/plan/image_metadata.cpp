@@ -70,18 +70,23 @@ bool isExr(const std::string& path) {
 
 }  // namespace
 
+ImageMetadata errorMetadata(const ErrorEstimate& error) {
+  ImageMetadata m = {{"penumbra:error", describeError(error)}};
+  if (error.known()) m.emplace_back("penumbra:error.noise_rmse", fmt::format("{}", error.noiseRmse));
+  // noise_rmse is then a lower bound (probes that found no error), not an estimate.
+  if (error.lowerBound) m.emplace_back("penumbra:error.lower_bound", "1");
+  if (error.biasRmse >= 0.0) m.emplace_back("penumbra:error.bias_rmse", fmt::format("{}", error.biasRmse));
+  return m;
+}
+
 ImageMetadata renderMetadata(const Scene& scene, const RenderPlan& plan, const RenderStats& stats,
                              const std::string& aov, const std::string& outputPath) {
   ImageMetadata m = {{"penumbra:scene", scene.name},
                      {"penumbra:scene_file", scene.file},
                      {"penumbra:aov", aov},
                      {"penumbra:model", transportOf(scene).name()},
-                     {"penumbra:settings", summary(scene, plan, stats)},
-                     {"penumbra:error", describeError(stats.error)}};
-  if (stats.error.known()) m.emplace_back("penumbra:error.noise_rmse", fmt::format("{}", stats.error.noiseRmse));
-  // noise_rmse is then a lower bound (probes that found no error), not an estimate.
-  if (stats.error.lowerBound) m.emplace_back("penumbra:error.lower_bound", "1");
-  if (stats.error.biasRmse >= 0.0) m.emplace_back("penumbra:error.bias_rmse", fmt::format("{}", stats.error.biasRmse));
+                     {"penumbra:settings", summary(scene, plan, stats)}};
+  for (auto& kv : errorMetadata(stats.error)) m.push_back(std::move(kv));
   if (!stats.budget.empty())
     m.emplace_back("penumbra:budget", fmt::format("{}: {} after {} passes", stats.budget, stats.budgetStop, stats.passes));
   if (isExr(outputPath)) addSettings(scene, plan, stats, m);

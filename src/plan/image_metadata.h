@@ -14,6 +14,10 @@ namespace penumbra {
 // and settings (one summary line). An EXR adds one penumbra:KEY per setting (listed
 // in docs/scene-format.md, "Image metadata"); a PNG does not, so its bytes stay those
 // of earlier versions. No value names a path beyond the scene file as given.
+// The error figure's keys, as renderMetadata writes them: penumbra:error, and
+// penumbra:error.noise_rmse, .lower_bound and .bias_rmse where known.
+ImageMetadata errorMetadata(const ErrorEstimate& error);
+
 ImageMetadata renderMetadata(const Scene& scene, const RenderPlan& plan, const RenderStats& stats,
                              const std::string& aov, const std::string& outputPath);
 

@@ -3,12 +3,28 @@
 // every pass, write the image. Every step is the render session's (render_session.h).
 #include "plan/pipeline.h"
 #include "plan/cpu_report.h"
+#include "plan/frame_part.h"
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
 #include "plan/saved_passes.h"
 #include "io/image_io.h"
+#include "core/error.h"
+#include <filesystem>
 
 namespace penumbra {
+
+namespace {
+
+// A render command's frame stamp: what changes its pixels besides the scene file.
+std::string renderStamp(const PlannedJob& job, const SessionOptions& session) {
+  std::vector<std::string> options;
+  for (Pass p : session.plan.enable) options.push_back(std::string("--enable ") + passName(p));
+  for (Pass p : session.plan.disable) options.push_back(std::string("--disable ") + passName(p));
+  if (!session.load.defaults) options.push_back("--no-defaults");
+  return renderFrameStamp(job.request.scenePath, job.request.overrides, options, job.viewName);
+}
+
+}  // namespace
 
 RenderResult runRender(const RenderRequest& request) {
   const CpuSpan total;
@@ -21,6 +37,12 @@ RenderResult runRender(const RenderRequest& request) {
   job.view = request.aov;
   job.tracePixel = request.tracePixel;
   job.budget = request.session.budget;
+  job.tile = request.tile;
+  if (request.tile && !request.outputPath.empty() && !request.tracePixel &&
+      std::filesystem::path(request.outputPath).extension() != ".exr") {
+    throw InputError("--tile/--pixel-bounds: a part of a frame is written as .exr (float, for penumbra merge): got -o " +
+                     request.outputPath);
+  }
   const bool toStdout = request.outputPath.empty() || request.outputPath == "-";
   if (!request.outputPath.empty() && !(request.tracePixel && toStdout)) {
     job.outputs.push_back({request.outputPath, "-o", !request.tracePixel});
@@ -40,8 +62,15 @@ RenderResult runRender(const RenderRequest& request) {
 
   if (image) {
     Stopwatch phase;
-    writeImage(request.outputPath, result.image,
-               renderMetadata(planned.scene, planned.plan, stats, planned.viewName, request.outputPath), request.display);
+    if (planned.bounds) {
+      writeFramePart(request.outputPath, result, *planned.bounds, renderStamp(planned, request.session),
+                     renderMetadata(planned.scene, planned.plan, stats, planned.viewName, "frame.exr"),
+                     renderMetadata(planned.scene, planned.plan, stats, planned.viewName, "frame.png"));
+    } else {
+      writeImage(request.outputPath, result.image,
+                 renderMetadata(planned.scene, planned.plan, stats, planned.viewName, request.outputPath),
+                 request.display);
+    }
     removeSavedPasses(job.savedPasses);  // the job is done: nothing to resume
     stats.time.write = phase.seconds();
   }

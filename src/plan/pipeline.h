@@ -1,5 +1,6 @@
 // One render from scene file to image file (penumbra render), on the render session.
 #pragma once
+#include "plan/frame_tiles.h"
 #include "plan/session_options.h"
 #include "plan/resource_estimate.h"
 #include "io/tone_map.h"
@@ -28,6 +29,20 @@ struct RenderRequest {
   // The job's wall seconds so far, for the budget's time limit (the render command:
   // the process's age); empty: the session's own account from the job's load.
   std::function<double()> jobClock;
+  // --tile / --pixel-bounds: render only that part and write it as a part file (.exr).
+  std::optional<TileRequest> tile;
+};
+
+// A tile's share of its frame's error figure, which the merge pools (plan/frame_part.h):
+// per-pixel images where the figure is a sum over pixels, else the tile's own sums.
+struct TileError {
+  ErrorSource source = ErrorSource::None;
+  int count = 0;         // samples per pixel or passes
+  Image standardError;   // Samples: each pixel's standard error
+  Image even, odd;       // Passes: the sums of the even and of the odd passes
+  PassCheckpoint checkpoint;  // Passes: the bias check's inputs
+  double probeSquareSum = 0.0;  // Probes: the tile's mean square error times its pixels
+  int probed = 0;
 };
 
 struct RenderResult {
@@ -36,6 +51,7 @@ struct RenderResult {
   RayTree rayTree;  // filled for tracePixel requests
   std::vector<std::string> notes;  // things the user should know ("no point lights: ...")
   ResourceEstimate estimate;       // made before any allocation (plan/resource_estimate.h)
+  TileError tileError;             // a tile of the frame (JobRequest::bounds) that reads light
 };
 
 RenderResult runRender(const RenderRequest& request);

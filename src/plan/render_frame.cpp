@@ -96,6 +96,8 @@ struct FrameRun {
     passes = options.tracePixel ? 1 : static_cast<int>(ctx.passes);
     clock = options.clock ? options.clock : [this] { return wall.seconds(); };
     render.aov = options.aov;
+    render.bounds = options.bounds;
+    if (options.bounds) spread.keepCheckpoint();
     if (needsLight && passes == 1 && scene.camera.spp > 1) render.standardError = &sampleSpread;
     passStart = clock();
   }
@@ -260,6 +262,23 @@ void resumeFrame(FrameRun& f) {
                                passes, r.path, bytes / 1e6, saving.seconds(), f.done + 1)};
 }
 
+// A tile's share of the error figure: what the merge needs to pool it (TileError).
+void keepTileError(FrameRun& f, const ErrorEstimate& e) {
+  TileError& t = f.result.tileError;
+  t.source = e.source;
+  t.count = e.count;
+  if (e.source == ErrorSource::Samples) t.standardError = f.sampleSpread;
+  if (e.source == ErrorSource::Passes) {
+    t.even = f.spread.evenSum();
+    t.odd = f.spread.oddSum();
+    t.checkpoint = f.spread.checkpoint();
+  }
+  if (e.source == ErrorSource::Probes) {
+    t.probeSquareSum = e.noiseRmse * e.noiseRmse * double(f.options.bounds->pixels());
+    t.probed = e.count;
+  }
+}
+
 // The image as the mean of its passes, and its error estimate.
 void finishFrame(FrameRun& f) {
   RenderStats& stats = f.stats;
@@ -277,10 +296,12 @@ void finishFrame(FrameRun& f) {
     Image probed;
     const bool probes = f.done == 1 && !f.render.standardError;
     Stopwatch probing;
+    const PixelBounds* bounds = options.bounds ? &*options.bounds : nullptr;
     stats.error = f.done > 1 ? f.spread.estimate()
-                  : probes   ? probeError(f.ctx, result.image, f.render.aov, options.errorView ? &probed : nullptr)
+                  : probes   ? probeError(f.ctx, result.image, f.render.aov, options.errorView ? &probed : nullptr, bounds)
                              : sampleError(f.sampleSpread, f.scene.camera.spp);
     if (probes) stats.time.render += probing.seconds();
+    if (bounds) keepTileError(f, stats.error);
     for (MapKind k : kAllMaps) stats.error.sharedMaps = stats.error.sharedMaps || stats.stored[k] > 0;
     if (options.errorView) {
       result.image = f.done > 1 ? f.spread.standardError() : probes ? std::move(probed) : std::move(f.sampleSpread);

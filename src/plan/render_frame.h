@@ -8,8 +8,10 @@
 #include "core/progress.h"
 #include "geometry/trace_scene.h"
 #include "trace/texture_lookup.h"
+#include "core/pixel_bounds.h"
 #include <functional>
 #include <memory>
+#include <optional>
 
 namespace penumbra {
 
@@ -42,6 +44,9 @@ struct FrameOptions {
   std::function<double()> clock;
   // The image written is the beauty's per-pixel standard error (the "error" view).
   bool errorView = false;
+  // Set: only these pixels are rendered (a tile); the error figure is the tile's share
+  // (RenderResult::tileError), for the merge to pool.
+  std::optional<PixelBounds> bounds;
   // Called after each pass on the calling thread with the passes done, their sum and
   // the estimate so far (tests compare a prefix of passes with the whole).
   std::function<void(int passes, const Image& sum, const ErrorEstimate& error)> afterPass;

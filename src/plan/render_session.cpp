@@ -21,15 +21,38 @@ const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m =
 
 // What a frame's saved passes must have been saved by: the scene file and the files
 // it read (path, size, time: in both keys), every override, loading, the view, the
-// camera and the plan. The thread count is left out: passes are seeded by index.
+// camera, the plan and a tile's bounds. The thread count is left out: passes are
+// seeded by index.
 std::string passesIdentity(const PlannedJob& job, const SessionOptions& o) {
   const Camera& c = job.scene.camera;
   auto vec = [](const Vec3& v) { return fmt::format("{} {} {}", v.x, v.y, v.z); };
   return fmt::format("scene {}\noverrides {}\ndefaults {}\nview {} error {}\ncamera {} / {} / {} fov {} ortho {} "
-                     "{}x{} spp {}\nseed {}\nplan {}\ngeometry {}\nphotons {}",
+                     "{}x{} spp {}\nseed {}\nplan {}\ngeometry {}\nphotons {}\nbounds {}",
                      job.request.scenePath, fmt::join(job.request.overrides, " "), o.load.defaults, job.viewName,
                      job.errorView, vec(c.position), vec(c.lookAt), vec(c.up), c.fovY, c.orthoHeight, c.width,
-                     c.height, c.spp, job.scene.render.seed, planJson(job.plan), job.keys.geometry, job.keys.photons);
+                     c.height, c.spp, job.scene.render.seed, planJson(job.plan), job.keys.geometry, job.keys.photons,
+                     job.bounds ? fmt::format("{},{},{},{}", job.bounds->x0, job.bounds->x1, job.bounds->y0,
+                                              job.bounds->y1)
+                                : std::string("frame"));
+}
+
+// A tile's bounds in the frame, and what a tile cannot be: a budget's passes would
+// differ between tiles, and the error view of one sample per pixel probes by the
+// whole frame's contrast.
+void checkTile(PlannedJob& job) {
+  const Scene& scene = job.scene;
+  const JobRequest& request = job.request;
+  const char* option = request.tile->count > 0 ? "--tile" : "--pixel-bounds";
+  job.bounds = resolveTile(*request.tile, scene.camera.width, scene.camera.height);
+  if (request.budget.any()) {
+    throw InputError(fmt::format("{}: a tile cannot run to a budget (--time-limit, --target-error): each tile would "
+                                 "stop after its own passes; set photons.passes instead", option));
+  }
+  if (request.tracePixel) throw InputError(fmt::format("{} and --trace-pixel: give one of them", option));
+  if (job.errorView && scene.camera.spp == 1 && transportOf(scene).passes(scene, job.aov) == 1) {
+    throw InputError(fmt::format("{}: the error view of one sample per pixel probes by the whole frame's contrast; "
+                                 "render it whole, or with --spp 2 or more", option));
+  }
 }
 
 SessionOptions resolved(SessionOptions o) {
@@ -119,6 +142,7 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
                                  physical, physical));
   }
   if (request.tracePixel) checkPixel(scene.camera, request.tracePixel->first, request.tracePixel->second);
+  if (request.tile) checkTile(job);
   // Before any work: what runs and why (photons.gate = auto is decided here too).
   job.plan = makePlan(scene, job.aov, options_.plan);
   for (const PassDecision& d : job.plan.passes) {
@@ -358,6 +382,7 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage, std
     frame.clock = [spent, wall = Stopwatch()] { return spent + wall.seconds(); };
   }
   frame.errorView = job.errorView;
+  frame.bounds = job.bounds;
   frame.afterPass = std::move(afterPass);
   // A scene read from stdin cannot be told from another: its passes are not kept.
   if (!job.request.savedPasses.empty() && job.request.scenePath != "-") {

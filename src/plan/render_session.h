@@ -6,6 +6,7 @@
 #include "core/cpu_time.h"
 #include "core/progress.h"
 #include <tbb/global_control.h>
+#include "plan/frame_tiles.h"
 #include "plan/job_admission.h"
 #include "plan/map_file.h"
 #include "plan/output_safety.h"
@@ -40,6 +41,7 @@ struct JobRequest {
   // Where a progressive frame saves its finished passes on SIGTERM and resumes from
   // (plan/saved_passes.h); empty: nowhere (SIGTERM kills it).
   std::string savedPasses;
+  std::optional<TileRequest> tile;  // a part of the frame (--tile, --pixel-bounds, "tiles")
 };
 
 // A job loaded, planned and admitted: nothing large is allocated yet. Its scene
@@ -58,6 +60,7 @@ struct PlannedJob {
   std::vector<std::string> notes;   // the scene's load notes, then the plan's overrides
   double loadSeconds = 0.0;
   bool prepared = false;  // split by reach and confirmed (RenderSession::prepare)
+  std::optional<PixelBounds> bounds;  // the pixels a tile renders, checked against the frame
 };
 
 // One photon budget's maps and the jobs that read them (RenderSession::photonsByBudget).

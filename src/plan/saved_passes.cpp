@@ -17,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[16] = {'p', 'e', 'n', 'u', 'm', 'b', 'r', 'a', ' ', 'p', 'a', 's', 's', 'e', 's', '\n'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
 // Native byte order and the sizes of the records copied whole: a file of another
 // machine or build reads as "another format", never as garbage.
 constexpr uint32_t kLayout = 0x01020304u;
@@ -101,13 +101,19 @@ uint64_t savePasses(const std::string& path, const SavedPasses& s) {
   w.text(s.identity);
   for (int v : {s.done, s.passes, s.sum.width, s.sum.height}) w.put<int32_t>(v);
   w.put(s.seconds);
-  for (int v : {s.spread.snapshotPasses, s.spread.passes, s.spread.biasHalf}) w.put<int32_t>(v);
-  w.put(s.spread.biasRmse);
+  const PassCheckpoint& c = s.spread.checkpoint;
+  const bool checkpoint = s.spread.keep && c.half > 0;  // a tile's bias check, for its merge
+  for (int v : {s.spread.snapshotPasses, s.spread.passes, s.spread.biasHalf, int(s.spread.keep), int(checkpoint),
+                c.passes, c.half})
+    w.put<int32_t>(v);
+  w.put(s.spread.biasSquareSum);
+  w.put(s.spread.biasNoiseSum);
   w.put(s.emitted.values);
   w.put(s.stored.values);
   w.put(s.rays);
   w.put(s.gatherRadius.values);
   for (const Image* im : {&s.sum, &s.spread.even, &s.spread.odd, &s.spread.snapshot}) w.image(*im);
+  if (checkpoint) for (const Image* im : {&c.first, &c.before, &c.pass, &c.even, &c.odd}) w.image(*im);
   w.put(fnv1a(reinterpret_cast<const unsigned char*>(w.bytes.data()), w.bytes.size()));
   writeFileAtomic(path, w.bytes.data(), w.bytes.size(), "saved passes");
   return w.bytes.size();
@@ -160,7 +166,12 @@ std::optional<SavedPasses> loadPasses(const std::string& path, const std::string
     s.spread.snapshotPasses = r.get<int32_t>();
     s.spread.passes = r.get<int32_t>();
     s.spread.biasHalf = r.get<int32_t>();
-    s.spread.biasRmse = r.get<double>();
+    s.spread.keep = r.get<int32_t>() != 0;
+    const bool checkpoint = r.get<int32_t>() != 0;
+    s.spread.checkpoint.passes = r.get<int32_t>();
+    s.spread.checkpoint.half = r.get<int32_t>();
+    s.spread.biasSquareSum = r.get<double>();
+    s.spread.biasNoiseSum = r.get<double>();
     s.emitted.values = r.get<decltype(s.emitted.values)>();
     s.stored.values = r.get<decltype(s.stored.values)>();
     s.rays = r.get<RayCounts>();
@@ -173,6 +184,10 @@ std::optional<SavedPasses> loadPasses(const std::string& path, const std::string
     }
     bool sized = r.image(s.sum, width, height) && !s.sum.pixels.empty();
     for (Image* im : {&s.spread.even, &s.spread.odd, &s.spread.snapshot}) sized = sized && r.image(*im, width, height);
+    PassCheckpoint& c = s.spread.checkpoint;
+    if (checkpoint) {
+      for (Image* im : {&c.first, &c.before, &c.pass, &c.even, &c.odd}) sized = sized && r.image(*im, width, height);
+    }
     if (!sized || r.at != content.size()) {
       why = "its images do not match its header";
       return std::nullopt;

@@ -21,13 +21,13 @@ constexpr uint64_t kProbeStream = uint64_t(1) << 40;
 // share of the mean so flat pixels (shading noise alone) are picked too.
 constexpr double kFlatShare = 0.1;
 
-double contrastWeight(const Image& image, int x, int y) {
-  const int w = image.width, h = image.height;
+double contrastWeight(const Image& image, const PixelBounds& b, int x, int y) {
+  const int w = image.width;
   const Color& c = image.pixels[size_t(y) * w + x];
   float most = 0.0f;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
-      const int xx = std::clamp(x + dx, 0, w - 1), yy = std::clamp(y + dy, 0, h - 1);
+      const int xx = std::clamp(x + dx, b.x0, b.x1 - 1), yy = std::clamp(y + dy, b.y0, b.y1 - 1);
       most = std::max(most, maxComponent(glm::abs(image.pixels[size_t(yy) * w + xx] - c)));
     }
   return std::isfinite(most) ? double(most) * most : 0.0;
@@ -56,14 +56,16 @@ bool gridMean(const ShadingContext& ctx, const CameraRays& camera, Aov aov, int 
 
 }  // namespace
 
-ErrorEstimate probeError(const ShadingContext& ctx, const Image& image, Aov aov, Image* perPixel) {
+ErrorEstimate probeError(const ShadingContext& ctx, const Image& image, Aov aov, Image* perPixel,
+                         const PixelBounds* bounds) {
   const int w = image.width, h = image.height;
-  const size_t n = image.pixels.size();
+  const PixelBounds area = bounds ? *bounds : PixelBounds::frame(w, h);
+  const size_t n = area.pixels();
   // The weights' sum by rows, in row order (the figure must not depend on the threads);
   // each pixel's weight is read again when it is picked, so nothing per pixel is kept.
   std::vector<double> rowWeight(h, 0.0);
-  tbb::parallel_for(0, h, [&](int y) {
-    for (int x = 0; x < w; ++x) rowWeight[y] += contrastWeight(image, x, y);
+  tbb::parallel_for(area.y0, area.y1, [&](int y) {
+    for (int x = area.x0; x < area.x1; ++x) rowWeight[y] += contrastWeight(image, area, x, y);
   });
   double sum = 0.0;
   for (double v : rowWeight) sum += v;
@@ -79,11 +81,11 @@ ErrorEstimate probeError(const ShadingContext& ctx, const Image& image, Aov aov,
   tbb::enumerable_thread_specific<ThreadState> states;
   const CameraRays camera(ctx.scene.camera);
   const uint64_t seed = ctx.scene.render.seed;
-  tbb::parallel_for(0, h, [&](int y) {
+  tbb::parallel_for(area.y0, area.y1, [&](int y) {
     ThreadState& ts = states.local();
-    for (int x = 0; x < w; ++x) {
+    for (int x = area.x0; x < area.x1; ++x) {
       const size_t i = size_t(y) * w + x;
-      const double chance = std::min(1.0, asked * (contrastWeight(image, x, y) + floor) / total);
+      const double chance = std::min(1.0, asked * (contrastWeight(image, area, x, y) + floor) / total);
       Rng pick(hashKey(seed, i, kProbeStream));
       if (!perPixel && !(pick.uniform() < chance)) continue;
       const int m = chance >= 1.0 ? 4 : 2;

@@ -3,6 +3,7 @@
 #pragma once
 #include "core/error_estimate.h"
 #include "core/image.h"
+#include "core/pixel_bounds.h"
 #include "core/view.h"
 #include "trace/shading.h"
 
@@ -23,7 +24,9 @@ constexpr int kMinProbes = 512;
 // noise is in it; the photon map's is not (the probes read the same maps). With
 // `perPixel`, every pixel is probed and gets sqrt(max(0, estimate)) per channel
 // (the error view). Deterministic for any thread count; the probes' rays are not
-// counted in the render's.
-ErrorEstimate probeError(const ShadingContext& ctx, const Image& image, Aov aov, Image* perPixel = nullptr);
+// counted in the render's. `bounds`: a part of the frame, probed as if it were the
+// whole image (its own contrast, picks and mean); null: the whole image.
+ErrorEstimate probeError(const ShadingContext& ctx, const Image& image, Aov aov, Image* perPixel = nullptr,
+                         const PixelBounds* bounds = nullptr);
 
 }  // namespace penumbra

@@ -125,8 +125,8 @@ struct TileBuffers {
 // then their shadow rays to eligible lights, then each pixel is shaded from its hit.
 // Each pixel still adds its samples in sample order, so the sums equal the single path's.
 void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov aov,
-                       uint32_t shadowLights, int x0, int y0, int x1, int y1, TileBuffers& b,
-                       ThreadState& ts, Image& image, Image* standardError) {
+                       uint32_t shadowLights, int x0, int y0, int x1, int y1, const PixelBounds& keep,
+                       TileBuffers& b, ThreadState& ts, Image& image, Image* standardError) {
   const Camera& cam = ctx.scene.camera;
   const size_t cap = static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0);
   if (b.pixels.size() < cap) {
@@ -139,6 +139,10 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
     for (int bx = x0; bx < x1; bx += 4)
       for (int y = by; y < std::min(by + 4, y1); ++y)
         for (int x = bx; x < std::min(bx + 4, x1); ++x) b.pixels[static_cast<size_t>(n++)] = {x, y};
+  // A part of the frame still traces the whole tile's packets (a packet's traversal
+  // order decides ties between faces, so its rays must be the whole frame's), but
+  // shades and stores only the pixels inside `keep`.
+  const bool whole = keep.x0 <= x0 && keep.y0 <= y0 && keep.x1 >= x1 && keep.y1 >= y1;
   for (int i = 0; i < n; ++i) b.sums[i] = PixelSums();
   for (int s = 0; s < cam.spp; ++s) {
     for (int i = 0; i < n; ++i) {
@@ -151,6 +155,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
     tracePrimaryShadows(ctx, shadowLights, b.rays.data(), b.hits.data(), n, b.known.data(),
                         b.blocked.data(), b.shadows);
     for (int i = 0; i < n; ++i) {
+      if (!whole && !keep.contains(b.pixels[i].x, b.pixels[i].y)) continue;
       beginSample(ts, b.keys[i]);
       ts.knownShadows = b.known[i];
       ts.blockedShadows = b.blocked[i];
@@ -160,6 +165,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
   }
   ts.knownShadows = ts.blockedShadows = 0;
   for (int i = 0; i < n; ++i) {
+    if (!whole && !keep.contains(b.pixels[i].x, b.pixels[i].y)) continue;
     const size_t index = static_cast<size_t>(b.pixels[i].y) * cam.width + b.pixels[i].x;
     storePixel(b.sums[i], aov, cam.spp, index, image, standardError);
   }
@@ -185,24 +191,33 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   const int tile = options.tileSize;
   const int tilesX = (cam.width + tile - 1) / tile, tilesY = (cam.height + tile - 1) / tile;
   const int numTiles = tilesX * tilesY;
+  // A part of the frame renders the tiles that meet it, each on the whole frame's grid.
+  const PixelBounds keep = options.bounds ? *options.bounds : PixelBounds::frame(cam.width, cam.height);
+  std::vector<int> tiles;
+  for (int t = 0; t < numTiles; ++t) {
+    const int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
+    if (x0 < keep.x1 && x0 + tile > keep.x0 && y0 < keep.y1 && y0 + tile > keep.y0) tiles.push_back(t);
+  }
   tbb::enumerable_thread_specific<ThreadState> states;
   tbb::enumerable_thread_specific<TileBuffers> buffers;
   const bool packets = ctx.choices.packets;
   const bool direct = options.aov == Aov::Beauty || options.aov == Aov::Direct;
   const uint32_t shadowLights = packets ? packetShadowLights(ctx, direct) : 0;
-  progressExpect(options.tiles, static_cast<uint64_t>(numTiles));
+  progressExpect(options.tiles, static_cast<uint64_t>(tiles.size()));
 
-  tbb::parallel_for(tbb::blocked_range<int>(0, numTiles, 1), [&](const tbb::blocked_range<int>& r) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
     ThreadState& ts = states.local();
-    for (int t = r.begin(); t != r.end(); ++t) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const int t = tiles[k];
       int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
       int x1 = std::min(x0 + tile, cam.width), y1 = std::min(y0 + tile, cam.height);
       if (packets) {
-        renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, buffers.local(), ts, image,
+        renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, keep, buffers.local(), ts, image,
                             options.standardError);
       } else {
         for (int y = y0; y < y1; ++y) {
           for (int x = x0; x < x1; ++x) {
+            if (!keep.contains(x, y)) continue;
             uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
             PixelSums sums;
             for (int s = 0; s < cam.spp; ++s) {

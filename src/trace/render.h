@@ -3,11 +3,13 @@
 // their coverage). Deterministic for any thread count.
 #pragma once
 #include "core/image.h"
+#include "core/pixel_bounds.h"
 #include "core/progress.h"
 #include "core/ray_record.h"
 #include "core/view.h"
 #include "trace/shading.h"
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace penumbra {
@@ -21,13 +23,16 @@ struct RenderOptions {
   // samples' means (0 below two samples); null: not kept. The root, not the variance:
   // a variance of finite pixels (1e20 squared) can overflow float, their error cannot.
   Image* standardError = nullptr;
+  // Set: only these pixels are rendered (a tile of the frame); the others stay 0. Each
+  // pixel's samples and packets are the whole frame's, so its value is too.
+  std::optional<PixelBounds> bounds;
 };
 
 // One sample of view `aov` along a camera ray, its first hit traced here (the caller
 // has begun the sample: beginSample).
 Color shadeCameraRay(const ShadingContext& ctx, const Ray& ray, Aov aov, ThreadState& ts);
 
-// Renders the whole image; `counts` receives the sum of every thread's counters.
+// Renders the image (or its bounds, at full size); `counts` receives the sum of every thread's counters.
 Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCounts& counts);
 
 // Throws InputError unless (x, y) is a pixel of the camera's image.

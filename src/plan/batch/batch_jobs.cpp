@@ -2,6 +2,7 @@
 #include "plan/batch/batch_jobs.h"
 #include "core/error.h"
 #include "io/json_parse.h"
+#include "plan/frame_part.h"
 #include <fmt/format.h>
 #include <fnmatch.h>
 #include <glm/glm.hpp>
@@ -113,6 +114,34 @@ OrbitFrame orbitFrame(const glm::dvec3& up) {
   return f;
 }
 
+// "tiles": N turns each of a node's jobs (from `first` on) into N jobs, one per band
+// of rows, named NAME_tileI, each view's output "out/f.png" becoming the part file
+// "out/f.tileIofN.exr" (frame_part.h); penumbra merge makes the frame.
+void expandTiles(const json& node, std::vector<BatchJob>& jobs, size_t first, const std::string& file,
+                 const std::string& where) {
+  const bool ok = node.is_number_integer() && node.get<int64_t>() >= 1 && node.get<int64_t>() <= 10000;
+  if (!ok) fail(file, where + ".tiles", "must be an integer 1..10000 (bands of rows of each frame)");
+  const int count = static_cast<int>(node.get<int64_t>());
+  std::vector<BatchJob> whole(jobs.begin() + static_cast<std::ptrdiff_t>(first), jobs.end());
+  jobs.resize(first);
+  for (const BatchJob& job : whole) {
+    if (job.budget.any()) fail(file, where + ".tiles", "a tiled job cannot run to a budget (time_limit, target_error)");
+    for (size_t v = 1; v < job.outputs.size(); ++v) {
+      if (job.outputs[v].path == job.outputs.front().path) {
+        fail(file, where + ".tiles", "tiles need one file per view: put {view} in the output name");
+      }
+    }
+    for (int i = 1; i <= count; ++i) {
+      BatchJob t = job;
+      t.name = fmt::format("{}_tile{}", job.name, i);
+      t.where = fmt::format("{} (tile {}/{})", job.where, i, count);
+      for (BatchOutput& o : t.outputs) o.path = tilePartPath(o.path, i, count);
+      t.tile = BatchTile{i, count, job.outputs};
+      jobs.push_back(std::move(t));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<BatchJob> readJobsFile(const std::string& path) {
@@ -136,11 +165,11 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
     const json& node = doc["jobs"][j];
     if (!node.is_object()) fail(path, where, "must be an object");
     for (const auto& [key, v] : node.items()) {
-      static const std::set<std::string> known = {"name",   "scene", "scenes",     "set",         "views",
-                                                  "output", "orbit", "time_limit", "target_error"};
+      static const std::set<std::string> known = {"name",   "scene", "scenes",     "set",          "views",
+                                                  "output", "orbit", "time_limit", "target_error", "tiles"};
       if (!known.count(key)) {
         fail(path, where + "." + key,
-             "unknown key (known: name, scene, scenes, set, views, output, orbit, time_limit, target_error)");
+             "unknown key (known: name, scene, scenes, set, views, output, orbit, time_limit, target_error, tiles)");
       }
     }
     RenderBudget budget;
@@ -170,11 +199,12 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
       if (!node["scenes"].is_string()) fail(path, where + ".scenes", "must be a glob pattern");
       scenes = globScenes(resolve(node["scenes"].get<std::string>()), path, where + ".scenes");
     }
+    const size_t firstOfNode = jobs.size();
     const std::string given = node.contains("name") && node["name"].is_string() ? node["name"].get<std::string>() : "";
     for (const std::string& scene : scenes) {
       const std::string stem = given.empty() || scenes.size() > 1 ? fs::path(scene).stem().string() : given;
       if (!node.contains("orbit")) {
-        jobs.push_back({stem, scene, overrides, outputsFor(output, stem, views, path, where), where, budget});
+        jobs.push_back({stem, scene, overrides, outputsFor(output, stem, views, path, where), where, budget, std::nullopt});
         continue;
       }
       const json& o = node["orbit"];
@@ -237,6 +267,7 @@ std::vector<BatchJob> readJobsFile(const std::string& path) {
         jobs.push_back(std::move(job));
       }
     }
+    if (node.contains("tiles")) expandTiles(node["tiles"], jobs, firstOfNode, path, where);
   }
   std::set<std::string> names;
   for (BatchJob& job : jobs) {

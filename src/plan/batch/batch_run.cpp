@@ -28,6 +28,7 @@ struct PreparedJob {
   const BatchJob* job = nullptr;
   std::vector<std::string> outputs;  // each file once (views may share a layered EXR)
   std::string stamp;                 // written into every output: a changed job makes them stale
+  std::string frameStamp;            // a tile's: the whole frame's stamp, which its parts share
   OutputsVerdict verdict;            // from the outputs, before anything loads
   std::vector<PlannedJob> views;     // one per output, planned and admitted (jobs to render or cost)
   std::vector<InputRecord> inputs;   // what the views read, as it was when loaded
@@ -75,6 +76,7 @@ void BatchRun::plan(PreparedJob& p, bool forRender) {
       first.overrides = p.job->overrides;
       first.view = p.job->outputs.front().view;
       first.budget = jobBudget(*p.job, req_.session.budget);
+      if (p.job->tile) first.tile = TileRequest{p.job->tile->index, p.job->tile->count, std::nullopt};
       p.views.push_back(session_.plan(first));
       for (size_t v = 1; v < p.job->outputs.size(); ++v) {
         p.views.push_back(session_.planView(p.views.front(), p.job->outputs[v].view));
@@ -209,6 +211,13 @@ BatchOutcome BatchRun::run() {
     }
     if (p.outputs.empty()) fail(p, "the job writes no output", true);
     p.stamp = jobStamp(definitionOf(*p.job, req_.session));
+    if (p.job->tile) {
+      // The merged frame's stamp is the untiled job's: a merge equals its render.
+      BatchJob whole = *p.job;
+      whole.outputs = p.job->tile->frame;
+      whole.tile.reset();
+      p.frameStamp = jobStamp(definitionOf(whole, req_.session));
+    }
   }
   auto row = [&](size_t j) {
     BatchJobResult r;
@@ -335,7 +344,7 @@ BatchOutcome BatchRun::run() {
             if (!file.note.empty()) out_.notes.push_back(file.note);
           }
         } else {
-          rendered = renderJob(session_, *p.job, p.views, p.stamp, p.inputs);
+          rendered = renderJob(session_, *p.job, p.views, {p.stamp, p.frameStamp, p.inputs});
           out_.notes.insert(out_.notes.end(), rendered.notes.begin(), rendered.notes.end());
           r.status = "rendered";
           ++out_.rendered;

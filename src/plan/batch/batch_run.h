@@ -20,6 +20,14 @@ struct BatchOutput {
   std::string path;  // an image file; several views may share one layered .exr
 };
 
+// Tile `index` (1-based) of `count` of a job's frame (a jobs file's "tiles"): its
+// outputs are part files; `frame` holds the whole frame's outputs, whose job the
+// parts' merge stands for.
+struct BatchTile {
+  int index = 1, count = 1;
+  std::vector<BatchOutput> frame;
+};
+
 struct BatchJob {
   std::string name;                    // "orbit_3", "fig03_shadows": unique in the batch
   std::string scene;                   // resolved path
@@ -27,6 +35,7 @@ struct BatchJob {
   std::vector<BatchOutput> outputs;    // one per view
   std::string where;                   // "jobs[2] (orbit 3)": names the job in messages
   RenderBudget budget;                 // "time_limit", "target_error" or the command line's
+  std::optional<BatchTile> tile;       // set: this job renders one tile of the frame
 };
 
 // Where a batch is: `done` of `total` jobs finished after `seconds`; `job` in `phase`.

@@ -16,10 +16,15 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
     // The analytic rates bound the stores per photon, loosely; a pilot measures them.
     const StoreRates rates = tracer ? measureStoreRates(v.scene, *tracer, o.photons, v.admission.bound) : v.admission.bound;
     const ResourceEstimate e = estimateResources(v.scene, o, rates);
-    // The BVH is paid once by the jobs that share its maps; the process's start-up
-    // (in renderSeconds) once by each shard whatever its jobs, so it is left out.
-    c.frameSeconds += std::max(0.0, e.renderSeconds - cost::kStartupSeconds - e.bvhSeconds);
-    c.photonSeconds = std::max(c.photonSeconds, e.photonSeconds + e.bvhSeconds);
+    // The BVH and the first pass's maps are paid once by the jobs that share them;
+    // later progressive passes emit their own photons in every job. A tile renders
+    // its share of the pixels. The process's start-up (in renderSeconds) is paid once
+    // by each shard whatever its jobs, so it is left out.
+    const double share = v.bounds ? double(v.bounds->pixels()) / (double(v.scene.camera.width) * v.scene.camera.height) : 1.0;
+    const double stage = e.photonSeconds / std::max(1, o.photons.photonPasses);
+    c.frameSeconds += std::max(0.0, e.renderSeconds - cost::kStartupSeconds - e.bvhSeconds) * share +
+                      (e.photonSeconds - stage);
+    c.photonSeconds = std::max(c.photonSeconds, stage + e.bvhSeconds);
   }
   return c;
 }

@@ -15,9 +15,16 @@ struct JobRender {
 };
 
 // Renders `views` (planned and prepared, one per output of `job`) and writes each
-// output file once (several views of one .exr as its layers); then the views'
-// saved passes are removed: nothing is left to resume.
+// output file once (several views of one .exr as its layers; a tile's views as part
+// files, plan/frame_part.h); then the views' saved passes are removed: nothing is
+// left to resume.
+// What each output's header says of the job: its stamp, a tile's frame stamp (the
+// untiled job's, which the merged frame carries) and the files it read.
+struct JobStamps {
+  std::string job, frame;
+  std::vector<InputRecord> inputs;
+};
 JobRender renderJob(RenderSession& session, const BatchJob& job, const std::vector<PlannedJob>& views,
-                    const std::string& stamp, const std::vector<InputRecord>& inputs);
+                    const JobStamps& stamps);
 
 }  // namespace penumbra
