@@ -13,6 +13,8 @@ FARM_TODAY=${FARM_TODAY:-0}
 SHARDS=4
 WAIT_SECONDS=900          # per sbatch --wait: Slurm polls, so allow for 30 s after the last task
 TEMPLATE=$REPO/tests/farm/jobs.json.in
+JOBS_FILE=$REPO/scripts/farm/jobs_file.py
+APPENDED=$REPO/scenes/fig07_glass_in_box.json   # a scene no other job renders
 TILE_JOB=tiled            # the jobs file's "tiles": 4 job
 # The parts of the tile job, expanded by the merge task's shell once the shards wrote them.
 TILE_PARTS="out/${TILE_JOB}_*.png"
@@ -35,35 +37,7 @@ today() { [ "$FARM_TODAY" = 1 ]; }
 write_jobs() {
   local dir=$1
   mkdir -p "$dir/out" "$dir/merged"   # batch does not create a jobs file's output folders yet
-  python3 - "$TEMPLATE" "$REPO/scenes" "$FARM_TODAY" > "$dir/jobs.json" <<'EOF'
-import json, sys
-template, scenes, today = sys.argv[1:]
-doc = json.loads(open(template).read().replace("@SCENES@", scenes))
-if today == "1":
-    doc["jobs"] = [j for j in doc["jobs"] if "tiles" not in j]
-json.dump(doc, sys.stdout, indent=1)
-EOF
-}
-
-# Appends one job no earlier job shares a scene with.
-append_job() {
-  python3 - "$1/jobs.json" "$REPO/scenes" <<'EOF'
-import json, sys
-path, scenes = sys.argv[1:]
-doc = json.load(open(path))
-doc["jobs"].append({"scene": scenes + "/fig07_glass_in_box.json", "output": "out/{name}.png"})
-json.dump(doc, open(path, "w"), indent=1)
-EOF
-}
-
-# Job NAME's scene, then its -D overrides (the top-level set, then its own), one a line.
-job_scene_and_overrides() {
-  python3 - "$1" "$2" <<'EOF'
-import json, sys
-doc = json.load(open(sys.argv[1]))
-job = next(j for j in doc["jobs"] if j.get("name") == sys.argv[2])
-print("\n".join([job["scene"]] + doc.get("set", []) + job.get("set", [])))
-EOF
+  "$JOBS_FILE" write "$TEMPLATE" "$REPO/scenes" $(today && echo --no-tiles) > "$dir/jobs.json"
 }
 
 # ---- Slurm submissions (every task runs in the farm folder; its log is logs/LABEL_TASK.out)
@@ -187,29 +161,41 @@ assert_status_clean() {
 $STATUS_OUT"
 }
 
+# The jobs (every name of the expanded jobs file, from --list-shard 1/1) whose line in
+# STATUS_OUT says missing; totals lines name no job, so they do not count.
+missing_jobs() {
+  local name
+  (cd "$FARM" && "$PENUMBRA" batch jobs.json --list-shard 1/1 | cut -f1) | while read -r name; do
+    grep -w -- "$name" <<< "$STATUS_OUT" | grep -qw missing && echo "$name"
+  done
+}
+
 # One appended job: --status lists it alone as missing, and a second array renders it alone.
 assert_append_renders_one() {
   local missing rendered
   if today; then
     # Without per-job stamps a newer jobs file makes every output stale: keep its time.
     touch -r "$FARM/jobs.json" "$T/jobs.mtime"
-    append_job "$FARM"
+    "$JOBS_FILE" append "$FARM/jobs.json" "$APPENDED"
     touch -r "$T/jobs.mtime" "$FARM/jobs.json"
     skip "--status after appending a job (not built yet)"
   else
-    append_job "$FARM"
+    "$JOBS_FILE" append "$FARM/jobs.json" "$APPENDED"
     (cd "$FARM" && "$PENUMBRA" batch jobs.json --plan-shards $SHARDS -o shards.json > "$T/logs/plan2.out" 2>&1) ||
       { bad "--plan-shards after appending a job failed: $(tail -n 3 "$T/logs/plan2.out")"; return; }
     run_status
-    missing=$(grep -cw missing <<< "$STATUS_OUT")
-    if [ "$missing" = 1 ] && [ "$STATUS_RC" != 0 ] && [ "$STATUS_RC" != 2 ]; then
-      ok "--status after appending a job: 1 missing, exit $STATUS_RC"
+    missing=$(missing_jobs)
+    if [ "$missing" = "$(basename "$APPENDED" .json)" ] && [ "$STATUS_RC" != 0 ] && [ "$STATUS_RC" != 2 ]; then
+      ok "--status after appending a job: 1 missing ($missing), exit $STATUS_RC"
     else
-      bad "--status after appending a job: $missing lines say missing, exit $STATUS_RC (want 1, and non-zero but not 2):
+      bad "--status after appending a job: missing '${missing//$'\n'/ }', exit $STATUS_RC (want the appended job alone, and an exit code neither 0 nor 2):
 $STATUS_OUT"
     fi
   fi
   submit again --array=0-$((SHARDS - 1)) --wait --wrap "$(shard_command)"
+  local why
+  why=$(all_tasks_completed) || { bad "the second array's tasks did not complete:
+$why"; return; }
   rendered=$(rendered_in again)
   [ "$rendered" = 1 ] && ok "a second array after appending a job renders exactly 1 job" ||
     bad "a second array after appending a job rendered $rendered jobs, not 1 (logs: $T/logs/again_*.out)"
@@ -219,7 +205,7 @@ $STATUS_OUT"
 assert_tiles_merge_whole() {
   if today; then skip "tiles and merge (not built yet)"; return; fi
   local lines scene overrides=() o
-  mapfile -t lines < <(job_scene_and_overrides "$FARM/jobs.json" "$TILE_JOB")
+  mapfile -t lines < <("$JOBS_FILE" job "$FARM/jobs.json" "$TILE_JOB")
   scene=${lines[0]}
   for o in "${lines[@]:1}"; do overrides+=(-D "$o"); done
   mkdir -p "$T/whole"
