@@ -19,8 +19,6 @@ TILE_JOB=tiled            # the jobs file's "tiles": 4 job
 # The parts of the tile job, expanded by the merge task's shell once the shards wrote them.
 TILE_PARTS="out/${TILE_JOB}_*.png"
 MERGED=merged/$TILE_JOB.png
-# The batch summary's totals line (src/cli/batch_command.cpp: batchSummary).
-SUMMARY_RE='^[0-9]+ jobs: [0-9]+ rendered'
 
 source "$REPO/scripts/farm/slurm_cluster.sh"
 
@@ -64,16 +62,17 @@ submit() {
   return "$rc"
 }
 
-# Sums the number in the summary line of every log of LABEL, matched by sed expression EXPR.
+# Sums over every log of LABEL the number sed expression EXPR takes from its last matching line.
 sum_logs() {
   local label=$1 expr=$2 f n total=0
   for f in "$T/logs/${label}"_*.out; do
-    n=$(grep -E "$SUMMARY_RE" "$f" | sed -nE "$expr" | tail -n 1)
+    n=$(sed -nE "$expr" "$f" | tail -n 1)
     [ -n "$n" ] || { echo "no summary line in $f" >&2; echo "?"; return 1; }
     total=$((total + n))
   done
   echo "$total"
 }
+# The batch summary's totals line (src/cli/batch_command.cpp: batchSummary).
 rendered_in() { sum_logs "$1" 's/^[0-9]+ jobs: ([0-9]+) rendered.*/\1/p'; }
 maps_built_in() { sum_logs "$1" 's/.*photon maps built ([0-9]+).*/\1/p'; }
 
@@ -93,9 +92,9 @@ all_tasks_completed() {
 # ---- the runs
 
 reference_run() {
-  (cd "$REF" && "$PENUMBRA" batch jobs.json > "$T/logs/reference.out" 2>&1) ||
-    cluster_fail "the one-process batch failed: $(tail -n 5 "$T/logs/reference.out")"
-  REF_MAPS=$(grep -E "$SUMMARY_RE" "$T/logs/reference.out" | sed -nE 's/.*photon maps built ([0-9]+).*/\1/p')
+  (cd "$REF" && "$PENUMBRA" batch jobs.json > "$T/logs/reference_0.out" 2>&1) ||
+    cluster_fail "the one-process batch failed: $(tail -n 5 "$T/logs/reference_0.out")"
+  REF_MAPS=$(maps_built_in reference)
 }
 
 # The submit host plans the split; a maps prepass, the array after it, the merge after the array.
