@@ -43,8 +43,10 @@ bench_file() {
   name=$(basename "$template" .json.in)
   dir=$B/$name
   mkdir -p "$dir/shards/out" "$dir/one/out"   # batch does not create a jobs file's output folders yet
+  local flags=()
+  today && flags+=(--no-tiles)
   for d in shards one; do
-    "$JOBS_FILE" write "$template" "$REPO/scenes" $(today && echo --no-tiles) "$@" > "$dir/$d/jobs.json"
+    "$JOBS_FILE" write "$template" "$REPO/scenes" "${flags[@]}" "$@" > "$dir/$d/jobs.json"
   done
   if ! today; then
     plan=$(cpu_seconds "$dir/shards" "$dir/plan.log" "$PENUMBRA" batch jobs.json --plan-shards $SHARDS -o shards.json)

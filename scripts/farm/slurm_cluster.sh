@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # A private single-node Slurm cluster (munged, slurmctld, slurmd) for tests: sourced, not run.
 # Everything it writes lives in one temp folder; it stops exactly the daemons it started, by PID.
 #
@@ -146,19 +147,19 @@ $(tail -n 15 "$CLUSTER_DIR/log/$dead.log" "$CLUSTER_DIR/log/$dead.out" 2>/dev/nu
 
 # Cancels this cluster's jobs, then stops its daemons (slurmd, slurmctld, munged) by PID.
 cluster_stop() {
-  local i e name pid n ids=""
+  local i e name pid ids=""
   [ ${#CLUSTER_PIDS[@]} -eq 0 ] && return 0
   # Only this cluster's controller is asked (SLURM_CONF), and only while it runs.
   kill -0 "$(cluster_pid slurmctld)" 2>/dev/null && ids=$(timeout 10 squeue -h -o %A 2>/dev/null | sort -u)
   if [ -n "$ids" ]; then
     timeout 10 scancel $ids 2>/dev/null
-    for n in $(seq 20); do [ -z "$(timeout 10 squeue -h -o %A 2>/dev/null)" ] && break; sleep 0.5; done
+    for _ in $(seq 20); do [ -z "$(timeout 10 squeue -h -o %A 2>/dev/null)" ] && break; sleep 0.5; done
   fi
   for ((i = ${#CLUSTER_PIDS[@]} - 1; i >= 0; i--)); do
     e=${CLUSTER_PIDS[i]}; name=${e%%:*}; pid=${e#*:}
     kill -0 "$pid" 2>/dev/null || continue
     kill -TERM "$pid" 2>/dev/null
-    for n in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
     kill -0 "$pid" 2>/dev/null && { echo "test-slurm: $name (pid $pid) ignored SIGTERM, killing it" >&2; kill -KILL "$pid" 2>/dev/null; }
     wait "$pid" 2>/dev/null
   done

@@ -35,7 +35,9 @@ today() { [ "$FARM_TODAY" = 1 ]; }
 write_jobs() {
   local dir=$1
   mkdir -p "$dir/out" "$dir/merged"   # batch does not create a jobs file's output folders yet
-  "$JOBS_FILE" write "$TEMPLATE" "$REPO/scenes" $(today && echo --no-tiles) > "$dir/jobs.json"
+  local flags=()
+  today && flags+=(--no-tiles)
+  "$JOBS_FILE" write "$TEMPLATE" "$REPO/scenes" "${flags[@]}" > "$dir/jobs.json"
 }
 
 # ---- Slurm submissions (every task runs in the farm folder; its log is logs/LABEL_TASK.out)
