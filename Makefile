@@ -11,7 +11,7 @@ PKGS := cmake ninja-build g++ pkg-config libtbb-dev libembree-dev libglm-dev \
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: all deps configure build renderer render test test-fast bench scaling bench-profile gallery gallery-docs \
-        convergence clean san-deps fuzz test-asan test-tsan
+        convergence clean san-deps fuzz test-asan test-tsan test-slurm bench-farm
 all: build
 
 # Installs those of the packages in $(1) that are missing.
@@ -51,6 +51,15 @@ test: build
 # The stage tests only (label unit, tests/CMakeLists.txt): seconds, not minutes.
 test-fast: build
 	cd $(BUILD) && ctest -L unit -j $(JOBS) --output-on-failure
+
+# A jobs file on a real single-node Slurm cluster (docs/TESTING.md): installs Debian's slurm-wlm
+# and munge when missing, starts private munged/slurmctld/slurmd daemons, stops them by PID.
+test-slurm: renderer
+	tests/farm/test_slurm.sh $(BUILD)/penumbra
+
+# CPU seconds of each of 4 shards against one process (docs/PERFORMANCE.md, "Farm balance").
+bench-farm: renderer
+	scripts/farm/bench_farm.sh $(BUILD)/penumbra
 
 # Benchmark suite (docs/PERFORMANCE.md, "Benchmark suite and 1-vs-2-core scaling"): each
 # executable writes Google Benchmark JSON to $(BENCH_OUT)/NAME.json and its console output to

@@ -1,0 +1,41 @@
+#!/usr/bin/env python3
+"""Jobs files of the farm test and bench: written from a template, appended to, and read back.
+
+  jobs_file.py write TEMPLATE SCENES_DIR [--no-tiles] [KEY=VALUE...] > jobs.json
+      (@SCENES@ -> SCENES_DIR; each KEY=VALUE is added to the top-level set)
+  jobs_file.py append JOBS SCENE                                   (one job: out/{name}.png)
+  jobs_file.py job JOBS NAME      (job NAME's scene, then its overrides: top-level set, its own)
+"""
+import json
+import sys
+
+
+def write(template, scenes, *args):
+    doc = json.loads(open(template).read().replace("@SCENES@", scenes))
+    if "--no-tiles" in args:  # for a binary without the "tiles" key
+        doc["jobs"] = [j for j in doc["jobs"] if "tiles" not in j]
+    doc["set"] = doc.get("set", []) + [a for a in args if "=" in a]
+    json.dump(doc, sys.stdout, indent=1)
+    print()
+
+
+def append(path, scene):
+    doc = json.load(open(path))
+    doc["jobs"].append({"scene": scene, "output": "out/{name}.png"})
+    with open(path, "w") as f:
+        json.dump(doc, f, indent=1)
+
+
+def job(path, name):
+    doc = json.load(open(path))
+    found = [j for j in doc["jobs"] if j.get("name") == name]
+    if not found:
+        sys.exit(f"{path}: no job named {name}")
+    print("\n".join([found[0]["scene"]] + doc.get("set", []) + found[0].get("set", [])))
+
+
+if __name__ == "__main__":
+    commands = {"write": write, "append": append, "job": job}
+    if len(sys.argv) < 2 or sys.argv[1] not in commands:
+        sys.exit(__doc__)
+    commands[sys.argv[1]](*sys.argv[2:])
