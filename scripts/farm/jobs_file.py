@@ -4,7 +4,7 @@
   jobs_file.py write TEMPLATE SCENES_DIR [--no-tiles] [KEY=VALUE...] > jobs.json
       (@SCENES@ -> SCENES_DIR; each KEY=VALUE is added to the top-level set)
   jobs_file.py append JOBS SCENE                                   (one job: out/{name}.png)
-  jobs_file.py job JOBS NAME      (job NAME's scene, then its overrides: top-level set, its own)
+  jobs_file.py untile JOBS NAME > whole.json           (job NAME alone, without "tiles")
 """
 import json
 import sys
@@ -26,16 +26,17 @@ def append(path, scene):
         json.dump(doc, f, indent=1)
 
 
-def job(path, name):
+def untile(path, name):
     doc = json.load(open(path))
-    found = [j for j in doc["jobs"] if j.get("name") == name]
-    if not found:
+    doc["jobs"] = [dict((k, v) for k, v in j.items() if k != "tiles") for j in doc["jobs"] if j.get("name") == name]
+    if not doc["jobs"]:
         sys.exit(f"{path}: no job named {name}")
-    print("\n".join([found[0]["scene"]] + doc.get("set", []) + found[0].get("set", [])))
+    json.dump(doc, sys.stdout, indent=1)
+    print()
 
 
 if __name__ == "__main__":
-    commands = {"write": write, "append": append, "job": job}
+    commands = {"write": write, "append": append, "untile": untile}
     if len(sys.argv) < 2 or sys.argv[1] not in commands:
         sys.exit(__doc__)
     commands[sys.argv[1]](*sys.argv[2:])

@@ -125,7 +125,8 @@ void printShardList(const BatchOutcome& out) {
 // --status: every job's state, and the counts.
 void printStatus(const BatchOutcome& out) {
   for (const BatchJobResult& j : out.jobs) {
-    std::cout << fmt::format("{:<24} {:<12} {}\n", j.name, out.shardLabel.empty() ? "-" : out.shardLabel, j.status);
+    const std::string shard = out.shardCount ? fmt::format("shard {}/{}", j.shard + 1, out.shardCount) : "-";
+    std::cout << fmt::format("{:<24} {:<12} {}\n", j.name, shard, j.status);
   }
   std::cout << fmt::format("{} jobs: {} up to date, {} missing or stale, {} failed\n", out.jobs.size(), out.upToDate,
                            out.notUpToDate, out.failed);
@@ -160,7 +161,9 @@ int BatchCommand::run() {
   }
   req.shard = shardChoice(o.listShard.empty() ? o.shard : o.listShard, o.shardIndex, o.shardCount);
   if (!o.shardFile.empty()) {
-    if (!req.shard) throw InputError("--shard-file needs the task's shard: --shard-index env --shard-count N");
+    if (!req.shard && !o.status) {
+      throw InputError("--shard-file needs the task's shard: --shard-index env --shard-count N");
+    }
     req.shardFile = readShardFile(o.shardFile);
   }
   if (o.listGiven && !req.shard) throw InputError("--list-shard needs a shard: I/N, or --shard-index with --shard-count");

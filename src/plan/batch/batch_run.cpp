@@ -33,6 +33,7 @@ struct PreparedJob {
   std::vector<PlannedJob> views;     // one per output, planned and admitted (jobs to render or cost)
   std::vector<InputRecord> inputs;   // what the views read, as it was when loaded
   double estimate = 0.0;             // seconds on one thread, once costed
+  size_t shard = 0;                  // 0-based, where the batch has shards
   std::string error;                 // validation failure (keepGoing)
 };
 
@@ -171,7 +172,19 @@ void BatchRun::checkApart() const {
 std::vector<size_t> BatchRun::chooseShard() {
   std::vector<size_t> all(jobs_.size());
   std::iota(all.begin(), all.end(), size_t(0));
+  if (!req_.shard && req_.shardFile) {
+    // Every shard's jobs (--status of a whole farm): each job named by its shard.
+    std::vector<std::string> names;
+    for (const BatchJob& j : req_.jobs) names.push_back(j.name);
+    for (size_t s = 0; s < req_.shardFile->shards.size(); ++s) {
+      for (size_t j : jobsOfShardFile(*req_.shardFile, names, s)) jobs_[j].shard = s;
+    }
+    out_.shardCount = req_.shardFile->shards.size();
+    return all;
+  }
   if (!req_.shard) return all;
+  out_.shardCount = req_.shard->count;
+  for (PreparedJob& p : jobs_) p.shard = req_.shard->index;
   out_.shardLabel = req_.shard->label;
   if (req_.shardFile) {
     std::vector<std::string> names;
@@ -224,6 +237,7 @@ BatchOutcome BatchRun::run() {
     r.name = jobs_[j].job->name;
     r.outputs = jobs_[j].outputs;
     r.estimate = jobs_[j].estimate;
+    r.shard = jobs_[j].shard;
     return r;
   };
   if (req_.mode == BatchMode::PlanShards) {
@@ -267,7 +281,6 @@ BatchOutcome BatchRun::run() {
     for (size_t j : mine) {
       const PreparedJob& p = jobs_[j];
       BatchJobResult r = row(j);
-      r.shard = req_.shard ? req_.shard->index : 0;
       if (!p.error.empty()) {
         r.status = "failed: " + p.error;
         ++out_.failed;

@@ -63,7 +63,8 @@ struct BatchRequest {
   BatchMode mode = BatchMode::Render;
   size_t planShards = 0;  // PlanShards: how many
   // Set: only this shard's jobs, from `shardFile` when given (no other job is
-  // loaded), else from a split of every job made here.
+  // loaded), else from a split of every job made here. A shard file without a
+  // shard (Status): every job, each with its shard.
   std::optional<ShardChoice> shard;
   std::optional<ShardFile> shardFile;
   std::vector<std::string> protectedFiles;  // no output may overwrite these (the jobs file)
@@ -88,6 +89,7 @@ struct BatchOutcome {
   std::vector<BatchJobResult> jobs;  // the jobs rendered or checked: the shard's, else all
   std::vector<size_t> shardJobs;     // with a shard: indices into BatchRequest::jobs
   std::string shardLabel;            // "shard 1/4 (SLURM_ARRAY_TASK_ID=0)"; "" without one
+  size_t shardCount = 0;             // shards the jobs fall into (BatchJobResult::shard); 0: none
   ShardFile split;                   // PlanShards
   size_t failed = 0, rendered = 0, upToDate = 0, notUpToDate = 0;
   size_t sceneReads = 0, sceneBuilds = 0, photonBuilds = 0, photonReuses = 0, evictions = 0;
