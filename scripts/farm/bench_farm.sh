@@ -35,14 +35,14 @@ print(f"{r.ru_utime + r.ru_stime:.2f}")
 sys.exit(rc)' "$log" "$@") || { echo "bench-farm: $* failed in $dir; see $log" >&2; exit 1; }
 }
 
-jobs_in() { grep -E '^[0-9]+ jobs: ' "$1" | sed -E 's/^([0-9]+) jobs: .*/\1/'; }
+jobs_in() { sed -nE 's/^(shard [^:]*: )?([0-9]+) jobs: .*/\2/p' "$1"; }
 
 bench_file() {
   local template=$1 name dir d i one plan="" shard_cpu=() shard_jobs=()
   shift
   name=$(basename "$template" .json.in)
   dir=$B/$name
-  mkdir -p "$dir/shards/out" "$dir/one/out"   # batch does not create a jobs file's output folders yet
+  mkdir -p "$dir/shards" "$dir/one"
   local flags=()
   today && flags+=(--no-tiles)
   for d in shards one; do
