@@ -90,8 +90,6 @@ class ImageCodec {
   // "" or why not.
   virtual std::string encode(const std::string& path, const EncodeSpec& spec, const void* pixels,
                              std::vector<unsigned char>& bytes) const = 0;
-  // True when the file opens and its last scanline decodes.
-  virtual bool lastScanlineDecodes(const std::string& path) const = 0;
   // A string attribute of the file's header, "" when the file or attribute is missing.
   virtual std::string attribute(const std::string& path, const std::string& name) const = 0;
   // Any readable image as linear RGB into `image` (io/image_io.h readImage); "" or

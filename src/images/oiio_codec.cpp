@@ -105,21 +105,6 @@ class Codec final : public ImageCodec {
     return "";
   }
 
-  bool lastScanlineDecodes(const std::string& path) const override {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) {
-      (void)OIIO::geterror();
-      return false;
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    std::vector<float> row(static_cast<size_t>(std::max(spec.width, 0)) * std::max(spec.nchannels, 0));
-    const bool ok = !row.empty() && in->read_scanlines(0, 0, spec.y + spec.height - 1, spec.y + spec.height, 0, 0,
-                                                       spec.nchannels, OIIO::TypeDesc::FLOAT, row.data());
-    (void)in->geterror();
-    in->close();
-    return ok;
-  }
-
   std::string attribute(const std::string& path, const std::string& name) const override {
     auto in = OIIO::ImageInput::open(path);
     if (!in) {

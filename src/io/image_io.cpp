@@ -7,6 +7,8 @@
 #include "core/error.h"
 #include "core/image_codec.h"
 #include "io/aov_display.h"
+#include "io/image_file_header.h"
+#include "io/image_header.h"
 #include "io/temp_file.h"
 
 #include <fcntl.h>
@@ -243,12 +245,23 @@ bool imageComplete(const std::string& path) {
   std::string tail = path.substr(path.size() - std::min<size_t>(path.size(), 4));
   std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (tail == ".png") return pngEndsWhole(path);
-  // EXR and the rest: the header opens and the last scanline (its chunk is the
-  // file's last, or past a truncated file's end) decodes.
-  return imageCodec().lastScanlineDecodes(path);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return false;
+  if (const std::optional<bool> whole = exrLastChunkWhole(path)) return *whole;
+  // Another format, or a tiled EXR: the header opens and the last row decodes.
+  std::string problem;
+  const std::unique_ptr<ImageReader> in = openImage(path, path, problem);
+  if (!in) return false;
+  const ImageInfo& info = in->info();
+  if (info.width <= 0 || info.height <= 0 || info.nchannels <= 0 || (info.tileWidth > 0 && info.tileHeight <= 0))
+    return false;
+  return lastRowProblem(*in, path).empty();
 }
 
 std::string readImageAttribute(const std::string& path, const std::string& name) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return "";
+  if (std::optional<std::string> value = penumbraAttribute(path, name)) return *value;
   return imageCodec().attribute(path, name);
 }
 

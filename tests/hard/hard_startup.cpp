@@ -1,5 +1,5 @@
 // Start-up pays for no library a command does not use: the image module, and the
-// OpenImageIO codecs behind it, load only when an image is read or written.
+// OpenImageIO codecs behind it, load only when an image is decoded or encoded.
 #include "core/image_codec.h"
 #include "hard_cli.h"
 
@@ -29,6 +29,22 @@ TEST_F(Startup, VersionPlanAndCheckLoadNoImageLibrary) {
     EXPECT_EQ(r.exitCode, 0) << args << "\n" << r.err.substr(0, 2000);
     EXPECT_EQ(r.err.find("libOpenImageIO"), std::string::npos) << args;
     EXPECT_EQ(r.err.find(kImageModuleName), std::string::npos) << args;
+  }
+}
+
+TEST_F(Startup, ABatchRerunWithEverythingUpToDateLoadsNoImageLibrary) {
+  for (const std::string format : {"png", "exr"}) {
+    const fs::path out = dir_ / format;
+    const std::string args = "batch " + scene() + " -q --format " + format + " -o " + quote(out.string());
+    const CliResult first = runCli(args);
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    const fs::path image = out / ("floor." + format);
+    ASSERT_TRUE(fs::exists(image)) << format;
+    const auto written = fs::last_write_time(image);
+    const CliResult rerun = runTraced(PENUMBRA_BINARY, args);
+    EXPECT_EQ(rerun.exitCode, 0) << format;
+    EXPECT_EQ(fs::last_write_time(image), written) << format << ": rendered again";
+    EXPECT_EQ(rerun.err.find("libOpenImageIO"), std::string::npos) << format;
   }
 }
 
