@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace penumbra {
 namespace {
