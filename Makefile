@@ -10,7 +10,7 @@ PKGS := cmake ninja-build g++ pkg-config libtbb-dev libembree-dev libglm-dev \
         fonts-dejavu-core python3 python3-matplotlib
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: all deps configure build renderer render test test-fast bench scaling bench-profile gallery gallery-docs \
+.PHONY: all deps configure build renderer render test test-fast bench bench-startup scaling bench-profile gallery gallery-docs \
         convergence clean san-deps fuzz test-asan test-tsan test-slurm bench-farm
 all: build
 
@@ -86,6 +86,11 @@ bench: build
 	$(call run_bench,bench_gate,--benchmark_repetitions=1)
 	@scripts/bench_table.py bench $(BENCH_OUT)
 	@echo "JSON and logs in $(BENCH_OUT)"
+
+# Start-up: --version, plan and check of fig03, 20 runs each, median wall and CPU seconds;
+# OLD=path/to/penumbra runs an older binary in turns with this one.
+bench-startup: renderer
+	scripts/bench_startup.py $(BUILD)/penumbra $(OLD)
 
 # Per scene and stage (stats.time.* through runRender), 1 and 2 threads, and the speed-up.
 scaling: build

@@ -78,7 +78,7 @@ TEST(Timings, BatchJobsAndTheWholeBatchCarryCpuTime) {
   req.session.threads = 1;
   for (int i = 0; i < 2; ++i) {
     const std::string out = (dir / ("j" + std::to_string(i) + ".png")).string();
-    req.jobs.push_back({"j" + std::to_string(i), kScene, {"camera.width=40", "camera.height=30"}, {{"", out}}, "-", {}});
+    req.jobs.push_back({"j" + std::to_string(i), kScene, {"camera.width=40", "camera.height=30"}, {{"", out}}, "-", {}, std::nullopt});
   }
   const BatchOutcome out = runBatch(req);
   ASSERT_EQ(out.rendered, 2u);

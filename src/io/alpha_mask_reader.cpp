@@ -1,5 +1,5 @@
-// Alpha masks decoded at load through OpenImageIO: the one channel that cuts out,
-// as bytes (OIIO's float-to-byte conversion rounds and clamps to 0..255), so the
+// Alpha masks decoded at load through the image module: the one channel that cuts out,
+// as bytes (OpenImageIO's float-to-byte conversion rounds and clamps to 0..255), so the
 // geometry layer reads plain memory and never an image library.
 #include "io/alpha_mask_reader.h"
 #include "io/load_cache.h"
@@ -7,7 +7,7 @@
 #include "io/json_reader.h"
 #include "io/texture_check.h"
 
-#include <OpenImageIO/imageio.h>
+#include "core/image_codec.h"
 
 namespace penumbra {
 
@@ -15,8 +15,8 @@ namespace {
 
 // The channel holding alpha: the one the file names, else the last of a grey+alpha
 // or RGBA image; -1 when it has none.
-int alphaChannel(const OIIO::ImageSpec& spec) {
-  if (spec.alpha_channel >= 0 && spec.alpha_channel < spec.nchannels) return spec.alpha_channel;
+int alphaChannel(const ImageInfo& spec) {
+  if (spec.alphaChannel >= 0 && spec.alphaChannel < spec.nchannels) return spec.alphaChannel;
   if (spec.nchannels == 2 || spec.nchannels == 4) return spec.nchannels - 1;
   return -1;
 }
@@ -36,9 +36,10 @@ int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, b
     if (!problem.empty()) where.fail(problem);
     scene.inputs.push_back(path);
   }
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) where.fail("cannot read alpha of " + path + ": " + OIIO::geterror());
-  const OIIO::ImageSpec spec = in->spec();
+  std::string error;
+  auto in = imageCodec().open(path, error);
+  if (!in) where.fail("cannot read alpha of " + path + ": " + error);
+  const ImageInfo spec = in->info();
   int channel = alphaChannel(spec);
   if (channel < 0 && !greyIsAlpha) return -1;  // no alpha: every texel is opaque
   if (channel < 0) channel = 0;
@@ -47,8 +48,8 @@ int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, b
   mask.width = spec.width;
   mask.height = spec.height;
   mask.alpha.resize(size_t(spec.width) * size_t(spec.height));
-  if (!in->read_image(0, 0, channel, channel + 1, OIIO::TypeDesc::UINT8, mask.alpha.data())) {
-    where.fail("cannot read alpha of " + path + ": " + in->geterror());
+  if (!in->readChannelBytes(channel, mask.alpha.data())) {
+    where.fail("cannot read alpha of " + path + ": " + in->error());
   }
   scene.alphaMasks.push_back(std::move(mask));
   return static_cast<int>(scene.alphaMasks.size()) - 1;

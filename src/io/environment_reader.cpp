@@ -1,12 +1,11 @@
 // The "environment" section: a constant sky or an HDR lat-long map (OpenEXR or Radiance
-// HDR, as OpenImageIO finds it), decoded and checked whole at load, appended as the last light.
+// HDR, as the image module finds it), decoded and checked whole at load, appended as the last light.
 #include "core/lights/environment_map.h"
 #include "io/input_file.h"
 #include "core/byte_size.h"
 #include "io/image_header.h"
 #include "io/scene_sections.h"
 #include "io/texture_check.h"
-#include <OpenImageIO/imageio.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -43,16 +42,16 @@ std::string decodeMap(const std::string& path, const LoadLimits& limits, int& wi
   if (!in) return problem;
   // What the decoder found, not the name: an 8-bit PNG called sky.exr holds display
   // values, not radiance.
-  const std::string format = in->format_name();
+  const std::string format = in->info().formatName;
   if (format != "openexr" && format != "hdr") {
-    return path + " is a " + format + " image of " + in->spec().format.c_str() +
+    return path + " is a " + format + " image of " + in->info().pixelType +
            " values, not high dynamic range: an environment map must be OpenEXR or Radiance HDR";
   }
   const std::string header = imageHeaderProblem(*in, path,
                                                 {kMaxEnvironmentPixels, "the 8192x4096 an environment map may have",
                                                  kMaxEnvironmentSide});
   if (!header.empty()) return header;
-  const OIIO::ImageSpec spec = in->spec();
+  const ImageInfo spec = in->info();
   if (spec.width < 2) {
     return path + " is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
            " pixels: a lat-long map needs at least 2x1";
@@ -71,12 +70,12 @@ std::string decodeMap(const std::string& path, const LoadLimits& limits, int& wi
   texels.resize(size_t(width) * size_t(height));
   const int channels = spec.nchannels >= 3 ? 3 : 1;
   const int band = bandRows(spec);
-  const OIIO::stride_t rowBytes = OIIO::stride_t(width) * OIIO::stride_t(sizeof(Color));
+  const std::ptrdiff_t rowBytes = std::ptrdiff_t(width) * std::ptrdiff_t(sizeof(Color));
   for (int row = 0; row < height; row += band) {
     const int rows = std::min(band, height - row);
     Color* first = &texels[size_t(row) * size_t(width)];
     if (!readRows(*in, spec.y + row, rows, 0, channels, &first->r, sizeof(Color), rowBytes)) {
-      return path + " is truncated or corrupt: " + firstLine(in->geterror());
+      return path + " is truncated or corrupt: " + firstLine(in->error());
     }
     for (size_t i = 0; i < size_t(rows) * size_t(width); ++i) {
       Color& c = first[i];

@@ -1,24 +1,14 @@
-// ImageBuf views of penumbra images, compared with ImageBufAlgo.
+// Error figures of an image against a reference: the image module's ImageBufAlgo
+// maths for RMSE, PSNR and relative MSE, and the worst pixels here.
 #include "io/image_compare.h"
 #include "core/error.h"
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "core/image_codec.h"
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 namespace penumbra {
-namespace {
-
-// Wraps the pixels without copying (Color is three packed floats).
-OIIO::ImageBuf view(const Image& image) {
-  static_assert(sizeof(Color) == 3 * sizeof(float), "Color must be 3 packed floats");
-  OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
-  return OIIO::ImageBuf(spec, const_cast<Color*>(image.pixels.data()));
-}
-
-}  // namespace
 
 ImageError compareImages(const Image& image, const Image& reference) {
   if (image.width != reference.width || image.height != reference.height) {
@@ -28,27 +18,12 @@ ImageError compareImages(const Image& image, const Image& reference) {
   }
   ImageError e;
   if (image.pixels.empty()) return e;
-  const OIIO::ImageBuf a = view(image), r = view(reference);
-  const auto cmp = OIIO::ImageBufAlgo::compare(a, r, 0.0f, 0.0f);
-  e.rmse = cmp.rms_error;
-  e.maxError = cmp.maxerror;
-  // PSNR on display values: the same compare on both clamped to [0, 1].
-  const OIIO::ImageBuf ac = OIIO::ImageBufAlgo::clamp(a, 0.0f, 1.0f);
-  const OIIO::ImageBuf rc = OIIO::ImageBufAlgo::clamp(r, 0.0f, 1.0f);
-  e.psnr = OIIO::ImageBufAlgo::compare(ac, rc, 0.0f, 0.0f).PSNR;
-
-  // relMSE = mean((a - r)^2 / (r^2 + 0.01)), with ImageBufAlgo's per-pixel maths.
-  const OIIO::ImageBuf diff = OIIO::ImageBufAlgo::sub(a, r);
-  const OIIO::ImageBuf sq = OIIO::ImageBufAlgo::mul(diff, diff);
-  const OIIO::ImageBuf den = OIIO::ImageBufAlgo::add(OIIO::ImageBufAlgo::mul(r, r), 0.01f);
-  const OIIO::ImageBuf rel = OIIO::ImageBufAlgo::div(sq, den);
-  const auto stats = OIIO::ImageBufAlgo::computePixelStats(rel);
-  double sum = 0.0;
-  for (float v : stats.avg) sum += v;
-  e.relMse = sum / static_cast<double>(stats.avg.size());
-  double mean = 0.0;
-  for (float v : OIIO::ImageBufAlgo::computePixelStats(r).avg) mean += v;
-  e.referenceMean = mean / 3.0;
+  const ImageComparison c = imageCodec().compare(image, reference);
+  e.rmse = c.rmse;
+  e.maxError = c.maxError;
+  e.psnr = c.psnr;
+  e.relMse = c.relMse;
+  e.referenceMean = c.referenceMean;
 
   // Worst pixels: squared error summed over channels, the top 1% by nth_element.
   std::vector<double> perPixel(image.pixels.size());

@@ -1,4 +1,4 @@
-// Error of an image against a reference through OpenImageIO's ImageBufAlgo:
+// Error of an image against a reference through OpenImageIO's ImageBufAlgo (image module):
 // RMSE and PSNR from ImageBufAlgo::compare, relative MSE from its pixel maths,
 // and the RMSE over the worst pixels (penumbra sweep's error figures).
 #pragma once

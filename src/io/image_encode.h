@@ -1,13 +1,13 @@
-// The one encode-and-write of an image file, for io's writers: OIIO encodes it in
-// memory by the path's extension, then io/temp_file.h writes it whole or not at all.
+// The one encode-and-write of an image file, for io's writers: the image module
+// encodes it in memory by the path's extension, then io/temp_file.h writes it whole
+// or not at all.
 #pragma once
-#include <OpenImageIO/imageio.h>
+#include "core/image_codec.h"
 #include <string>
 
 namespace penumbra {
 
 // Throws InputError naming `path` when the writer refuses or the write fails.
-void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc pixelType,
-                     const void* pixels);
+void writeAtomically(const std::string& path, const EncodeSpec& spec, const void* pixels);
 
 }  // namespace penumbra

@@ -47,13 +47,13 @@ std::string exrAttributeProblem(std::ifstream& in, uint64_t fileBytes, bool mult
   }
 }
 
-std::string sizeText(const OIIO::ImageSpec& spec) {
+std::string sizeText(const ImageInfo& spec) {
   return std::to_string(spec.width) + "x" + std::to_string(spec.height);
 }
 
 }  // namespace
 
-std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const std::string& label, std::string& problem) {
+std::unique_ptr<ImageReader> openImage(const std::string& path, const std::string& label, std::string& problem) {
   std::error_code ec;
   const uint64_t fileBytes = std::filesystem::file_size(path, ec);
   std::ifstream file(path, std::ios::binary);
@@ -68,8 +68,9 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const std::
       return nullptr;
     }
   }
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) problem = "cannot read " + label + ": " + firstLine(OIIO::geterror());
+  std::string error;
+  auto in = imageCodec().open(path, error);
+  if (!in) problem = "cannot read " + label + ": " + firstLine(error);
   return in;
 }
 
@@ -78,21 +79,16 @@ std::string firstLine(const std::string& s) {
   return line.empty() ? "unknown error" : line;
 }
 
-int bandRows(const OIIO::ImageSpec& spec) { return spec.tile_width > 0 ? spec.tile_height : 64; }
+int bandRows(const ImageInfo& spec) { return spec.tileWidth > 0 ? spec.tileHeight : 64; }
 
-bool readRows(OIIO::ImageInput& in, int y, int rows, int chbegin, int chend, float* data, OIIO::stride_t xstride,
-              OIIO::stride_t ystride) {
-  const OIIO::ImageSpec& spec = in.spec();
-  const bool read = spec.tile_width > 0
-                        ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, y, y + rows, spec.z, spec.z + 1, chbegin,
-                                        chend, OIIO::TypeDesc::FLOAT, data, xstride, ystride)
-                        : in.read_scanlines(0, 0, y, y + rows, spec.z, chbegin, chend, OIIO::TypeDesc::FLOAT, data,
-                                            xstride, ystride);
-  return read && !in.has_error();
+bool readRows(ImageReader& in, int y, int rows, int chbegin, int chend, float* data, std::ptrdiff_t xstride,
+              std::ptrdiff_t ystride) {
+  const ImageInfo& spec = in.info();
+  return in.readFloat(spec.x, spec.x + spec.width, y, y + rows, chbegin, chend, data, xstride, ystride);
 }
 
-std::string imageHeaderProblem(OIIO::ImageInput& in, const std::string& label, const ImageBound& bound) {
-  const OIIO::ImageSpec spec = in.spec();
+std::string imageHeaderProblem(const ImageReader& in, const std::string& label, const ImageBound& bound) {
+  const ImageInfo& spec = in.info();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1) {
     return label + " has no pixels (a flat image needs at least 1x1)";
   }
@@ -103,32 +99,30 @@ std::string imageHeaderProblem(OIIO::ImageInput& in, const std::string& label, c
   if (uint64_t(spec.width) * uint64_t(spec.height) > bound.maxPixels) {
     return label + " is " + sizeText(spec) + " pixels, more than " + bound.maxText;
   }
-  const bool tiled = spec.tile_width > 0;
-  if (tiled && (spec.tile_width > kMaxTileSide || spec.tile_height > kMaxTileSide || spec.tile_height <= 0)) {
-    return label + " has " + std::to_string(spec.tile_width) + "x" + std::to_string(spec.tile_height) +
+  const bool tiled = spec.tileWidth > 0;
+  if (tiled && (spec.tileWidth > kMaxTileSide || spec.tileHeight > kMaxTileSide || spec.tileHeight <= 0)) {
+    return label + " has " + std::to_string(spec.tileWidth) + "x" + std::to_string(spec.tileHeight) +
            " pixel tiles, larger than the " + std::to_string(kMaxTileSide) + "x" + std::to_string(kMaxTileSide) +
            " penumbra reads";
   }
   return "";
 }
 
-std::string lastRowProblem(OIIO::ImageInput& in, const std::string& label) {
-  const OIIO::ImageSpec spec = in.spec();
-  const bool tiled = spec.tile_width > 0;
+std::string lastRowProblem(ImageReader& in, const std::string& label) {
+  const ImageInfo spec = in.info();
+  const bool tiled = spec.tileWidth > 0;
   // The last row (the last tile of a tiled file): a decoder reaches it only through
   // what the file really holds.
   const int yEnd = spec.y + spec.height;
-  const int last = tiled ? spec.y + (spec.height - 1) / spec.tile_height * spec.tile_height : yEnd - 1;
-  const size_t values = tiled ? size_t(spec.tile_width) * size_t(spec.tile_height) : size_t(spec.width);
+  const int last = tiled ? spec.y + (spec.height - 1) / spec.tileHeight * spec.tileHeight : yEnd - 1;
+  const size_t values = tiled ? size_t(spec.tileWidth) * size_t(spec.tileHeight) : size_t(spec.width);
   std::vector<float> row(values * size_t(spec.nchannels));
-  const bool read = tiled ? in.read_tiles(0, 0, spec.x, std::min(spec.x + spec.tile_width, spec.x + spec.width), last,
-                                          yEnd, spec.z, spec.z + 1, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
-                                          row.data()) &&
-                                !in.has_error()
-                          : readRows(in, last, 1, 0, spec.nchannels, row.data(), OIIO::AutoStride, OIIO::AutoStride);
+  const bool read = tiled ? in.readFloat(spec.x, std::min(spec.x + spec.tileWidth, spec.x + spec.width), last, yEnd, 0,
+                                         spec.nchannels, row.data(), kAutoStride, kAutoStride)
+                          : readRows(in, last, 1, 0, spec.nchannels, row.data());
   if (!read) {
     return label + " is truncated or corrupt: its header says " + sizeText(spec) +
-           " pixels but its last row cannot be read (" + firstLine(in.geterror()) + ")";
+           " pixels but its last row cannot be read (" + firstLine(in.error()) + ")";
   }
   return "";
 }

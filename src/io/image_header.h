@@ -3,7 +3,7 @@
 // reads it, each side and the pixel count bounded, and a file that really holds the
 // rows its header claims. Also the band reader both decoders use.
 #pragma once
-#include <OpenImageIO/imageio.h>
+#include "core/image_codec.h"
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -11,10 +11,10 @@
 namespace penumbra {
 
 
-// OIIO::ImageInput::open after the checks a decoder skips (an OpenEXR header's
+// imageCodec().open after the checks a decoder skips (an OpenEXR header's
 // attribute sizes against the file: OpenEXR allocates what one claims before reading
 // it). Null with the problem, one line naming `label`, in `problem`.
-std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path, const std::string& label, std::string& problem);
+std::unique_ptr<ImageReader> openImage(const std::string& path, const std::string& label, std::string& problem);
 
 // What an image may claim: at most `maxPixels`, spelled `maxText` in a refusal
 // ("the 8192x4096 an environment map may have"), and at most `maxSide` pixels a row or
@@ -29,21 +29,21 @@ struct ImageBound {
 // "" when the header of `in` (opened from the file `label` names: "texture a.png")
 // describes a flat image of 1..bound.maxSide pixels each way, at most bound.maxPixels,
 // in tiles (if any) a band of rows can hold; else the problem, one line.
-std::string imageHeaderProblem(OIIO::ImageInput& in, const std::string& label, const ImageBound& bound);
+std::string imageHeaderProblem(const ImageReader& in, const std::string& label, const ImageBound& bound);
 // "" when the file holds the last row its header claims: read first, through a
 // one-row buffer, before a caller allocates the whole image (a header that lies about
 // its size is refused unallocated). A reader that decodes in bands needs no such check.
-std::string lastRowProblem(OIIO::ImageInput& in, const std::string& label);
+std::string lastRowProblem(ImageReader& in, const std::string& label);
 
 // Rows [y, y + rows) of `in`, channels [chbegin, chend), as float at `data` with the
 // given strides in bytes; scanline or tiled (then `y` and `rows` follow the tile rows,
 // as bandRows gives them). False with the decoder's error in `in`.
-bool readRows(OIIO::ImageInput& in, int y, int rows, int chbegin, int chend, float* data, OIIO::stride_t xstride,
-              OIIO::stride_t ystride);
+bool readRows(ImageReader& in, int y, int rows, int chbegin, int chend, float* data,
+              std::ptrdiff_t xstride = kAutoStride, std::ptrdiff_t ystride = kAutoStride);
 // Rows per band: a tile row of a tiled file, 64 rows of a scanline file.
-int bandRows(const OIIO::ImageSpec& spec);
+int bandRows(const ImageInfo& spec);
 
-// OIIO stacks one line per layer ("Read error: hit end of file", "PNG read error:
+// The image library stacks one line per layer ("Read error: hit end of file", "PNG read error:
 // ...", "PNG library error"); the first says what happened.
 std::string firstLine(const std::string& s);
 

@@ -1,24 +1,23 @@
-// Image file I/O through OpenImageIO: the sRGB transfer curve, the choice of
-// writer by extension, encoding in memory for the checked write-and-rename that
-// keeps targets whole, and the cheap test that a file on disk is whole.
+// Image file I/O through the image module (core/image_codec.h): the sRGB transfer
+// curve, the choice of writer by extension, encoding in memory for the checked
+// write-and-rename that keeps targets whole, and the cheap test that a file is whole.
 #include "io/image_io.h"
 #include "core/color.h"
 
 #include "core/error.h"
+#include "core/image_codec.h"
 #include "io/aov_display.h"
 #include "io/image_encode.h"
+#include "io/image_file_header.h"
+#include "io/image_header.h"
 #include "io/temp_file.h"
-
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imageio.h>
-#include <OpenImageIO/strutil.h>
 
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -67,9 +66,9 @@ struct ExrLayer {
 
 // The EXR header and interleaved pixels of `layers`: R, G, B per layer (half for
 // radiance, float for geometric views) and, for a geometric view, A = its coverage.
-OIIO::ImageSpec exrSpec(const std::vector<ExrLayer>& layers, std::vector<float>& floats) {
+EncodeSpec exrSpec(const std::vector<ExrLayer>& layers, std::vector<float>& floats) {
   std::vector<std::string> names;
-  std::vector<OIIO::TypeDesc> formats;
+  std::vector<PixelType> formats;
   bool anyFloat = false;
   for (const ExrLayer& l : layers) {
     const std::string prefix = l.name.empty() ? "" : l.name + ".";
@@ -78,18 +77,22 @@ OIIO::ImageSpec exrSpec(const std::vector<ExrLayer>& layers, std::vector<float>&
     for (const char* c : {"R", "G", "B", "A"}) {
       if (*c == 'A' && l.image->coverage.empty()) continue;
       names.push_back(prefix + c);
-      formats.push_back(exact ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF);
+      formats.push_back(exact ? PixelType::Float : PixelType::Half);
     }
   }
   const Image& first = *layers.front().image;
   const size_t n = names.size();
-  OIIO::ImageSpec spec(first.width, first.height, static_cast<int>(n), anyFloat ? OIIO::TypeDesc::FLOAT
-                                                                                : OIIO::TypeDesc::HALF);
+  EncodeSpec spec;
+  spec.width = first.width;
+  spec.height = first.height;
+  spec.nchannels = static_cast<int>(n);
+  spec.fileType = anyFloat ? PixelType::Float : PixelType::Half;
+  spec.given = PixelType::Float;  // the library converts to the file's half
   // Only what differs from the default, so a radiance EXR keeps its old header.
-  if (!layers.front().name.empty()) spec.channelnames = names;
-  if (anyFloat && std::any_of(formats.begin(), formats.end(), [](auto f) { return f != OIIO::TypeDesc::FLOAT; }))
-    spec.channelformats = formats;
-  if (layers.size() == 1 && n == 4) spec.alpha_channel = 3;
+  if (!layers.front().name.empty()) spec.channelNames = names;
+  if (anyFloat && std::any_of(formats.begin(), formats.end(), [](auto f) { return f != PixelType::Float; }))
+    spec.channelTypes = formats;
+  if (layers.size() == 1 && n == 4) spec.alphaChannel = 3;
   floats.resize(first.pixels.size() * n);
   for (size_t i = 0; i < first.pixels.size(); ++i) {
     float* out = &floats[i * n];
@@ -114,11 +117,23 @@ void refuseNan(const std::string& path, const Image& image) {
   }
 }
 
-// OIIO error strings can span lines; InputError messages are one line.
+// Library error strings can span lines; InputError messages are one line.
 std::string oneLine(std::string text) {
   std::replace(text.begin(), text.end(), '\n', ' ');
-  text = OIIO::Strutil::strip(text);
-  return text.empty() ? "unknown error" : text;
+  const char* space = " \t\n\r\f\v";
+  const size_t first = text.find_first_not_of(space);
+  if (first == std::string::npos) return "unknown error";
+  return text.substr(first, text.find_last_not_of(space) + 1 - first);
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+void setAttribute(EncodeSpec& spec, const std::string& name, const std::string& text) {
+  spec.attributes.push_back({name, text, 0.0f, false});
 }
 
 [[noreturn]] void writeFailed(const std::string& path, const std::string& reason) {
@@ -128,27 +143,11 @@ std::string oneLine(std::string text) {
 }  // namespace
 
 // Encodes the image in memory (the writer chosen by the target's extension), then
-// writes the bytes through the one checked write-and-rename (temp_file.h): OIIO's
-// PNG writer does not report a short write, so it never touches the disk itself.
-void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc pixelType,
-                     const void* pixels) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) writeFailed(path, OIIO::geterror());
-  if (!out->supports("ioproxy")) writeFailed(path, std::string(out->format_name()) + " cannot be encoded in memory");
-  // Room for the file uncompressed (zip's worst case adds < 1/64), so the buffer never
-  // grows by copying; pages it leaves untouched cost no memory.
+// writes the bytes through the one checked write-and-rename (temp_file.h).
+void writeAtomically(const std::string& path, const EncodeSpec& spec, const void* pixels) {
   std::vector<unsigned char> bytes;
-  const size_t raw = spec.image_bytes(/*native=*/true);
-  bytes.reserve(raw + raw / 64 + 65536);
-  OIIO::Filesystem::IOVecOutput proxy(bytes);
-  if (!out->set_ioproxy(&proxy) || !out->open(path, spec)) writeFailed(path, out->geterror());
-  if (!out->write_image(pixelType, pixels)) {
-    const std::string reason = out->geterror();
-    out->close();
-    writeFailed(path, reason);
-  }
-  if (!out->close()) writeFailed(path, out->geterror());
-  out.reset();  // the writer may still hold the proxy until it is destroyed
+  const std::string problem = imageCodec().encode(path, spec, pixels, bytes);
+  if (!problem.empty()) writeFailed(path, problem);
   writeFileAtomic(path, bytes.data(), bytes.size(), "image");
 }
 
@@ -173,10 +172,9 @@ bool pngEndsWhole(const std::string& path) {
 }  // namespace
 
 void checkImageOutputPath(const std::string& path) {
-  fs::path target(path);
-  std::string ext = OIIO::Strutil::lower(target.extension().string());
+  const std::string ext = lowerExtension(path);
   if (ext != ".png" && ext != ".exr") {
-    throw InputError(path + ": unsupported image extension '" + target.extension().string() +
+    throw InputError(path + ": unsupported image extension '" + fs::path(path).extension().string() +
                      "' (use .png or .exr)");
   }
   const std::string problem = outputPathProblem(path);
@@ -186,9 +184,7 @@ void checkImageOutputPath(const std::string& path) {
 void writeImage(const std::string& path, const Image& image, const ImageMetadata& metadata,
                 const DisplayOptions& display) {
   checkImageOutputPath(path);
-  fs::path target(path);
-  Encoding encoding = OIIO::Strutil::lower(target.extension().string()) == ".png" ? Encoding::Srgb8
-                                                                                  : Encoding::Exr;
+  Encoding encoding = lowerExtension(path) == ".png" ? Encoding::Srgb8 : Encoding::Exr;
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height ||
       (!image.coverage.empty() && image.coverage.size() != image.pixels.size())) {
@@ -198,34 +194,34 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
 
   std::vector<uint8_t> bytes;
   std::vector<float> floats;
-  OIIO::ImageSpec spec;
+  EncodeSpec spec;
   const void* pixels = nullptr;
-  OIIO::TypeDesc pixelType;
   if (encoding == Encoding::Srgb8) {
     const Image shown = aovDisplay(image);  // depth and normals as pictures; radiance as is
     const size_t count = shown.pixels.size() * 3;
-    spec = OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.width = image.width;
+    spec.height = image.height;
+    spec.nchannels = 3;
+    spec.fileType = spec.given = PixelType::UInt8;
+    setAttribute(spec, "oiio:ColorSpace", "sRGB");
     // Only when asked for: a default PNG keeps today's bytes, metadata included.
     if (display.tone != ToneMap::Clamp || display.exposure != 0.0f) {
-      spec.attribute("penumbra:tonemap", toneMapName(display.tone));
-      spec.attribute("penumbra:exposure", display.exposure);
+      setAttribute(spec, "penumbra:tonemap", toneMapName(display.tone));
+      spec.attributes.push_back({"penumbra:exposure", "", display.exposure, true});
     }
     bytes.resize(count);
     for (size_t i = 0; i < shown.pixels.size(); ++i)
       for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = toSrgb8(displayValue(shown.pixels[i][c], display));
     pixels = bytes.data();
-    pixelType = OIIO::TypeDesc::UINT8;
   } else {
     spec = exrSpec({{"", &image}}, floats);
-    spec.attribute("oiio:ColorSpace", "Linear");
+    setAttribute(spec, "oiio:ColorSpace", "Linear");
     pixels = floats.data();
-    pixelType = OIIO::TypeDesc::FLOAT;  // OIIO converts to the file's half
   }
-  spec.attribute("Software", "penumbra");
-  for (const auto& [key, value] : metadata) spec.attribute(key, value);
+  setAttribute(spec, "Software", "penumbra");
+  for (const auto& [key, value] : metadata) setAttribute(spec, key, value);
 
-  writeAtomically(path, spec, pixelType, pixels);
+  writeAtomically(path, spec, pixels);
 }
 
 void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::string, Image>>& layers,
@@ -243,87 +239,41 @@ void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::s
     parts.push_back({name, &image});
   }
   std::vector<float> floats;
-  OIIO::ImageSpec spec = exrSpec(parts, floats);
-  spec.attribute("oiio:ColorSpace", "Linear");
-  spec.attribute("Software", "penumbra");
-  for (const auto& [key, value] : metadata) spec.attribute(key, value);
-  writeAtomically(path, spec, OIIO::TypeDesc::FLOAT, floats.data());
+  EncodeSpec spec = exrSpec(parts, floats);
+  setAttribute(spec, "oiio:ColorSpace", "Linear");
+  setAttribute(spec, "Software", "penumbra");
+  for (const auto& [key, value] : metadata) setAttribute(spec, key, value);
+  writeAtomically(path, spec, floats.data());
 }
 
 bool imageComplete(const std::string& path) {
-  if (OIIO::Strutil::iends_with(path, ".png")) return pngEndsWhole(path);
-  // EXR and the rest: the header opens and the last scanline (its chunk is the
-  // file's last, or past a truncated file's end) decodes.
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    (void)OIIO::geterror();
+  std::string tail = path.substr(path.size() - std::min<size_t>(path.size(), 4));
+  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (tail == ".png") return pngEndsWhole(path);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return false;
+  if (const std::optional<bool> whole = exrLastChunkWhole(path)) return *whole;
+  // Another format, or a tiled EXR: the header opens and the last row decodes.
+  std::string problem;
+  const std::unique_ptr<ImageReader> in = openImage(path, path, problem);
+  if (!in) return false;
+  const ImageInfo& info = in->info();
+  if (info.width <= 0 || info.height <= 0 || info.nchannels <= 0 || (info.tileWidth > 0 && info.tileHeight <= 0))
     return false;
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  std::vector<float> row(static_cast<size_t>(std::max(spec.width, 0)) * std::max(spec.nchannels, 0));
-  const bool ok = !row.empty() && in->read_scanlines(0, 0, spec.y + spec.height - 1, spec.y + spec.height, 0, 0,
-                                                     spec.nchannels, OIIO::TypeDesc::FLOAT, row.data());
-  (void)in->geterror();
-  in->close();
-  return ok;
+  return lastRowProblem(*in, path).empty();
 }
 
 std::string readImageAttribute(const std::string& path, const std::string& name) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    (void)OIIO::geterror();  // clear OIIO's pending error: a missing file is a plain answer here
-    return "";
-  }
-  const std::string value = in->spec().get_string_attribute(name);
-  in->close();
-  return value;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return "";
+  if (std::optional<std::string> value = penumbraAttribute(path, name)) return *value;
+  return imageCodec().attribute(path, name);
 }
 
 Image readImage(const std::string& path) {
-  // Keep colour unassociated: alpha is dropped, so premultiplying would darken.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  OIIO::ImageBuf buf(path, 0, 0, nullptr, &config);
-  if (!buf.read(0, 0, /*force=*/true, OIIO::TypeDesc::FLOAT)) {
-    throw InputError(path + ": cannot read image: " + oneLine(buf.geterror()));
-  }
-  // nativespec: the file's own format and attributes, not the float buffer's.
-  const OIIO::ImageSpec& spec = buf.nativespec();
-  const int channels = spec.nchannels;
-  if (spec.width <= 0 || spec.height <= 0 || channels <= 0) {
-    throw InputError(path + ": cannot read image: no pixels");
-  }
-
-  // How the stored values relate to linear light. Integer files that say
-  // nothing are taken as sRGB, which is what 8-bit images almost always are.
-  std::string colorSpace = spec.get_string_attribute("oiio:ColorSpace");
-  bool integer = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
-                 spec.format.basetype != OIIO::TypeDesc::HALF &&
-                 spec.format.basetype != OIIO::TypeDesc::DOUBLE;
-  bool srgb = isSrgbEncoded(colorSpace, integer);
-  float gamma = OIIO::Strutil::istarts_with(colorSpace, "Gamma")
-                    ? spec.get_float_attribute("oiio:Gamma", 2.2f)
-                    : 1.0f;
-
-  std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
-  OIIO::ROI roi = buf.roi();
-  if (!buf.get_pixels(roi, OIIO::TypeDesc::FLOAT, data.data())) {
-    throw InputError(path + ": cannot read image: " + oneLine(buf.geterror()));
-  }
-
-  auto linearise = [&](float v) {
-    if (!std::isfinite(v)) return 0.0f;
-    if (srgb) return static_cast<float>(srgbDecode(v));
-    if (gamma != 1.0f) return std::pow(std::max(v, 0.0f), gamma);
-    return v;
-  };
-  // Grey (and grey + alpha) is replicated; anything past RGB, alpha included, is dropped.
-  const bool grey = channels < 3;
-  Image image(spec.width, spec.height);
-  for (size_t i = 0; i < image.pixels.size(); ++i) {
-    const float* p = &data[i * channels];
-    for (int c = 0; c < 3; ++c) image.pixels[i][c] = linearise(p[grey ? 0 : c]);
-  }
+  Image image;
+  const std::string problem = imageCodec().readLinear(path, image);
+  if (!problem.empty()) throw InputError(path + ": cannot read image: " + oneLine(problem));
   return image;
 }
 

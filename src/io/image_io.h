@@ -30,7 +30,8 @@ void writeLayeredExr(const std::string& path, const std::vector<std::pair<std::s
                      const ImageMetadata& metadata = {});
 
 // True when the image file at `path` is whole, cheaply: a PNG ends in its IEND chunk;
-// an EXR (or another format) opens and its last scanline decodes. False if missing.
+// a scanline EXR holds its last chunk's bytes (io/image_file_header.h); another format
+// opens and its last row decodes. False if missing.
 bool imageComplete(const std::string& path);
 
 // A string attribute of an image file's header ("" if the file or attribute is missing).

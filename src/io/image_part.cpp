@@ -1,11 +1,9 @@
-// Part files through OIIO: the data window carries the tile's place in the frame,
-// so a part needs no position of its own and any EXR viewer shows it in place.
+// Part files through the image module: the data window carries the tile's place in
+// the frame, so a part needs no position of its own and any EXR viewer shows it in place.
 #include "io/image_part.h"
 #include "core/error.h"
+#include "core/image_codec.h"
 #include "io/image_encode.h"
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/strutil.h>
 #include <algorithm>
 
 namespace penumbra {
@@ -14,7 +12,8 @@ namespace {
 [[noreturn]] void partFailed(const std::string& path, const std::string& reason) {
   std::string line = reason;
   std::replace(line.begin(), line.end(), '\n', ' ');
-  throw InputError(path + ": " + std::string(OIIO::Strutil::strip(line)));
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  throw InputError(path + ": " + line);
 }
 
 }  // namespace
@@ -28,20 +27,24 @@ std::string PartHeader::attribute(const std::string& key) const {
 void writeImagePart(const std::string& path, const Image& image, const PixelBounds& bounds,
                     const std::vector<std::pair<std::string, const Image*>>& layers, const ImageMetadata& metadata) {
   checkImageOutputPath(path);
-  if (!OIIO::Strutil::iends_with(path, ".exr")) partFailed(path, "a part of a frame is written as .exr (float)");
+  const std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  if (ext != ".exr" && ext != ".EXR") partFailed(path, "a part of a frame is written as .exr (float)");
   std::vector<std::string> names = {"R", "G", "B"};
   if (!image.coverage.empty()) names.push_back("A");
   for (const auto& [name, layer] : layers)
     for (const char* c : {"R", "G", "B"}) names.push_back(name + "." + c);
   const int n = static_cast<int>(names.size());
-  OIIO::ImageSpec spec(bounds.width(), bounds.height(), n, OIIO::TypeDesc::FLOAT);
+  EncodeSpec spec;
+  spec.width = bounds.width();
+  spec.height = bounds.height();
+  spec.nchannels = n;
   spec.x = bounds.x0;
   spec.y = bounds.y0;
-  spec.full_x = spec.full_y = 0;
-  spec.full_width = image.width;
-  spec.full_height = image.height;
-  spec.channelnames = names;
-  if (!image.coverage.empty()) spec.alpha_channel = 3;
+  spec.fullWidth = image.width;
+  spec.fullHeight = image.height;
+  spec.fileType = spec.given = PixelType::Float;
+  spec.channelNames = names;
+  if (!image.coverage.empty()) spec.alphaChannel = 3;
   std::vector<float> data(bounds.pixels() * static_cast<size_t>(n));
   float* out = data.data();
   for (int y = bounds.y0; y < bounds.y1; ++y) {
@@ -53,44 +56,45 @@ void writeImagePart(const std::string& path, const Image& image, const PixelBoun
         for (int c = 0; c < 3; ++c) *out++ = layer->pixels[i][c];
     }
   }
-  spec.attribute("oiio:ColorSpace", "Linear");
-  spec.attribute("Software", "penumbra");
-  for (const auto& [key, value] : metadata) spec.attribute(key, value);
-  writeAtomically(path, spec, OIIO::TypeDesc::FLOAT, data.data());
+  spec.attributes.push_back({"oiio:ColorSpace", "Linear"});
+  spec.attributes.push_back({"Software", "penumbra"});
+  for (const auto& [key, value] : metadata) spec.attributes.push_back({key, value});
+  writeAtomically(path, spec, data.data());
 }
 
 PartHeader readPartHeader(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) partFailed(path, "cannot read part: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
+  std::string error;
+  const std::unique_ptr<ImageReader> in = imageCodec().open(path, error);
+  if (!in) partFailed(path, "cannot read part: " + error);
+  const ImageInfo& info = in->info();
   PartHeader h;
   h.path = path;
-  h.frameWidth = spec.full_width;
-  h.frameHeight = spec.full_height;
-  h.bounds = {spec.x, spec.x + spec.width, spec.y, spec.y + spec.height};
-  h.channels = spec.channelnames;
-  for (const OIIO::ParamValue& p : spec.extra_attribs) {
-    const std::string name = p.name().string();
-    if (name.rfind("penumbra:", 0) == 0) h.attributes.emplace_back(name, p.get_string());
+  h.frameWidth = info.fullWidth;
+  h.frameHeight = info.fullHeight;
+  h.bounds = {info.x, info.x + info.width, info.y, info.y + info.height};
+  h.channels = info.channelNames;
+  for (const auto& [name, value] : info.attributes) {
+    if (name.rfind("penumbra:", 0) == 0) h.attributes.emplace_back(name, value);
   }
-  in->close();
   return h;
 }
 
 std::vector<std::pair<std::string, Image>> pasteParts(const std::vector<PartHeader>& parts) {
   const PartHeader& first = parts.front();
   const int n = static_cast<int>(first.channels.size());
-  OIIO::ImageBuf frame(OIIO::ImageSpec(first.frameWidth, first.frameHeight, n, OIIO::TypeDesc::FLOAT));
+  // Each part's rows go to its data window's place in the frame.
+  const size_t frameWidth = static_cast<size_t>(first.frameWidth);
+  std::vector<float> data(frameWidth * first.frameHeight * n, 0.0f);
   for (const PartHeader& p : parts) {
-    OIIO::ImageBuf part(p.path);
-    if (!part.read(0, 0, true, OIIO::TypeDesc::FLOAT)) partFailed(p.path, "cannot read part: " + part.geterror());
-    // paste offsets the part's own pixel coordinates, which its data window already
-    // places in the frame: an offset of 0.
-    if (!OIIO::ImageBufAlgo::paste(frame, 0, 0, 0, 0, part))
-      partFailed(p.path, "cannot paste part: " + frame.geterror());
+    std::string error;
+    const std::unique_ptr<ImageReader> in = imageCodec().open(p.path, error);
+    if (!in) partFailed(p.path, "cannot read part: " + error);
+    const PixelBounds& b = p.bounds;
+    float* at = data.data() + (static_cast<size_t>(b.y0) * frameWidth + b.x0) * n;
+    const std::ptrdiff_t pixel = static_cast<std::ptrdiff_t>(n * sizeof(float));
+    if (!in->readFloat(b.x0, b.x1, b.y0, b.y1, 0, n, at, pixel, pixel * static_cast<std::ptrdiff_t>(frameWidth)))
+      partFailed(p.path, "cannot read part: " + in->error());
   }
-  std::vector<float> data(static_cast<size_t>(first.frameWidth) * first.frameHeight * n);
-  frame.get_pixels(frame.roi(), OIIO::TypeDesc::FLOAT, data.data());
   // Channel c of the frame goes to its image: "" (R, G, B, A) or a layer's.
   std::vector<std::pair<std::string, Image>> images;
   std::vector<std::pair<size_t, int>> where(n);  // image index, channel (3: coverage)

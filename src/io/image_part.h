@@ -1,6 +1,6 @@
 // Part files: one tile of a frame as a float EXR whose data window is the tile and
 // whose display window is the frame, with extra named layers; and their paste into
-// one frame-sized buffer (OIIO's ImageBufAlgo::paste).
+// one frame-sized buffer.
 #pragma once
 #include "core/image.h"
 #include "core/pixel_bounds.h"

@@ -1,12 +1,10 @@
-// Texture checks for the material reader: OpenImageIO decodes every pixel of an
+// Texture checks for the material reader: the image module decodes every pixel of an
 // image file (in bands of rows, so memory stays small), and builtin names are
 // matched against the generator's list.
 #include "io/texture_check.h"
 
 #include "io/image_header.h"
 #include "io/texture_gen.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -81,7 +79,7 @@ std::string textureFileProblem(const std::string& path) {
   const std::string header =
       imageHeaderProblem(*in, "texture " + path, {kMaxTexturePixels, "the 16384x16384 penumbra reads", kMaxTextureSide});
   if (!header.empty()) return header;
-  const OIIO::ImageSpec spec = in->spec();
+  const ImageInfo spec = in->info();
   const int band = bandRows(spec);
   std::vector<float> pixels(size_t(spec.width) * size_t(band) * size_t(spec.nchannels));
   const int yEnd = spec.y + spec.height;
@@ -89,10 +87,10 @@ std::string textureFileProblem(const std::string& path) {
     const int rows = std::min(band, yEnd - y);
     PENUMBRA_THIRD_PARTY_LEAKS_BEGIN;
     const bool read =
-        readRows(*in, y, rows, 0, spec.nchannels, pixels.data(), OIIO::AutoStride, OIIO::AutoStride);
+        readRows(*in, y, rows, 0, spec.nchannels, pixels.data());
     PENUMBRA_THIRD_PARTY_LEAKS_END;
     if (!read) {
-      return "texture " + path + " is truncated or corrupt: " + firstLine(in->geterror());
+      return "texture " + path + " is truncated or corrupt: " + firstLine(in->error());
     }
     const size_t count = size_t(spec.width) * size_t(rows) * size_t(spec.nchannels);
     for (size_t i = 0; i < count; ++i) {

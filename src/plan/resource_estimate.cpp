@@ -11,7 +11,7 @@
 #include "gather/lookup_cache/lookup_cache.h"
 #include "gather/lookup_cache/lookup_cache_cells.h"
 #include "core/photon.h"
-#include <OpenImageIO/imageio.h>
+#include "core/image_codec.h"
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <algorithm>
@@ -92,10 +92,11 @@ double textureBytes(const Scene& scene) {
       bytes += w * (w / 2) * 3.0 * 4.0 / 3.0;
       continue;
     }
-    auto in = OIIO::ImageInput::open(t.path);
+    std::string error;
+    auto in = imageCodec().open(t.path, error);
     if (!in) continue;  // the texture stage reports unreadable files
-    const OIIO::ImageSpec& spec = in->spec();
-    bytes += double(spec.width) * spec.height * spec.nchannels * spec.format.size() * 4.0 / 3.0;
+    const ImageInfo& spec = in->info();
+    bytes += double(spec.width) * spec.height * spec.nchannels * spec.pixelBytes * 4.0 / 3.0;
   }
   return std::min(bytes, kTextureCacheBytes);
 }

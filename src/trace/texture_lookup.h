@@ -1,4 +1,4 @@
-// Image textures through OpenImageIO's TextureSystem: MIP-mapped, filtered,
+// Image textures through the image module (core/image_codec.h): MIP-mapped, filtered,
 // periodic in u (the longitude seam) and clamped in v (the poles).
 #pragma once
 #include "geometry/trace_scene.h"

@@ -8,6 +8,7 @@ namespace penumbra::hard {
 using testing::CliResult;
 using testing::quote;
 using testing::runCli;
+using testing::runShell;
 using testing::ScratchDir;
 namespace fs = std::filesystem;
 

@@ -12,18 +12,6 @@ namespace {
 
 using namespace hard;
 
-// Runs a shell line (stdin piped in by the line itself) and returns exit code and stderr.
-CliResult runShell(const std::string& line) {
-  const ScratchDir io;
-  const std::string cmd = line + " >" + quote((io / "out").string()) + " 2>" + quote((io / "err").string());
-  const int status = std::system(cmd.c_str());
-  CliResult r;
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = testing::readFile(io / "out");
-  r.err = testing::readFile(io / "err");
-  return r;
-}
-
 void expectBadInput(const CliResult& r, const std::string& says, const std::string& what) {
   EXPECT_EQ(r.exitCode, 2) << what << "\n" << r.err;
   EXPECT_NE(r.err.find(says), std::string::npos) << what << "\n" << r.err;

@@ -33,18 +33,22 @@ struct CliResult {
   std::string out, err;
 };
 
-// `args` are already shell-quoted; output goes to files outside `dir` listings' way.
-inline CliResult runCli(const std::string& args) {
+// Runs a shell line (its own redirections and environment settings included) and
+// returns the exit code, stdout and stderr.
+inline CliResult runShell(const std::string& line) {
   const ScratchDir io;
-  const fs::path out = io / "stdout", err = io / "stderr";
-  const std::string cmd = quote(PENUMBRA_BINARY) + " " + args + " >" + quote(out.string()) + " 2>" +
-                          quote(err.string()) + " </dev/null";
+  const std::string cmd = line + " >" + quote((io / "stdout").string()) + " 2>" + quote((io / "stderr").string());
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = readFile(out);
-  r.err = readFile(err);
+  r.out = readFile(io / "stdout");
+  r.err = readFile(io / "stderr");
   return r;
+}
+
+// `args` are already shell-quoted.
+inline CliResult runCli(const std::string& args) {
+  return runShell(quote(PENUMBRA_BINARY) + " " + args + " </dev/null");
 }
 
 // Runs the binary on `args` (unquoted, no shell) with PENUMBRA_TEST_SIGNAL_AT=`at`
