@@ -42,7 +42,7 @@ bench_file() {
   shift
   name=$(basename "$template" .json.in)
   dir=$B/$name
-  mkdir -p "$dir/shards" "$dir/one"
+  mkdir -p "$dir/shards/out" "$dir/one/out"   # a binary before batch made its output folders
   local flags=()
   today && flags+=(--no-tiles)
   for d in shards one; do

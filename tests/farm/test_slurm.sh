@@ -3,7 +3,7 @@
 # 4-task array, a dependent tile merge) against one `penumbra batch` process, byte for byte.
 #
 #   tests/farm/test_slurm.sh [PENUMBRA]       (default build/penumbra)
-#   FARM_TODAY=1   shards with `--shard I/N` only: no plan file, maps prepass, tiles, merge or --status
+#   FARM_TODAY=1   a binary before the plan file: shards by `--shard I/N` only (no maps prepass, tiles, merge or --status)
 #   FARM_KEEP=1    keep the temp folder (it is kept anyway when an assertion fails)
 set -uo pipefail
 
@@ -168,7 +168,7 @@ run_status() {
 }
 
 assert_status_clean() {
-  if today; then skip "--status (not built yet)"; return; fi
+  if today; then skip "--status (FARM_TODAY=1: a binary before the plan file)"; return; fi
   run_status
   [ "$STATUS_RC" = 0 ] && ok "--status exits 0 after the farm run" ||
     bad "--status exits $STATUS_RC after the farm run:
@@ -192,7 +192,7 @@ assert_append_renders_one() {
     touch -r "$FARM/jobs.json" "$T/jobs.mtime"
     "$JOBS_FILE" append "$FARM/jobs.json" "$APPENDED"
     touch -r "$T/jobs.mtime" "$FARM/jobs.json"
-    skip "--status after appending a job (not built yet)"
+    skip "--status after appending a job (FARM_TODAY=1: a binary before the plan file)"
   else
     # The split is kept: a job the shard file does not name goes to its least-loaded shard.
     "$JOBS_FILE" append "$FARM/jobs.json" "$APPENDED"
@@ -216,7 +216,7 @@ $why"; return; }
 
 # The merged tile frame equals the whole frame rendered by one process.
 assert_tiles_merge_whole() {
-  if today; then skip "tiles and merge (not built yet)"; return; fi
+  if today; then skip "tiles and merge (FARM_TODAY=1: a binary before the plan file)"; return; fi
   # The same job untiled, by one process, into the same relative output: the same stamp.
   mkdir -p "$T/whole"
   "$JOBS_FILE" untile "$FARM/jobs.json" "$TILE_JOB" > "$T/whole/jobs.json"
