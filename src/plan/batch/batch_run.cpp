@@ -2,11 +2,10 @@
 // scene loaded), choose the shard's jobs, then load, plan and admit the jobs to
 // render before the first of them renders through the render session, which
 // shares scenes and photon stages between jobs.
-#include "plan/batch/batch_run.h"
+#include "plan/batch/batch_loop.h"
 #include "plan/batch/job_cost.h"
 #include "plan/batch/job_render.h"
 #include "plan/batch/job_state.h"
-#include "plan/batch/shard_split.h"
 #include "plan/cpu_report.h"
 #include "plan/output_safety.h"
 #include "plan/render_session.h"
@@ -20,47 +19,8 @@
 #include <numeric>
 
 namespace penumbra {
-namespace {
 
 namespace fs = std::filesystem;
-
-struct PreparedJob {
-  const BatchJob* job = nullptr;
-  std::vector<std::string> outputs;  // each file once (views may share a layered EXR)
-  std::string stamp;                 // written into every output: a changed job makes them stale
-  std::string frameStamp;            // a tile's: the whole frame's stamp, which its parts share
-  OutputsVerdict verdict;            // from the outputs, before anything loads
-  std::vector<PlannedJob> views;     // one per output, planned and admitted (jobs to render or cost)
-  std::vector<InputRecord> inputs;   // what the views read, as it was when loaded
-  double estimate = 0.0;             // seconds on one thread, once costed
-  size_t shard = 0;                  // 0-based, where the batch has shards
-  std::string error;                 // validation failure (keepGoing)
-};
-
-class BatchRun {
- public:
-  BatchRun(const BatchRequest& req) : req_(req), session_(req.session), jobs_(req.jobs.size()) {}
-  BatchOutcome run();
-
- private:
-  void fail(PreparedJob& p, const std::string& why, bool input);
-  void report(size_t done, size_t total, const std::string& job, const char* phase) {
-    if (req_.progress) req_.progress({done, total, job, phase, clock_.wallSeconds()});
-  }
-  // Loads, plans and admits the job's views; `forRender` also makes its output folders.
-  void plan(PreparedJob& p, bool forRender);
-  void planAll(const std::vector<size_t>& which, bool forRender);
-  std::vector<JobCost> costs(const std::vector<size_t>& which);
-  std::vector<size_t> chooseShard();
-  void checkApart() const;
-  void finish(BatchOutcome& out);
-
-  const BatchRequest& req_;
-  const CpuSpan clock_;
-  RenderSession session_;
-  std::vector<PreparedJob> jobs_;
-  BatchOutcome out_;
-};
 
 void BatchRun::fail(PreparedJob& p, const std::string& why, bool input) {
   p.error = why;
@@ -122,37 +82,6 @@ void BatchRun::planAll(const std::vector<size_t>& which, bool forRender) {
   session_.forgetLoads();
 }
 
-// Each job's cost, with jobs of equal photon keys in one group.
-std::vector<JobCost> BatchRun::costs(const std::vector<size_t>& which) {
-  std::vector<PhotonStageKey> keys;
-  std::vector<JobCost> out;
-  for (size_t j : which) {
-    PreparedJob& p = jobs_[j];
-    PhotonStageKey key;
-    JobCost c;
-    if (p.views.empty()) {
-      key.geometry = "not loaded: " + p.job->name;  // costs nothing, in a group of its own
-    } else {
-      key = photonKeyOf(p.views);
-      const TraceScene* tracer = nullptr;
-      try {
-        for (PlannedJob& v : p.views) session_.prepare(v);
-        tracer = session_.assets(p.views.front()).tracer.get();
-      } catch (const std::exception&) {
-        // Refused on this machine (its memory): costed from the bounds.
-      }
-      c = jobCostOf(p.views, tracer);
-    }
-    const auto known = std::find(keys.begin(), keys.end(), key);
-    c.group = static_cast<size_t>(known - keys.begin());
-    // A group's maps are charged to its first job, as the split charges them once.
-    p.estimate = c.frameSeconds + (known == keys.end() ? c.photonSeconds : 0.0);
-    if (known == keys.end()) keys.push_back(key);
-    out.push_back(c);
-  }
-  return out;
-}
-
 // No job may write what another writes or reads, whatever their order and shard:
 // every job's outputs are known from the file, its inputs once loaded or recorded
 // in its outputs, else its scene file.
@@ -167,55 +96,33 @@ void BatchRun::checkApart() const {
   checkJobsApart(files);
 }
 
-// The indices of the jobs this process takes: all, its shard's in the shard file
-// (nothing else loaded), or its shard of a split of every job made here.
-std::vector<size_t> BatchRun::chooseShard() {
-  std::vector<size_t> all(jobs_.size());
-  std::iota(all.begin(), all.end(), size_t(0));
-  if (!req_.shard && req_.shardFile) {
-    // Every shard's jobs (--status of a whole farm): each job named by its shard.
-    std::vector<std::string> names;
-    for (const BatchJob& j : req_.jobs) names.push_back(j.name);
-    for (size_t s = 0; s < req_.shardFile->shards.size(); ++s) {
-      for (size_t j : jobsOfShardFile(*req_.shardFile, names, s)) jobs_[j].shard = s;
-    }
-    out_.shardCount = req_.shardFile->shards.size();
-    return all;
-  }
-  if (!req_.shard) return all;
-  out_.shardCount = req_.shard->count;
-  for (PreparedJob& p : jobs_) p.shard = req_.shard->index;
-  out_.shardLabel = req_.shard->label;
-  if (req_.shardFile) {
-    std::vector<std::string> names;
-    for (const BatchJob& j : req_.jobs) names.push_back(j.name);
-    size_t unplaced = 0;
-    if (req_.shardFile->shards.size() != req_.shard->count) {
-      throw InputError(fmt::format("--shard-count {} but the shard file has {} shards", req_.shard->count,
-                                   req_.shardFile->shards.size()));
-    }
-    std::vector<size_t> mine = jobsOfShardFile(*req_.shardFile, names, req_.shard->index, &unplaced);
-    for (const auto& shard : req_.shardFile->shards) {
-      for (const ShardFile::Job& fj : shard) {
-        auto it = std::find(names.begin(), names.end(), fj.name);
-        if (it != names.end()) jobs_[it - names.begin()].estimate = fj.seconds;
-      }
-    }
-    out_.split.seconds = req_.shardFile->seconds;
-    if (unplaced > 0) {
-      out_.notes.push_back(fmt::format("{} jobs are not in the shard file: each went to the least-loaded shard "
-                                       "(plan the shards again to balance them)", unplaced));
-    }
-    return mine;
-  }
-  planAll(all, false);
-  const ShardSplit split = splitShards(costs(all), req_.shard->count);
-  out_.split.seconds = split.shardSeconds;
-  return split.jobsOf(req_.shard->index);
+BatchOutcome BatchRun::run() {
+  stampJobs();
+  runSteps();
+  finish();
+  return out_;
 }
 
-BatchOutcome BatchRun::run() {
-  // 1. What each job writes and its stamp, from the jobs file alone.
+void BatchRun::runSteps() {
+  if (req_.mode == BatchMode::PlanShards) return planShards();
+  const std::vector<size_t> mine = chooseShard();
+  checkApart();
+  if (req_.shard) out_.shardJobs = mine;
+  if (req_.mode == BatchMode::ListShard) {
+    for (size_t j : mine) out_.jobs.push_back(row(j));
+    return;
+  }
+  // Up to date or not is decided before any job writes.
+  const std::vector<size_t> todo = judge(mine);
+  if (req_.mode == BatchMode::Status) return reportStatus(mine);
+  // The jobs to render loaded, planned and admitted (a scene file read once).
+  planAll(todo, req_.mode == BatchMode::Render);
+  checkApart();
+  prepareAll(todo);
+  renderAll(mine);
+}
+
+void BatchRun::stampJobs() {
   for (size_t j = 0; j < jobs_.size(); ++j) {
     PreparedJob& p = jobs_[j];
     p.job = &req_.jobs[j];
@@ -232,42 +139,9 @@ BatchOutcome BatchRun::run() {
       p.frameStamp = jobStamp(definitionOf(whole, req_.session));
     }
   }
-  auto row = [&](size_t j) {
-    BatchJobResult r;
-    r.name = jobs_[j].job->name;
-    r.outputs = jobs_[j].outputs;
-    r.estimate = jobs_[j].estimate;
-    r.shard = jobs_[j].shard;
-    return r;
-  };
-  if (req_.mode == BatchMode::PlanShards) {
-    std::vector<size_t> all(jobs_.size());
-    std::iota(all.begin(), all.end(), size_t(0));
-    planAll(all, false);
-    checkApart();
-    const ShardSplit split = splitShards(costs(all), req_.planShards);
-    out_.split.seconds = split.shardSeconds;
-    out_.split.shards.resize(split.shardSeconds.size());
-    for (size_t j : all) {
-      out_.split.shards[split.shardOf[j]].push_back({jobs_[j].job->name, jobs_[j].estimate});
-      out_.jobs.push_back(row(j));
-      out_.jobs.back().shard = split.shardOf[j];
-    }
-    finish(out_);
-    return out_;
-  }
+}
 
-  // 2. This process's jobs.
-  const std::vector<size_t> mine = chooseShard();
-  checkApart();
-  if (req_.shard) out_.shardJobs = mine;
-  if (req_.mode == BatchMode::ListShard) {
-    for (size_t j : mine) out_.jobs.push_back(row(j));
-    finish(out_);
-    return out_;
-  }
-
-  // 3. Up to date or not, from the outputs alone, decided before any job writes.
+std::vector<size_t> BatchRun::judge(const std::vector<size_t>& mine) {
   size_t checked = 0;
   std::vector<size_t> todo;
   for (size_t j : mine) {
@@ -277,33 +151,29 @@ BatchOutcome BatchRun::run() {
     p.verdict = req_.force ? OutputsVerdict{JobState::Stale, "--force", {}} : judgeOutputs(p.outputs, p.stamp);
     if (p.verdict.state != JobState::UpToDate) todo.push_back(j);
   }
-  if (req_.mode == BatchMode::Status) {
-    for (size_t j : mine) {
-      const PreparedJob& p = jobs_[j];
-      BatchJobResult r = row(j);
-      if (!p.error.empty()) {
-        r.status = "failed: " + p.error;
-        ++out_.failed;
-      } else if (p.verdict.state == JobState::UpToDate) {
-        r.status = jobStateName(p.verdict.state);
-        ++out_.upToDate;
-      } else {
-        r.status = std::string(jobStateName(p.verdict.state)) + ": " + p.verdict.why;
-        ++out_.notUpToDate;
-      }
-      out_.jobs.push_back(r);
+  return todo;
+}
+
+void BatchRun::reportStatus(const std::vector<size_t>& mine) {
+  for (size_t j : mine) {
+    const PreparedJob& p = jobs_[j];
+    BatchJobResult r = row(j);
+    if (!p.error.empty()) {
+      r.status = "failed: " + p.error;
+      ++out_.failed;
+    } else if (p.verdict.state == JobState::UpToDate) {
+      r.status = jobStateName(p.verdict.state);
+      ++out_.upToDate;
+    } else {
+      r.status = std::string(jobStateName(p.verdict.state)) + ": " + p.verdict.why;
+      ++out_.notUpToDate;
     }
-    finish(out_);
-    return out_;
+    out_.jobs.push_back(r);
   }
+}
 
-  // 4. The jobs to render loaded, planned and admitted (a scene file read once).
-  planAll(todo, req_.mode == BatchMode::Render);
-  checkApart();
-
-  // 5. Prepared (BVH, light split, the photon estimate against the memory limit)
-  // before the first photon of any of them.
-  std::vector<bool> builtScene(jobs_.size(), false);  // this job's prepare built its BVH
+void BatchRun::prepareAll(const std::vector<size_t>& todo) {
+  builtScene_.assign(jobs_.size(), false);
   size_t prepared = 0;
   for (size_t j : todo) {
     PreparedJob& p = jobs_[j];
@@ -317,10 +187,11 @@ BatchOutcome BatchRun::run() {
     } catch (const std::exception& e) {
       p.error = e.what();  // out of memory or an Embree failure: this job fails, the batch goes on
     }
-    builtScene[j] = session_.sceneBuilds() > builds;
+    builtScene_[j] = session_.sceneBuilds() > builds;
   }
+}
 
-  // 6. Render (or build the maps), sharing what the keys allow.
+void BatchRun::renderAll(const std::vector<size_t>& mine) {
   size_t done = 0;
   std::vector<PhotonStageKey> storedKeys;  // --maps-only
   for (size_t j : mine) {
@@ -336,37 +207,8 @@ BatchOutcome BatchRun::run() {
       // A SIGTERM that came as the last job's last pass ended: stop before this one's photons.
       if (terminationRequested()) throw Terminated{"SIGTERM: stopped before job '" + p.job->name + "'"};
       try {
-        // The disk may have filled (or the folder gone) since the jobs were checked:
-        // fail now rather than after the render.
-        if (req_.mode == BatchMode::Render) for (const std::string& path : p.outputs) checkImageOutputPath(path);
         report(done, mine.size(), p.job->name, req_.mode == BatchMode::MapsOnly ? "photons" : "render");
-        std::vector<std::string> reused;
-        if (!builtScene[j]) reused.push_back("scene");
-        JobRender rendered;
-        if (req_.mode == BatchMode::MapsOnly) {
-          std::vector<const PlannedJob*> views;
-          for (const PlannedJob& v : p.views) views.push_back(&v);
-          // Each photon key once: an orbit's frames share one file.
-          const PhotonStageKey key = photonKeyOf(p.views);
-          if (std::find(storedKeys.begin(), storedKeys.end(), key) != storedKeys.end()) {
-            r.status = "maps shared";
-          } else {
-            storedKeys.push_back(key);
-            const MapFileOutcome file = session_.storeMaps(views);
-            r.status = file.written ? "maps written" : file.loaded ? "maps on disk" : "no photons";
-            if (!file.note.empty()) out_.notes.push_back(file.note);
-          }
-        } else {
-          rendered = renderJob(session_, *p.job, p.views, {p.stamp, p.frameStamp, p.inputs});
-          out_.notes.insert(out_.notes.end(), rendered.notes.begin(), rendered.notes.end());
-          r.status = "rendered";
-          ++out_.rendered;
-        }
-        if (rendered.photonsReused) {
-          reused.push_back("photons");
-          ++out_.photonReuses;
-        }
-        r.reused = reused.empty() ? "-" : fmt::format("{}", fmt::join(reused, "+"));
+        renderOne(p, j, r, storedKeys);
       } catch (const std::exception& e) {
         r.status = std::string("failed: ") + e.what();
       }
@@ -383,23 +225,74 @@ BatchOutcome BatchRun::run() {
   }
   const std::string contended = contendedNote(rendered, "job");
   if (!contended.empty()) out_.notes.push_back(contended);
-  finish(out_);
-  return out_;
 }
 
-void BatchRun::finish(BatchOutcome& out) {
-  out.sceneReads = session_.sceneReads();
-  out.sceneBuilds = session_.sceneBuilds();
-  out.photonBuilds = session_.photonBuilds();
-  out.mapLoads = session_.mapLoads();
-  out.mapWrites = session_.mapWrites();
-  out.evictions = session_.evictions();
-  out.peakCacheBytes = session_.peakStageBytes();
-  out.cpu = clock_.timing(session_.options().threads);
-  out.seconds = out.cpu.wallSeconds;
+// Renders the job (or writes its maps) and says so in `r`; throws what fails it.
+void BatchRun::renderOne(PreparedJob& p, size_t j, BatchJobResult& r, std::vector<PhotonStageKey>& storedKeys) {
+  // The disk may have filled (or the folder gone) since the jobs were checked:
+  // fail now rather than after the render.
+  if (req_.mode == BatchMode::Render) for (const std::string& path : p.outputs) checkImageOutputPath(path);
+  std::vector<std::string> reused;
+  if (!builtScene_[j]) reused.push_back("scene");
+  JobRender rendered;
+  if (req_.mode == BatchMode::MapsOnly) {
+    std::vector<const PlannedJob*> views;
+    for (const PlannedJob& v : p.views) views.push_back(&v);
+    // Each photon key once: an orbit's frames share one file.
+    const PhotonStageKey key = photonKeyOf(p.views);
+    if (std::find(storedKeys.begin(), storedKeys.end(), key) != storedKeys.end()) {
+      r.status = "maps shared";
+    } else {
+      storedKeys.push_back(key);
+      const MapFileOutcome file = session_.storeMaps(views);
+      r.status = file.written ? "maps written" : file.loaded ? "maps on disk" : "no photons";
+      if (!file.note.empty()) out_.notes.push_back(file.note);
+    }
+  } else {
+    rendered = renderJob(session_, *p.job, p.views, {p.stamp, p.frameStamp, p.inputs});
+    out_.notes.insert(out_.notes.end(), rendered.notes.begin(), rendered.notes.end());
+    r.status = "rendered";
+    ++out_.rendered;
+  }
+  if (rendered.photonsReused) {
+    reused.push_back("photons");
+    ++out_.photonReuses;
+  }
+  r.reused = reused.empty() ? "-" : fmt::format("{}", fmt::join(reused, "+"));
 }
 
-}  // namespace
+BatchJobResult BatchRun::row(size_t j) const {
+  BatchJobResult r;
+  r.name = jobs_[j].job->name;
+  r.outputs = jobs_[j].outputs;
+  r.estimate = jobs_[j].estimate;
+  r.shard = jobs_[j].shard;
+  return r;
+}
+
+std::vector<size_t> BatchRun::allJobs() const {
+  std::vector<size_t> all(jobs_.size());
+  std::iota(all.begin(), all.end(), size_t(0));
+  return all;
+}
+
+std::vector<std::string> BatchRun::jobNames() const {
+  std::vector<std::string> names;
+  for (const BatchJob& j : req_.jobs) names.push_back(j.name);
+  return names;
+}
+
+void BatchRun::finish() {
+  out_.sceneReads = session_.sceneReads();
+  out_.sceneBuilds = session_.sceneBuilds();
+  out_.photonBuilds = session_.photonBuilds();
+  out_.mapLoads = session_.mapLoads();
+  out_.mapWrites = session_.mapWrites();
+  out_.evictions = session_.evictions();
+  out_.peakCacheBytes = session_.peakStageBytes();
+  out_.cpu = clock_.timing(session_.options().threads);
+  out_.seconds = out_.cpu.wallSeconds;
+}
 
 BatchOutcome runBatch(const BatchRequest& request) { return BatchRun(request).run(); }
 
