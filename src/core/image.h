@@ -15,7 +15,7 @@ struct Image {
   int width = 0, height = 0;
   std::vector<Color> pixels;  // row-major, top row first
   ImageContent content = ImageContent::Radiance;
-  // Geometric views only (else empty): the fraction of a pixel's samples that hit.
+  // The fraction of a pixel's samples that hit: geometric views, and light over a transparent background; else empty.
   std::vector<float> coverage;
 
   Image() = default;

@@ -180,6 +180,9 @@ struct RenderSettings {
   std::string aov = "beauty";  // default view; the CLI's --aov overrides it
   int lightSamples = 16;       // samples per area light per shading point
   bool packets = true;  // camera rays (and their shadow rays) as Embree packets; same image
+  // Camera rays that leave the scene see nothing: colour premultiplied by coverage, and
+  // the beauty carries A = coverage (docs/scene-format.md, "Alpha").
+  bool transparentBackground = false;
 };
 
 enum class IndirectEstimator { Classic, Density };

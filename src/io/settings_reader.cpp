@@ -58,7 +58,7 @@ void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
 
 void readRender(const JsonNode& node, RenderSettings& out) {
   node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
-                  "aov", "light_samples", "packets"});
+                  "aov", "light_samples", "packets", "transparent_background"});
   std::vector<std::string> models;
   for (const ShadingModelInfo& m : kShadingModels) models.push_back(m.name);
   out.model = static_cast<ShadingModel>(node.enumOr("model", static_cast<size_t>(out.model), models));
@@ -74,6 +74,7 @@ void readRender(const JsonNode& node, RenderSettings& out) {
   if (node.has("aov")) out.aov = views[node.child("aov").asEnum(views)];
   out.lightSamples = node.intOr("light_samples", out.lightSamples, 1, 1024);
   out.packets = node.boolOr("packets", out.packets);
+  out.transparentBackground = node.boolOr("transparent_background", out.transparentBackground);
 }
 
 void readPhotons(const JsonNode& node, PhotonSettings& out) {

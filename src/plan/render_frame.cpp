@@ -187,6 +187,7 @@ void renderPass(FrameRun& f, int pass) {
   if (f.passes > 1) f.spread.add(sum, image, pass);
   if (pass == 0) sum = std::move(image);
   else for (size_t i = 0; i < image.pixels.size(); ++i) sum.pixels[i] += image.pixels[i];
+  if (pass > 0) for (size_t i = 0; i < image.coverage.size(); ++i) sum.coverage[i] += image.coverage[i];
   f.stats.time.render += phase.seconds();
   f.done = pass + 1;
   if (f.options.afterPass) f.options.afterPass(f.done, sum, f.spread.estimate());
@@ -289,6 +290,7 @@ void finishFrame(FrameRun& f) {
   // Progressive passes are independent estimates: their mean is the image.
   if (f.done > 1) {
     for (Color& c : result.image.pixels) c /= static_cast<float>(f.done);
+    for (float& a : result.image.coverage) a /= static_cast<float>(f.done);
   }
   if (f.needsLight && !options.tracePixel) {
     // One pass of one sample (the pixel centres) has no spread: probes beside it measure

@@ -17,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[16] = {'p', 'e', 'n', 'u', 'm', 'b', 'r', 'a', ' ', 'p', 'a', 's', 's', 'e', 's', '\n'};
-constexpr uint32_t kVersion = 2;
+constexpr uint32_t kVersion = 3;  // 3: an image carries its coverage (alpha)
 // Native byte order and the sizes of the records copied whole: a file of another
 // machine or build reads as "another format", never as garbage.
 constexpr uint32_t kLayout = 0x01020304u;
@@ -47,6 +47,8 @@ struct Writer {
     put<int32_t>(im.width);
     put<int32_t>(im.height);
     raw(im.pixels.data(), im.pixels.size() * sizeof(Color));
+    put<uint8_t>(im.coverage.empty() ? 0 : 1);
+    raw(im.coverage.data(), im.coverage.size() * sizeof(float));
   }
 };
 
@@ -73,13 +75,18 @@ struct Reader {
     at += n;
     return s;
   }
-  // An image of width x height, or an empty one (a half the passes have not reached yet).
+  // An image of width x height, or an empty one (a half the passes have not reached yet),
+  // with its coverage when it has one.
   bool image(Image& im, int width, int height) {
     const int w = get<int32_t>(), h = get<int32_t>();
-    if (w == 0 && h == 0) return true;
+    if (w == 0 && h == 0) return get<uint8_t>() == 0;
     if (w != width || h != height) return false;
     im = Image(w, h);
     raw(im.pixels.data(), im.pixels.size() * sizeof(Color));
+    if (get<uint8_t>() != 0) {
+      im.coverage.resize(im.pixels.size());
+      raw(im.coverage.data(), im.coverage.size() * sizeof(float));
+    }
     return true;
   }
 };

@@ -20,6 +20,12 @@ namespace {
 // Depth and normals carry no light (core/view.h's rule).
 bool geometric(Aov aov) { return !readsLight(aov); }
 
+// Geometric views always keep their coverage; views of light keep it when the
+// background is transparent (then their files carry A = coverage).
+bool keepsCoverage(const ShadingContext& ctx, Aov aov) {
+  return geometric(aov) || ctx.scene.render.transparentBackground;
+}
+
 // A geometric view's sample that hit nothing: no depth is -2 and no normal has r = -2,
 // so the pixel's mean can leave it out and count it against the coverage instead.
 constexpr float kNoHit = -2.0f;
@@ -28,10 +34,14 @@ constexpr float kNoHit = -2.0f;
 // read light; here the physical values for depth (distance along the camera ray) and
 // normal (world-space shading normal, facing the ray), which writers map for display
 // (io/aov_display.h). `hit`: the ray's first hit, already traced (alone or in a
-// packet); null on a miss.
+// packet); null on a miss. A transparent background makes a miss 0 after the
+// integrator ran, so the ray counts stay those of the opaque render.
 Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov aov, ThreadState& ts) {
   ts.raysLeft = kMaxRaysPerSample;
-  if (!geometric(aov)) return ctx.choices.integrator->sample(ctx, ray, hit, aov, ts);
+  if (!geometric(aov)) {
+    const Color c = ctx.choices.integrator->sample(ctx, ray, hit, aov, ts);
+    return hit || !ctx.scene.render.transparentBackground ? c : Color(0.0f);
+  }
   ++ts.counts.camera;
   if (!hit) return Color(kNoHit);
   if (aov == Aov::Depth) return Color(hit->t);
@@ -40,16 +50,17 @@ Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov
 
 
 // A pixel's running sums: all its samples, and those of sequence B (odd samples of
-// one pass), in double: many finite samples near float's top cannot overflow.
+// one pass), in double: many finite samples near float's top cannot overflow; and
+// how many of the samples counted hit geometry.
 struct PixelSums {
   glm::dvec3 sum{0.0}, oddSum{0.0};
-  int counted = 0, oddCounted = 0;
+  int counted = 0, oddCounted = 0, hits = 0;
 
   // One sample in. A NaN or Inf sample would poison the pixel (or be written as 0 and
   // hide): drop it, count it, and let the pixel's other samples stand. Geometric views
   // average only the samples that hit: a miss is "no depth", not 0 m, and its share
   // of the pixel is the coverage.
-  void add(const Color& c, Aov aov, bool odd, ThreadState& ts) {
+  void add(const Color& c, Aov aov, bool odd, bool hit, ThreadState& ts) {
     if (!isFinite(c)) {
       ++ts.counts.nonfiniteSamples;
       return;
@@ -57,6 +68,7 @@ struct PixelSums {
     if (geometric(aov) && c.r == kNoHit) return;
     sum += glm::dvec3(c);
     ++counted;
+    hits += hit ? 1 : 0;
     if (odd) {
       oddSum += glm::dvec3(c);
       ++oddCounted;
@@ -76,11 +88,15 @@ struct PixelSums {
 };
 
 // A mean above float range is clamped to it (the writer clamps further). A pixel with
-// no sample counted is 0: black, or for a geometric view "no hit" (coverage 0).
+// no sample counted is 0: black, or for a geometric view "no hit" (coverage 0). A view
+// of light's coverage is over the same samples as its colour, so the colour is
+// premultiplied by it exactly (a miss adds 0 to the colour and nothing to the hits).
 void storePixel(const PixelSums& p, Aov aov, int spp, size_t index, Image& image, Image* standardError) {
   const double top = std::numeric_limits<float>::max();
   image.pixels[index] = p.counted > 0 ? Color(glm::min(p.sum / double(p.counted), glm::dvec3(top))) : Color(0.0f);
   if (geometric(aov)) image.coverage[index] = static_cast<float>(p.counted) / static_cast<float>(spp);
+  else if (!image.coverage.empty() && p.counted > 0)
+    image.coverage[index] = static_cast<float>(double(p.hits) / double(p.counted));
   if (standardError) standardError->pixels[index] = p.standardError();
 }
 
@@ -160,7 +176,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
       ts.knownShadows = b.known[i];
       ts.blockedShadows = b.blocked[i];
       const Hit* hit = b.hits[i].valid() ? &b.hits[i] : nullptr;
-      b.sums[i].add(shadeTraced(ctx, b.rays[i], hit, aov, ts), aov, s % 2 == 1, ts);
+      b.sums[i].add(shadeTraced(ctx, b.rays[i], hit, aov, ts), aov, s % 2 == 1, hit != nullptr, ts);
     }
   }
   ts.knownShadows = ts.blockedShadows = 0;
@@ -184,10 +200,8 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   CameraRays camera(cam);
   Image image(cam.width, cam.height);
   if (options.standardError) *options.standardError = Image(cam.width, cam.height);
-  if (geometric(options.aov)) {
-    image.content = options.aov == Aov::Depth ? ImageContent::Depth : ImageContent::Normal;
-    image.coverage.assign(image.pixels.size(), 0.0f);
-  }
+  if (geometric(options.aov)) image.content = options.aov == Aov::Depth ? ImageContent::Depth : ImageContent::Normal;
+  if (keepsCoverage(ctx, options.aov)) image.coverage.assign(image.pixels.size(), 0.0f);
   const int tile = options.tileSize;
   const int tilesX = (cam.width + tile - 1) / tile, tilesY = (cam.height + tile - 1) / tile;
   const int numTiles = tilesX * tilesY;
@@ -223,8 +237,11 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
             for (int s = 0; s < cam.spp; ++s) {
               const CameraSample cs = cameraSample(ctx, pixel, s);
               beginSample(ts, cs.key);
-              Color c = shadeCameraRay(ctx, camera.generate(x + cs.offset.x, y + cs.offset.y), options.aov, ts);
-              sums.add(c, options.aov, s % 2 == 1, ts);
+              const Ray ray = camera.generate(x + cs.offset.x, y + cs.offset.y);
+              Hit hit;
+              const bool found = ctx.tracer.intersect(ray, hit);
+              const Color c = shadeTraced(ctx, ray, found ? &hit : nullptr, options.aov, ts);
+              sums.add(c, options.aov, s % 2 == 1, found, ts);
             }
             storePixel(sums, options.aov, cam.spp, static_cast<size_t>(pixel), image, options.standardError);
           }

@@ -1,6 +1,7 @@
 // The tile-parallel image loop: camera rays, stratified samples per pixel, and
 // the depth/normal/indirect views (depth and normal as physical values, with
-// their coverage). Deterministic for any thread count.
+// their coverage; views of light with theirs over a transparent background).
+// Deterministic for any thread count.
 #pragma once
 #include "core/image.h"
 #include "core/pixel_bounds.h"
