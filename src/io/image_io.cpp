@@ -58,6 +58,14 @@ float toFloatFinite(float value) {
 
 bool geometric(const Image& image) { return image.content != ImageContent::Radiance; }
 
+// PNG alpha is straight and linear (the PNG specification): light over a transparent
+// background (which carries coverage) is unpremultiplied before its display transform;
+// a pixel no sample hit is (0, 0, 0, 0). Depth and normal PNGs stay pictures, RGB.
+bool pngAlpha(const Image& image) { return !geometric(image) && !image.coverage.empty(); }
+uint8_t toAlpha8(float coverage) {
+  return static_cast<uint8_t>(std::floor(std::clamp(coverage, 0.0f, 1.0f) * 255.0f + 0.5f));
+}
+
 // One EXR layer: its channel-name prefix ("" for a plain RGB file) and its image.
 struct ExrLayer {
   std::string name;
@@ -198,10 +206,15 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
   const void* pixels = nullptr;
   if (encoding == Encoding::Srgb8) {
     const Image shown = aovDisplay(image);  // depth and normals as pictures; radiance as is
-    const size_t count = shown.pixels.size() * 3;
+    const int channels = pngAlpha(image) ? 4 : 3;
+    const size_t count = shown.pixels.size() * channels;
     spec.width = image.width;
     spec.height = image.height;
-    spec.nchannels = 3;
+    spec.nchannels = channels;
+    if (channels == 4) {
+      spec.alphaChannel = 3;
+      setAttribute(spec, "oiio:UnassociatedAlpha", "1");  // as given, not divided again
+    }
     spec.fileType = spec.given = PixelType::UInt8;
     setAttribute(spec, "oiio:ColorSpace", "sRGB");
     // Only when asked for: a default PNG keeps today's bytes, metadata included.
@@ -210,8 +223,12 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
       spec.attributes.push_back({"penumbra:exposure", "", display.exposure, true});
     }
     bytes.resize(count);
-    for (size_t i = 0; i < shown.pixels.size(); ++i)
-      for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = toSrgb8(displayValue(shown.pixels[i][c], display));
+    for (size_t i = 0; i < shown.pixels.size(); ++i) {
+      const float a = channels == 4 ? image.coverage[i] : 1.0f;
+      uint8_t* out = &bytes[i * channels];
+      for (int c = 0; c < 3; ++c) out[c] = a > 0.0f ? toSrgb8(displayValue(shown.pixels[i][c] / a, display)) : 0;
+      if (channels == 4) out[3] = toAlpha8(a);
+    }
     pixels = bytes.data();
   } else {
     spec = exrSpec({{"", &image}}, floats);

@@ -51,6 +51,7 @@ void addSettings(const Scene& scene, const RenderPlan& plan, const RenderStats& 
   add("packets", onOff(choices.packets));
   auto rgb = [](const Color& c) { return fmt::format("{} {} {}", c.r, c.g, c.b); };
   add("background", rgb(rs.background));
+  if (rs.transparentBackground) add("transparent_background", "on");  // absent: off, the header as before
   add("photons.shadow", budgets[MapKind::Shadow]);
   add("photons.k_shadow", ps.kShadow);
   transportOf(scene).addModelSettings(scene, budgets, stats, m);
