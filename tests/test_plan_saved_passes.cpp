@@ -1,6 +1,6 @@
 // The passes file: what is saved is what is loaded, bit for bit (the spread's moments
-// continue exactly where they stopped); any other identity, pass count or size, and
-// every truncation, is refused with its reason.
+// continue exactly where they stopped; a sum's coverage comes back with it); any
+// other identity, pass count or size, and every truncation, is refused with its reason.
 #include "plan/saved_passes.h"
 #include "support/scratch_dir.h"
 #include <gtest/gtest.h>
@@ -79,6 +79,20 @@ TEST(SavedPasses, WhatIsSavedIsLoadedBitForBitAndContinuesTheSpread) {
   EXPECT_EQ(a.biasHalf, b.biasHalf);
   EXPECT_GT(b.biasHalf, 0);
   EXPECT_TRUE(sameImage(whole.standardError(), resumed.standardError()));
+}
+
+TEST(SavedPasses, ASumsCoverageIsLoadedBitForBit) {
+  const ScratchDir dir;
+  const std::string path = (dir / "out.exr.passes").string();
+  SavedPasses s = threePasses();
+  s.sum.coverage = {0.0f, 1.0f, 2.5f, 0.125f, 3.0f, 1.0f, 0.0f, 0.75f, 1.5f, 2.0f, 0.0f, 3.0f, 1.0f, 0.5f, 2.25f};
+  savePasses(path, s);
+  std::string why;
+  const std::optional<SavedPasses> back = loadPasses(path, s.identity, 12, 5, 3, why);
+  ASSERT_TRUE(back) << why;
+  EXPECT_TRUE(sameImage(back->sum, s.sum));
+  EXPECT_EQ(back->sum.coverage, s.sum.coverage);
+  EXPECT_TRUE(back->spread.even.coverage.empty()) << "an image without coverage stays without";
 }
 
 TEST(SavedPasses, AnotherJobPassCountOrSizeIsRefusedWithItsReason) {

@@ -133,6 +133,24 @@ TEST_F(Resume, AfterAnyPassTheResumedImageIsTheUninterruptedOnesBytes) {
   }
 }
 
+// Coverage is summed over the passes as the colour is: a transparent frame (wide enough
+// to see past the box) resumed after a pass writes the uninterrupted one's RGBA.
+TEST_F(Resume, ATransparentFrameResumesToTheSameRgba) {
+  const std::vector<std::string> clear = {"-D", "render.transparent_background=true", "-D", "camera.fov=90"};
+  for (const char* ext : {".exr", ".png"}) {
+    SCOPED_TRACE(ext);
+    const ScratchDir refDir;  // apart: interrupt() expects its folder to hold the passes file alone
+    const fs::path ref = refDir / (std::string("ref") + ext), out = dir / (std::string("frame") + ext);
+    ASSERT_EQ(run(render(ref, clear)).exitCode(), 0);
+    interrupt(out, 4, clear);
+    const Outcome r = run(render(out, clear));
+    ASSERT_EQ(r.exitCode(), 0) << r.err;
+    EXPECT_EQ(occurrences(r.err, "resumed at pass 5 of 12"), 1u) << r.err;
+    EXPECT_TRUE(bytesOf(out) == bytesOf(ref)) << "the resumed image differs";
+    fs::remove(out);
+  }
+}
+
 // Where a pass's maps and lookups come from differs by model: the classic model's
 // passes read pass 0's maps and precomputed lookups, the gate's shadow photons (and
 // their KD-trees) are pass 0's in both; a resumed frame builds them itself.
@@ -206,7 +224,7 @@ TEST_F(Resume, ACorruptOrTruncatedPassesFileIsNotUsed) {
 
 // Settings outside the photon key (the size, a gather's k) belong to the job too.
 TEST_F(Resume, PassesOfAnotherSettingAreNotUsed) {
-  for (const char* other : {"camera.width=20", "photons.k_global=60"}) {
+  for (const char* other : {"camera.width=20", "photons.k_global=60", "render.transparent_background=true"}) {
     SCOPED_TRACE(other);
     interrupt(dir / "frame.exr", 5, {"-D", other});
     resumeWithout("saved by another job or setting");
