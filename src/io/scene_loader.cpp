@@ -79,7 +79,8 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
     }
   }
   Scene scene;
-  if (model.camera) scene.camera = *model.camera;
+  const GltfCamera* camera = chooseGltfCamera(model.cameras, options.camera, modelPath.empty() ? context.file : modelPath);
+  if (camera) scene.camera = camera->camera;
   scene.file = context.file;
   // The settings file first (the sidecar of a glTF scene), then the model's files.
   if (!context.file.empty() && context.file != "<scene>" && context.file != "<stdin>") scene.inputs.push_back(context.file);
@@ -92,7 +93,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   }
   static const json kNoCamera = json::object();
   if (root.has("camera")) {
-    readCamera(root.child("camera"), scene.camera, model.aspect);  // overrides the model's camera key by key
+    readCamera(root.child("camera"), scene.camera, camera ? camera->aspect : 0.0);  // overrides the model's camera key by key
   } else if (!modelPath.empty()) {
     readCamera(JsonNode(kNoCamera, "camera", context), scene.camera);  // checks the model's camera
   }
@@ -110,9 +111,11 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   if (root.has("environment")) readEnvironment(root.child("environment"), scene);
   if (!modelPath.empty()) {
     // A camera the user placed (the model's, or position / look_at beside it) is kept.
-    const bool placed = model.camera || (root.has("camera") && (root.child("camera").has("position") ||
-                                                                root.child("camera").has("look_at")));
-    addSceneDefaults(modelPath, !placed, options.defaults, scene);
+    const bool placed = camera || (root.has("camera") && (root.child("camera").has("position") ||
+                                                          root.child("camera").has("look_at")));
+    addSceneDefaults(modelPath, !placed, options.defaults, scene, options.camera == "auto");
+  } else if (options.camera == "auto") {
+    frameCamera(context.file, true, scene);  // a JSON scene framed on what it holds
   }
   checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
@@ -190,6 +193,13 @@ Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
 }
 
 }  // namespace
+
+std::vector<std::string> LoadOptions::flags() const {
+  std::vector<std::string> out;
+  if (!defaults) out.push_back("--no-defaults");
+  if (!camera.empty()) out.push_back("--camera " + camera);
+  return out;
+}
 
 Scene parseScene(const std::string& jsonText, const std::string& fileName,
                  const std::vector<std::string>& overrides, const LoadLimits& limits) {
