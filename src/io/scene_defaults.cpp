@@ -73,7 +73,7 @@ Camera frameSphere(const Camera& camera, const BoundingSphere& sphere) {
 
 void frameCamera(const std::string& file, bool asked, Scene& scene) {
   const std::string why = asked ? "--camera auto" : "no camera";
-  const std::string keep = asked ? "the file's cameras: --camera NAME|INDEX" : "--no-defaults keeps the file as it is";
+  const std::string keep = asked ? "--camera NAME|INDEX picks one of the file's" : "--no-defaults keeps the file as it is";
   const Camera c = frameSphere(scene.camera, sceneSphere(scene));
   const CameraProblem problem = cameraProblem(c);
   if (!problem.message.empty()) {

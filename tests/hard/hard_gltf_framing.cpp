@@ -118,5 +118,22 @@ TEST(HardGltfFraming, EveryCommandRefusesACameraTheFileLacksInOneLine) {
   }
 }
 
+// A batch's outputs remember the camera choice: another --camera renders them again.
+TEST(HardGltfFraming, BatchOutputsMadeWithAnotherCameraAreStale) {
+  const ScratchDir dir;
+  writeSphere(dir, true);
+  const fs::path jobs = dir.write("jobs.json", R"({"set": ["camera.width=16", "camera.height=12"],
+      "jobs": [{"scene": "cameras.glb", "output": "o.png"}]})");
+  const std::pair<const char*, const char*> runs[] = {{"", "1 rendered, 0 up to date"},
+                                                      {" --camera auto", "1 rendered, 0 up to date"},
+                                                      {" --camera auto", "0 rendered, 1 up to date"},
+                                                      {" --camera far", "1 rendered, 0 up to date"}};
+  for (const auto& [pick, said] : runs) {
+    const CliResult r = runCli("batch" + std::string(pick) + " " + quote(jobs.string()));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(occurrences(r.err, said), 1u) << pick << "\n" << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace penumbra::hard
