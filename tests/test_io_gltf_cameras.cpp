@@ -70,7 +70,9 @@ TEST(GltfCameras, AutoFramesTheModelOverTheFilesCameras) {
   EXPECT_TRUE(s.load.framedCamera);
   EXPECT_EQ(s.camera.lookAt, Vec3(0.5f));
   EXPECT_EQ(std::count_if(s.load.notes.begin(), s.load.notes.end(),
-                          [](const std::string& n) { return n.find(": --camera auto; one frames the model from [") != std::string::npos; }),
+                          [](const std::string& n) {
+                            return n.find(": --camera auto; one frames the model from [") != std::string::npos;
+                          }),
             1);
   // A JSON scene is framed on what it holds: a unit sphere at (2, 0, 0).
   dir.write("plain.json", R"({"objects": [{"type": "sphere", "center": [2, 0, 0], "radius": 1}]})");
@@ -83,13 +85,17 @@ TEST(GltfCameras, AutoFramesTheModelOverTheFilesCameras) {
 TEST(GltfCameras, ANameOrIndexTheFileLacksIsOneLineListingItsCameras) {
   const ScratchDir dir;
   const fs::path file = writeModel(dir);
-  const std::string list = "; the file's cameras: 0 \"front\" (node \"FrontNode\"), 1 (node \"SideNode\"), "
-                           "2 \"spare\" (no node places it)";
+  const std::string list =
+      "; the file's cameras: 0 \"front\" (node \"FrontNode\"), 1 (node \"SideNode\"), "
+      "2 \"spare\" (no node places it)";
   EXPECT_EQ(refusal(file, "3"), file.string() + ": --camera 3: no camera 3" + list);
-  EXPECT_EQ(refusal(file, "99999999999999999999"), file.string() + ": --camera 99999999999999999999: no camera "
-                                                                   "99999999999999999999" + list);
+  EXPECT_EQ(refusal(file, "99999999999999999999"), file.string() +
+                                                       ": --camera 99999999999999999999: no camera "
+                                                       "99999999999999999999" +
+                                                       list);
   EXPECT_EQ(refusal(file, "back"), file.string() + ": --camera back: no camera named \"back\"" + list);
-  EXPECT_EQ(refusal(file, "spare"), file.string() + ": --camera spare: cameras[2]: no node of the scene places it" + list);
+  EXPECT_EQ(refusal(file, "spare"),
+            file.string() + ": --camera spare: cameras[2]: no node of the scene places it" + list);
   dir.write("plain.json", R"({"objects": [{"type": "sphere", "center": [2, 0, 0], "radius": 1}]})");
   EXPECT_EQ(refusal(dir / "plain.json", "0"), (dir / "plain.json").string() +
                                                   ": --camera 0: no camera 0; the file has no cameras (--camera auto "

@@ -54,7 +54,8 @@ void placeGltfCamera(const tinygltf::Model& m, int index, int node, const glm::d
   }
   GltfCamera& out = cameras[index];
   if (out.order >= 0) return;
-  out.order = static_cast<int>(std::count_if(cameras.begin(), cameras.end(), [](const GltfCamera& c) { return c.order >= 0; }));
+  out.order = static_cast<int>(
+      std::count_if(cameras.begin(), cameras.end(), [](const GltfCamera& c) { return c.order >= 0; }));
   out.nodeName = m.nodes[node].name;
   const std::string camera = "cameras[" + std::to_string(index) + "]";
   if (!out.used) return;

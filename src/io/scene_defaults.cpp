@@ -73,12 +73,14 @@ Camera frameSphere(const Camera& camera, const BoundingSphere& sphere) {
 
 void frameCamera(const std::string& file, bool asked, Scene& scene) {
   const std::string why = asked ? "--camera auto" : "no camera";
-  const std::string keep = asked ? "--camera NAME|INDEX picks one of the file's" : "--no-defaults keeps the file as it is";
+  const std::string keep =
+      asked ? "--camera NAME|INDEX picks one of the file's" : "--no-defaults keeps the file as it is";
   const Camera c = frameSphere(scene.camera, sceneSphere(scene));
   const CameraProblem problem = cameraProblem(c);
   if (!problem.message.empty()) {
+    const std::string instead = asked ? "one of the file's cameras" : "--no-defaults";
     throw InputError(file + ": " + why + ", and one framing its bounds fails: camera." + problem.key + ": " +
-                     problem.message + " (give a camera in a JSON beside it, or use " + (asked ? "one of the file's" : "--no-defaults") + ")");
+                     problem.message + " (give a camera in a JSON beside it, or use " + instead + ")");
   }
   scene.camera = c;
   scene.load.framedCamera = true;

@@ -79,7 +79,8 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
     }
   }
   Scene scene;
-  const GltfCamera* camera = chooseGltfCamera(model.cameras, options.camera, modelPath.empty() ? context.file : modelPath);
+  const std::string& source = modelPath.empty() ? context.file : modelPath;
+  const GltfCamera* camera = chooseGltfCamera(model.cameras, options.camera, source);  // --camera
   if (camera) scene.camera = camera->camera;
   scene.file = context.file;
   // The settings file first (the sidecar of a glTF scene), then the model's files.
@@ -93,7 +94,8 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   }
   static const json kNoCamera = json::object();
   if (root.has("camera")) {
-    readCamera(root.child("camera"), scene.camera, camera ? camera->aspect : 0.0);  // overrides the model's camera key by key
+    // Overrides the model's camera key by key.
+    readCamera(root.child("camera"), scene.camera, camera ? camera->aspect : 0.0);
   } else if (!modelPath.empty()) {
     readCamera(JsonNode(kNoCamera, "camera", context), scene.camera);  // checks the model's camera
   }
@@ -210,7 +212,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
                 const LoadOptions& options) {
   // "-": the JSON comes from stdin; relative paths in it resolve against the working folder.
   if (path == "-") {
-    return parseScene(readSceneText(std::cin, "<stdin>"), "<stdin>", overrides, limits);
+    LoadOptions once = options;  // --camera applies; nothing read for it is kept for later loads
+    once.cache = nullptr;
+    return parseSceneWith(readSceneText(std::cin, "<stdin>"), "<stdin>", overrides, "", limits, once);
   }
   // Read through the cache, where there is one: the text is read once per process.
   auto text = [&](const std::string& file) {

@@ -77,12 +77,15 @@ double centreDepth(const fs::path& exr) {
 TEST(HardGltfFraming, CameraPicksTheFilesCamerasOrFramesTheModel) {
   const ScratchDir dir;
   const fs::path model = writeSphere(dir, true), exr = dir / "depth.exr";
-  const std::string render = "render " + quote(model.string()) + " --aov depth -D camera.width=33 -D camera.height=25 -o " +
-                             quote(exr.string());
+  const std::string render = "render " + quote(model.string()) +
+                             " --aov depth -D camera.width=33 -D camera.height=25 -o " + quote(exr.string());
   // The sphere's near side is 1.5 before its centre: 4.5 from "front", 8.5 from "far"
   // (a vertex of the tessellation faces each camera).
-  for (const auto& [pick, expected] : {std::pair<std::string, double>{"", 4.5}, {" --camera 0", 4.5},
-                                       {" --camera front", 4.5}, {" --camera 1", 8.5}, {" --camera far", 8.5}}) {
+  for (const auto& [pick, expected] : {std::pair<std::string, double>{"", 4.5},
+                                       {" --camera 0", 4.5},
+                                       {" --camera front", 4.5},
+                                       {" --camera 1", 8.5},
+                                       {" --camera far", 8.5}}) {
     const CliResult r = runCli(render + pick);
     ASSERT_EQ(r.exitCode, 0) << pick << r.err;
     EXPECT_NEAR(centreDepth(exr), expected, 0.01) << pick;
@@ -93,7 +96,21 @@ TEST(HardGltfFraming, CameraPicksTheFilesCamerasOrFramesTheModel) {
   const CliResult r = runCli(render + " --camera auto");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NEAR(centreDepth(exr), 1.5 * std::sqrt(1.0 + 1.0 / std::pow(0.9 * std::tan(M_PI / 8.0), 2)) - 1.5, 0.01);
-  EXPECT_EQ(occurrences(r.err, "note: " + model.string() + ": --camera auto; one frames the model from ["), 1u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "note: " + model.string() + ": --camera auto; one frames the model from ["), 1u)
+      << r.err;
+}
+
+// auto on a JSON scene, read from stdin: an exact sphere of radius 2 about (0, 1, 0)
+// is framed as the model is, its near side r sqrt(1 + 1/t^2) - r from the eye.
+TEST(HardGltfFraming, AutoFramesAJsonSceneFromStdinToo) {
+  const ScratchDir dir;
+  const fs::path scene = dir.write("ball.json", R"({"camera": {"width": 33, "height": 25},
+      "objects": [{"type": "sphere", "center": [0, 1, 0], "radius": 2}]})"),
+                 exr = dir / "depth.exr";
+  const CliResult r = runShell(quote(PENUMBRA_BINARY) + " render - --camera auto --aov depth -o " + quote(exr.string()) +
+                               " < " + quote(scene.string()));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NEAR(centreDepth(exr), 2.0 * std::sqrt(1.0 + 1.0 / std::pow(0.9 * std::tan(M_PI / 8.0), 2)) - 2.0, 1e-4);
 }
 
 TEST(HardGltfFraming, EveryCommandRefusesACameraTheFileLacksInOneLine) {
@@ -102,9 +119,9 @@ TEST(HardGltfFraming, EveryCommandRefusesACameraTheFileLacksInOneLine) {
   const std::string m = quote(model.string());
   dir.write("jobs.json", R"({"jobs": [{"scene": "cameras.glb", "output": "o.png"}]})");
   const std::string line = model.string() + ": --camera 5: no camera 5; the file's cameras: 0 \"front\", 1 \"far\"\n";
-  for (const std::string& command : {"render " + m + " -o " + quote(out.string()),
-                                     "sweep " + m + " --spp 1,2 -o " + quote((dir / "sweep").string()),
-                                     "batch " + quote((dir / "jobs.json").string()), "plan " + m, "check " + m}) {
+  for (const std::string& command :
+       {"render " + m + " -o " + quote(out.string()), "sweep " + m + " --spp 1,2 -o " + quote((dir / "sweep").string()),
+        "batch " + quote((dir / "jobs.json").string()), "plan " + m, "check " + m}) {
     const CliResult r = runCli(command + " --camera 5");
     EXPECT_EQ(r.exitCode, 2) << command << "\n" << r.err;
     EXPECT_NE(r.err.find(line), std::string::npos) << command << "\n" << r.err;
