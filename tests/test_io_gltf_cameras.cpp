@@ -102,5 +102,23 @@ TEST(GltfCameras, ANameOrIndexTheFileLacksIsOneLineListingItsCameras) {
                                                   "frames the model)");
 }
 
+// A camera the checks refuse as placed (beyond 1e15) is refused only when used: by
+// default, as before, in the glTF file's words; auto or another camera loads.
+TEST(GltfCameras, ACameraThatFailsTheChecksIsRefusedOnlyWhenUsed) {
+  const ScratchDir dir;
+  tinygltf::Model m = testing::emptyGltf();
+  const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  testing::addSceneNode(m, testing::addBoxMesh(m, lo, hi));
+  testing::addCameraNode(m, 0.6, {0, 0, 1e16});
+  testing::addCameraNode(m, 0.6, {0.5, 0.5, 6});
+  const fs::path file = dir.path() / "far.glb";
+  ASSERT_TRUE(testing::writeGltfFile(m, file.string(), true));
+  const std::string why = refusal(file, "");
+  EXPECT_EQ(why.rfind("glTF file " + file.string() + ": cameras[0] (as placed by its node): position: ", 0), 0u) << why;
+  EXPECT_NE(refusal(file, "0").find(": --camera 0: cameras[0] (as placed by its node): position: "), std::string::npos);
+  EXPECT_TRUE(load(file, "auto").load.framedCamera);
+  EXPECT_EQ(load(file, "1").camera.position, Vec3(0.5f, 0.5f, 6.0f));
+}
+
 }  // namespace
 }  // namespace penumbra
