@@ -1,5 +1,5 @@
-// A glTF scene that frames and lights itself: a model without a camera gets one that
-// sees every corner of its bounds, a model without a light a neutral sky, each with
+// A glTF scene that frames and lights itself: a model without a camera gets one whose
+// image its bounding sphere fills to 90% of the smaller side, a model without a light a neutral sky, each with
 // one note; LoadOptions{false} (--no-defaults) keeps the file as it is, and a camera
 // or light the user gave is never replaced. Models are written with tinygltf's writer.
 #include "core/camera_frame.h"
@@ -48,10 +48,10 @@ Projected project(const Camera& c, const Vec3& p) {
           depth};
 }
 
-TEST(SceneDefaults, ACameraLessModelIsFramedWithEveryCornerOfItsBoundsInTheImage) {
+TEST(SceneDefaults, ACameraLessModelIsFramedWithItsBoundingSphereFillingTheSmallerSide) {
   const ScratchDir dir;
   // A wide flat slab off the origin, a tall post, a small (8 cm) model; several image
-  // shapes and fields of view, the fov and image size kept as given.
+  // shapes (landscape, portrait) and fields of view, the fov and image size kept as given.
   struct Case {
     Vec3 lo, hi;
     const char* camera;
@@ -69,28 +69,70 @@ TEST(SceneDefaults, ACameraLessModelIsFramedWithEveryCornerOfItsBoundsInTheImage
     EXPECT_EQ(c.height, given["height"].get<int>());
     EXPECT_FLOAT_EQ(c.fovY, given.value("fov", 45.0f));
     EXPECT_EQ(c.up, Vec3(0, 1, 0));
-    const Vec3 centre = 0.5f * (k.lo + k.hi);
-    EXPECT_LT(glm::length(c.lookAt - centre), 1e-5f * glm::length(centre) + 1e-6f);
+    // A box's smallest enclosing ball is its circumsphere: centre and half diagonal.
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(k.lo) + glm::dvec3(k.hi));
+    const double radius = 0.5 * glm::length(glm::dvec3(k.hi) - glm::dvec3(k.lo));
+    EXPECT_LT(glm::length(glm::dvec3(c.lookAt) - centre), 1e-6 * glm::length(centre) + 1e-7);
     // A three-quarter view from +z, turned towards +x and a little above.
     EXPECT_GT(c.position.z, centre.z);
     EXPECT_GT(c.position.x, centre.x);
     EXPECT_GT(c.position.y, centre.y);
-    // Every corner in front of the camera and inside the image with the margin
-    // (float rounding of the camera: 1e-4 of the half-extent), and the model
-    // filling the frame: the outermost corner within 1e-3 of the margin's edge.
-    double outermost = 0.0;
+    // The sphere's silhouette, the cone of half-angle asin(r / d), on the image plane:
+    // a circle of radius tan of it, 90% of the smaller half-extent (1e-4: float camera).
+    const double d = glm::length(glm::dvec3(c.position) - centre);
+    const double silhouette = std::tan(std::asin(radius / d));
+    const double half = std::tan(0.5 * double(c.fovY) * M_PI / 180.0) * std::min(1.0, double(c.width) / c.height);
+    EXPECT_NEAR(silhouette / half, 0.9, 1e-4);
+    EXPECT_DOUBLE_EQ(kFrameFill, 0.9);
+    // So every corner (on the sphere) is in front of the camera and inside the image.
     for (int i = 0; i < 8; ++i) {
       const Vec3 corner((i & 1) ? k.hi.x : k.lo.x, (i & 2) ? k.hi.y : k.lo.y, (i & 4) ? k.hi.z : k.lo.z);
       const Projected p = project(c, corner);
       EXPECT_GT(p.depth, 0.0);
-      EXPECT_LE(std::fabs(p.x), kFrameFill + 1e-4) << "corner " << i;
-      EXPECT_LE(std::fabs(p.y), kFrameFill + 1e-4) << "corner " << i;
-      outermost = std::max({outermost, std::fabs(p.x), std::fabs(p.y)});
+      EXPECT_LE(std::fabs(p.x), 1.0) << "corner " << i;
+      EXPECT_LE(std::fabs(p.y), 1.0) << "corner " << i;
     }
-    EXPECT_NEAR(outermost, kFrameFill, 1e-3);
     EXPECT_TRUE(s.load.noCamera && s.load.framedCamera);
     EXPECT_EQ(notesWith(s, file.string() + ": no camera; one frames the model from ["), 1u);
   }
+}
+
+// Points on a sphere: the enclosing ball is that sphere (Ritter's ball on a round
+// model); a cloud in a box: every point inside, within 20% of half the largest
+// pairwise distance (a lower bound on the minimal radius, by brute force); balls count
+// with their radius; nothing gives an empty ball.
+TEST(SceneDefaults, TheBoundingSphereEnclosesEveryItemAndHugsRoundModels) {
+  std::vector<glm::dvec3> round;
+  const glm::dvec3 at(3, -2, 5);
+  for (int i = 0; i < 2000; ++i) {  // a Fibonacci lattice on the unit sphere
+    const double z = 1.0 - (2.0 * i + 1.0) / 2000.0, phi = i * M_PI * (3.0 - std::sqrt(5.0));
+    round.push_back(at + glm::dvec3(std::sqrt(1.0 - z * z) * std::cos(phi), std::sqrt(1.0 - z * z) * std::sin(phi), z));
+  }
+  auto over = [](const std::vector<glm::dvec3>& points, double r) {
+    return [&points, r](const auto& f) {
+      for (const glm::dvec3& p : points) f(p, r);
+    };
+  };
+  BoundingSphere s = boundingSphere(over(round, 0.0));
+  EXPECT_NEAR(s.radius, 1.0, 2e-3);
+  EXPECT_LT(glm::length(s.centre - at), 2e-3);
+  for (const glm::dvec3& p : round) EXPECT_LE(glm::length(p - s.centre), s.radius);
+
+  std::vector<glm::dvec3> cloud;
+  uint32_t state = 12345;
+  auto next = [&] { return (state = state * 1664525u + 1013904223u) / 4294967296.0; };
+  for (int i = 0; i < 300; ++i) cloud.push_back({4.0 * next(), next(), 2.0 * next()});
+  s = boundingSphere(over(cloud, 0.0));
+  double diameter = 0.0;
+  for (const glm::dvec3& p : cloud) {
+    EXPECT_LE(glm::length(p - s.centre), s.radius);
+    for (const glm::dvec3& q : cloud) diameter = std::max(diameter, glm::length(p - q));
+  }
+  EXPECT_LE(s.radius, 1.2 * 0.5 * diameter);
+  // The same cloud as balls of radius 0.5: each ball inside.
+  s = boundingSphere(over(cloud, 0.5));
+  for (const glm::dvec3& p : cloud) EXPECT_LE(glm::length(p - s.centre) + 0.5, s.radius);
+  EXPECT_TRUE(boundingSphere(over({}, 0.0)).empty());
 }
 
 TEST(SceneDefaults, ALightlessModelGetsANeutralSkyAndOneNote) {

@@ -10,10 +10,16 @@
 namespace penumbra {
 namespace {
 
-void addDefaultsOption(CLI::App& command, bool& noDefaults) {
-  command.add_flag("--no-defaults", noDefaults,
+void addDefaultsOption(CLI::App& command, PlanArgs& args) {
+  command.add_flag("--no-defaults", args.noDefaults,
                    "Load a .gltf/.glb scene as it is: no camera framing a model that has none, no neutral sky "
                    "for a model without lights");
+  command.add_option("--camera", args.camera,
+                     "auto: frame the model (its bounding sphere fills 90% of the image's smaller side) even when "
+                     "the file has cameras; NAME or INDEX (0-based, as in the glTF file's \"cameras\"): use that "
+                     "camera (default: the file's first camera, else framed)")
+      ->type_name("auto|NAME|INDEX")
+      ->check(CLI::Validator([](std::string& v) { return v.empty() ? std::string("must not be empty") : ""; }, ""));
 }
 
 void addPlanOptions(CLI::App& command, PlanArgs& args) {
@@ -26,7 +32,7 @@ void addPlanOptions(CLI::App& command, PlanArgs& args) {
   command.add_option("--gate", args.gate, "The shadow gate: on, off or auto (default: the scene's photons.gate, else auto)")
       ->check(CLI::IsMember({"on", "off", "auto"}));
   command.add_flag("--no-gate", args.noGate, "Cast every shadow ray instead of asking the shadow photon map (--gate off)");
-  addDefaultsOption(command, args.noDefaults);
+  addDefaultsOption(command, args);
 }
 
 // A budget value as checkBudget takes it; an empty one is a mistake, not "no budget".
@@ -143,7 +149,7 @@ void addSessionOptions(CLI::App& command, SessionArgs& args, unsigned which, con
   }
   if (which & kQuietOption) command.add_flag("-q,--quiet", args.quiet, "No progress, notes or summary on stderr");
   if (which & kPlanOption) addPlanOptions(command, args.plan);
-  if (which & kDefaultsOption) addDefaultsOption(command, args.plan.noDefaults);
+  if (which & kDefaultsOption) addDefaultsOption(command, args.plan);
   if (which & kBudgetOption) addBudgetOptions(command, args.budget);
   if (which & kMapDirOption) {
     command.add_option("--map-dir", args.mapDir,

@@ -1,6 +1,6 @@
 // The options the commands share, registered once: threads, memory, scene overrides,
 // quiet, the plan's overrides (--enable/--disable/--gate/--no-gate), loading
-// (--no-defaults), budgets (--time-limit/--target-error), map files (--map-dir) and --force. Each command asks for its set.
+// (--no-defaults, --camera), budgets (--time-limit/--target-error), map files (--map-dir) and --force. Each command asks for its set.
 #pragma once
 #include "plan/pipeline.h"
 #include "plan/session_options.h"
@@ -11,13 +11,19 @@
 
 namespace penumbra {
 
-// --enable PASS and --disable PASS (repeatable), --gate MODE and --no-gate; --no-defaults.
+// --enable PASS and --disable PASS (repeatable), --gate MODE and --no-gate; --no-defaults, --camera.
 struct PlanArgs {
   std::vector<std::string> enable, disable;
   std::string gate;     // on, off, auto; empty: the scene's photons.gate
   bool noGate = false;  // --no-gate: --gate off
   bool noDefaults = false;  // --no-defaults: a glTF scene gets no framed camera or default sky
-  LoadOptions load() const { return LoadOptions{!noDefaults}; }
+  std::string camera;       // --camera auto|NAME|INDEX (LoadOptions::camera)
+  LoadOptions load() const {
+    LoadOptions o;
+    o.defaults = !noDefaults;
+    o.camera = camera;
+    return o;
+  }
   // The passes named; throws InputError for an unknown pass, or when two of these
   // options contradict each other (--no-gate --gate on, --enable gate --no-gate, ...).
   PlanOverrides passes() const;
@@ -31,8 +37,8 @@ enum SessionOption : unsigned {
   kMaxMemoryOption = 1u << 1,  // --max-memory
   kSetOption = 1u << 2,        // -D/--set
   kQuietOption = 1u << 3,      // -q/--quiet
-  kPlanOption = 1u << 4,       // --enable, --disable, --gate, --no-gate, --no-defaults
-  kDefaultsOption = 1u << 5,   // --no-defaults alone (check: no plan)
+  kPlanOption = 1u << 4,       // --enable, --disable, --gate, --no-gate, --no-defaults, --camera
+  kDefaultsOption = 1u << 5,   // --no-defaults and --camera alone (check: no plan)
   kBudgetOption = 1u << 6,     // --time-limit, --target-error
   kMapDirOption = 1u << 7,     // --map-dir
   kForceOption = 1u << 8,      // --force: discard saved passes (batch: and render up-to-date jobs)

@@ -4,8 +4,8 @@
 #include "io/gltf_loader.h"
 #include "io/float_checks.h"
 
-#include "io/camera_checks.h"
 #include "io/gltf_attributes.h"
+#include "io/gltf_cameras.h"
 #include "io/gltf_checks.h"
 #include "io/gltf_document.h"
 #include "io/gltf_extensions.h"
@@ -176,44 +176,6 @@ void addLight(const tinygltf::Model& m, int index, const dmat4& world, const std
   out.lights.push_back(light);
 }
 
-void addCamera(const tinygltf::Model& m, int index, const dmat4& world, const std::string& ref, const std::string& path,
-               LoadedModel& out) {
-  if (out.camera) return;
-  if (index < 0 || static_cast<size_t>(index) >= m.cameras.size()) {
-    gltfFail(path, ref, "camera " + std::to_string(index) + " does not exist");
-  }
-  const tinygltf::Camera& g = m.cameras[index];
-  if (g.type != "perspective" && g.type != "orthographic") return;
-  Camera c;
-  c.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
-  // One unit ahead, or more far from the origin, so look_at stays apart in float.
-  const glm::dvec3 eye(world * glm::dvec4(0.0, 0.0, 0.0, 1.0)), ahead = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
-  const double reach = std::max({1.0, std::fabs(eye.x), std::fabs(eye.y), std::fabs(eye.z)});
-  c.lookAt = Vec3(eye + glm::normalize(ahead) * reach);
-  c.up = Vec3(glm::normalize(glm::dmat3(world) * glm::dvec3(0.0, 1.0, 0.0)));
-  double aspect = 0.0;
-  if (g.type == "orthographic") {
-    // xmag and ymag are half the view's width and height (positive: checkGltfModel).
-    c.orthoHeight = static_cast<float>(2.0 * g.orthographic.ymag);
-    aspect = g.orthographic.xmag / g.orthographic.ymag;
-  } else {
-    c.fovY = static_cast<float>(g.perspective.yfov * 180.0 / 3.14159265358979323846);
-    aspect = g.perspective.aspectRatio;  // 0.01..100 (checkGltfModel), 0 = none
-  }
-  if (aspect > 0.0) {
-    out.aspect = aspect;
-    c.height = std::clamp(static_cast<int>(std::lround(c.width / aspect)), 1, 16384);
-  }
-  // The node's transform places the camera: the JSON camera's checks apply here too.
-  const CameraProblem problem = cameraProblem(c);
-  if (!problem.message.empty()) {
-    const std::string camera = "cameras[" + std::to_string(index) + "]";
-    if (problem.key == "ortho_height") gltfFail(path, camera + ".orthographic.ymag (as placed by its node)", problem.message);
-    gltfFail(path, camera + " (as placed by its node)", problem.key + ": " + problem.message);
-  }
-  out.camera = c;
-}
-
 void walk(const tinygltf::Model& m, int node, const dmat4& parent, int depth, const std::string& path, LoadedModel& out) {
   // checkGltfModel proved the nodes a forest; the depth bounds the recursion.
   if (depth > 256) fail(path, "the node tree is deeper than 256 levels");
@@ -230,7 +192,7 @@ void walk(const tinygltf::Model& m, int node, const dmat4& parent, int depth, co
       addPrimitive(m, mesh.primitives[i], world, name, where, path, out);
     }
   }
-  if (n.camera >= 0) addCamera(m, n.camera, world, "nodes[" + std::to_string(node) + "].camera", path, out);
+  if (n.camera >= 0) placeGltfCamera(m, n.camera, node, world, path, out.cameras);
   auto ext = n.extensions.find("KHR_lights_punctual");
   if (ext != n.extensions.end() && ext->second.Has("light")) {
     addLight(m, ext->second.Get("light").GetNumberAsInt(), world,
@@ -289,6 +251,7 @@ LoadedModel loadGltfModel(const std::string& path, const LoadLimits& limits) {
   out.warning = !warnings.empty() ? warnings.front() : warn.substr(0, warn.find('\n'));
   out.ignoredExtensions = ignoredGltfExtensions(model.extensionsUsed);
   out.materials = gltfMaterials(model, path, folder);
+  out.cameras = gltfCameras(model);
   for (int r : roots) walk(model, r, dmat4(1.0), 0, path, out);
   for (TriangleMesh& mesh : out.meshes) {
     if (mesh.material >= static_cast<int>(out.materials.size())) fail(path, "a primitive names a material that does not exist");

@@ -1,5 +1,5 @@
 // glTF 2.0 files (.gltf, .glb) through tinygltf: meshes under their node
-// transforms, metallic-roughness materials, the first camera, punctual lights.
+// transforms, metallic-roughness materials, its cameras, punctual lights.
 #pragma once
 #include "io/model_import.h"
 #include <string>

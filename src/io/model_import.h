@@ -3,8 +3,8 @@
 // by a glTF file loaded as the whole scene.
 #pragma once
 #include "core/scene.h"
+#include "io/gltf_cameras.h"
 #include "io/load_limits.h"
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -37,8 +37,7 @@ struct LoadedModel {
   std::string file;                        // for material names and messages
   std::vector<TriangleMesh> meshes;        // material = index into `materials`, -1 = none
   std::vector<ModelMaterial> materials;
-  std::optional<Camera> camera;            // glTF: the first camera met in the node tree
-  double aspect = 0.0;                     // its aspect ratio (width / height), 0 = none
+  std::vector<GltfCamera> cameras;         // glTF: the file's cameras, by index (io/gltf_cameras.h)
   std::vector<Light> lights;               // glTF: KHR_lights_punctual
   std::string warning;                     // the loader's first warning (a missing MTL file)
   std::vector<std::string> ignoredExtensions;  // glTF: optional extensions penumbra does not read

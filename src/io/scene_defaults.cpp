@@ -1,5 +1,5 @@
-// A glTF scene's defaults: the framing camera (the nearest distance at which the
-// bounding box's corners fit the image, in double) and the neutral sky.
+// A model scene's defaults: the framing camera (its bounding sphere filling kFrameFill
+// of the image's smaller dimension, in double) and the neutral sky.
 #include "io/scene_defaults.h"
 
 #include "core/lights/environment_map.h"
@@ -34,54 +34,67 @@ SceneBounds sceneBounds(const Scene& scene) {
   return b;
 }
 
-Camera frameBounds(const Camera& camera, const SceneBounds& bounds) {
-  const glm::dvec3 lo(bounds.lo), hi(bounds.hi), centre = 0.5 * (lo + hi);
+BoundingSphere sceneSphere(const Scene& scene) {
+  return boundingSphere([&](const auto& f) {
+    for (const TriangleMesh& m : scene.meshes) {
+      for (const Vec3& p : m.positions) f(glm::dvec3(p), 0.0);
+    }
+    for (const Sphere& s : scene.spheres) f(glm::dvec3(s.center), double(s.radius));
+  });
+}
+
+Camera frameSphere(const Camera& camera, const BoundingSphere& sphere) {
+  const glm::dvec3 centre = sphere.empty() ? glm::dvec3(0.0) : sphere.centre;
+  const double radius = std::max(sphere.radius, 0.0);
   // `back` points from the model to the eye; the frame is cameraFrame's, in double.
   const glm::dvec3 back(std::sin(kAzimuth) * std::cos(kElevation), std::sin(kElevation),
                         std::cos(kAzimuth) * std::cos(kElevation));
-  const glm::dvec3 right = glm::normalize(glm::cross(-back, glm::dvec3(0.0, 1.0, 0.0)));
-  const glm::dvec3 up = glm::cross(right, -back);
-  const double tanY = std::tan(0.5 * double(camera.fovY) * glm::pi<double>() / 180.0) * kFrameFill;
-  const double tanX = tanY * double(camera.width) / double(camera.height);
-  // A corner at offset o lies at depth d - o.back from an eye at distance d; it is in
-  // the image when |o.right| <= tanX depth and |o.up| <= tanY depth.
-  const double reach = 0.5 * glm::length(hi - lo);
-  double distance = 0.0, nearest = 0.0;
-  for (int k = 0; k < 8; ++k) {
-    const glm::dvec3 corner((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
-    const glm::dvec3 o = corner - centre;
-    const double along = glm::dot(o, back);
-    distance = std::max(distance, along + std::max(std::fabs(glm::dot(o, right)) / tanX, std::fabs(glm::dot(o, up)) / tanY));
-    nearest = std::max(nearest, along);
-  }
-  // The eye stays outside the box, and a box of no size is seen from one unit away.
-  distance = std::max(distance, nearest + 1e-3 * reach);
-  if (!(reach > 0.0)) distance = 1.0;
+  // The smaller image dimension over the height: the share of fovY (or ortho_height) it spans.
+  const double narrow = std::min(1.0, double(camera.width) / double(camera.height));
   Camera c = camera;
+  double distance = 1.0;  // a model of no size is seen from one unit away
+  if (camera.orthoHeight > 0.0f) {
+    // The view's smaller extent is the sphere's diameter over kFrameFill; the eye stands outside it.
+    if (radius > 0.0) c.orthoHeight = float(2.0 * radius / (kFrameFill * narrow));
+    if (radius > 0.0) distance = 2.0 * radius;
+  } else if (radius > 0.0) {
+    // The sphere's silhouette is the cone of half-angle asin(radius / distance) about
+    // the view axis: on the image plane a circle of radius tan of that, asked to be
+    // kFrameFill of the smaller half-extent tanHalf.
+    const double tanHalf = std::tan(0.5 * double(camera.fovY) * glm::pi<double>() / 180.0) * narrow;
+    const double t = kFrameFill * tanHalf;
+    distance = radius * std::sqrt(1.0 + 1.0 / (t * t));
+  }
   c.position = Vec3(centre + back * distance);
   c.lookAt = Vec3(centre);
   c.up = Vec3(0.0f, 1.0f, 0.0f);
   return c;
 }
 
-void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& scene) {
+void frameCamera(const std::string& file, bool asked, Scene& scene) {
+  const std::string why = asked ? "--camera auto" : "no camera";
+  const std::string keep =
+      asked ? "--camera NAME|INDEX picks one of the file's" : "--no-defaults keeps the file as it is";
+  const Camera c = frameSphere(scene.camera, sceneSphere(scene));
+  const CameraProblem problem = cameraProblem(c);
+  if (!problem.message.empty()) {
+    const std::string instead = asked ? "one of the file's cameras" : "--no-defaults";
+    throw InputError(file + ": " + why + ", and one framing its bounds fails: camera." + problem.key + ": " +
+                     problem.message + " (give a camera in a JSON beside it, or use " + instead + ")");
+  }
+  scene.camera = c;
+  scene.load.framedCamera = true;
+  scene.load.notes.push_back(fmt::format("{}: {}; one frames the model from {} looking at {} (fov {:g}; {})", file,
+                                         why, vec(c.position), vec(c.lookAt), c.fovY, keep));
+}
+
+void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& scene, bool autoCamera) {
   LoadReport& report = scene.load;
   report.noCamera = noCamera;
   report.noLight = scene.lights.empty();
+  if (autoCamera) frameCamera(model, true, scene);
   if (!add) return;
-  if (report.noCamera) {
-    const Camera c = frameBounds(scene.camera, sceneBounds(scene));
-    const CameraProblem problem = cameraProblem(c);
-    if (!problem.message.empty()) {
-      throw InputError(model + ": has no camera, and one framing its bounds fails: camera." + problem.key + ": " +
-                      problem.message + " (give a camera in a JSON beside it, or use --no-defaults)");
-    }
-    scene.camera = c;
-    report.framedCamera = true;
-    report.notes.push_back(fmt::format("{}: no camera; one frames the model from {} looking at {} (fov {:g}; "
-                                       "--no-defaults keeps the file as it is)",
-                                       model, vec(c.position), vec(c.lookAt), c.fovY));
-  }
+  if (report.noCamera && !autoCamera) frameCamera(model, false, scene);
   if (report.noLight) {
     scene.lights.push_back(makeEnvironmentLight(Color(1.0f), 1.0f, nullptr));
     report.defaultSky = true;

@@ -1,8 +1,9 @@
-// What a glTF scene gets when its files lack it: a camera that frames the model, and
+// What a model scene gets when its files lack it: a camera that frames the model, and
 // a neutral sky when nothing lights it, each said in one note. Decided once, at load
 // (LoadOptions::defaults in io/scene_loader.h); nothing changes the scene after.
 #pragma once
 #include "core/scene.h"
+#include "io/bounding_sphere.h"
 #include <string>
 
 namespace penumbra {
@@ -17,21 +18,29 @@ struct SceneBounds {
 // Every mesh vertex and sphere of `scene`.
 SceneBounds sceneBounds(const Scene& scene);
 
-// The share of the image's half-width and half-height the framed box may fill: the
-// rest is margin, so no corner touches the border.
-constexpr double kFrameFill = 1.0 / 1.1;
+// The share of the image's smaller dimension (width or height) the framed model's
+// bounding sphere fills: the silhouette of the sphere spans 90% of it, the rest is margin.
+constexpr double kFrameFill = 0.9;
+
+// The ball enclosing every mesh vertex and sphere of `scene` (io/bounding_sphere.h).
+BoundingSphere sceneSphere(const Scene& scene);
 
 // `camera` (fov, image size and samples kept) moved to a three-quarter view of
-// `bounds`: from +z turned 30 degrees towards +x and 20 degrees above, up = +y,
-// looking at the box's centre, at the nearest distance that keeps every corner of the
-// box within kFrameFill of the image's half-extents.
-Camera frameBounds(const Camera& camera, const SceneBounds& bounds);
+// `sphere`: from +z turned 30 degrees towards +x and 20 degrees above, up = +y,
+// looking at its centre, at the distance where its silhouette spans kFrameFill of
+// the image's smaller dimension (an orthographic camera: its ortho height set so).
+Camera frameSphere(const Camera& camera, const BoundingSphere& sphere);
+
+// Frames `scene`'s camera on everything in it, with one note naming `file`: `asked`
+// by --camera auto, else the model has no camera. Throws InputError when the framed
+// camera fails the camera checks (a model beyond float's reach).
+void frameCamera(const std::string& file, bool asked, Scene& scene);
 
 // A glTF scene after loading: `noCamera` when neither the model nor the JSON beside
 // it places a camera. Records in scene.load what is missing and, when `add`, adds a
-// camera framing the bounds and, without any light, a constant sky of radiance 1 as
+// camera framing the model (always with `autoCamera`: --camera auto) and, without any light, a constant sky of radiance 1 as
 // the environment, each with one note naming `model`. Throws InputError when the
 // framed camera fails the camera checks (a model beyond float's reach).
-void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& scene);
+void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& scene, bool autoCamera = false);
 
 }  // namespace penumbra

@@ -79,7 +79,9 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
     }
   }
   Scene scene;
-  if (model.camera) scene.camera = *model.camera;
+  const std::string& source = modelPath.empty() ? context.file : modelPath;
+  const GltfCamera* camera = chooseGltfCamera(model.cameras, options.camera, source);  // --camera
+  if (camera) scene.camera = camera->camera;
   scene.file = context.file;
   // The settings file first (the sidecar of a glTF scene), then the model's files.
   if (!context.file.empty() && context.file != "<scene>" && context.file != "<stdin>") scene.inputs.push_back(context.file);
@@ -92,7 +94,8 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   }
   static const json kNoCamera = json::object();
   if (root.has("camera")) {
-    readCamera(root.child("camera"), scene.camera, model.aspect);  // overrides the model's camera key by key
+    // Overrides the model's camera key by key.
+    readCamera(root.child("camera"), scene.camera, camera ? camera->aspect : 0.0);
   } else if (!modelPath.empty()) {
     readCamera(JsonNode(kNoCamera, "camera", context), scene.camera);  // checks the model's camera
   }
@@ -110,9 +113,11 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   if (root.has("environment")) readEnvironment(root.child("environment"), scene);
   if (!modelPath.empty()) {
     // A camera the user placed (the model's, or position / look_at beside it) is kept.
-    const bool placed = model.camera || (root.has("camera") && (root.child("camera").has("position") ||
-                                                                root.child("camera").has("look_at")));
-    addSceneDefaults(modelPath, !placed, options.defaults, scene);
+    const bool placed = camera || (root.has("camera") && (root.child("camera").has("position") ||
+                                                          root.child("camera").has("look_at")));
+    addSceneDefaults(modelPath, !placed, options.defaults, scene, options.camera == "auto");
+  } else if (options.camera == "auto") {
+    frameCamera(context.file, true, scene);  // a JSON scene framed on what it holds
   }
   checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
@@ -191,6 +196,13 @@ Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
 
 }  // namespace
 
+std::vector<std::string> LoadOptions::flags() const {
+  std::vector<std::string> out;
+  if (!defaults) out.push_back("--no-defaults");
+  if (!camera.empty()) out.push_back("--camera " + camera);
+  return out;
+}
+
 Scene parseScene(const std::string& jsonText, const std::string& fileName,
                  const std::vector<std::string>& overrides, const LoadLimits& limits) {
   return parseSceneWith(jsonText, fileName, overrides, "", limits);
@@ -200,7 +212,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
                 const LoadOptions& options) {
   // "-": the JSON comes from stdin; relative paths in it resolve against the working folder.
   if (path == "-") {
-    return parseScene(readSceneText(std::cin, "<stdin>"), "<stdin>", overrides, limits);
+    LoadOptions once = options;  // --camera applies; nothing read for it is kept for later loads
+    once.cache = nullptr;
+    return parseSceneWith(readSceneText(std::cin, "<stdin>"), "<stdin>", overrides, "", limits, once);
   }
   // Read through the cache, where there is one: the text is read once per process.
   auto text = [&](const std::string& file) {

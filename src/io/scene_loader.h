@@ -16,6 +16,13 @@ struct LoadOptions {
   bool defaults = true;
   // Files earlier loads of this process read (io/load_cache.h); null: read them all.
   LoadCache* cache = nullptr;
+  // --camera: "" the model's first camera (framed when it has none), "auto" framed
+  // whatever the files place, else one of a glTF file's cameras by name or index
+  // (io/gltf_cameras.h).
+  std::string camera;
+  // The command-line options above that change a picture (--no-defaults, --camera X):
+  // what a saved output or frame was made with.
+  std::vector<std::string> flags() const;
 };
 
 // Loads `path`, applying `overrides` ("render.max_depth=8", JSON-typed values)

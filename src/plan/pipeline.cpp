@@ -20,7 +20,7 @@ std::string renderStamp(const PlannedJob& job, const SessionOptions& session) {
   std::vector<std::string> options;
   for (Pass p : session.plan.enable) options.push_back(std::string("--enable ") + passName(p));
   for (Pass p : session.plan.disable) options.push_back(std::string("--disable ") + passName(p));
-  if (!session.load.defaults) options.push_back("--no-defaults");
+  for (const std::string& f : session.load.flags()) options.push_back(f);
   return renderFrameStamp(job.request.scenePath, job.request.overrides, options, job.viewName);
 }
 

@@ -24,7 +24,7 @@ struct SessionOptions {
   // --time-limit / --target-error: each request's runner gives it to its jobs
   // (a batch job's own budget yields to it field by field).
   RenderBudget budget;
-  LoadOptions load;  // --no-defaults: a glTF scene gets no framed camera or default sky
+  LoadOptions load;  // --no-defaults, --camera: how a model scene gets its camera and sky
   // --map-dir: photon stages are loaded from files there by key, or built and written
   // there (plan/map_file.h); empty: built in the process only.
   std::string mapDir;

@@ -1,11 +1,12 @@
 // glTF models built in memory with tinygltf and written by its own writer, for the
-// tests of glTF scenes and the load benchmark: triangle meshes, boxes, cameras and
+// tests of glTF scenes and the load benchmark: triangle meshes, boxes, spheres, cameras and
 // nodes of scene 0, over support/gltf_writer.h's accessors.
 #pragma once
 #include "gltf_writer.h"  // beside this file: found from tests and bench alike
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -71,6 +72,29 @@ inline int addBoxMesh(tinygltf::Model& m, const float lo[3], const float hi[3]) 
   }
   const std::vector<uint32_t> idx = {0, 2, 1, 1, 2, 3,  4, 5, 6, 5, 7, 6,  0, 1, 4, 1, 5, 4,
                                      2, 6, 3, 3, 6, 7,  0, 4, 2, 2, 4, 6,  1, 3, 5, 3, 7, 5};
+  return addTriangleMesh(m, p, {}, {}, idx);
+}
+
+// A UV sphere about `centre`: `rings` bands of `segments` quads, vertices on the
+// sphere of `radius`, triangles facing out.
+inline int addSphereMesh(tinygltf::Model& m, const float centre[3], float radius, int segments = 64, int rings = 32) {
+  std::vector<float> p;
+  for (int i = 0; i <= rings; ++i) {
+    const double theta = 3.14159265358979323846 * i / rings;
+    for (int j = 0; j <= segments; ++j) {
+      const double phi = 2.0 * 3.14159265358979323846 * j / segments;
+      p.insert(p.end(), {float(centre[0] + radius * std::sin(theta) * std::cos(phi)),
+                         float(centre[1] + radius * std::cos(theta)),
+                         float(centre[2] - radius * std::sin(theta) * std::sin(phi))});
+    }
+  }
+  std::vector<uint32_t> idx;
+  for (int i = 0; i < rings; ++i) {
+    for (int j = 0; j < segments; ++j) {
+      const uint32_t a = i * (segments + 1) + j, b = a + segments + 1;
+      idx.insert(idx.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+  }
   return addTriangleMesh(m, p, {}, {}, idx);
 }
 

@@ -23,8 +23,8 @@ JobDefinition definitionOf(const BatchJob& job, const SessionOptions& s) {
   d.scene = job.scene;
   d.overrides = jobOverrides(s, job.overrides);
   for (const BatchOutput& o : job.outputs) d.viewFiles.push_back({o.view, o.path});
-  // --no-defaults changes the picture of a glTF scene: outputs of the other choice are stale.
-  if (!s.load.defaults) d.choices.push_back("--no-defaults");
+  // --no-defaults and --camera change the picture of a model: outputs of another choice are stale.
+  for (const std::string& f : s.load.flags()) d.choices.push_back(f);
   for (Pass p : s.plan.enable) d.choices.push_back(std::string("--enable ") + passName(p));
   for (Pass p : s.plan.disable) d.choices.push_back(std::string("--disable ") + passName(p));
   const RenderBudget b = jobBudget(job, s.budget);

@@ -53,7 +53,7 @@ SweepIdentity sweepIdentity(const SweepRequest& req, const std::vector<std::stri
   id.view = req.aov;
   for (Pass p : req.session.plan.enable) id.plan.push_back(std::string("+") + passName(p));
   for (Pass p : req.session.plan.disable) id.plan.push_back(std::string("-") + passName(p));
-  if (!req.session.load.defaults) id.plan.push_back("--no-defaults");  // another picture of a glTF scene
+  for (const std::string& f : req.session.load.flags()) id.plan.push_back(f);  // another picture of a model
   if (!req.referencePath.empty()) {
     id.reference = inputsStamp({req.referencePath});
   } else if (req.referencePasses > 1) {
