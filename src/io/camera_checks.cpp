@@ -4,6 +4,7 @@
 
 #include "core/camera_frame.h"
 #include "core/error.h"
+#include "core/thin_lens.h"
 #include "io/float_checks.h"
 
 #include <algorithm>
@@ -35,6 +36,30 @@ std::string positionProblem(const Vec3& p) {
          shown(std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
 }
 
+// The thin lens (core/thin_lens.h): a radius or an f-number, not both; a focus plane
+// in front of the lens; a perspective camera (parallel rays have no focus).
+CameraProblem lensProblem(const Camera& c) {
+  if (!(c.apertureRadius >= 0.0f && c.apertureRadius <= static_cast<float>(kMaxCoordinate))) {
+    return {"aperture_radius", "must be 0 (a pinhole) or a radius up to 1e15 scene units, got " + shown(c.apertureRadius)};
+  }
+  if (!(c.fNumber >= 0.0f && c.fNumber <= 1e15f)) return {"f_number", "must be above 0, got " + shown(c.fNumber)};
+  if (c.apertureRadius > 0.0f && c.fNumber > 0.0f) {
+    return {"f_number", "give aperture_radius or f_number, not both (both size the aperture)"};
+  }
+  if (!(c.focusDistance >= 0.0f && c.focusDistance <= static_cast<float>(kMaxCoordinate))) {
+    return {"focus_distance", "must be above 0 and at most 1e15 scene units, got " + shown(c.focusDistance)};
+  }
+  const bool lens = c.apertureRadius > 0.0f || c.fNumber > 0.0f;
+  if (lens && c.orthoHeight > 0.0f) {
+    return {c.apertureRadius > 0.0f ? "aperture_radius" : "f_number",
+            "an orthographic camera (ortho_height > 0) has no lens: its rays are parallel"};
+  }
+  if (lens && !(focusDistance(c) > 0.0f)) {
+    return {"focus_distance", "the lens needs a focus distance above 0 (look_at is too close to position)"};
+  }
+  return {};
+}
+
 }  // namespace
 
 CameraProblem cameraProblem(const Camera& c) {
@@ -49,6 +74,7 @@ CameraProblem cameraProblem(const Camera& c) {
   if (c.width < 1 || c.width > 16384) return {"width", "must be 1..16384 pixels, got " + std::to_string(c.width)};
   if (c.height < 1 || c.height > 16384) return {"height", "must be 1..16384 pixels, got " + std::to_string(c.height)};
   if (c.spp < 1 || c.spp > 4096) return {"spp", "must be 1..4096, got " + std::to_string(c.spp)};
+  if (auto p = lensProblem(c); !p.message.empty()) return p;
   // The film's rays start at position + offsets, in float as CameraRays makes them.
   const float step = c.orthoHeight / static_cast<float>(c.height);
   const float reach = std::max({std::fabs(c.position.x), std::fabs(c.position.y), std::fabs(c.position.z)});
