@@ -42,7 +42,9 @@ CameraProblem lensProblem(const Camera& c) {
   if (!(c.apertureRadius >= 0.0f && c.apertureRadius <= static_cast<float>(kMaxCoordinate))) {
     return {"aperture_radius", "must be 0 (a pinhole) or a radius up to 1e15 scene units, got " + shown(c.apertureRadius)};
   }
-  if (!(c.fNumber >= 0.0f && c.fNumber <= 1e15f)) return {"f_number", "must be above 0, got " + shown(c.fNumber)};
+  if (!(c.fNumber >= 0.0f && c.fNumber <= 1e15f)) {
+    return {"f_number", "must be above 0 and at most 1e15, got " + shown(c.fNumber)};
+  }
   if (c.apertureRadius > 0.0f && c.fNumber > 0.0f) {
     return {"f_number", "give aperture_radius or f_number, not both (both size the aperture)"};
   }
@@ -74,7 +76,6 @@ CameraProblem cameraProblem(const Camera& c) {
   if (c.width < 1 || c.width > 16384) return {"width", "must be 1..16384 pixels, got " + std::to_string(c.width)};
   if (c.height < 1 || c.height > 16384) return {"height", "must be 1..16384 pixels, got " + std::to_string(c.height)};
   if (c.spp < 1 || c.spp > 4096) return {"spp", "must be 1..4096, got " + std::to_string(c.spp)};
-  if (auto p = lensProblem(c); !p.message.empty()) return p;
   // The film's rays start at position + offsets, in float as CameraRays makes them.
   const float step = c.orthoHeight / static_cast<float>(c.height);
   const float reach = std::max({std::fabs(c.position.x), std::fabs(c.position.y), std::fabs(c.position.z)});
@@ -95,7 +96,7 @@ CameraProblem cameraProblem(const Camera& c) {
   }
   const float sine = glm::length(glm::cross(frame.forward, glm::normalize(c.up)));
   if (!(sine > 1e-6f) || !isUnit(frame.right)) return {"up", "up is parallel to the view direction (look_at - position)"};
-  return {};
+  return lensProblem(c);
 }
 
 void checkCamera(const Camera& camera, const std::string& where) {

@@ -46,7 +46,6 @@ class CameraRays {
     if (lensRadius_ > 0.0f) throughLens(r, key);
     return r;
   }
-  bool hasLens() const { return lensRadius_ > 0.0f; }
   // Angle one pixel subtends at the centre: the texture-footprint growth rate (0
   // for parallel rays, whose footprint does not grow; textures are then point-sampled).
   float pixelSpread() const { return halfHeight_ > 0.0f ? 0.0f : 2.0f * tanHalf_ / height_; }
