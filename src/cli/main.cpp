@@ -9,6 +9,7 @@
 #include "cli/progress_meter.h"
 #include "cli/batch_command.h"
 #include "cli/bench_command.h"
+#include "cli/build_info.h"
 #include "cli/merge_command.h"
 #include "cli/plan_command.h"
 #include "cli/session_args.h"
@@ -145,7 +146,8 @@ int runCommandLine(int argc, char** argv) {
              "OUTPUT.passes: the same command resumes it).");
   // A bad option is bad input like any other: one line, exit 2.
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string(e.what()) + " (see --help)\n"; });
-  app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION);
+  app.set_version_flag("--version", std::string("penumbra ") + PENUMBRA_VERSION + " (commit " + buildCommit() + ", " +
+                                        buildType() + ")");
 
   RenderRequest req;
   std::string statsPath, tracePixelArg;

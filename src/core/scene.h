@@ -25,6 +25,12 @@ struct Camera {
   int width = 640;
   int height = 480;
   int spp = 1;  // samples per pixel and pass (one pass at spp 1: the pixel centre)
+  // The thin lens (core/thin_lens.h): an aperture radius in scene units or an f-number
+  // (0: not given; at most one of the two), and the focus distance (0: to look_at).
+  // No aperture is the pinhole.
+  float apertureRadius = 0.0f;
+  float fNumber = 0.0f;
+  float focusDistance = 0.0f;
 };
 
 struct EnvironmentMap;  // core/lights/environment_map.h

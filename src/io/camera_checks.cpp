@@ -4,6 +4,7 @@
 
 #include "core/camera_frame.h"
 #include "core/error.h"
+#include "core/thin_lens.h"
 #include "io/float_checks.h"
 
 #include <algorithm>
@@ -33,6 +34,32 @@ std::string positionProblem(const Vec3& p) {
   if (!isFinite(p)) return "every coordinate must be finite";
   return "every coordinate must be within +-1e+15 (Embree's ray range with float precision to spare), got " +
          shown(std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}));
+}
+
+// The thin lens (core/thin_lens.h): a radius or an f-number, not both; a focus plane
+// in front of the lens; a perspective camera (parallel rays have no focus).
+CameraProblem lensProblem(const Camera& c) {
+  if (!(c.apertureRadius >= 0.0f && c.apertureRadius <= static_cast<float>(kMaxCoordinate))) {
+    return {"aperture_radius", "must be 0 (a pinhole) or a radius up to 1e15 scene units, got " + shown(c.apertureRadius)};
+  }
+  if (!(c.fNumber >= 0.0f && c.fNumber <= 1e15f)) {
+    return {"f_number", "must be above 0 and at most 1e15, got " + shown(c.fNumber)};
+  }
+  if (c.apertureRadius > 0.0f && c.fNumber > 0.0f) {
+    return {"f_number", "give aperture_radius or f_number, not both (both size the aperture)"};
+  }
+  if (!(c.focusDistance >= 0.0f && c.focusDistance <= static_cast<float>(kMaxCoordinate))) {
+    return {"focus_distance", "must be above 0 and at most 1e15 scene units, got " + shown(c.focusDistance)};
+  }
+  const bool lens = c.apertureRadius > 0.0f || c.fNumber > 0.0f;
+  if (lens && c.orthoHeight > 0.0f) {
+    return {c.apertureRadius > 0.0f ? "aperture_radius" : "f_number",
+            "an orthographic camera (ortho_height > 0) has no lens: its rays are parallel"};
+  }
+  if (lens && !(focusDistance(c) > 0.0f)) {
+    return {"focus_distance", "the lens needs a focus distance above 0 (look_at is too close to position)"};
+  }
+  return {};
 }
 
 }  // namespace
@@ -69,7 +96,7 @@ CameraProblem cameraProblem(const Camera& c) {
   }
   const float sine = glm::length(glm::cross(frame.forward, glm::normalize(c.up)));
   if (!(sine > 1e-6f) || !isUnit(frame.right)) return {"up", "up is parallel to the view direction (look_at - position)"};
-  return {};
+  return lensProblem(c);
 }
 
 void checkCamera(const Camera& camera, const std::string& where) {

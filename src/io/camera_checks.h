@@ -1,6 +1,7 @@
 // The checks every camera meets before it reaches the tracer, whichever file (scene
 // JSON, glTF) or plan (a batch orbit) made it: bounded position, a field of view,
-// an image size, and a view frame that exists in single precision.
+// an image size, a thin lens that can focus, and a view frame that exists in single
+// precision.
 #pragma once
 #include "core/scene.h"
 #include <string>
@@ -8,7 +9,8 @@
 namespace penumbra {
 
 // What is wrong with a camera: `key` is the scene-format key at fault ("position",
-// "look_at", "up", "fov", "width", "height", "spp"); an empty message = nothing.
+// "look_at", "up", "fov", "width", "height", "spp", "aperture_radius", ...); an empty
+// message = nothing.
 struct CameraProblem {
   std::string key;
   std::string message;

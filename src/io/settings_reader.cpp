@@ -33,7 +33,8 @@ float gatherRadius(const JsonNode& node, const char* key, float fallback) {
 }  // namespace
 
 void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
-  node.allowKeys({"position", "look_at", "up", "fov", "width", "height", "spp", "ortho_height"});
+  node.allowKeys({"position", "look_at", "up", "fov", "width", "height", "spp", "ortho_height", "aperture_radius",
+                  "f_number", "focus_distance"});
   if (node.has("position")) out.position = readPosition(node.child("position"));
   if (node.has("look_at")) out.lookAt = readPosition(node.child("look_at"));
   out.up = node.vec3Or("up", out.up);
@@ -43,6 +44,10 @@ void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
   out.spp = node.intOr("spp", out.spp, 1, 4096);
   // An orthographic camera: the view's height in scene units.
   out.orthoHeight = node.floatOr("ortho_height", out.orthoHeight, Range::atLeast(0.0));
+  // The thin lens (core/thin_lens.h); a model file's camera takes them from -D.
+  out.apertureRadius = node.floatOr("aperture_radius", out.apertureRadius, Range::atLeast(0.0));
+  out.fNumber = node.floatOr("f_number", out.fNumber, Range::above(0.0));
+  out.focusDistance = node.floatOr("focus_distance", out.focusDistance, Range::above(0.0));
   // A new width keeps a model file's aspect ratio; checked below with the rest (the
   // height sets an orthographic camera's pixel step).
   if (modelAspect > 0.0 && node.has("width") && !node.has("height")) {

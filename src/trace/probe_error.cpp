@@ -44,7 +44,7 @@ bool gridMean(const ShadingContext& ctx, const CameraRays& camera, Aov aov, int 
     Rng rng(key);
     const float ox = (j % m + rng.uniform()) / m, oy = (j / m + rng.uniform()) / m;
     beginSample(ts, key);
-    const Color c = shadeCameraRay(ctx, camera.generate(x + ox, y + oy), aov, ts);
+    const Color c = shadeCameraRay(ctx, camera.generate(x + ox, y + oy, key), aov, ts);
     if (!isFinite(c)) continue;
     mean += glm::dvec3(c);
     ++counted;

@@ -165,7 +165,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
       const glm::ivec2 p = b.pixels[i];
       const CameraSample cs = cameraSample(ctx, static_cast<uint64_t>(p.y) * cam.width + p.x, s);
       b.keys[i] = cs.key;
-      b.rays[i] = camera.generate(p.x + cs.offset.x, p.y + cs.offset.y);
+      b.rays[i] = camera.generate(p.x + cs.offset.x, p.y + cs.offset.y, cs.key);
     }
     ctx.tracer.intersectPacket(b.rays.data(), n, b.hits.data());
     tracePrimaryShadows(ctx, shadowLights, b.rays.data(), b.hits.data(), n, b.known.data(),
@@ -237,7 +237,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
             for (int s = 0; s < cam.spp; ++s) {
               const CameraSample cs = cameraSample(ctx, pixel, s);
               beginSample(ts, cs.key);
-              const Ray ray = camera.generate(x + cs.offset.x, y + cs.offset.y);
+              const Ray ray = camera.generate(x + cs.offset.x, y + cs.offset.y, cs.key);
               Hit hit;
               const bool found = ctx.tracer.intersect(ray, hit);
               const Color c = shadeTraced(ctx, ray, found ? &hit : nullptr, options.aov, ts);
@@ -272,7 +272,7 @@ RayTree tracePixel(const ShadingContext& ctx, int x, int y) {
   const CameraSample cs = cameraSample(ctx, static_cast<uint64_t>(y) * cam.width + x, 0);
   beginSample(ts, cs.key);
   CameraRays camera(cam);
-  Ray ray = camera.generate(x + cs.offset.x, y + cs.offset.y);
+  Ray ray = camera.generate(x + cs.offset.x, y + cs.offset.y, cs.key);
   ctx.choices.integrator->tree(ctx, ray, ts);
   return tree;
 }
