@@ -13,6 +13,10 @@ constexpr double kRayNs = 100.0;            // a camera, shadow or specular ray 
 constexpr double kPhotonSegmentNs = 140.0;  // one photon ray + surface + store (bench_photons)
 constexpr double kBuildNsPerPhoton = 200.0; // KD build per stored photon
 constexpr double kGatherNsPerNeighbour = 60.0;  // exact gathers, per neighbour
+// The physical model's exact global and caustic gathers, per neighbour found, with its
+// shading (cornell_physical, 12 passes, 1 thread: the search and shading share of the
+// CPU profile over the neighbours --stats counts).
+constexpr double kPhysicalGatherNsPerNeighbour = 56.0;
 constexpr double kLookupNs = 80.0;          // one precomputed query per shading point, all lights
 constexpr double kExactVoteNs = 3000.0;     // one exact k-nearest gate vote per light
 constexpr double kShadowPhotonNs = 520.0;   // emit + build + cache, per emitted shadow photon
