@@ -21,6 +21,9 @@ constexpr double kLookupNs = 80.0;          // one precomputed query per shading
 constexpr double kExactVoteNs = 3000.0;     // one exact k-nearest gate vote per light
 constexpr double kShadowPhotonNs = 520.0;   // emit + build + cache, per emitted shadow photon
 constexpr double kStartupSeconds = 0.2;     // load, BVH, set-up of a small scene (large BVHs: below)
+// Loading the image module (OpenImageIO), once per process that reads an image: a
+// texture, an environment map, an alpha mask (dlopen of an 8x8 render, 1 thread).
+constexpr double kImageModuleSeconds = 0.3;
 constexpr double kBvhBuildNsPerPrimitive = 1200.0;  // Embree's build, per triangle or sphere
 constexpr double kMeshLightSampleNs = 40.0;   // one sample of a mesh light: a point on a triangle
 constexpr double kMeshLightLevelNs = 12.0;    // ... plus per level of its search by area

@@ -240,7 +240,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // Mirrors and glass repeat the shading at each level of the recursion, but few
   // paths go many levels deep, so the factor is capped.
   const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;
-  const double shadings = samples * depth * p.passes;  // shading points of the whole render
+  // A camera pilot counts them in this view instead, and the rays that miss.
+  const bool piloted = options.pointsPerSample + options.missesPerSample > 0.0 && !options.tracePixel;
+  const double shadings = samples * p.passes * (piloted ? options.pointsPerSample : depth);  // of the whole render
+  const double misses = piloted ? samples * p.passes * options.missesPerSample : 0.0;
   double lookupNs = 0.0, samplesPerPoint = 0.0, raysPerPoint = 0.0, sampleNs = 0.0;
   const bool gated = p.emitted[MapKind::Shadow] > 0;
   if (lit && options.shadows) {
@@ -262,9 +265,9 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.lightSamples = shadings * samplesPerPoint;
   e.shadowRays = shadings * raysPerPoint;
   if (p.emitted[MapKind::Indirect] > 0) lookupNs += options.precomputed ? kLookupNs : ps.kIndirect * kGatherNsPerNeighbour;
-  // The physical model gathers where a camera path first meets a diffuse surface, once
-  // per sample, pass and map (glass's split paths add a tenth in cornell_physical), and
-  // a gather costs the neighbours it finds, fewer each pass.
+  // The physical model gathers where a camera path meets a diffuse surface, once per
+  // sample, pass and map unpiloted (glass's split paths add a tenth in
+  // cornell_physical), and a gather costs the neighbours it finds, fewer each pass.
   double physicalNs = 0.0;
   for (const auto& [map, k] : {std::pair{MapKind::Global, ps.kGlobal}, std::pair{MapKind::Caustic, ps.kCaustic}}) {
     if (p.emitted[map] == 0) continue;
@@ -275,7 +278,8 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // Embree builds over all of them.
   e.primitives = primitives;
   e.bvhSeconds = primitives * kBvhBuildNsPerPrimitive / e.threads * 1e-9;
-  const double ns = shadings * (kRayNs + lookupNs + sampleNs) + e.shadowRays * kRayNs + samples * p.passes * physicalNs;
+  const double gathers = samples * p.passes * (piloted ? options.diffusePerSample : 1.0);
+  const double ns = shadings * (kRayNs + lookupNs + sampleNs) + (e.shadowRays + misses) * kRayNs + gathers * physicalNs;
   e.renderSeconds = kStartupSeconds + e.bvhSeconds + ns / e.threads * 1e-9;
   return e;
 }

@@ -10,7 +10,7 @@ namespace penumbra {
 // One job's cost in seconds on one thread, from the estimate a render prints.
 struct JobCost {
   size_t group = 0;           // jobs with equal photon keys share a group
-  double photonSeconds = 0.0;  // the group's maps: paid once by each shard that renders the group
+  double photonSeconds = 0.0;  // the group's maps (and image module): paid once by each shard that renders the group
   double frameSeconds = 0.0;   // the job's own frames: every view, every pass
 };
 
