@@ -279,7 +279,9 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.primitives = primitives;
   e.bvhSeconds = primitives * kBvhBuildNsPerPrimitive / e.threads * 1e-9;
   const double gathers = samples * p.passes * (piloted ? options.diffusePerSample : 1.0);
-  const double ns = shadings * (kRayNs + lookupNs + sampleNs) + (e.shadowRays + misses) * kRayNs + gathers * physicalNs;
+  const double shadeNs = piloted ? samplesPerPoint * kLightSampleShadeNs : 0.0;
+  const double ns = shadings * (kRayNs + lookupNs + sampleNs + shadeNs) + (e.shadowRays + misses) * kRayNs +
+                    gathers * physicalNs;
   e.renderSeconds = kStartupSeconds + e.bvhSeconds + ns / e.threads * 1e-9;
   return e;
 }

@@ -1,6 +1,7 @@
 // The split of a batch into shards: jobs that share photon maps kept together
-// (the maps built once), groups larger than a fair share cut into contiguous
-// runs, and the pieces placed largest first on the least-loaded shard.
+// (the maps built once) and placed largest first on the least-loaded shard; groups
+// larger than a fair share then cut into contiguous runs that fill the shards to
+// one level, each run paying the maps.
 #pragma once
 #include <cstddef>
 #include <vector>
