@@ -49,6 +49,17 @@ TEST(BatchShards, AGroupLargerThanAFairShareIsCutIntoContiguousRuns) {
   }
 }
 
+TEST(BatchShards, ALargerGroupFillsTheShardsAroundALargeJobToOneLevel) {
+  // An 8 s job and a 64-frame orbit of 1 s frames sharing 2 s of maps: 74 s, 18.5 a
+  // shard. The orbit fills the three empty shards to 20 (2 + 18 frames each) and the
+  // large job's shard with the last 10 frames (8 + 2 + 10): every shard 20 s.
+  std::vector<JobCost> jobs = {{0, 0.0, 8.0}};
+  for (size_t j = 0; j < 64; ++j) jobs.push_back({1, 2.0, 1.0});
+  const ShardSplit split = splitShards(jobs, 4);
+  for (double seconds : split.shardSeconds) EXPECT_DOUBLE_EQ(seconds, 20.0);
+  EXPECT_EQ(split.jobsOf(split.shardOf[0]).size(), 11u);
+}
+
 TEST(BatchShards, TheLargestJobsArePlacedFirst) {
   const std::vector<JobCost> jobs = {{0, 0, 1}, {1, 0, 1}, {2, 0, 1}, {3, 0, 1}, {4, 0, 1}, {5, 0, 5}};
   const ShardSplit split = splitShards(jobs, 2);

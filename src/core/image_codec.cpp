@@ -1,5 +1,5 @@
-// Loads the image module with dlopen on first use: the executable has no link-time
-// dependency on the image library, so its start-up never pays for loading it.
+// Loads the image modules with dlopen on first use: the executable has no link-time
+// dependency on an image library, so its start-up never pays for loading one.
 #include "core/image_codec.h"
 
 #include <dlfcn.h>
@@ -12,8 +12,6 @@
 namespace penumbra {
 namespace {
 
-using Entry = const ImageCodec* (*)();
-
 std::string executableDir() {
   std::string buf(4096, '\0');
   const ssize_t n = ::readlink("/proc/self/exe", buf.data(), buf.size() - 1);
@@ -22,31 +20,46 @@ std::string executableDir() {
   return buf.substr(0, buf.rfind('/'));
 }
 
-const ImageCodec* load() {
+// The object module `name` returns from its symbol `entry`; `buildPath` is where the
+// build put it, for executables run from elsewhere.
+template <class T>
+const T* load(const char* name, const char* entry, const char* buildPath) {
+  using Entry = const T* (*)();
   // Already in the process: an executable (a test, a fuzzer) that links the module.
-  if (void* entry = ::dlsym(RTLD_DEFAULT, kImageCodecEntry)) return reinterpret_cast<Entry>(entry)();
+  if (void* symbol = ::dlsym(RTLD_DEFAULT, entry)) return reinterpret_cast<Entry>(symbol)();
   std::string errors;
-  std::vector<std::string> candidates = {executableDir() + "/" + kImageModuleName};
-#ifdef PENUMBRA_IMAGE_MODULE
-  candidates.push_back(PENUMBRA_IMAGE_MODULE);  // the build folder's, for executables run from elsewhere
-#endif
+  std::vector<std::string> candidates = {executableDir() + "/" + name};
+  if (buildPath) candidates.push_back(buildPath);
   for (const std::string& path : candidates) {
     void* module = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!module) {
       errors += std::string(errors.empty() ? "" : "; ") + ::dlerror();
       continue;
     }
-    if (void* entry = ::dlsym(module, kImageCodecEntry)) return reinterpret_cast<Entry>(entry)();
-    errors += std::string(errors.empty() ? "" : "; ") + path + " has no " + kImageCodecEntry;
+    if (void* symbol = ::dlsym(module, entry)) return reinterpret_cast<Entry>(symbol)();
+    errors += std::string(errors.empty() ? "" : "; ") + path + " has no " + entry;
   }
-  throw std::runtime_error(std::string("cannot load the image module ") + kImageModuleName + ": " + errors);
+  throw std::runtime_error(std::string("cannot load the image module ") + name + ": " + errors);
 }
+
+#ifndef PENUMBRA_IMAGE_MODULE
+#define PENUMBRA_IMAGE_MODULE nullptr
+#endif
+#ifndef PENUMBRA_ENCODER_MODULE
+#define PENUMBRA_ENCODER_MODULE nullptr
+#endif
 
 }  // namespace
 
 const ImageCodec& imageCodec() {
-  static const ImageCodec* const codec = load();
+  static const ImageCodec* const codec = load<ImageCodec>(kImageModuleName, kImageCodecEntry, PENUMBRA_IMAGE_MODULE);
   return *codec;
+}
+
+const ImageEncoder& imageEncoder() {
+  static const ImageEncoder* const encoder =
+      load<ImageEncoder>(kImageEncoderModuleName, kImageEncoderEntry, PENUMBRA_ENCODER_MODULE);
+  return *encoder;
 }
 
 }  // namespace penumbra

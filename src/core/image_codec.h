@@ -116,6 +116,19 @@ class ImageCodec {
                                                    const std::vector<bool>& data) const = 0;
 };
 
+// PNG and EXR encoding in a module of its own on libpng and OpenEXR, the two formats a
+// render writes: writing an output never loads OpenImageIO's hundreds of libraries.
+class ImageEncoder {
+ public:
+  virtual ~ImageEncoder() = default;
+  // Whether encode() takes this file and spec; else the image module encodes it.
+  virtual bool handles(const std::string& path, const EncodeSpec& spec) const = 0;
+  // As ImageCodec::encode, with the same bytes where the image library's encoder is
+  // deterministic (an EXR's capDate is the time of writing).
+  virtual std::string encode(const std::string& path, const EncodeSpec& spec, const void* pixels,
+                             std::vector<unsigned char>& bytes) const = 0;
+};
+
 // The module's one exported symbol: returns its codec.
 inline constexpr const char* kImageCodecEntry = "penumbra_image_codec";
 // The module's file name; found in the process (a test links it), beside the running
@@ -125,5 +138,10 @@ inline constexpr const char* kImageModuleName = "libpenumbra_images.so";
 // The codec, loading the module on first call (thread-safe). Throws std::runtime_error
 // naming the module when it cannot be loaded.
 const ImageCodec& imageCodec();
+
+inline constexpr const char* kImageEncoderEntry = "penumbra_image_encoder";
+inline constexpr const char* kImageEncoderModuleName = "libpenumbra_encoders.so";
+// The encoder, loading its module on first call (thread-safe), as imageCodec().
+const ImageEncoder& imageEncoder();
 
 }  // namespace penumbra

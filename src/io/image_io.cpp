@@ -150,11 +150,14 @@ void setAttribute(EncodeSpec& spec, const std::string& name, const std::string& 
 
 }  // namespace
 
-// Encodes the image in memory (the writer chosen by the target's extension), then
-// writes the bytes through the one checked write-and-rename (temp_file.h).
+// Encodes the image in memory (the writer chosen by the target's extension; the
+// encoder module where it takes the file, else the image module), then writes the
+// bytes through the one checked write-and-rename (temp_file.h).
 void writeAtomically(const std::string& path, const EncodeSpec& spec, const void* pixels) {
   std::vector<unsigned char> bytes;
-  const std::string problem = imageCodec().encode(path, spec, pixels, bytes);
+  const ImageEncoder& encoder = imageEncoder();
+  const std::string problem = encoder.handles(path, spec) ? encoder.encode(path, spec, pixels, bytes)
+                                                          : imageCodec().encode(path, spec, pixels, bytes);
   if (!problem.empty()) writeFailed(path, problem);
   writeFileAtomic(path, bytes.data(), bytes.size(), "image");
 }

@@ -13,13 +13,24 @@ constexpr double kRayNs = 100.0;            // a camera, shadow or specular ray 
 constexpr double kPhotonSegmentNs = 140.0;  // one photon ray + surface + store (bench_photons)
 constexpr double kBuildNsPerPhoton = 200.0; // KD build per stored photon
 constexpr double kGatherNsPerNeighbour = 60.0;  // exact gathers, per neighbour
+// The physical model's exact global and caustic gathers, per neighbour found, with its
+// shading (cornell_physical, 12 passes, 1 thread: the search and shading share of the
+// CPU profile over the neighbours --stats counts).
+constexpr double kPhysicalGatherNsPerNeighbour = 56.0;
 constexpr double kLookupNs = 80.0;          // one precomputed query per shading point, all lights
 constexpr double kExactVoteNs = 3000.0;     // one exact k-nearest gate vote per light
 constexpr double kShadowPhotonNs = 520.0;   // emit + build + cache, per emitted shadow photon
 constexpr double kStartupSeconds = 0.2;     // load, BVH, set-up of a small scene (large BVHs: below)
+// Loading the image module (OpenImageIO), once per process that reads an image: a
+// texture, an environment map, an alpha mask (dlopen of an 8x8 render, 1 thread).
+constexpr double kImageModuleSeconds = 0.3;
 constexpr double kBvhBuildNsPerPrimitive = 1200.0;  // Embree's build, per triangle or sphere
 constexpr double kMeshLightSampleNs = 40.0;   // one sample of a mesh light: a point on a triangle
 constexpr double kMeshLightLevelNs = 12.0;    // ... plus per level of its search by area
+// Shading one light sample (the BSDF, the light's answer, the gate's verdict), charged
+// where a camera pilot counted the shading points: the analytic depth factor's extra
+// points stand in for it elsewhere (soft_shadows, 32 samples a point, 1 thread).
+constexpr double kLightSampleShadeNs = 30.0;
 
 // Shares.
 constexpr double kAvoidable = 0.85;  // shadow tests a gate answers without a ray (soft_shadows)

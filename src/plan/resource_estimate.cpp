@@ -12,6 +12,7 @@
 #include "gather/lookup_cache/lookup_cache_cells.h"
 #include "core/photon.h"
 #include "core/image_codec.h"
+#include "gather/radiance_estimate.h"
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <algorithm>
@@ -80,6 +81,16 @@ double lightSampleNs(const Light& light) {
   const size_t table = lightSampleTable(light);
   if (table == 0) return 0.0;
   return kMeshLightSampleNs + kMeshLightLevelNs * std::log2(1.0 + table);
+}
+
+// The neighbours one of the physical model's gathers finds, averaged over its passes:
+// pass i gathers the passK(k, i) nearest (a fixed photons.radius shrinks by the same
+// share, so it holds about as many).
+double meanPassNeighbours(int k, int passes, float alpha) {
+  if (passes <= 1) return k;
+  double sum = 0.0;
+  for (int i = 0; i < passes; ++i) sum += passK(k, uint32_t(i), alpha);
+  return sum / passes;
 }
 
 // From the file's header only (no pixels are read); a builtin texture from its name.
@@ -229,7 +240,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // Mirrors and glass repeat the shading at each level of the recursion, but few
   // paths go many levels deep, so the factor is capped.
   const double depth = lit && hasSpecular(scene) ? 1.0 + 0.25 * std::min(scene.render.maxDepth, 4) : 1.0;
-  const double shadings = samples * depth * p.passes;  // shading points of the whole render
+  // A camera pilot counts them in this view instead, and the rays that miss.
+  const bool piloted = options.pointsPerSample + options.missesPerSample > 0.0 && !options.tracePixel;
+  const double shadings = samples * p.passes * (piloted ? options.pointsPerSample : depth);  // of the whole render
+  const double misses = piloted ? samples * p.passes * options.missesPerSample : 0.0;
   double lookupNs = 0.0, samplesPerPoint = 0.0, raysPerPoint = 0.0, sampleNs = 0.0;
   const bool gated = p.emitted[MapKind::Shadow] > 0;
   if (lit && options.shadows) {
@@ -250,17 +264,24 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   }
   e.lightSamples = shadings * samplesPerPoint;
   e.shadowRays = shadings * raysPerPoint;
-  const auto gather = [&](int k) {
-    return options.precomputed ? kLookupNs : k * kGatherNsPerNeighbour;
-  };
-  if (p.emitted[MapKind::Indirect] > 0) lookupNs += gather(ps.kIndirect);
-  if (p.emitted[MapKind::Global] > 0) lookupNs += gather(ps.kGlobal);
-  if (p.emitted[MapKind::Caustic] > 0) lookupNs += gather(ps.kCaustic);
+  if (p.emitted[MapKind::Indirect] > 0) lookupNs += options.precomputed ? kLookupNs : ps.kIndirect * kGatherNsPerNeighbour;
+  // The physical model gathers where a camera path meets a diffuse surface, once per
+  // sample, pass and map unpiloted (glass's split paths add a tenth in
+  // cornell_physical), and a gather costs the neighbours it finds, fewer each pass.
+  double physicalNs = 0.0;
+  for (const auto& [map, k] : {std::pair{MapKind::Global, ps.kGlobal}, std::pair{MapKind::Caustic, ps.kCaustic}}) {
+    if (p.emitted[map] == 0) continue;
+    if (options.precomputed) lookupNs += kLookupNs;
+    else physicalNs += meanPassNeighbours(k, p.passes, ps.alpha) * kPhysicalGatherNsPerNeighbour;
+  }
   // Every triangle and sphere of every mesh object, instances of one file included:
   // Embree builds over all of them.
   e.primitives = primitives;
   e.bvhSeconds = primitives * kBvhBuildNsPerPrimitive / e.threads * 1e-9;
-  const double ns = shadings * (kRayNs + lookupNs + sampleNs) + e.shadowRays * kRayNs;
+  const double gathers = samples * p.passes * (piloted ? options.diffusePerSample : 1.0);
+  const double shadeNs = piloted ? samplesPerPoint * kLightSampleShadeNs : 0.0;
+  const double ns = shadings * (kRayNs + lookupNs + sampleNs + shadeNs) + (e.shadowRays + misses) * kRayNs +
+                    gathers * physicalNs;
   e.renderSeconds = kStartupSeconds + e.bvhSeconds + ns / e.threads * 1e-9;
   return e;
 }

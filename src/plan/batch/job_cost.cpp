@@ -1,11 +1,23 @@
 // A batch job's estimated cost and photon key (plan/batch/job_cost.h).
 #include "plan/batch/job_cost.h"
+#include "core/lights/environment_map.h"
+#include "plan/camera_pilot.h"
 #include "plan/cost_model.h"
 #include "plan/photon_pilot.h"
 #include "plan/resource_estimate.h"
 #include <algorithm>
 
 namespace penumbra {
+namespace {
+
+// Whether rendering decodes an image file or samples a texture: the image module's
+// load, paid once by the process, like the maps.
+bool readsImages(const Scene& scene) {
+  const Light* sky = environmentOf(scene);
+  return !scene.textures.empty() || !scene.alphaMasks.empty() || (sky && sky->environment);
+}
+
+}  // namespace
 
 JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer) {
   JobCost c;
@@ -15,6 +27,14 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
     o.threads = 1;
     // The analytic rates bound the stores per photon, loosely; a pilot measures them.
     const StoreRates rates = tracer ? measureStoreRates(v.scene, *tracer, o.photons, v.admission.bound) : v.admission.bound;
+    // What this view (or tile) shows: a bare wall or glass and mirrors, in a pilot.
+    if (tracer) {
+      const PixelBounds bounds = v.bounds ? *v.bounds : PixelBounds::frame(v.scene.camera.width, v.scene.camera.height);
+      const CameraPilot pilot = measureCamera(v.scene, *tracer, bounds);
+      o.pointsPerSample = pilot.pointsPerSample;
+      o.diffusePerSample = pilot.diffusePerSample;
+      o.missesPerSample = pilot.missesPerSample;
+    }
     const ResourceEstimate e = estimateResources(v.scene, o, rates);
     // The BVH and the first pass's maps are paid once by the jobs that share them;
     // later progressive passes emit their own photons in every job. A tile renders
@@ -24,7 +44,7 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
     const double stage = e.photonSeconds / std::max(1, o.photons.photonPasses);
     c.frameSeconds += std::max(0.0, e.renderSeconds - cost::kStartupSeconds - e.bvhSeconds) * share +
                       (e.photonSeconds - stage);
-    c.photonSeconds = std::max(c.photonSeconds, stage + e.bvhSeconds);
+    c.photonSeconds = std::max(c.photonSeconds, stage + e.bvhSeconds + (readsImages(v.scene) ? cost::kImageModuleSeconds : 0.0));
   }
   return c;
 }

@@ -9,9 +9,11 @@
 namespace penumbra {
 
 // Seconds on one thread: the views' frames (every pass, the gate and lookups as
-// planned), and the maps they share (with the BVH they need), charged once. With
-// the views' BVH, the photons stored per emitted one come from a pilot emission
-// (deterministic, so every machine costs alike), else from the analytic bounds.
+// planned), and the maps they share (with the BVH they need, and the image module
+// where they read images), charged once. With the views' BVH, the photons stored
+// per emitted one come from a pilot emission and the shading points per sample
+// from a camera pilot (deterministic, so every machine costs alike), else from the
+// analytic bounds.
 JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer);
 
 // The key of the photon stage the views share (RenderSession::photons' key).

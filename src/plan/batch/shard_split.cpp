@@ -1,4 +1,5 @@
-// Longest-processing-time placement of photon-key groups (plan/batch/shard_split.h).
+// Longest-processing-time placement of photon-key groups, and larger groups cut to
+// fill the shards to one level (plan/batch/shard_split.h).
 #include "plan/batch/shard_split.h"
 #include <algorithm>
 #include <cmath>
@@ -50,41 +51,59 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
     for (size_t j : groups[g]) total += jobs[j].frameSeconds;
   }
   const double fair = total / double(count);
-  // A group above a fair share is cut into runs of consecutive jobs, each paying the maps.
-  std::vector<Piece> pieces;
-  for (size_t g = 0; g < groups.size(); ++g) {
+  const auto frameSeconds = [&](size_t g) {
     double frames = 0.0;
     for (size_t j : groups[g]) frames += jobs[j].frameSeconds;
-    const size_t runs = std::min(groups[g].size(),
-                                 std::max<size_t>(1, static_cast<size_t>(std::ceil((photons[g] + frames) / fair - 1e-9))));
-    // A run ends once the frames placed reach its share of the group's.
-    const double target = frames / double(runs);
-    Piece piece;
-    double placed = 0.0;
-    size_t made = 0;
-    for (size_t k = 0; k < groups[g].size(); ++k) {
-      const size_t j = groups[g][k];
-      piece.jobs.push_back(j);
-      piece.seconds += jobs[j].frameSeconds;
-      placed += jobs[j].frameSeconds;
-      const bool last = k + 1 == groups[g].size();
-      if (last || (made + 1 < runs && placed >= target * double(made + 1))) {
-        piece.seconds += photons[g];
-        pieces.push_back(std::move(piece));
-        piece = Piece{};
-        ++made;
-      }
-    }
-  }
-  // Largest first, each onto the least-loaded shard (ties: the lower index).
-  std::vector<size_t> order(pieces.size());
-  std::iota(order.begin(), order.end(), size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return pieces[a].seconds > pieces[b].seconds; });
-  for (size_t p : order) {
+    return frames;
+  };
+  const auto place = [&](const std::vector<size_t>& pieceJobs, double seconds, size_t shard) {
+    split.shardSeconds[shard] += seconds;
+    for (size_t j : pieceJobs) split.shardOf[j] = shard;
+  };
+  // Groups within a fair share stay whole: largest first, each onto the least-loaded
+  // shard (ties: the lower index).
+  std::vector<size_t> whole, cut;
+  for (size_t g = 0; g < groups.size(); ++g) (photons[g] + frameSeconds(g) > fair ? cut : whole).push_back(g);
+  const auto bySize = [&](size_t a, size_t b) { return photons[a] + frameSeconds(a) > photons[b] + frameSeconds(b); };
+  std::stable_sort(whole.begin(), whole.end(), bySize);
+  std::stable_sort(cut.begin(), cut.end(), bySize);
+  for (size_t g : whole) {
     const size_t s = static_cast<size_t>(std::min_element(split.shardSeconds.begin(), split.shardSeconds.end()) -
                                          split.shardSeconds.begin());
-    split.shardSeconds[s] += pieces[p].seconds;
-    for (size_t j : pieces[p].jobs) split.shardOf[j] = s;
+    place(groups[g], photons[g] + frameSeconds(g), s);
+  }
+  // A larger group is cut into runs of consecutive jobs that fill the least-loaded
+  // shards up to one level, each run paying the maps: the level L where the m lowest
+  // shards take the frames and m maps, L = (their load + frames + m x maps) / m,
+  // with m the fewest shards whose level lies below the next one's load.
+  for (size_t g : cut) {
+    std::vector<size_t> order(split.shardSeconds.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return split.shardSeconds[a] < split.shardSeconds[b]; });
+    const double frames = frameSeconds(g);
+    double below = 0.0, level = 0.0;
+    size_t m = 0;
+    while (m < order.size()) {
+      below += split.shardSeconds[order[m]];
+      ++m;
+      level = (below + frames + double(m) * photons[g]) / double(m);
+      if (m == order.size() || level <= split.shardSeconds[order[m]]) break;
+    }
+    size_t k = 0;
+    for (size_t r = 0; r < m && k < groups[g].size(); ++r) {
+      const size_t shard = order[r];
+      const double room = level - split.shardSeconds[shard] - photons[g];
+      Piece piece;
+      // A job goes in while at least half of it fits; the last run takes the rest.
+      while (k < groups[g].size() &&
+             (r + 1 == m || piece.jobs.empty() || piece.seconds + 0.5 * jobs[groups[g][k]].frameSeconds <= room)) {
+        piece.jobs.push_back(groups[g][k]);
+        piece.seconds += jobs[groups[g][k]].frameSeconds;
+        ++k;
+      }
+      place(piece.jobs, piece.seconds + photons[g], shard);
+    }
   }
   return split;
 }

@@ -1,6 +1,7 @@
 // The split of a batch into shards: jobs that share photon maps kept together
-// (the maps built once), groups larger than a fair share cut into contiguous
-// runs, and the pieces placed largest first on the least-loaded shard.
+// (the maps built once) and placed largest first on the least-loaded shard; groups
+// larger than a fair share then cut into contiguous runs that fill the shards to
+// one level, each run paying the maps.
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -10,7 +11,7 @@ namespace penumbra {
 // One job's cost in seconds on one thread, from the estimate a render prints.
 struct JobCost {
   size_t group = 0;           // jobs with equal photon keys share a group
-  double photonSeconds = 0.0;  // the group's maps: paid once by each shard that renders the group
+  double photonSeconds = 0.0;  // the group's maps (and image module): paid once by each shard that renders the group
   double frameSeconds = 0.0;   // the job's own frames: every view, every pass
 };
 
