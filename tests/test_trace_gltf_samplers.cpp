@@ -6,6 +6,7 @@
 // quad also carries a constant normal map and metallic-roughness map, whose tilt and
 // factors the record must show.
 #include "core/color.h"
+#include "core/error.h"
 #include "io/scene_loader.h"
 #include "support/gltf_build.h"
 #include "support/render_fixtures.h"
@@ -67,6 +68,7 @@ constexpr float kMapRed = 218.0f / 255.0f;
 struct SamplerScene {
   testing::ScratchDir scratch;
   Scene scene;
+  tinygltf::Model model;
   SamplerScene() {
     const fs::path& dir = scratch.path();
     writePng(dir / "grid.png", kSide, [](int x, int y, float* v) {
@@ -98,6 +100,7 @@ struct SamplerScene {
     }
     EXPECT_TRUE(testing::writeGltfFile(m, (dir / "quads.gltf").string(), false));
     scene = loadScene((dir / "quads.gltf").string());
+    model = m;
   }
 };
 
@@ -192,6 +195,27 @@ TEST_F(GltfSamplers, TheTraceRecordShowsTheEvaluatedMaterialAndTheMapsTilt) {
   EXPECT_NEAR(rec.shadingNormal.z, 1.0f / std::sqrt(1.0f + lean * lean), 5e-3f);
   // The clamp quad has no normal map: no tilt.
   EXPECT_NEAR(normalTiltDegrees(shoot(6.5f, 0.5f)), 0.0f, 1e-3f);
+}
+
+// A wrap value the spec does not have, or a sampler that does not exist, is refused
+// naming the JSON path.
+TEST_F(GltfSamplers, ASamplerOutsideTheSpecIsRefusedNamingItsPath) {
+  auto refusal = [](const tinygltf::Model& m) -> std::string {
+    const fs::path file = model_->scratch.path() / "bad.gltf";
+    EXPECT_TRUE(testing::writeGltfFile(m, file.string(), false));
+    try {
+      loadScene(file.string());
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  tinygltf::Model m = model_->model;
+  m.samplers[1].wrapT = 10496;
+  EXPECT_NE(refusal(m).find("samplers[1].wrapT: 10496 is not 10497 (REPEAT)"), std::string::npos) << refusal(m);
+  m = model_->model;
+  m.textures[2].sampler = 9;
+  EXPECT_NE(refusal(m).find("textures[2].sampler: 9 does not exist"), std::string::npos) << refusal(m);
 }
 
 }  // namespace
