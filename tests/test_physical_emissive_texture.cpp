@@ -128,7 +128,7 @@ Scene texturedEmitter(const testing::ScratchDir& dir, Color left, Color right) {
   const std::string file = (dir / "emission.exr").string();
   writeImage(file, image);
   Scene scene = physicalScene();
-  scene.textures.push_back(Texture{file, false});
+  scene.textures.push_back(Texture{file, false, std::nullopt});
   Material m = lambert("panel", Color(0.5f));
   m.emission = Color(3.0f);
   m.emissionTexture = 0;

@@ -50,7 +50,7 @@ std::vector<Pair> shadeBoth(Material m, ShadingModel model, const std::string& m
     Scene& scene = scenes[k];
     scene = physicalScene();
     scene.render.model = model;
-    scene.textures = {Texture{map, true}};
+    scene.textures = {Texture{map, true, std::nullopt}};
     Material mk = m;
     mk.normalTexture = k == 0 ? 0 : -1;
     scene.materials.push_back(mk);
@@ -149,7 +149,7 @@ TEST(NormalMap, ScaleZeroAndAFlatMapLeaveTheShadingAsItWas) {
   const Color want = trace(Rig(plain), ray, kTermAll);
   for (const auto& [file, scale] : {std::pair{tilted, 0.0f}, std::pair{flat, 1.0f}}) {
     Scene scene = plain;
-    scene.textures = {Texture{file, true}};
+    scene.textures = {Texture{file, true, std::nullopt}};
     scene.materials[0].normalTexture = 0;
     scene.materials[0].normalScale = scale;
     computeTangents(scene.meshes[0]);

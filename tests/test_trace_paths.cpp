@@ -223,6 +223,26 @@ TEST(Render, TracePixelTreeIsConsistent) {
   }
   EXPECT_TRUE(centre[0].entering);
   EXPECT_TRUE(sawLeaving);
+  // Each shaded hit records its surface: no texture (no uv), the material's own base
+  // colour, and a shading normal equal to the interpolated one (no normal map) facing
+  // the ray; the floor's is +y.
+  bool sawFloor = false;
+  RayTree both = centre;
+  for (const RayRecord& r : tracePixel(rig.ctx, 0, 48)) both.push_back(r);
+  for (const RayRecord& r : both) {
+    if (!r.hit || r.kind == "shadow") continue;
+    EXPECT_TRUE(r.shaded);
+    EXPECT_FALSE(r.hasUv);
+    EXPECT_FALSE(r.metalRough);
+    EXPECT_EQ(r.interpolatedNormal, r.shadingNormal);
+    EXPECT_NEAR(normalTiltDegrees(r), 0.0f, 1e-3f);
+    EXPECT_LT(glm::dot(r.shadingNormal, r.dir), 0.0f);
+    if (r.material != "floor") continue;
+    sawFloor = true;
+    expectColorNear(r.baseColor, Color(0.7f, 0.6f, 0.5f), 1e-6f, "floor base colour");
+    EXPECT_NEAR(r.geometricNormal.y, 1.0f, 1e-6f);
+  }
+  EXPECT_TRUE(sawFloor);
   EXPECT_THROW(tracePixel(rig.ctx, 65, 0), std::exception);
   EXPECT_THROW(tracePixel(rig.ctx, -1, 3), std::exception);
 }

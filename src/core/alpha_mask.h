@@ -22,12 +22,13 @@ struct AlphaMask {
   std::string source;  // the image file it came from (materials sharing one share the mask)
   int width = 0, height = 0;
   std::vector<uint8_t> alpha;  // width x height, row after row
+  TextureSampling sampling;    // the texture's sampler (repeat in u and v without one)
 
-  // Bilinear between texel centres, repeating in u and v (glTF's default sampler): a
+  // Bilinear between texel centres unless the sampler asks for nearest texels: a
   // magnified mask keeps a smooth cut edge instead of texel-sized steps.
   float at(Vec2 uv) const {
     const auto texel = [&](int x, int y) { return float(alpha[size_t(y) * size_t(width) + size_t(x)]); };
-    return bilinearRepeat(width, height, uv, texel) * (1.0f / 255.0f);
+    return sampleTexels(width, height, uv, sampling, texel) * (1.0f / 255.0f);
   }
   size_t bytes() const { return alpha.size(); }
 };

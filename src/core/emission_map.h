@@ -13,10 +13,11 @@ struct EmissionMap {
   int width = 0, height = 0;
   std::vector<Color> texels;  // linear, width x height, row after row
   UvTransform transform;      // the material's texture placement
+  TextureSampling sampling;   // the texture's sampler (repeat in u and v without one)
 
   Color at(Vec2 uv) const {
     const auto texel = [&](int x, int y) { return texels[size_t(y) * size_t(width) + size_t(x)]; };
-    return bilinearRepeat(width, height, transform.apply(uv), texel);
+    return sampleTexels(width, height, transform.apply(uv), sampling, texel);
   }
 };
 

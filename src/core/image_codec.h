@@ -4,6 +4,7 @@
 // image never loads the library's hundreds of dependencies.
 #pragma once
 #include "core/image.h"
+#include "core/texture_sampling.h"
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -81,9 +82,9 @@ struct ImageComparison {
 class TextureSampler {
  public:
   virtual ~TextureSampler() = default;
-  // Texture `index` at (s, t), filter widths ds along s and dt along t; s wraps,
-  // t clamps when `clampT`, else wraps.
-  virtual Color sample(int index, float s, float t, float ds, float dt, bool clampT) const = 0;
+  // Texture `index` at (s, t), filter widths ds along s and dt along t, wrapped and
+  // filtered as `how` says.
+  virtual Color sample(int index, float s, float t, float ds, float dt, const TextureSampling& how) const = 0;
 };
 
 class ImageCodec {

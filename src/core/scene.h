@@ -6,9 +6,11 @@
 #include "core/shading_model.h"
 #include "core/math.h"
 #include "core/shared_list.h"
+#include "core/texture_sampling.h"
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -172,7 +174,10 @@ inline void padVertices(std::vector<Vec3>& positions) {
 struct Texture {
   std::string path;  // absolute, resolved against the scene file's folder
   bool data = false;  // values, not colours: never decoded from sRGB (metallic-roughness)
-  bool operator==(const Texture& o) const { return path == o.path && data == o.data; }
+  // A model's sampler (glTF); none: the scene file's rule (u wraps, v clamps unless
+  // the material repeats the texture, trace/texture_lookup.h).
+  std::optional<TextureSampling> sampler;
+  bool operator==(const Texture& o) const { return path == o.path && data == o.data && sampler == o.sampler; }
 };
 
 struct RenderSettings {

@@ -11,6 +11,17 @@
 namespace penumbra::oiio {
 namespace {
 
+// OpenImageIO's wrap modes work on texel indices as OpenGL's do: its mirror repeats
+// the edge texel at each turn, its clamp reads the edge texel.
+OIIO::TextureOpt::Wrap wrapMode(TextureWrap wrap) {
+  switch (wrap) {
+    case TextureWrap::Repeat: return OIIO::TextureOpt::WrapPeriodic;
+    case TextureWrap::MirroredRepeat: return OIIO::TextureOpt::WrapMirror;
+    case TextureWrap::ClampToEdge: return OIIO::TextureOpt::WrapClamp;
+  }
+  return OIIO::TextureOpt::WrapPeriodic;
+}
+
 class Sampler final : public TextureSampler {
  public:
   Sampler(const std::vector<std::string>& paths, const std::vector<bool>& data)
@@ -35,11 +46,18 @@ class Sampler final : public TextureSampler {
   }
   ~Sampler() override { OIIO::TextureSystem::destroy(system_); }
 
-  Color sample(int index, float s, float t, float ds, float dt, bool clampT) const override {
+  Color sample(int index, float s, float t, float ds, float dt, const TextureSampling& how) const override {
     const Entry& e = entries_[size_t(index)];
     OIIO::TextureOpt opt;
-    opt.swrap = OIIO::TextureOpt::WrapPeriodic;
-    opt.twrap = clampT ? OIIO::TextureOpt::WrapClamp : OIIO::TextureOpt::WrapPeriodic;
+    opt.swrap = wrapMode(how.wrapS);
+    opt.twrap = wrapMode(how.wrapT);
+    // Auto keeps the library's own choices (smart bicubic, anisotropic MIP filter).
+    if (how.texels != TexelFilter::Auto) {
+      opt.interpmode = how.texels == TexelFilter::Nearest ? OIIO::TextureOpt::InterpClosest
+                                                          : OIIO::TextureOpt::InterpBilinear;
+    }
+    if (how.mips == MipFilter::None) opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+    if (how.mips == MipFilter::OneLevel) opt.mipmode = OIIO::TextureOpt::MipModeOneLevel;
     float v[3] = {1.0f, 0.0f, 1.0f};
     auto* perthread = system_->get_perthread_info();
     system_->texture(e.handle, perthread, opt, s, t, ds, 0.0f, 0.0f, dt, e.channels, v);

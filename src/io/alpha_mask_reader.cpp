@@ -23,9 +23,10 @@ int alphaChannel(const ImageInfo& spec) {
 
 }  // namespace
 
-int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, bool greyIsAlpha) {
+int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, bool greyIsAlpha,
+                 const TextureSampling& sampling) {
   for (size_t i = 0; i < scene.alphaMasks.size(); ++i) {
-    if (scene.alphaMasks[i].source == path) return static_cast<int>(i);
+    if (scene.alphaMasks[i].source == path && scene.alphaMasks[i].sampling == sampling) return static_cast<int>(i);
   }
   // A texture already in the scene was decoded whole when it joined (texture_check);
   // any other file is judged the same way first.
@@ -45,6 +46,7 @@ int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, b
   if (channel < 0) channel = 0;
   AlphaMask mask;
   mask.source = path;
+  mask.sampling = sampling;
   mask.width = spec.width;
   mask.height = spec.height;
   mask.alpha.resize(size_t(spec.width) * size_t(spec.height));

@@ -11,7 +11,9 @@ class JsonNode;
 // Scene::alphaMasks' index for the alpha of image `path` (shared when already
 // there): its alpha channel, or with `greyIsAlpha` its first channel when it has
 // none (a grey mask). -1 when the image has no alpha and !greyIsAlpha: nothing to
-// cut out. Fails at `where` when the image cannot be decoded.
-int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, bool greyIsAlpha);
+// cut out. `sampling` wraps and filters it (a model's sampler; repeat by default).
+// Fails at `where` when the image cannot be decoded.
+int addAlphaMask(const JsonNode& where, const std::string& path, Scene& scene, bool greyIsAlpha,
+                 const TextureSampling& sampling = {});
 
 }  // namespace penumbra

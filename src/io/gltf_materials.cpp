@@ -4,6 +4,7 @@
 #include "io/gltf_materials.h"
 
 #include "io/gltf_files.h"
+#include "io/gltf_samplers.h"
 #include "io/temp_file.h"
 #include "io/texture_gen.h"
 #include "core/error.h"
@@ -124,6 +125,7 @@ std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std
     m.emitterShades = true;
     m.twoSidedEmission = g.doubleSided;
     mm.emissionTexture = textureFile(model, g.emissiveTexture.index, path, folder);
+    mm.emissionSampler = gltfTextureSampling(model, g.emissiveTexture.index, path);
     m.ambient = Color(0.1f) * base;
     if (transmission >= 0.5f) {
       // Glass: smooth, the base colour as its transmission filter.
@@ -152,17 +154,23 @@ std::vector<ModelMaterial> gltfMaterials(const tinygltf::Model& model, const std
       m.roughness = roughness;
       m.ior = float(extensionNumber(g.extensions, "KHR_materials_ior", "ior", 1.5));
       mm.texture = textureFile(model, pbr.baseColorTexture.index, path, folder);
+      mm.textureSampler = gltfTextureSampling(model, pbr.baseColorTexture.index, path);
       readTextureTransform(pbr.baseColorTexture.index >= 0 ? pbr.baseColorTexture : pbr.metallicRoughnessTexture, m);
       mm.metalRoughTexture = textureFile(model, pbr.metallicRoughnessTexture.index, path, folder);
+      mm.metalRoughSampler = gltfTextureSampling(model, pbr.metallicRoughnessTexture.index, path);
     }
     // The tangent-space normal map and the cut-out: alphaMode reads the base colour's
     // alpha (factor times the base texture's alpha channel, decoded at load).
     mm.normalTexture = textureFile(model, g.normalTexture.index, path, folder);
+    mm.normalSampler = gltfTextureSampling(model, g.normalTexture.index, path);
     m.normalScale = float(g.normalTexture.scale);
     m.alphaMode = g.alphaMode == "MASK" ? AlphaMode::Mask : g.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
     m.alpha = pbr.baseColorFactor.size() >= 4 ? float(pbr.baseColorFactor[3]) : 1.0f;
     m.alphaCutoff = float(g.alphaCutoff);
-    if (m.alphaMode != AlphaMode::Opaque) mm.alphaTexture = textureFile(model, pbr.baseColorTexture.index, path, folder);
+    if (m.alphaMode != AlphaMode::Opaque) {
+      mm.alphaTexture = textureFile(model, pbr.baseColorTexture.index, path, folder);
+      mm.textureSampler = gltfTextureSampling(model, pbr.baseColorTexture.index, path);
+    }
     out.push_back(std::move(mm));
   }
   return out;

@@ -213,7 +213,9 @@ void addMeshEmitters(Scene& scene) {
     std::optional<EmissionMap> map;
     Color radiance = m.emission;
     if (m.emissionTexture >= 0) {
-      map = readEmissionMap(scene.textures[size_t(m.emissionTexture)].path, m.uvTransform());
+      const Texture& texture = scene.textures[size_t(m.emissionTexture)];
+      map = readEmissionMap(texture.path, m.uvTransform());
+      map->sampling = texture.sampler.value_or(TextureSampling{});
       if (!everyMeshHasUvs) {
         radiance *= meanTexel(*map);
         map.reset();

@@ -72,7 +72,7 @@ int textureIndex(const JsonNode& fileNode, bool data, Scene& scene, TextureIndex
     // Decoded now, once per file: a truncated image must fail here, not render black.
     const std::string problem = builtin ? builtinTextureProblem(file) : textureProblemFor(fileNode.context(), path);
     if (!problem.empty()) fileNode.fail(problem);
-    scene.textures.push_back(Texture{path, data});
+    scene.textures.push_back(Texture{path, data, std::nullopt});
     if (!builtin) scene.inputs.push_back(path);
   }
   return it->second;

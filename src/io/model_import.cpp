@@ -70,14 +70,15 @@ LoadedModel loadModel(const std::string& path, const LoadLimits& limits) {
   return model;
 }
 
-int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene, bool data) {
+int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene, bool data,
+                   const std::optional<TextureSampling>& sampler) {
   for (size_t i = 0; i < scene.textures.size(); ++i) {
-    if (scene.textures[i] == Texture{path, data}) return static_cast<int>(i);
+    if (scene.textures[i] == Texture{path, data, sampler}) return static_cast<int>(i);
   }
   if (const std::string why = unreadableFileReason(path); !why.empty()) where.fail("texture file " + path + ": " + why);
   const std::string problem = textureProblemFor(where.context(), path);
   if (!problem.empty()) where.fail(problem);
-  scene.textures.push_back(Texture{path, data});
+  scene.textures.push_back(Texture{path, data, sampler});
   scene.inputs.push_back(path);
   return static_cast<int>(scene.textures.size()) - 1;
 }
@@ -92,12 +93,16 @@ void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fa
     const ModelMaterial& mm = model.materials[mesh.material];
     Material m = fitToModel(mm.material, modelOf(scene.render).bsdf);
     m.name = stem + ":" + mm.material.name;
-    if (!mm.texture.empty()) m.texture = addTextureFile(where, mm.texture, scene);
-    if (!mm.metalRoughTexture.empty()) m.metalRoughTexture = addTextureFile(where, mm.metalRoughTexture, scene, true);
-    if (!mm.normalTexture.empty()) m.normalTexture = addTextureFile(where, mm.normalTexture, scene, true);
-    if (!mm.alphaTexture.empty()) m.alphaMask = addAlphaMask(where, mm.alphaTexture, scene, false);
+    if (!mm.texture.empty()) m.texture = addTextureFile(where, mm.texture, scene, false, mm.textureSampler);
+    if (!mm.metalRoughTexture.empty()) {
+      m.metalRoughTexture = addTextureFile(where, mm.metalRoughTexture, scene, true, mm.metalRoughSampler);
+    }
+    if (!mm.normalTexture.empty()) m.normalTexture = addTextureFile(where, mm.normalTexture, scene, true, mm.normalSampler);
+    if (!mm.alphaTexture.empty()) {
+      m.alphaMask = addAlphaMask(where, mm.alphaTexture, scene, false, mm.textureSampler.value_or(TextureSampling{}));
+    }
     if (!mm.emissionTexture.empty() && maxComponent(m.emission) > 0.0f) {
-      m.emissionTexture = addTextureFile(where, mm.emissionTexture, scene);
+      m.emissionTexture = addTextureFile(where, mm.emissionTexture, scene, false, mm.emissionSampler);
     }
     index[mesh.material] = static_cast<int>(scene.materials.size());
     scene.materials.push_back(std::move(m));

@@ -31,6 +31,9 @@ struct ModelMaterial {
   std::string normalTexture;      // tangent-space normal map (glTF normalTexture, MTL norm/bump)
   std::string alphaTexture;       // the image whose alpha channel cuts out (glTF: the base colour's)
   std::string emissionTexture;    // times the emission (glTF emissiveTexture, MTL map_Ke)
+  // Each map's own sampler (glTF; the alpha mask reads the base colour's), absent =
+  // the scene file's rule (OBJ).
+  std::optional<TextureSampling> textureSampler, metalRoughSampler, normalSampler, emissionSampler;
 };
 
 struct LoadedModel {
@@ -59,8 +62,9 @@ bool isGltfPath(const std::string& path);
 void addModelMeshes(const JsonNode& where, LoadedModel& model, int named, int fallback,
                     const Transform& transform, Scene& scene);
 
-// Scene::textures' index for an image file (shared when already there), decoded
-// once now; fails at `where` naming the problem.
-int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene, bool data = false);
+// Scene::textures' index for an image file read with `sampler` (shared when already
+// there), decoded once now; fails at `where` naming the problem.
+int addTextureFile(const JsonNode& where, const std::string& path, Scene& scene, bool data = false,
+                   const std::optional<TextureSampling>& sampler = std::nullopt);
 
 }  // namespace penumbra

@@ -76,6 +76,17 @@ std::string rayTreeToJson(const RayTree& tree, int x, int y) {
       n["material"] = r.material;
       n["side"] = r.entering ? "front" : "back";
     }
+    if (r.shaded) {
+      if (r.hasUv) n["uv"] = {r.uv.x, r.uv.y};
+      n["normal"] = {{"geometric", vec(r.geometricNormal)}, {"interpolated", vec(r.interpolatedNormal)},
+                     {"shading", vec(r.shadingNormal)}, {"map_tilt_degrees", normalTiltDegrees(r)}};
+      nlohmann::json mat = {{"base_color", vec(r.baseColor)}};
+      if (r.metalRough) {
+        mat["metallic"] = r.metallic;
+        mat["roughness"] = r.roughness;
+      }
+      n["evaluated"] = std::move(mat);
+    }
     if (!r.note.empty()) n["note"] = r.note;
     rays.push_back(std::move(n));
   }

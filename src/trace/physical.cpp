@@ -99,6 +99,8 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   ++ts.shadingPoint;
   // The vertex colour multiplies the base colour, as the texture below does.
   Bsdf bsdf = makeBsdf(m, BsdfFamily::Radiometric, ctx.scene.photons.sampling, Color(ctx.tracer.vertexColor(hit)));
+  const Vec3 interpolated = s.ns;
+  MetalRough mr{m.metallic, m.roughness};
   if (textured && ctx.textures) {
     // A texture is the diffuse albedo's (base colour's) map: multiplied in, or added
     // and kept <= 1; a metallic-roughness map scales those factors.
@@ -110,10 +112,12 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
                          : glm::min(bsdf.diffuse + texel, Color(1.0f) - bsdf.specular);
     }
     if (m.metalRoughTexture >= 0) {
-      const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);
+      mr = metalRoughAt(m, *ctx.textures, s, footprint);
       setMetalRough(bsdf, BsdfFamily::Radiometric, bsdf.diffuse, mr.metallic, mr.roughness);
     }
   }
+  // The radiometric family keeps the base colour as the diffuse term.
+  if (recIndex >= 0) recordSurface(ts, recIndex, s, interpolated, m, {bsdf.diffuse, mr.metallic, mr.roughness});
   const BsdfFrame frame{s.ns, s.ng, s.frontFace};
   const Vec3 wo = -ray.dir;
   std::string note;

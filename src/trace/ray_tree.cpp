@@ -48,6 +48,21 @@ void endRecord(ThreadState& ts, int index, const Hit& hit, const SurfaceRecord& 
   if (!note.empty()) r.note += (r.note.empty() ? "" : "; ") + note;
 }
 
+void recordSurface(ThreadState& ts, int index, const SurfaceRecord& s, const Vec3& interpolated, const Material& m,
+                   const EvaluatedMaterial& evaluated) {
+  RayRecord& r = (*ts.recorder)[size_t(index)];
+  r.shaded = true;
+  r.hasUv = readsUv(m);
+  r.uv = s.uv;
+  r.geometricNormal = s.ng;
+  r.interpolatedNormal = interpolated;
+  r.shadingNormal = s.ns;
+  r.baseColor = evaluated.base;
+  r.metalRough = m.metalRough;
+  r.metallic = evaluated.metallic;
+  r.roughness = evaluated.roughness;
+}
+
 // A shading normal can bend the mirror direction under the surface; fall back
 // to the geometric normal rather than reflect into the object.
 Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s) {

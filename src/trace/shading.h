@@ -110,6 +110,14 @@ int beginRecord(ThreadState& ts, RayKind kind, const Ray& ray, int depth, const 
                 int parent);
 void endRecord(ThreadState& ts, int index, const Hit& hit, const SurfaceRecord& s,
                const Material& m, const Color& contribution, const std::string& note);
+// The shaded surface into record `index`: `s` after any normal map, `interpolated` the
+// shading normal before it, the material as evaluated at the hit.
+struct EvaluatedMaterial {
+  Color base;
+  float metallic, roughness;
+};
+void recordSurface(ThreadState& ts, int index, const SurfaceRecord& s, const Vec3& interpolated, const Material& m,
+                   const EvaluatedMaterial& evaluated);
 Vec3 mirrorDirection(const Vec3& dir, const SurfaceRecord& s);
 
 // Whether shading this material reads the hit's uv (some texture of it).

@@ -89,14 +89,23 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
   const Color glow = emitterGlow(ctx, m, s, footprint, false);
   if (maxComponent(m.emission) > 0.0f && !m.emitterShades) return finish(glow, recordHit);  // a light's surface
 
+  const Vec3 interpolated = s.ns;
   if (ctx.textures) applyNormalMap(m, *ctx.textures, ctx.tracer, hit, footprint, ray.dir, s);
   Color texel(1.0f);
   if (m.texture >= 0 && ctx.textures) texel = ctx.textures->lookup(m.texture, s, footprint, m.uvTransform());
   const Color tint(ctx.tracer.vertexColor(hit));
   Bsdf bsdf = makeBsdf(m, BsdfFamily::Phong, ctx.scene.photons.sampling, tint);
+  MetalRough mr{m.metallic, m.roughness};
   if (m.metalRoughTexture >= 0 && ctx.textures) {
-    const MetalRough mr = metalRoughAt(m, *ctx.textures, s, footprint);
+    mr = metalRoughAt(m, *ctx.textures, s, footprint);
     setMetalRough(bsdf, BsdfFamily::Phong, m.diffuse * tint, mr.metallic, mr.roughness);
+  }
+  if (recIndex >= 0) {
+    // The classic model applies the texture to the lit colour; the base is the same product.
+    const Color base = m.texture < 0 ? m.diffuse * tint
+                       : m.textureBlend == TextureBlend::Multiply ? m.diffuse * tint * texel
+                                                                   : m.diffuse * tint + texel;
+    recordSurface(ts, recIndex, s, interpolated, m, {base, mr.metallic, mr.roughness});
   }
 
   // Local shading records its gate notes into this ray's record; fetch the
