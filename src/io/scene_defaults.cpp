@@ -64,6 +64,8 @@ Camera frameBounds(const Camera& camera, const SceneBounds& bounds) {
   return c;
 }
 
+ShadingModel defaultShadingModel(bool modelScene) { return modelScene ? kModelFileShadingModel : kDefaultShadingModel; }
+
 void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& scene) {
   LoadReport& report = scene.load;
   report.noCamera = noCamera;

@@ -27,6 +27,11 @@ constexpr double kFrameFill = 1.0 / 1.1;
 // box within kFrameFill of the image's half-extents.
 Camera frameBounds(const Camera& camera, const SceneBounds& bounds);
 
+// The shading model a scene renders in where render.model is not set, decided before
+// its materials are read: kModelFileShadingModel for a glTF or OBJ file given as the
+// scene (`modelScene`), kDefaultShadingModel for a JSON scene, models it imports too.
+ShadingModel defaultShadingModel(bool modelScene);
+
 // A glTF scene after loading: `noCamera` when neither the model nor the JSON beside
 // it places a camera. Records in scene.load what is missing and, when `add`, adds a
 // camera framing the bounds and, without any light, a constant sky of radiance 1 as
