@@ -111,7 +111,7 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   if (statsToStdout) std::cout << statsReport(result);
   else if (!statsPath.empty()) writeTextOutput(statsPath, statsReport(result));
   if (!quiet) {
-    for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
+    for (const std::string& note : result.notes) std::cerr << noteLine(note) << "\n";
     std::cerr << renderSummary(result, verbose || !statsPath.empty()) << "\n";
   }
   return 0;

@@ -14,6 +14,7 @@
 #include "io/overrides.h"
 #include "io/scene_defaults.h"
 #include "io/scene_sections.h"
+#include "io/scene_warnings.h"
 #include "io/transform.h"
 
 #include <fmt/format.h>
@@ -193,6 +194,7 @@ Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
   try {
     Scene scene = buildScene(document, context, modelPath, options);
     scene.file = modelPath.empty() ? fileName : modelPath;
+    if (std::string warning = noLightWarning(scene); !warning.empty()) scene.load.notes.push_back(std::move(warning));
     returnFreedHeap();
     return scene;
   } catch (const json::exception& e) {
