@@ -1,6 +1,7 @@
 // The stop rule of a budgeted render, in one place.
 #include "plan/render_budget.h"
 #include "core/error.h"
+#include "core/scene.h"
 #include <fmt/format.h>
 #include <cmath>
 
@@ -18,11 +19,16 @@ const char* budgetStop(const RenderBudget& b, const BudgetState& s) {
   return nullptr;
 }
 
+RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load) {
+  if (asked.any() || !load.modelScene || load.qualityGiven) return asked;
+  return kModelBudget;
+}
+
 std::string describeBudget(const RenderBudget& b) {
   std::string out;
   if (b.seconds > 0.0) out = fmt::format("--time-limit {:g} s", b.seconds);
   if (b.targetError > 0.0) out += fmt::format("{}--target-error {:g}", out.empty() ? "" : ", ", b.targetError);
-  return out;
+  return b.modelDefault ? "the model default (" + out + ")" : out;
 }
 
 void checkBudget(const RenderBudget& b) {

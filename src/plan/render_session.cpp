@@ -88,6 +88,16 @@ PlannedJob RenderSession::plan(const JobRequest& asked) {
   if (request.scenePath == "-") ++sceneReads_;
   job.scene = loadScene(request.scenePath, request.overrides, loadLimits(options_.maxMemoryBytes), load);
   job.notes = job.scene.load.notes;
+  // A tile's or a traced pixel's passes are the scene's own: a budget cannot split.
+  if (!request.tile && !request.tracePixel) {
+    job.request.budget = frameBudget(request.budget, job.scene.load);
+    if (job.request.budget.modelDefault) {
+      job.notes.push_back(fmt::format("{}: no quality set; passes run until the noise RMSE is at most {:g} or {:g} s "
+                                      "have passed, whichever comes first (camera.spp, photons.passes, --time-limit "
+                                      "or --target-error set your own)", job.scene.file, kModelTargetError,
+                                      kModelTimeLimit));
+    }
+  }
   job.loadSeconds = clock.seconds();
   if (request.scenePath == "-") {
     // A scene read from stdin can be read once: it shares nothing with another job.
