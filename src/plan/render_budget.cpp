@@ -24,6 +24,12 @@ RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load) {
   return kModelBudget;
 }
 
+std::string modelBudgetNote(const std::string& scene) {
+  return fmt::format("{}: no quality set; passes run until the noise RMSE is at most {:g} or {:g} s have passed, "
+                     "whichever comes first (camera.spp, photons.passes, --time-limit or --target-error set your own)",
+                     scene, kModelTargetError, kModelTimeLimit);
+}
+
 std::string describeBudget(const RenderBudget& b) {
   std::string out;
   if (b.seconds > 0.0) out = fmt::format("--time-limit {:g} s", b.seconds);

@@ -32,6 +32,9 @@ struct LoadReport;
 // The budget a whole frame renders to: `asked` when it names one, kModelBudget for a
 // model scene that sets no quality (LoadReport::modelScene, qualityGiven), else none.
 RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load);
+// The note of a frame that renders to kModelBudget: "SCENE: no quality set; passes
+// run until ..., whichever comes first (... set your own)".
+std::string modelBudgetNote(const std::string& scene);
 
 // Where a budgeted render stands after a pass.
 struct BudgetState {

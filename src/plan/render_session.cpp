@@ -91,12 +91,7 @@ PlannedJob RenderSession::plan(const JobRequest& asked) {
   // A tile's or a traced pixel's passes are the scene's own: a budget cannot split.
   if (!request.tile && !request.tracePixel) {
     job.request.budget = frameBudget(request.budget, job.scene.load);
-    if (job.request.budget.modelDefault) {
-      job.notes.push_back(fmt::format("{}: no quality set; passes run until the noise RMSE is at most {:g} or {:g} s "
-                                      "have passed, whichever comes first (camera.spp, photons.passes, --time-limit "
-                                      "or --target-error set your own)", job.scene.file, kModelTargetError,
-                                      kModelTimeLimit));
-    }
+    if (job.request.budget.modelDefault) job.notes.push_back(modelBudgetNote(job.scene.file));
   }
   job.loadSeconds = clock.seconds();
   if (request.scenePath == "-") {
