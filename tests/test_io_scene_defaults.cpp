@@ -157,7 +157,8 @@ TEST(SceneDefaults, NoDefaultsKeepsTheFileAsItIs) {
   EXPECT_TRUE(s.load.noCamera && s.load.noLight);  // what check reports it would add
   EXPECT_FALSE(s.load.framedCamera || s.load.defaultSky);
   EXPECT_EQ(notesWith(s, "no camera"), 0u);
-  EXPECT_EQ(notesWith(s, "no light"), 0u);
+  EXPECT_EQ(notesWith(s, "no light;"), 0u);  // no sky is added ...
+  EXPECT_EQ(notesWith(s, "warning: "), 1u);  // ... and the scene without light says so
 }
 
 TEST(SceneDefaults, WhatTheUserGaveIsNeverReplaced) {

@@ -223,7 +223,7 @@ int BatchCommand::run() {
       break;
   }
   if (!session.quiet) {
-    for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
+    for (const std::string& n : out.notes) std::cerr << noteLine(n) << "\n";
     std::cerr << batchSummary(out);
   }
   return out.failed > 0 ? kExitJobsFailed : 0;

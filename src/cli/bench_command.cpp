@@ -56,7 +56,7 @@ int BenchCommand::run() {
   writeTextOutput(out.jsonPath, benchJson(out));
   std::cout << benchTable(out);
   if (!session.quiet) {
-    for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
+    for (const std::string& n : out.notes) std::cerr << noteLine(n) << "\n";
     std::cerr << "wrote " << out.jsonPath << "\n";
   }
   return 0;

@@ -112,7 +112,7 @@ int runRenderCommand(RenderRequest& req, const std::string& statsPath, const std
   if (statsToStdout) std::cout << statsReport(result);
   else if (!statsPath.empty()) writeTextOutput(statsPath, statsReport(result));
   if (!quiet) {
-    for (const std::string& note : result.notes) std::cerr << "note: " << note << "\n";
+    for (const std::string& note : result.notes) std::cerr << noteLine(note) << "\n";
     std::cerr << renderSummary(result, verbose || !statsPath.empty()) << "\n";
   }
   return 0;
@@ -156,7 +156,7 @@ int runCommandLine(int argc, char** argv) {
   SessionArgs session;
   std::optional<int> spp;
   CLI::App* render = app.add_subcommand("render", "Render a JSON scene to an image (PNG or EXR)");
-  render->add_option("scene", req.scenePath, "Scene file (JSON, .gltf or .glb; - reads JSON from stdin)")->required();
+  render->add_option("scene", req.scenePath, "Scene file (JSON, or a model: .gltf, .glb, .obj; - reads JSON from stdin)")->required();
   render->add_option("-o,--output,--outfile", req.outputPath,
                      "Output image: .png (8-bit sRGB) or .exr (linear: half colour, float depth in scene units and normals in [-1,1]); with --trace-pixel, "
                      "the JSON file (default stdout)");

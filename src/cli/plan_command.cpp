@@ -3,6 +3,7 @@
 #include "cli/plan_command.h"
 #include "core/error.h"
 #include "plan/check_report.h"
+#include "plan/command_support.h"
 #include "plan/memory_limit.h"
 #include "plan/render_frame.h"
 #include "plan/transport_model.h"
@@ -45,7 +46,7 @@ int CheckCommand::run() {
   for (const std::string& path : scenes_) {
     const Scene s = loadJobScene(path, options);
     std::cout << path << ": " << checkReport(s);
-    for (const std::string& note : s.load.notes) std::cerr << "note: " << note << "\n";
+    for (const std::string& note : s.load.notes) std::cerr << noteLine(note) << "\n";
   }
   return 0;
 }

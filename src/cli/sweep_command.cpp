@@ -123,7 +123,7 @@ int SweepCommand::run() {
     SweepOutcome out = runSweep(req);
     if (progress) progress->finish();
     if (!session.quiet) {
-      for (const std::string& n : out.notes) std::cerr << "note: " << n << "\n";
+      for (const std::string& n : out.notes) std::cerr << noteLine(n) << "\n";
       const SweepTotals& t = out.totals;
       std::cerr << fmt::format("sweep: {} runs ({} resumed) in {:.1f} s; {}; {} emission(s), {} prefix cut(s), {} map "
                                "build(s), {} BVH build(s)\n",

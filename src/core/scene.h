@@ -232,12 +232,16 @@ struct PhotonSettings {
 };
 
 // What loading found missing, added or left unread, for the notes and --stats; no
-// stage reads it (io/scene_defaults.h, io/gltf_extensions.h).
+// render stage reads it, the plan only for a model's default quality bound
+// (io/scene_defaults.h, io/gltf_extensions.h, plan/render_budget.h).
 struct LoadReport {
   std::vector<std::string> notes;              // one line each, shown as "note: ..."
   std::vector<std::string> ignoredExtensions;  // optional glTF extensions penumbra does not read
-  bool noCamera = false, noLight = false;      // a glTF scene whose files place no camera, give no light
+  bool noCamera = false, noLight = false;      // a model scene whose files place no camera, give no light
   bool framedCamera = false, defaultSky = false;  // ... and what loading added for them
+  bool modelScene = false;    // a glTF or OBJ file given as the scene
+  bool qualityGiven = false;  // its settings or overrides set camera.spp or photons.passes
+  size_t implicitMaterials = 0;  // Scene::materials loading added that no file names ("default")
 };
 
 struct Scene {

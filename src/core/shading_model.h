@@ -25,6 +25,9 @@ inline constexpr std::array<ShadingModelInfo, 2> kShadingModels = {{
 
 // What a scene that says nothing renders in: the report's scenes are classic.
 inline constexpr ShadingModel kDefaultShadingModel = ShadingModel::Classic;
+// ... and a glTF or OBJ file given as the scene: its materials are meant physically
+// (io/scene_defaults.h applies it where render.model is not set).
+inline constexpr ShadingModel kModelFileShadingModel = ShadingModel::Physical;
 
 inline constexpr const ShadingModelInfo& shadingModelInfo(ShadingModel model) {
   return kShadingModels[static_cast<size_t>(model)];

@@ -64,6 +64,8 @@ bool isGltfPath(const std::string& path) {
   return ext == ".gltf" || ext == ".glb";
 }
 
+bool isModelPath(const std::string& path) { return isGltfPath(path) || lowerExtension(path) == ".obj"; }
+
 LoadedModel loadModel(const std::string& path, const LoadLimits& limits) {
   LoadedModel model = isGltfPath(path) ? loadGltfModel(path, limits) : loadObjModel(path, limits);
   if (model.files.empty() || model.files.front() != path) model.files.insert(model.files.begin(), path);

@@ -51,6 +51,8 @@ struct LoadedModel {
 // ModelError.
 LoadedModel loadModel(const std::string& path, const LoadLimits& limits = {});
 bool isGltfPath(const std::string& path);
+// A model file a scene path may name instead of a JSON scene: .gltf, .glb or .obj.
+bool isModelPath(const std::string& path);
 
 // Adds the model's meshes to `scene`: each gets `named` when >= 0 (the scene names
 // the material), else its own material (appended to Scene::materials as

@@ -88,6 +88,8 @@ void frameCamera(const std::string& file, bool asked, Scene& scene) {
                                          why, vec(c.position), vec(c.lookAt), c.fovY, keep));
 }
 
+ShadingModel defaultShadingModel(bool modelScene) { return modelScene ? kModelFileShadingModel : kDefaultShadingModel; }
+
 void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& scene, bool autoCamera) {
   LoadReport& report = scene.load;
   report.noCamera = noCamera;

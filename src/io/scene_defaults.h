@@ -36,6 +36,11 @@ Camera frameSphere(const Camera& camera, const BoundingSphere& sphere);
 // camera fails the camera checks (a model beyond float's reach).
 void frameCamera(const std::string& file, bool asked, Scene& scene);
 
+// The shading model a scene renders in where render.model is not set, decided before
+// its materials are read: kModelFileShadingModel for a glTF or OBJ file given as the
+// scene (`modelScene`), kDefaultShadingModel for a JSON scene, models it imports too.
+ShadingModel defaultShadingModel(bool modelScene);
+
 // A glTF scene after loading: `noCamera` when neither the model nor the JSON beside
 // it places a camera. Records in scene.load what is missing and, when `add`, adds a
 // camera framing the model (always with `autoCamera`: --camera auto) and, without any light, a constant sky of radiance 1 as

@@ -1,5 +1,5 @@
 // Entry points of the scene loader: reads the file, parses it strictly
-// (io/json_parse.h), applies --set overrides, then validates. A glTF file is a
+// (io/json_parse.h), applies --set overrides, then validates. A glTF or OBJ file is a
 // scene too: its meshes, camera and lights, with an optional JSON of the same stem.
 #include "io/scene_loader.h"
 #include "io/input_file.h"
@@ -14,6 +14,7 @@
 #include "io/overrides.h"
 #include "io/scene_defaults.h"
 #include "io/scene_sections.h"
+#include "io/scene_warnings.h"
 #include "io/transform.h"
 
 #include <fmt/format.h>
@@ -43,7 +44,7 @@ fs::path folderOf(const std::string& file) {
   return ec ? dir : abs.lexically_normal();
 }
 
-// The glTF scene's meshes (own materials; faces without one take "default"), and its
+// The model scene's meshes (own materials; faces without one take "default"), and its
 // punctual lights after the JSON's.
 void addSceneModel(const JsonNode& root, LoadedModel& model, Scene& scene) {
   int fallback = -1;
@@ -55,12 +56,20 @@ void addSceneModel(const JsonNode& root, LoadedModel& model, Scene& scene) {
     m.name = "default";
     fallback = static_cast<int>(scene.materials.size());
     scene.materials.push_back(m);
+    ++scene.load.implicitMaterials;
   }
   addModelMeshes(root, model, -1, fallback, Transform{}, scene);
   for (const Light& light : model.lights) {
     checkPositions(root, {light.position}, "the model's light positions");
     scene.lights.push_back(light);
   }
+}
+
+// Whether the settings (the sidecar, the overrides) choose a quality: camera.spp or
+// photons.passes; without one a model scene renders to a default bound.
+bool givesQuality(const JsonNode& root) {
+  auto sets = [&](const char* section, const char* key) { return root.has(section) && root.child(section).has(key); };
+  return sets("camera", "spp") || sets("photons", "passes");
 }
 
 Scene buildScene(const json& document, const LoadContext& context, const std::string& modelPath,
@@ -101,7 +110,9 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   }
   if (root.has("lights")) readLights(root.child("lights"), scene.lights);
   // render first: the model decides how materials are checked.
+  scene.render.model = defaultShadingModel(!modelPath.empty());
   if (root.has("render")) readRender(root.child("render"), scene.render);
+  if (!root.has("materials")) ++scene.load.implicitMaterials;  // readMaterials adds "default"
   readMaterials(root, scene);
   readObjects(root, scene);
   if (!modelPath.empty()) addSceneModel(root, model, scene);
@@ -112,6 +123,8 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   addMeshEmitters(scene);
   if (root.has("environment")) readEnvironment(root.child("environment"), scene);
   if (!modelPath.empty()) {
+    scene.load.modelScene = true;
+    scene.load.qualityGiven = givesQuality(root);
     // A camera the user placed (the model's, or position / look_at beside it) is kept.
     const bool placed = camera || (root.has("camera") && (root.child("camera").has("position") ||
                                                           root.child("camera").has("look_at")));
@@ -171,7 +184,7 @@ void returnFreedHeap() {
 #endif
 }
 
-// `modelPath` non-empty: a glTF scene, `jsonText` its settings ("" = none).
+// `modelPath` non-empty: a model scene, `jsonText` its settings ("" = none).
 Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
                      const std::vector<std::string>& overrides, const std::string& modelPath,
                      const LoadLimits& limits, const LoadOptions& options = {}) {
@@ -185,7 +198,8 @@ Scene parseSceneWith(const std::string& jsonText, const std::string& fileName,
   context.overridden = applyOverrides(document, overrides);
   try {
     Scene scene = buildScene(document, context, modelPath, options);
-    scene.file = fileName;
+    scene.file = modelPath.empty() ? fileName : modelPath;
+    if (std::string warning = noLightWarning(scene); !warning.empty()) scene.load.notes.push_back(std::move(warning));
     returnFreedHeap();
     return scene;
   } catch (const json::exception& e) {
@@ -220,16 +234,14 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   auto text = [&](const std::string& file) {
     return options.cache ? options.cache->sceneText(file, [&] { return readText(file); }) : readText(file);
   };
-  if (!isGltfPath(path)) return parseSceneWith(text(path), path, overrides, "", limits, options);
+  if (!isModelPath(path)) return parseSceneWith(text(path), path, overrides, "", limits, options);
   if (const std::string why = unreadableFileReason(path); !why.empty()) throwInputError(path + ": cannot open scene file: " + why);
   std::error_code ec;
   // model.glb renders with model.json's settings when there is one.
   const std::string sidecar = fs::path(path).replace_extension(".json").string();
   const bool hasSidecar = fs::is_regular_file(sidecar, ec);
-  Scene scene = parseSceneWith(hasSidecar ? text(sidecar) : "", hasSidecar ? sidecar : path,
-                               overrides, path, limits, options);
-  scene.file = path;
-  return scene;
+  return parseSceneWith(hasSidecar ? text(sidecar) : "", hasSidecar ? sidecar : path, overrides, path, limits,
+                        options);
 }
 
 }  // namespace penumbra

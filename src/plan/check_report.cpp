@@ -28,11 +28,13 @@ std::string checkReport(const Scene& s) {
   const LoadReport& load = s.load;
   size_t triangles = 0;
   for (const TriangleMesh& m : s.meshes) triangles += m.triangles.size();
-  // The file's own lights: the default sky is reported below as an addition.
+  // The file's own lights and materials: the default sky is reported below as an
+  // addition, and the implicit "default" material is no file's.
   const size_t lights = s.lights.size() - (load.defaultSky ? 1 : 0);
+  const size_t materials = s.materials.size() - load.implicitMaterials;
   std::string out = fmt::format("ok ({}, {} meshes with {} triangles, {} spheres, {} lights, {} materials)\n",
                                 transportOf(s).name(), s.meshes.size(), triangles, s.spheres.size(), lights,
-                                s.materials.size());
+                                materials);
   // Where the geometry is: what a camera must frame (a model's units are its own).
   const SceneBounds b = sceneBounds(s);
   if (!b.empty()) {

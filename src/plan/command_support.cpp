@@ -4,6 +4,7 @@
 #include "core/cpu_time.h"
 #include "io/image_io.h"
 #include "io/report_json.h"
+#include "io/scene_warnings.h"
 #include "io/suggest.h"
 #include "io/temp_file.h"
 #include "io/texture_gen.h"
@@ -29,5 +30,9 @@ std::string optionHint(const std::string& option, const std::vector<std::string>
 }
 
 double processSeconds() { return processAgeSeconds(); }
+
+std::string noteLine(const std::string& note) {
+  return note.compare(0, kWarningNote.size(), kWarningNote) == 0 ? note : "note: " + note;
+}
 
 }  // namespace penumbra

@@ -28,6 +28,10 @@ void writeProceduralTexture(const std::string& name, int width, uint64_t seed, c
 // " (did you mean \"--threads\"?)" for the closest of `names`; "" when none is close.
 std::string optionHint(const std::string& option, const std::vector<std::string>& names);
 
+// A note as a command prints it on stderr: a warning (io/scene_warnings.h) as it is,
+// any other after "note: ".
+std::string noteLine(const std::string& note);
+
 // Seconds since the process started (what a render's time limit counts); < 0 unknown.
 double processSeconds();
 

@@ -1,6 +1,7 @@
 // The stop rule of a budgeted render, in one place.
 #include "plan/render_budget.h"
 #include "core/error.h"
+#include "core/scene.h"
 #include <fmt/format.h>
 #include <cmath>
 
@@ -18,11 +19,22 @@ const char* budgetStop(const RenderBudget& b, const BudgetState& s) {
   return nullptr;
 }
 
+RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load) {
+  if (asked.any() || !load.modelScene || load.qualityGiven) return asked;
+  return kModelBudget;
+}
+
+std::string modelBudgetNote(const std::string& scene) {
+  return fmt::format("{}: no quality set; passes run until the noise RMSE is at most {:g} or {:g} s have passed, "
+                     "whichever comes first (camera.spp, photons.passes, --time-limit or --target-error set your own)",
+                     scene, kModelTargetError, kModelTimeLimit);
+}
+
 std::string describeBudget(const RenderBudget& b) {
   std::string out;
   if (b.seconds > 0.0) out = fmt::format("--time-limit {:g} s", b.seconds);
   if (b.targetError > 0.0) out += fmt::format("{}--target-error {:g}", out.empty() ? "" : ", ", b.targetError);
-  return out;
+  return b.modelDefault ? "the model default (" + out + ")" : out;
 }
 
 void checkBudget(const RenderBudget& b) {

@@ -16,8 +16,25 @@ constexpr double kTimeLimitOverrun = 0.1;
 struct RenderBudget {
   double seconds = 0.0;      // --time-limit: wall seconds of the job; 0 = none
   double targetError = 0.0;  // --target-error: the noise RMSE to reach; 0 = none
+  bool modelDefault = false;  // kModelBudget, which the user did not give
   bool any() const { return seconds > 0.0 || targetError > 0.0; }
 };
+
+// What a glTF or OBJ file given as the scene renders to when nothing sets its quality
+// (no camera.spp, photons.passes, --spp, --time-limit or --target-error): passes until
+// the noise RMSE is at most kModelTargetError, a figure that only depends on the scene
+// and seed, or until kModelTimeLimit seconds have passed, whichever comes first.
+constexpr double kModelTargetError = 0.005;
+constexpr double kModelTimeLimit = 60.0;
+constexpr RenderBudget kModelBudget{kModelTimeLimit, kModelTargetError, true};
+
+struct LoadReport;
+// The budget a whole frame renders to: `asked` when it names one, kModelBudget for a
+// model scene that sets no quality (LoadReport::modelScene, qualityGiven), else none.
+RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load);
+// The note of a frame that renders to kModelBudget: "SCENE: no quality set; passes
+// run until ..., whichever comes first (... set your own)".
+std::string modelBudgetNote(const std::string& scene);
 
 // Where a budgeted render stands after a pass.
 struct BudgetState {
@@ -31,7 +48,8 @@ struct BudgetState {
 // reached", "time limit", ...). Two passes always run: the estimate needs them.
 const char* budgetStop(const RenderBudget& budget, const BudgetState& s);
 
-// "--time-limit 10 s" / "--target-error 0.03" / both, for notes and --stats.
+// "--time-limit 10 s" / "--target-error 0.03" / both, for notes and --stats; the
+// model default says so ("the model default (--time-limit 60 s, --target-error 0.005)").
 std::string describeBudget(const RenderBudget& budget);
 
 // Throws InputError (exit 2) for a negative or non-finite limit.

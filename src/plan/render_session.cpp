@@ -91,6 +91,11 @@ PlannedJob RenderSession::plan(const JobRequest& asked) {
   if (request.scenePath == "-") ++sceneReads_;
   job.scene = loadScene(request.scenePath, request.overrides, loadLimits(options_.maxMemoryBytes), load);
   job.notes = job.scene.load.notes;
+  // A tile's or a traced pixel's passes are the scene's own: a budget cannot split.
+  if (!request.tile && !request.tracePixel) {
+    job.request.budget = frameBudget(request.budget, job.scene.load);
+    if (job.request.budget.modelDefault) job.notes.push_back(modelBudgetNote(job.scene.file));
+  }
   job.loadSeconds = clock.seconds();
   if (request.scenePath == "-") {
     // A scene read from stdin can be read once: it shares nothing with another job.

@@ -38,10 +38,10 @@ std::string inputsStamp(const std::vector<std::string>& inputs) {
 }
 
 ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>& overrides) {
-  // A glTF scene's document is its settings file beside it (model.json), if any;
+  // A model scene's document is its settings file beside it (model.json), if any;
   // the model itself is geometry, named by its path in both keys.
   std::string documentPath = scenePath;
-  if (isGltfPath(scenePath)) documentPath = fs::path(scenePath).replace_extension(".json").string();
+  if (isModelPath(scenePath)) documentPath = fs::path(scenePath).replace_extension(".json").string();
   std::string text = "{}";
   if (documentPath == scenePath || fs::is_regular_file(documentPath)) {
     std::ifstream in(documentPath, std::ios::binary);

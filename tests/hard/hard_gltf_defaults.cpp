@@ -14,15 +14,14 @@ namespace {
 
 using nlohmann::json;
 
-const char* kSmall = " -D camera.width=16 -D camera.height=12 -D photons.shadow=1000 -D photons.indirect=1000";
+// camera.spp sets the quality: no model default bound (hard_model_scenes.cpp tests it).
+const char* kSmall =
+    " -D camera.width=16 -D camera.height=12 -D camera.spp=1 -D photons.shadow=1000 -D photons.indirect=1000";
 
 // A box [0, 2] x [0, 1] x [0, 1]: no camera, no light.
 fs::path writeBox(const ScratchDir& dir) {
-  tinygltf::Model m = testing::emptyGltf();
-  const float lo[3] = {0, 0, 0}, hi[3] = {2, 1, 1};
-  testing::addSceneNode(m, testing::addBoxMesh(m, lo, hi));
   const fs::path file = dir.path() / "box.glb";
-  EXPECT_TRUE(testing::writeGltfFile(m, file.string(), true));
+  EXPECT_TRUE(testing::writeBoxGlb(file.string()));
   return file;
 }
 
@@ -46,14 +45,15 @@ TEST(HardGltfDefaults, RenderFramesAndLightsTheModelAndSaysSoOnce) {
                                  quote(stats.string()) + " --no-defaults" + kSmall);
   ASSERT_EQ(plain.exitCode, 0) << plain.err;
   EXPECT_EQ(occurrences(plain.err, "no camera"), 0u) << plain.err;
-  EXPECT_EQ(occurrences(plain.err, "no light"), 0u) << plain.err;
+  EXPECT_EQ(occurrences(plain.err, "no light;"), 0u) << plain.err;  // no sky added: one warning instead
+  EXPECT_EQ(occurrences(plain.err, "warning: " + box.string() + ": no light"), 1u) << plain.err;
   EXPECT_EQ(json::parse(testing::readFile(stats))["load"]["defaults_added"], json::array());
 }
 
 TEST(HardGltfDefaults, CheckPrintsLightsBoundsAndWhatItAdds) {
   const ScratchDir dir;
   const fs::path box = writeBox(dir);
-  const std::string head = box.string() + ": ok (classic, 1 meshes with 12 triangles, 0 spheres, 0 lights, 1 materials)\n"
+  const std::string head = box.string() + ": ok (physical, 1 meshes with 12 triangles, 0 spheres, 0 lights, 0 materials)\n"
                            "  bounds [0, 0, 0] .. [2, 1, 1] (size 2 x 1 x 1)\n";
   CliResult r = runCli("check " + quote(box.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -77,7 +77,7 @@ TEST(HardGltfDefaults, BatchAndSweepTakeNoDefaultsAndSayANoteOnce) {
   writeBox(dir);
   // Two orbit frames of one model: the orbit places the camera, the sky is added, and
   // its note is said once for the batch.
-  const fs::path jobs = dir.write("jobs.json", R"({"set": ["camera.width=16", "camera.height=12",
+  const fs::path jobs = dir.write("jobs.json", R"({"set": ["camera.width=16", "camera.height=12", "camera.spp=1",
       "photons.shadow=1000", "photons.indirect=1000"], "jobs": [{"scene": "box.glb", "output": "o_{i}.png",
       "orbit": {"count": 2, "center": [1, 0.5, 0.5], "radius": 5, "height": 1}}]})");
   CliResult r = runCli("batch " + quote(jobs.string()));
@@ -87,7 +87,8 @@ TEST(HardGltfDefaults, BatchAndSweepTakeNoDefaultsAndSayANoteOnce) {
   // Outputs rendered with the sky are stale without it: no --force needed.
   r = runCli("batch --no-defaults " + quote(jobs.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(occurrences(r.err, "no light"), 0u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "no light;"), 0u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "warning: "), 1u) << r.err;  // said once, not per job
   EXPECT_NE(r.err.find("2 jobs: 2 rendered, 0 up to date"), std::string::npos) << r.err;
 
   r = runCli("sweep " + quote((dir / "box.glb").string()) + " --spp 1,2 -o " + quote((dir / "sweep").string()) + kSmall);
@@ -96,7 +97,8 @@ TEST(HardGltfDefaults, BatchAndSweepTakeNoDefaultsAndSayANoteOnce) {
   r = runCli("sweep --no-defaults --force " + quote((dir / "box.glb").string()) + " --spp 1,2 -o " +
              quote((dir / "sweep2").string()) + kSmall);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(occurrences(r.err, "no light"), 0u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "no light;"), 0u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "warning: "), 1u) << r.err;  // said once, not per job
 }
 
 }  // namespace

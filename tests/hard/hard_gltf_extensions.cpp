@@ -103,7 +103,7 @@ TEST(HardGltfExtensions, RenderWarnsOnceOnStderrAndListsThemInStats) {
   const fs::path stats = dir / "stats.json";
   const hard::CliResult r = runCli("render " + quote(file.string()) + " -o " + quote((dir / "o.png").string()) +
                                    " --stats " + quote(stats.string()) +
-                                   " -D camera.width=16 -D camera.height=12 -D photons.shadow=1000 -D photons.indirect=1000");
+                                   " -D camera.width=16 -D camera.height=12 -D camera.spp=1 -D photons.shadow=1000 -D photons.indirect=1000");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(occurrences(r.err, "note: " + file.string() + ": ignores KHR_materials_clearcoat, KHR_materials_sheen (optional)\n"), 1u)
       << r.err;

@@ -128,4 +128,12 @@ inline bool writeGltfFile(const tinygltf::Model& m, const std::string& file, boo
   return writer.WriteGltfSceneToFile(&m, file, true, true, false, binary);
 }
 
+// A box [0, 2] x [0, 1] x [0, 1] without camera, light or material, as a .glb.
+inline bool writeBoxGlb(const std::string& file) {
+  tinygltf::Model m = emptyGltf();
+  const float lo[3] = {0, 0, 0}, hi[3] = {2, 1, 1};
+  addSceneNode(m, addBoxMesh(m, lo, hi));
+  return writeGltfFile(m, file, true);
+}
+
 }  // namespace penumbra::testing
