@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -172,7 +173,10 @@ struct Texture {
 struct RenderSettings {
   ShadingModel model = kDefaultShadingModel;
   int maxDepth = 4;
-  Color background{0.0f};
+  Color background{0.0f};  // what rays leaving the scene see when it has no environment
+  // What camera rays leaving the scene see when it has one: unset, the environment
+  // itself; set (environment.background, the studio's grey), this colour.
+  std::optional<Color> environmentBackground;
   Color ambient{1.0f};     // global ambient light, multiplies Material::ambient
   float minWeight = 1e-3f;  // recursion stops when the path weight falls below
   uint64_t seed = 1;
@@ -224,6 +228,7 @@ struct LoadReport {
   std::vector<std::string> ignoredExtensions;  // optional glTF extensions penumbra does not read
   bool noCamera = false, noLight = false;      // a glTF scene whose files place no camera, give no light
   bool framedCamera = false, defaultSky = false;  // ... and what loading added for them
+  std::string modelFile;  // the glTF or OBJ file that is the scene; empty for a JSON scene
 };
 
 struct Scene {

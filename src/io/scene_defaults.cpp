@@ -1,8 +1,8 @@
 // A glTF scene's defaults: the framing camera (the nearest distance at which the
-// bounding box's corners fit the image, in double) and the neutral sky.
+// bounding box's corners fit the image, in double) and the studio environment.
 #include "io/scene_defaults.h"
 
-#include "core/lights/environment_map.h"
+#include "core/lights/studio_environment.h"
 #include "core/error.h"
 #include "io/camera_checks.h"
 
@@ -66,6 +66,7 @@ Camera frameBounds(const Camera& camera, const SceneBounds& bounds) {
 
 void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& scene) {
   LoadReport& report = scene.load;
+  report.modelFile = model;
   report.noCamera = noCamera;
   report.noLight = scene.lights.empty();
   if (!add) return;
@@ -83,10 +84,10 @@ void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& 
                                        model, vec(c.position), vec(c.lookAt), c.fovY));
   }
   if (report.noLight) {
-    scene.lights.push_back(makeEnvironmentLight(Color(1.0f), 1.0f, nullptr));
+    addStudioEnvironment(scene, Color(1.0f), 1.0f, 0.0f);
     report.defaultSky = true;
-    report.notes.push_back(model + ": no light; a neutral sky of radiance 1 lights it (--no-defaults keeps the file "
-                                   "as it is)");
+    report.notes.push_back(model + ": no light; the studio environment lights it, a grey background behind "
+                                   "(environment \"studio\"; --no-defaults keeps the file as it is)");
   }
 }
 
