@@ -210,8 +210,10 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
       spec.attributes.push_back({"penumbra:exposure", "", display.exposure, true});
     }
     bytes.resize(count);
-    for (size_t i = 0; i < shown.pixels.size(); ++i)
-      for (int c = 0; c < 3; ++c) bytes[i * 3 + c] = toSrgb8(displayValue(shown.pixels[i][c], display));
+    for (size_t i = 0; i < shown.pixels.size(); ++i) {
+      const Color c = displayColor(shown.pixels[i], display);
+      for (int k = 0; k < 3; ++k) bytes[i * 3 + k] = toSrgb8(c[k]);
+    }
     pixels = bytes.data();
   } else {
     spec = exrSpec({{"", &image}}, floats);
