@@ -117,6 +117,7 @@ TEST(EnvironmentScene, BadValuesAreRefusedNamingFileAndPath) {
       {R"({"preset": "sun"})", "environment.preset", "unknown value \"sun\""},
       {R"({"preset": "studio", "rotation": 400})", "environment.rotation", ""},
       {R"({"background": [1, -1, 0]})", "environment.background", ""},
+      {R"({"map": "negative.exr", "background": -1})", "environment.background", ""},  // before the map is read
       {R"({"colour": [1, 1, 1]})", "environment", "colour"},
       {R"([1, 2])", "environment", ""},
   };

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 namespace fs = std::filesystem;
 
@@ -132,6 +133,9 @@ void readEnvironment(const JsonNode& node, Scene& scene) {
   keys.allowKeys({"preset", "color", "intensity", "map", "rotation", "background"});
   const Color color = keys.colorOr("color", Color(1.0f));
   const float intensity = keys.floatOr("intensity", 1.0f, Range::atLeast(0.0));
+  // Checked before a map is decoded: bad input is refused before heavy work.
+  std::optional<Color> background;
+  if (keys.has("background")) background = keys.child("background").asColor();
   if (preset == kStudio) {
     if (keys.has("map")) keys.child("map").fail("a map and the studio are two skies: give one");
     addStudioEnvironment(scene, color, intensity, keys.floatOr("rotation", 0.0f, kRotationRange));
@@ -142,7 +146,7 @@ void readEnvironment(const JsonNode& node, Scene& scene) {
     }
     scene.lights.push_back(makeEnvironmentLight(color, intensity, keys.has("map") ? readMap(keys, scene) : nullptr));
   }
-  if (keys.has("background")) scene.render.environmentBackground = keys.child("background").asColor();
+  if (background) scene.render.environmentBackground = background;
 }
 
 }  // namespace penumbra
