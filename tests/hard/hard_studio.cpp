@@ -1,8 +1,9 @@
 // A glTF model with no light under the studio environment, through the command line:
 // a cube shows three face brightnesses in the order of the closed-form irradiance, a
 // mirror-metal sphere reflects a bright key over a sky over a darker ground, camera
-// rays that miss see the grey, the PNG is the EXR through Khronos PBR Neutral (a JSON
-// scene's PNG keeps the clamp), and `environment: "studio"` works in a JSON scene.
+// rays that miss see the grey, the PNG is the EXR through Khronos PBR Neutral in render
+// and batch (a JSON scene's PNG keeps the clamp), and `environment: "studio"` works in
+// a JSON scene.
 #include "hard/hard_cli.h"
 #include "hard/hard_support.h"
 #include "core/color.h"
@@ -177,6 +178,12 @@ TEST(HardStudio, AModelsPngIsPbrNeutralAJsonScenesTheClamp) {
   const Image exr = render(cube.string(), "c.exr");
   expectPngIs(exr, render(cube.string(), "c.png"), ToneMap::Neutral);
   expectPngIs(exr, render(cube.string(), "clamp.png", " --tonemap clamp"), ToneMap::Clamp);
+  // batch writes a model's PNG with the same curve: the same pixels as render's.
+  const fs::path jobs = dir.write("jobs.json", R"({"set": ["photons.shadow=1000", "photons.indirect=1000",
+      "photons.global=2000", "photons.caustic=2000"], "jobs": [{"scene": "cube.glb", "output": "b.png"}]})");
+  const CliResult b = runCli("batch -q " + quote(jobs.string()));
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  EXPECT_EQ(readImage((dir / "b.png").string()).pixels, readImage((dir / "c.png").string()).pixels);
   // A JSON scene under the studio, named by its key: the clamp, and the grey behind.
   const fs::path json = dir.write("floor.json", std::string(kFloorScene).insert(1, "\"environment\": \"studio\", "));
   const Image floorExr = render(json.string(), "f.exr");
