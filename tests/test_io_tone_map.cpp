@@ -55,6 +55,7 @@ TEST(ToneMap, PbrNeutralMatchesKhronosReference) {
   const Color one = displayColor(Color(1.0f), neutral);
   EXPECT_NEAR(one.r, 1.0f - 0.0576f / 0.44f, 1e-6f);
   EXPECT_EQ(one.r, one.b);
+  EXPECT_EQ(displayValue(1.0f, neutral), one.g);
   // A bright red: compressed to the new peak, then mixed towards it by
   // 1 - 1 / (0.15 (p - p') + 1): hue kept, desaturated.
   const Color red = displayColor(Color(4.0f, 0.5f, 0.5f), neutral);

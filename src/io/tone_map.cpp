@@ -25,17 +25,6 @@ const char* toneMapName(ToneMap tone) {
   }
 }
 
-float displayValue(float linear, const DisplayOptions& o) {
-  if (!(linear > 0.0f)) return 0.0f;
-  const float x = o.exposure == 0.0f ? linear : linear * std::exp2(o.exposure);
-  if (std::isinf(x)) return 1.0f;
-  switch (o.tone) {
-    case ToneMap::Reinhard: return x / (1.0f + x);
-    case ToneMap::Filmic: return std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
-    default: return std::min(x, 1.0f);
-  }
-}
-
 namespace {
 
 // Khronos PBR Neutral (the glTF Sample Viewer's reference), on exposed values >= 0.
@@ -53,6 +42,18 @@ Color pbrNeutral(Color c) {
 }
 
 }  // namespace
+
+float displayValue(float linear, const DisplayOptions& o) {
+  if (!(linear > 0.0f)) return 0.0f;
+  const float x = o.exposure == 0.0f ? linear : linear * std::exp2(o.exposure);
+  if (std::isinf(x)) return 1.0f;
+  switch (o.tone) {
+    case ToneMap::Reinhard: return x / (1.0f + x);
+    case ToneMap::Filmic: return std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+    case ToneMap::Neutral: return std::min(pbrNeutral(Color(x)).r, 1.0f);  // a grey's
+    default: return std::min(x, 1.0f);
+  }
+}
 
 Color displayColor(const Color& linear, const DisplayOptions& o) {
   if (o.tone != ToneMap::Neutral) {

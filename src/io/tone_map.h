@@ -25,6 +25,7 @@ const char* toneMapName(ToneMap tone);
 // Clamp with exposure 0 is the identity on [0, 1], so default PNGs keep their bytes.
 //   reinhard: x / (1 + x)
 //   filmic:   x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14)   (Narkowicz's ACES fit)
+//   neutral:  a grey's value under displayColor
 float displayValue(float linear, const DisplayOptions& options);
 
 // The display colour in [0, 1]^3 of one linear pixel: displayValue per channel, except
