@@ -1,8 +1,9 @@
 // A glTF scene that frames and lights itself: a model without a camera gets one whose
-// image its bounding sphere fills to 90% of the smaller side, a model without a light a neutral sky, each with
-// one note; LoadOptions{false} (--no-defaults) keeps the file as it is, and a camera
-// or light the user gave is never replaced. Models are written with tinygltf's writer.
+// image its bounding sphere fills to 90% of the smaller side, a model without a light
+// the studio environment, each with one note; LoadOptions{false} (--no-defaults) keeps
+// the file as it is, and a camera or light the user gave is never replaced. Models are written with tinygltf's writer.
 #include "core/camera_frame.h"
+#include "core/lights/studio_environment.h"
 #include "core/lights/environment_map.h"
 #include "io/scene_defaults.h"
 #include "io/scene_loader.h"
@@ -135,16 +136,33 @@ TEST(SceneDefaults, TheBoundingSphereEnclosesEveryItemAndHugsRoundModels) {
   EXPECT_TRUE(boundingSphere(over({}, 0.0)).empty());
 }
 
-TEST(SceneDefaults, ALightlessModelGetsANeutralSkyAndOneNote) {
+TEST(SceneDefaults, ALightlessModelGetsTheStudioAndOneNote) {
   const ScratchDir dir;
-  const Scene s = loadScene(writeBox(dir, "model.gltf", {0, 0, 0}, {1, 1, 1}).string());
+  const std::string model = writeBox(dir, "model.gltf", {0, 0, 0}, {1, 1, 1}).string();
+  const Scene s = loadScene(model);
   ASSERT_EQ(s.lights.size(), 1u);
   const Light* sky = environmentOf(s);
   ASSERT_NE(sky, nullptr);
   EXPECT_EQ(sky->radiance(), Color(1.0f));
-  EXPECT_EQ(sky->environment, nullptr);  // a constant sky, no map
+  ASSERT_NE(sky->environment, nullptr);  // the studio's map
+  EXPECT_EQ(sky->environment->width, studio::kWidth);
+  EXPECT_EQ(sky->environment->rotation, 0.0f);
+  EXPECT_EQ(s.render.environmentBackground, Color(studio::kBackground));
   EXPECT_TRUE(s.load.noLight && s.load.defaultSky);
-  EXPECT_EQ(notesWith(s, ": no light; a neutral sky of radiance 1 lights it"), 1u);
+  EXPECT_EQ(s.load.modelFile, model);
+  EXPECT_EQ(notesWith(s, ": no light; the studio environment lights it, a grey background behind"), 1u);
+}
+
+TEST(SceneDefaults, AModelsOwnEnvironmentIsKept) {
+  // An environment beside the model lights it: no studio, no background of its own.
+  const ScratchDir dir;
+  writeBox(dir, "model.gltf", {0, 0, 0}, {1, 1, 1});
+  dir.write("model.json", R"({"environment": {"color": 0.5}})");
+  const Scene s = loadScene((dir.path() / "model.gltf").string());
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(environmentOf(s)->environment, nullptr);
+  EXPECT_FALSE(s.render.environmentBackground.has_value());
+  EXPECT_FALSE(s.load.defaultSky);
 }
 
 TEST(SceneDefaults, NoDefaultsKeepsTheFileAsItIs) {
@@ -201,6 +219,7 @@ TEST(SceneDefaults, WhatTheUserGaveIsNeverReplaced) {
   const Scene json = loadScene((dir / "plain.json").string());
   EXPECT_TRUE(json.lights.empty());
   EXPECT_FALSE(json.load.noCamera || json.load.noLight);
+  EXPECT_TRUE(json.load.modelFile.empty());  // its PNG keeps the clamp curve
 }
 
 }  // namespace

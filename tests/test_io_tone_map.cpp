@@ -1,8 +1,10 @@
 // The PNG display transform against its formulas: clamp at exposure 0 is the
 // identity (default PNGs keep their bytes), exposure is 2^EV, Reinhard x/(1+x),
-// filmic the ACES fit; +Inf is white on every curve; EXR ignores all of it.
+// filmic the ACES fit, neutral Khronos PBR Neutral; +Inf is white on every curve; a
+// model's scene gets neutral unless a curve is asked; EXR ignores all of it.
 #include "core/color.h"
 #include "core/error.h"
+#include "core/scene.h"
 #include "io/image_io.h"
 #include "io/tone_map.h"
 #include "support/scratch_dir.h"
@@ -34,6 +36,53 @@ TEST(ToneMap, CurvesMatchTheirFormulas) {
     EXPECT_EQ(displayValue(-1.0f, o), 0.0f);
   }
   EXPECT_THROW(parseToneMap("aces"), InputError);
+}
+
+TEST(ToneMap, PbrNeutralMatchesKhronosReference) {
+  // Below the compression start (0.76 after the offset) a colour only loses its offset:
+  // 0.04, or x - 6.25 x^2 under min channel 0.08 (so black stays black).
+  DisplayOptions neutral;
+  neutral.tone = ToneMap::Neutral;
+  EXPECT_EQ(parseToneMap("neutral"), ToneMap::Neutral);
+  EXPECT_STREQ(toneMapName(ToneMap::Neutral), "neutral");
+  const Color mid = displayColor(Color(0.5f, 0.3f, 0.2f), neutral);
+  EXPECT_NEAR(mid.r, 0.46f, 1e-6f);
+  EXPECT_NEAR(mid.b, 0.16f, 1e-6f);
+  const Color dark = displayColor(Color(0.05f), neutral);  // offset 0.05 - 6.25 x 0.0025
+  EXPECT_NEAR(dark.g, 0.05f - 0.034375f, 1e-6f);
+  EXPECT_EQ(displayColor(Color(0.0f), neutral), Color(0.0f));
+  // Grey 1: peak 0.96, new peak 1 - 0.24^2 / (0.96 - 0.52), and grey stays grey.
+  const Color one = displayColor(Color(1.0f), neutral);
+  EXPECT_NEAR(one.r, 1.0f - 0.0576f / 0.44f, 1e-6f);
+  EXPECT_EQ(one.r, one.b);
+  EXPECT_EQ(displayValue(1.0f, neutral), one.g);
+  // A bright red: compressed to the new peak, then mixed towards it by
+  // 1 - 1 / (0.15 (p - p') + 1): hue kept, desaturated.
+  const Color red = displayColor(Color(4.0f, 0.5f, 0.5f), neutral);
+  const float p = 4.0f - 0.04f, np = 1.0f - 0.0576f / (p - 0.52f), g = 1.0f - 1.0f / (0.15f * (p - np) + 1.0f);
+  EXPECT_NEAR(red.r, np, 1e-5f);
+  EXPECT_NEAR(red.g, 0.46f * np / p * (1.0f - g) + np * g, 1e-5f);
+  // +Inf is white, negative is black; exposure scales first.
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_NEAR(displayColor(Color(inf, 0.0f, 0.0f), neutral).g, 1.0f, 1e-6f);
+  EXPECT_EQ(displayColor(Color(-1.0f), neutral), Color(0.0f));
+  DisplayOptions brighter = neutral;
+  brighter.exposure = 1.0f;
+  EXPECT_EQ(displayColor(Color(0.25f), brighter), displayColor(Color(0.5f), neutral));
+  // The other curves are displayValue per channel.
+  const DisplayOptions filmic{0.0f, ToneMap::Filmic};
+  EXPECT_EQ(displayColor(Color(0.3f, 2.0f, 0.0f), filmic).g, displayValue(2.0f, filmic));
+}
+
+TEST(ToneMap, AModelsSceneGetsNeutralUnlessACurveIsAsked) {
+  Scene json, model;
+  model.load.modelFile = "model.glb";
+  EXPECT_EQ(sceneDisplay({}, json).tone, ToneMap::Clamp);
+  EXPECT_EQ(sceneDisplay({}, model).tone, ToneMap::Neutral);
+  DisplayOptions asked{0.0f, ToneMap::Clamp, true};
+  EXPECT_EQ(sceneDisplay(asked, model).tone, ToneMap::Clamp);
+  asked.tone = ToneMap::Reinhard;
+  EXPECT_EQ(sceneDisplay(asked, json).tone, ToneMap::Reinhard);
 }
 
 std::string bytesOf(const fs::path& p) {

@@ -118,16 +118,7 @@ TEST(EnvironmentLight, MapOverAPlaneConvergesToRhoOverPiTimesIrradiance) {
   const double want = 0.6 / kPiD * irradiance;
   Rig rig(scene);
   const Ray ray = makeRay(Vec3(0.3f, 2.0f, 1.0f), Vec3(-0.2f, -1.0f, -0.4f));
-  const int runs = 256;
-  double sum = 0.0, sum2 = 0.0;
-  for (int k = 0; k < runs; ++k) {
-    ThreadState ts;
-    beginSample(ts, hashKey(5, k));
-    const double v = tracePhysical(rig.ctx, ray, 0, Color(1.0f), RayKind::Camera, kTermDirect, -1, ts).r;
-    sum += v;
-    sum2 += v * v;
-  }
-  const double mean = sum / runs, se = std::sqrt(std::max(0.0, sum2 / runs - mean * mean) / runs);
+  const auto [mean, se] = meanOverSamples(rig, ray, 256, 5, kTermDirect);
   std::printf("plane under a map: %.5f, want %.5f (standard error %.5f, %.2f%%)\n", mean, want, se,
               100.0 * se / want);
   EXPECT_LT(rel(mean, want), 0.02);

@@ -1,7 +1,8 @@
-// The "environment" key from JSON to pixels: a map read through OpenImageIO becomes the
-// last light, every bad value is refused in one line naming the file and JSON path
+// The "environment" key from JSON to pixels: a map read through OpenImageIO, the
+// studio or the uniform sky becomes the last light, every bad value is refused in one line naming the file and JSON path
 // (exit 2 from the CLI), and the shipped example renders in both models.
 #include "core/lights/environment_map.h"
+#include "core/lights/studio_environment.h"
 #include "io/scene_loader.h"
 #include "support/cli_run.h"
 #include "support/scratch_dir.h"
@@ -63,6 +64,32 @@ TEST(EnvironmentScene, ConstantSkyAndMapBecomeTheLastLight) {
       << "the map is one of the scene's inputs";
 }
 
+TEST(EnvironmentScene, StudioAndUniformAreNamedSkies) {
+  // "studio" is the built-in map with its grey background; "uniform" the constant sky of
+  // radiance 1, the same light as {}; an object names a preset and turns, scales or
+  // re-colours it; "background" sets what camera rays see for any environment.
+  const std::string file = "s.json";
+  const Scene studio = parseScene(sceneWith(R"("studio")"), file);
+  ASSERT_EQ(studio.lights.size(), 1u);
+  ASSERT_TRUE(studio.lights[0].environment);
+  EXPECT_EQ(studio.lights[0].environment->width, studio::kWidth);
+  EXPECT_EQ(studio.render.environmentBackground, Color(studio::kBackground));
+  const Scene turned =
+      parseScene(sceneWith(R"({"preset": "studio", "rotation": 90, "intensity": 2, "background": 0.5})"), file);
+  EXPECT_FLOAT_EQ(turned.lights[0].environment->rotation, 0.5f * 3.14159265f);
+  EXPECT_FLOAT_EQ(turned.lights[0].radiance().r, 2.0f);
+  EXPECT_EQ(turned.render.environmentBackground, Color(0.5f));
+  for (const char* uniform : {R"("uniform")", R"({})", R"({"preset": "uniform"})"}) {
+    const Scene u = parseScene(sceneWith(uniform), file);
+    ASSERT_EQ(u.lights.size(), 1u) << uniform;
+    EXPECT_FALSE(u.lights[0].environment) << uniform;
+    EXPECT_EQ(u.lights[0].radiance(), Color(1.0f)) << uniform;
+    EXPECT_FALSE(u.render.environmentBackground.has_value()) << uniform;
+  }
+  EXPECT_EQ(parseScene(sceneWith(R"({"background": [0, 0.1, 0.2]})"), file).render.environmentBackground,
+            Color(0.0f, 0.1f, 0.2f));
+}
+
 TEST(EnvironmentScene, BadValuesAreRefusedNamingFileAndPath) {
   testing::ScratchDir dir;
   std::vector<float> rgb(4 * 2 * 3, 0.5f);
@@ -84,6 +111,13 @@ TEST(EnvironmentScene, BadValuesAreRefusedNamingFileAndPath) {
       {R"({"map": "negative.exr"})", "environment.map", "negative value at row 0, column 1"},
       {R"({"map": "nan.exr"})", "environment.map", "non-finite value at row 0, column 1"},
       {R"({"rotation": 30})", "environment.rotation", "give \"map\" too"},
+      {R"("studoi")", "environment", "did you mean \"studio\""},
+      {R"(3)", "environment", "must be \"studio\", \"uniform\" or an object, got"},
+      {R"({"preset": "studio", "map": "sky.png"})", "environment.map", "a map and the studio are two skies"},
+      {R"({"preset": "sun"})", "environment.preset", "unknown value \"sun\""},
+      {R"({"preset": "studio", "rotation": 400})", "environment.rotation", ""},
+      {R"({"background": [1, -1, 0]})", "environment.background", ""},
+      {R"({"map": "negative.exr", "background": -1})", "environment.background", ""},  // before the map is read
       {R"({"colour": [1, 1, 1]})", "environment", "colour"},
       {R"([1, 2])", "environment", ""},
   };

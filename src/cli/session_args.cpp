@@ -12,7 +12,7 @@ namespace {
 
 void addDefaultsOption(CLI::App& command, PlanArgs& args) {
   command.add_flag("--no-defaults", args.noDefaults,
-                   "Load a .gltf/.glb scene as it is: no camera framing a model that has none, no neutral sky "
+                   "Load a .gltf/.glb scene as it is: no camera framing a model that has none, no studio environment "
                    "for a model without lights");
   command.add_option("--camera", args.camera,
                      "auto: frame the model (its bounding sphere fills 90% of the image's smaller side) even when "
@@ -67,15 +67,20 @@ void addBudgetOptions(CLI::App& command, RenderBudget& budget) {
 void addDisplayOptions(CLI::App& command, SessionArgs& args) {
   command.add_option("--exposure", args.displayValues.exposure, "PNG: multiply by 2^EV before the tone curve (default 0)")
       ->check(CLI::Range(-64.0, 64.0));
-  command.add_option("--tonemap", args.tonemap, "PNG tone curve: clamp (default), reinhard or filmic; EXR stays linear")
-      ->check(CLI::IsMember({"clamp", "reinhard", "filmic"}));
+  command.add_option("--tonemap", args.tonemap,
+                     "PNG tone curve: clamp (a JSON scene's default), reinhard, filmic or neutral (Khronos PBR "
+                     "Neutral, a glTF/OBJ model's default); EXR stays linear")
+      ->check(CLI::IsMember({"clamp", "reinhard", "filmic", "neutral"}));
 }
 
 }  // namespace
 
 DisplayOptions SessionArgs::display() const {
   DisplayOptions d = displayValues;
-  if (!tonemap.empty()) d.tone = parseToneMap(tonemap);
+  if (!tonemap.empty()) {
+    d.tone = parseToneMap(tonemap);
+    d.toneAsked = true;
+  }
   return d;
 }
 

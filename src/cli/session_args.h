@@ -57,7 +57,7 @@ struct SessionArgs {
   bool force = false;
   DisplayOptions displayValues;  // --exposure; the tone curve is `tonemap`'s
   std::string tonemap;
-  // --exposure and --tonemap for a PNG output (default: exposure 0, clamp).
+  // --exposure and --tonemap for a PNG output (default: exposure 0, the scene's curve: io/tone_map.h sceneDisplay).
   DisplayOptions display() const;
   // The one thread count of -t (0: all cores); a list or a count outside 1..1024 is refused.
   int threadCount() const;

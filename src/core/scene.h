@@ -183,7 +183,10 @@ struct Texture {
 struct RenderSettings {
   ShadingModel model = kDefaultShadingModel;
   int maxDepth = 4;
-  Color background{0.0f};
+  Color background{0.0f};  // what rays leaving the scene see when it has no environment
+  // What camera rays leaving the scene see when it has one: unset, the environment
+  // itself; set (environment.background, the studio's grey), this colour.
+  std::optional<Color> environmentBackground;
   Color ambient{1.0f};     // global ambient light, multiplies Material::ambient
   float minWeight = 1e-3f;  // recursion stops when the path weight falls below
   uint64_t seed = 1;
@@ -239,7 +242,7 @@ struct LoadReport {
   std::vector<std::string> ignoredExtensions;  // optional glTF extensions penumbra does not read
   bool noCamera = false, noLight = false;      // a model scene whose files place no camera, give no light
   bool framedCamera = false, defaultSky = false;  // ... and what loading added for them
-  bool modelScene = false;    // a glTF or OBJ file given as the scene
+  std::string modelFile;  // the glTF or OBJ file that is the scene; empty for a JSON scene
   bool qualityGiven = false;  // its settings or overrides set camera.spp or photons.passes
   size_t implicitMaterials = 0;  // Scene::materials loading added that no file names ("default")
 };

@@ -1,6 +1,8 @@
-// The "environment" section: a constant sky or an HDR lat-long map (OpenEXR or Radiance
-// HDR, as the image module finds it), decoded and checked whole at load, appended as the last light.
+// The "environment" section: a constant sky, the built-in studio or an HDR lat-long map
+// (OpenEXR or Radiance HDR, as the image module finds it), decoded and checked whole at
+// load, appended as the last light.
 #include "core/lights/environment_map.h"
+#include "core/lights/studio_environment.h"
 #include "io/input_file.h"
 #include "core/byte_size.h"
 #include "io/image_header.h"
@@ -9,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 namespace fs = std::filesystem;
 
@@ -21,6 +24,10 @@ namespace {
 constexpr uint64_t kMaxEnvironmentPixels = 8192ull * 4096ull;
 // A side at most twice the 8k map's width: a lat-long map is twice as wide as tall.
 constexpr int kMaxEnvironmentSide = 16384;
+const Range kRotationRange = Range::between(-360.0, 360.0);
+// The skies an environment may name; "uniform" is the constant sky of color x intensity.
+const std::vector<std::string> kPresets = {"uniform", "studio"};
+constexpr size_t kUniform = 0, kStudio = 1;
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -90,37 +97,56 @@ std::string decodeMap(const std::string& path, const LoadLimits& limits, int& wi
   return "";
 }
 
+// The "map" key's lat-long map, decoded, checked and turned by "rotation".
+std::shared_ptr<const EnvironmentMap> readMap(const JsonNode& node, Scene& scene) {
+  const JsonNode file = node.child("map");
+  const std::string name = file.asString();
+  if (name.empty()) file.fail("must name an .exr or .hdr file");
+  const std::string path = resolvePath(file, name);
+  const std::string ext = lowerExtension(path);
+  if (ext != ".exr" && ext != ".hdr") {
+    file.fail("an environment map is high dynamic range: an .exr or .hdr file, got \"" + name + "\"");
+  }
+  if (const std::string why = unreadableFileReason(path); !why.empty()) file.fail("environment map " + path + ": " + why);
+  int width = 0, height = 0;
+  std::vector<Color> texels;
+  const std::string problem = decodeMap(path, node.context().limits, width, height, texels);
+  if (!problem.empty()) file.fail(problem);
+  const float rotation = node.floatOr("rotation", 0.0f, kRotationRange);
+  scene.inputs.push_back(path);
+  return makeEnvironmentMap(width, height, std::move(texels), rotation);
+}
+
 }  // namespace
 
 void readEnvironment(const JsonNode& node, Scene& scene) {
-  node.requireObject();
-  node.allowKeys({"color", "intensity", "map", "rotation"});
   // Lights name themselves in 16 bits (core/photon.h); the environment is one more.
   if (scene.lights.size() >= 65535) node.fail("at most 65535 lights, the environment included");
-  const Color color = node.colorOr("color", Color(1.0f));
-  const float intensity = node.floatOr("intensity", 1.0f, Range::atLeast(0.0));
-  std::shared_ptr<const EnvironmentMap> map;
-  if (node.has("map")) {
-    const JsonNode file = node.child("map");
-    const std::string name = file.asString();
-    if (name.empty()) file.fail("must name an .exr or .hdr file");
-    const std::string path = resolvePath(file, name);
-    const std::string ext = lowerExtension(path);
-    if (ext != ".exr" && ext != ".hdr") {
-      file.fail("an environment map is high dynamic range: an .exr or .hdr file, got \"" + name + "\"");
-    }
-    if (const std::string why = unreadableFileReason(path); !why.empty()) file.fail("environment map " + path + ": " + why);
-    int width = 0, height = 0;
-    std::vector<Color> texels;
-    const std::string problem = decodeMap(path, node.context().limits, width, height, texels);
-    if (!problem.empty()) file.fail(problem);
-    const float rotation = node.floatOr("rotation", 0.0f, Range::between(-360.0, 360.0));
-    map = makeEnvironmentMap(width, height, std::move(texels), rotation);
-    scene.inputs.push_back(path);
-  } else if (node.has("rotation")) {
-    node.child("rotation").fail("turns a map: give \"map\" too (a constant sky looks the same every way)");
+  // "studio" or "uniform" alone: that preset with every key at its default.
+  static const nlohmann::json kNoKeys = nlohmann::json::object();
+  const bool named = node.value().is_string();
+  if (!named && !node.value().is_object()) {
+    node.fail("must be \"studio\", \"uniform\" or an object, got " + describeJson(node.value()));
   }
-  scene.lights.push_back(makeEnvironmentLight(color, intensity, std::move(map)));
+  const JsonNode keys = named ? JsonNode(kNoKeys, node.path(), node.context()) : node;
+  const size_t preset = named ? node.asEnum(kPresets) : keys.enumOr("preset", kUniform, kPresets);
+  keys.allowKeys({"preset", "color", "intensity", "map", "rotation", "background"});
+  const Color color = keys.colorOr("color", Color(1.0f));
+  const float intensity = keys.floatOr("intensity", 1.0f, Range::atLeast(0.0));
+  // Checked before a map is decoded: bad input is refused before heavy work.
+  std::optional<Color> background;
+  if (keys.has("background")) background = keys.child("background").asColor();
+  if (preset == kStudio) {
+    if (keys.has("map")) keys.child("map").fail("a map and the studio are two skies: give one");
+    addStudioEnvironment(scene, color, intensity, keys.floatOr("rotation", 0.0f, kRotationRange));
+  } else {
+    if (keys.has("rotation") && !keys.has("map")) {
+      keys.child("rotation").fail(
+          "turns a map or the studio: give \"map\" too (a constant sky looks the same every way)");
+    }
+    scene.lights.push_back(makeEnvironmentLight(color, intensity, keys.has("map") ? readMap(keys, scene) : nullptr));
+  }
+  if (background) scene.render.environmentBackground = background;
 }
 
 }  // namespace penumbra

@@ -229,7 +229,8 @@ void writeImage(const std::string& path, const Image& image, const ImageMetadata
     for (size_t i = 0; i < shown.pixels.size(); ++i) {
       const float a = channels == 4 ? image.coverage[i] : 1.0f;
       uint8_t* out = &bytes[i * channels];
-      for (int c = 0; c < 3; ++c) out[c] = a > 0.0f ? toSrgb8(displayValue(shown.pixels[i][c] / a, display)) : 0;
+      const Color c = a > 0.0f ? displayColor(shown.pixels[i] / a, display) : Color(0.0f);
+      for (int k = 0; k < 3; ++k) out[k] = a > 0.0f ? toSrgb8(c[k]) : 0;
       if (channels == 4) out[3] = toAlpha8(a);
     }
     pixels = bytes.data();

@@ -1,8 +1,8 @@
 // A model scene's defaults: the framing camera (its bounding sphere filling kFrameFill
-// of the image's smaller dimension, in double) and the neutral sky.
+// of the image's smaller dimension, in double) and the studio environment.
 #include "io/scene_defaults.h"
 
-#include "core/lights/environment_map.h"
+#include "core/lights/studio_environment.h"
 #include "core/error.h"
 #include "io/camera_checks.h"
 
@@ -98,10 +98,10 @@ void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& 
   if (!add) return;
   if (report.noCamera && !autoCamera) frameCamera(model, false, scene);
   if (report.noLight) {
-    scene.lights.push_back(makeEnvironmentLight(Color(1.0f), 1.0f, nullptr));
+    addStudioEnvironment(scene, Color(1.0f), 1.0f, 0.0f);
     report.defaultSky = true;
-    report.notes.push_back(model + ": no light; a neutral sky of radiance 1 lights it (--no-defaults keeps the file "
-                                   "as it is)");
+    report.notes.push_back(model + ": no light; the studio environment lights it, a grey background behind "
+                                   "(environment \"studio\"; --no-defaults keeps the file as it is)");
   }
 }
 

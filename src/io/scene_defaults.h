@@ -1,6 +1,6 @@
 // What a model scene gets when its files lack it: a camera that frames the model, and
-// a neutral sky when nothing lights it, each said in one note. Decided once, at load
-// (LoadOptions::defaults in io/scene_loader.h); nothing changes the scene after.
+// the studio environment when nothing lights it, each said in one note. Decided once,
+// at load (LoadOptions::defaults in io/scene_loader.h); nothing changes the scene after.
 #pragma once
 #include "core/scene.h"
 #include "io/bounding_sphere.h"
@@ -43,9 +43,10 @@ ShadingModel defaultShadingModel(bool modelScene);
 
 // A glTF scene after loading: `noCamera` when neither the model nor the JSON beside
 // it places a camera. Records in scene.load what is missing and, when `add`, adds a
-// camera framing the model (always with `autoCamera`: --camera auto) and, without any light, a constant sky of radiance 1 as
-// the environment, each with one note naming `model`. Throws InputError when the
-// framed camera fails the camera checks (a model beyond float's reach).
+// camera framing the model (always with `autoCamera`: --camera auto) and, without any
+// light, the studio environment (core/lights/studio_environment.h), each with one note
+// naming `model`. Throws InputError when the framed camera fails the camera checks (a
+// model beyond float's reach).
 void addSceneDefaults(const std::string& model, bool noCamera, bool add, Scene& scene, bool autoCamera = false);
 
 }  // namespace penumbra

@@ -123,7 +123,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   addMeshEmitters(scene);
   if (root.has("environment")) readEnvironment(root.child("environment"), scene);
   if (!modelPath.empty()) {
-    scene.load.modelScene = true;
+    scene.load.modelFile = modelPath;
     scene.load.qualityGiven = givesQuality(root);
     // A camera the user placed (the model's, or position / look_at beside it) is kept.
     const bool placed = camera || (root.has("camera") && (root.child("camera").has("position") ||

@@ -12,7 +12,7 @@ class LoadCache;
 
 struct LoadOptions {
   // A .gltf/.glb/.obj scene without a camera gets one framing it, without a light a
-  // neutral sky (io/scene_defaults.h); false keeps the file as it is.
+  // studio environment (io/scene_defaults.h); false keeps the file as it is.
   bool defaults = true;
   // Files earlier loads of this process read (io/load_cache.h); null: read them all.
   LoadCache* cache = nullptr;

@@ -15,7 +15,7 @@ std::string defaultsLine(const LoadReport& load) {
   if (!load.noCamera && !load.noLight) return "";
   std::vector<std::string> parts;
   if (load.noCamera) parts.push_back("a camera framing the bounds (the file has none)");
-  if (load.noLight) parts.push_back("a neutral sky (the file has no light)");
+  if (load.noLight) parts.push_back("the studio environment (the file has no light)");
   const bool added = load.framedCamera || load.defaultSky;
   std::string line = added ? "  adds " : "  would add ";
   for (size_t i = 0; i < parts.size(); ++i) line += (i ? " and " : "") + parts[i];

@@ -69,7 +69,7 @@ RenderResult runRender(const RenderRequest& request) {
     } else {
       writeImage(request.outputPath, result.image,
                  renderMetadata(planned.scene, planned.plan, stats, planned.viewName, request.outputPath),
-                 request.display);
+                 sceneDisplay(request.display, planned.scene));
     }
     removeSavedPasses(job.savedPasses);  // the job is done: nothing to resume
     stats.time.write = phase.seconds();

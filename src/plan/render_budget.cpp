@@ -20,7 +20,7 @@ const char* budgetStop(const RenderBudget& b, const BudgetState& s) {
 }
 
 RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load) {
-  if (asked.any() || !load.modelScene || load.qualityGiven) return asked;
+  if (asked.any() || load.modelFile.empty() || load.qualityGiven) return asked;
   return kModelBudget;
 }
 

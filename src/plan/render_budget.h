@@ -30,7 +30,7 @@ constexpr RenderBudget kModelBudget{kModelTimeLimit, kModelTargetError, true};
 
 struct LoadReport;
 // The budget a whole frame renders to: `asked` when it names one, kModelBudget for a
-// model scene that sets no quality (LoadReport::modelScene, qualityGiven), else none.
+// model scene that sets no quality (LoadReport::modelFile, qualityGiven), else none.
 RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load);
 // The note of a frame that renders to kModelBudget: "SCENE: no quality set; passes
 // run until ..., whichever comes first (... set your own)".

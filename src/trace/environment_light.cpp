@@ -74,9 +74,13 @@ Color directFromEnvironment(const ShadingContext& ctx, const SurfaceRecord& s, u
   return lightSum / static_cast<float>(n) + (nb > 0 ? bsdfSum / static_cast<float>(nb) : Color(0.0f));
 }
 
-Color missRadiance(const Scene& scene, const Vec3& dir) {
-  const Light* env = environmentOf(scene);
-  return env ? environmentRadiance(*env, dir) : scene.render.background;
+bool missSeesEnvironment(const Scene& scene, RayKind kind) {
+  return environmentOf(scene) && !(kind == RayKind::Camera && scene.render.environmentBackground);
+}
+
+Color missRadiance(const Scene& scene, const Vec3& dir, RayKind kind) {
+  if (missSeesEnvironment(scene, kind)) return environmentRadiance(*environmentOf(scene), dir);
+  return environmentOf(scene) ? *scene.render.environmentBackground : scene.render.background;
 }
 
 }  // namespace penumbra

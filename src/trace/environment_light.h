@@ -20,8 +20,11 @@ namespace penumbra {
 Color directFromEnvironment(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t li, const Bsdf& bsdf,
                             const BsdfFrame& frame, const Vec3& wo, ThreadState& ts, std::string* note);
 
-// What a ray leaving the scene along unit `dir` sees: the environment's radiance when
-// the scene has one, render.background otherwise.
-Color missRadiance(const Scene& scene, const Vec3& dir);
+// Whether a ray of `kind` that leaves the scene sees the environment (a light) rather
+// than a background colour: render.background without an environment, and for camera
+// rays render.environmentBackground when it is set (the studio's grey behind a model).
+bool missSeesEnvironment(const Scene& scene, RayKind kind);
+// What that ray sees along unit `dir`: the environment's radiance or the background.
+Color missRadiance(const Scene& scene, const Vec3& dir, RayKind kind);
 
 }  // namespace penumbra

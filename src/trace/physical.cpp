@@ -78,9 +78,9 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
 
   if (!found) {
     // The environment is a light seen directly (as an emitter's glow, so a narrow
-    // lobe's ray, whose lights are sampled, leaves it out); without one, the background.
-    const bool env = environmentOf(ctx.scene) != nullptr;
-    Color c = (terms & (env ? kTermEmitters : kTermMissed)) ? missRadiance(ctx.scene, ray.dir) : Color(0.0f);
+    // lobe's ray, whose lights are sampled, leaves it out); otherwise the background.
+    const bool env = missSeesEnvironment(ctx.scene, kind);
+    Color c = (terms & (env ? kTermEmitters : kTermMissed)) ? missRadiance(ctx.scene, ray.dir, kind) : Color(0.0f);
     if (recIndex >= 0) (*ts.recorder)[recIndex].contribution = throughput * c;
     return c;
   }

@@ -71,7 +71,7 @@ Color traceRayHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, i
     return c;
   };
 
-  if (!found) return finish(missRadiance(ctx.scene, ray.dir), [](RayRecord&) {});
+  if (!found) return finish(missRadiance(ctx.scene, ray.dir, kind), [](RayRecord&) {});
   const Hit& hit = *found;
   const Material& m = ctx.scene.materials[ctx.tracer.materialOf(hit)];
   const bool textured = readsUv(m);

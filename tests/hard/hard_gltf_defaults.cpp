@@ -32,10 +32,10 @@ TEST(HardGltfDefaults, RenderFramesAndLightsTheModelAndSaysSoOnce) {
                              quote(stats.string()) + kSmall);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(occurrences(r.err, "note: " + box.string() + ": no camera; one frames the model from ["), 1u) << r.err;
-  EXPECT_EQ(occurrences(r.err, "note: " + box.string() + ": no light; a neutral sky of radiance 1 lights it"), 1u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "note: " + box.string() + ": no light; the studio environment lights it"), 1u) << r.err;
   EXPECT_EQ(json::parse(testing::readFile(stats))["load"]["defaults_added"], json({"camera", "sky"}));
-  // The framed, sky-lit box covers much of the picture: the mean is far from black
-  // (a white-ish box under radiance 1; 0.1 leaves room for any material's shading).
+  // The framed, studio-lit box covers much of the picture: the mean is far from black
+  // (a white-ish box, a grey background; 0.1 leaves room for any material's shading).
   const Image image = readImage(png.string());
   double sum = 0.0;
   for (const Color& c : image.pixels) sum += (c.r + c.g + c.b) / 3.0;
@@ -57,12 +57,12 @@ TEST(HardGltfDefaults, CheckPrintsLightsBoundsAndWhatItAdds) {
                            "  bounds [0, 0, 0] .. [2, 1, 1] (size 2 x 1 x 1)\n";
   CliResult r = runCli("check " + quote(box.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(r.out, head + "  adds a camera framing the bounds (the file has none) and a neutral sky (the file has no "
-                          "light); --no-defaults keeps the file as it is\n");
+  EXPECT_EQ(r.out, head + "  adds a camera framing the bounds (the file has none) and the studio environment (the file "
+                          "has no light); --no-defaults keeps the file as it is\n");
   r = runCli("check --no-defaults " + quote(box.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(r.out, head + "  would add a camera framing the bounds (the file has none) and a neutral sky (the file "
-                          "has no light) without --no-defaults\n");
+  EXPECT_EQ(r.out, head + "  would add a camera framing the bounds (the file has none) and the studio environment (the "
+                          "file has no light) without --no-defaults\n");
   // A camera and a light beside the model: nothing to add, no line.
   dir.write("box.json", R"({"camera": {"position": [1, 3, 6], "look_at": [1, 0.5, 0.5]},
                             "lights": [{"type": "point", "position": [1, 4, 2]}]})");
@@ -82,7 +82,7 @@ TEST(HardGltfDefaults, BatchAndSweepTakeNoDefaultsAndSayANoteOnce) {
       "orbit": {"count": 2, "center": [1, 0.5, 0.5], "radius": 5, "height": 1}}]})");
   CliResult r = runCli("batch " + quote(jobs.string()));
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(occurrences(r.err, "no light; a neutral sky"), 1u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "no light; the studio environment"), 1u) << r.err;
   EXPECT_EQ(occurrences(r.err, "no camera"), 0u) << r.err;
   // Outputs rendered with the sky are stale without it: no --force needed.
   r = runCli("batch --no-defaults " + quote(jobs.string()));
@@ -93,7 +93,7 @@ TEST(HardGltfDefaults, BatchAndSweepTakeNoDefaultsAndSayANoteOnce) {
 
   r = runCli("sweep " + quote((dir / "box.glb").string()) + " --spp 1,2 -o " + quote((dir / "sweep").string()) + kSmall);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(occurrences(r.err, "no light; a neutral sky"), 1u) << r.err;
+  EXPECT_EQ(occurrences(r.err, "no light; the studio environment"), 1u) << r.err;
   r = runCli("sweep --no-defaults --force " + quote((dir / "box.glb").string()) + " --spp 1,2 -o " +
              quote((dir / "sweep2").string()) + kSmall);
   ASSERT_EQ(r.exitCode, 0) << r.err;

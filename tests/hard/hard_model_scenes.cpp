@@ -165,7 +165,7 @@ TEST(HardModelScenes, AnyQualitySettingIsTheUsersAndATileRendersItsOwnPass) {
 
   // The rule itself: a model scene without quality takes the default, nothing else does.
   LoadReport model;
-  model.modelScene = true;
+  model.modelFile = "cube.gltf";
   EXPECT_TRUE(frameBudget({}, model).modelDefault);
   EXPECT_EQ(frameBudget({}, model).targetError, kModelTargetError);
   EXPECT_EQ(frameBudget({}, model).seconds, kModelTimeLimit);

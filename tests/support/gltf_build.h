@@ -65,14 +65,14 @@ inline int addTriangleMesh(tinygltf::Model& m, const std::vector<float>& positio
 }
 
 // The box [lo, hi] as 12 triangles facing out (8 shared corners, flat-shaded).
-inline int addBoxMesh(tinygltf::Model& m, const float lo[3], const float hi[3]) {
+inline int addBoxMesh(tinygltf::Model& m, const float lo[3], const float hi[3], int material = -1) {
   std::vector<float> p;
   for (int k = 0; k < 8; ++k) {
     p.insert(p.end(), {(k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2]});
   }
   const std::vector<uint32_t> idx = {0, 2, 1, 1, 2, 3,  4, 5, 6, 5, 7, 6,  0, 1, 4, 1, 5, 4,
                                      2, 6, 3, 3, 6, 7,  0, 4, 2, 2, 4, 6,  1, 3, 5, 3, 7, 5};
-  return addTriangleMesh(m, p, {}, {}, idx);
+  return addTriangleMesh(m, p, {}, {}, idx, material);
 }
 
 // A UV sphere about `centre`: `rings` bands of `segments` quads, vertices on the

@@ -45,6 +45,24 @@ inline Color trace(const Rig& rig, const Ray& ray, uint8_t terms) {
 
 inline double rel(double got, double want) { return std::abs(got - want) / std::abs(want); }
 
+// The red channel of `runs` camera samples along `ray` (sample k keyed by (seed, k)):
+// their mean and its standard error.
+struct SampleMean {
+  double mean = 0.0, standardError = 0.0;
+};
+inline SampleMean meanOverSamples(const Rig& rig, const Ray& ray, int runs, uint64_t seed, uint8_t terms) {
+  double sum = 0.0, sum2 = 0.0;
+  for (int k = 0; k < runs; ++k) {
+    ThreadState ts;
+    beginSample(ts, hashKey(seed, k));
+    const double v = tracePhysical(rig.ctx, ray, 0, Color(1.0f), RayKind::Camera, terms, -1, ts).r;
+    sum += v;
+    sum2 += v * v;
+  }
+  const double mean = sum / runs;
+  return {mean, std::sqrt(std::max(0.0, sum2 / runs - mean * mean) / runs)};
+}
+
 // A one-sided quad light (emitting towards e1 x e2) of uniform radiance colour x radiance.
 inline Light quadLight(Vec3 corner, Vec3 e1, Vec3 e2, Color colour, float radiance) {
   Light l;

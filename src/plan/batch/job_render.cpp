@@ -65,7 +65,7 @@ JobRender renderJob(RenderSession& session, const BatchJob& job, const std::vect
   for (auto& [path, layers] : files) {
     ImageMetadata& meta = headers[path].meta;
     if (layers.size() == 1) {
-      writeImage(path, layers.front().second, meta);
+      writeImage(path, layers.front().second, meta, sceneDisplay({}, views.front().scene));  // a model's curve
       continue;
     }
     // One header for several layers: its view is theirs, named in layer order.
