@@ -66,7 +66,9 @@ TEST(DiskLight, OnItsAxisIrradianceIsPiLR2OverR2PlusH2) {
     ASSERT_TRUE(unoccludedIrradiance(prepareLight(l, p), n, n, E)) << h;
     EXPECT_NEAR(E.r, want, 1e-5 * want) << "closed form, h " << h;
     // Below h ~ R / 2 the estimate's spread (L A h^2 / d^4) needs far more samples.
-    if (h >= 0.5f) EXPECT_NEAR(sampledIrradiance(l, p, n, 400000), want, 0.005 * want) << "sampled, h " << h;
+    if (h >= 0.5f) {
+      EXPECT_NEAR(sampledIrradiance(l, p, n, 400000), want, 0.005 * want) << "sampled, h " << h;
+    }
   }
 }
 

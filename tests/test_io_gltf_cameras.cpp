@@ -50,13 +50,13 @@ std::string refusal(const fs::path& file, const std::string& camera) {
 TEST(GltfCameras, TheFirstByDefaultAnyByIndexOrName) {
   const ScratchDir dir;
   const fs::path file = writeModel(dir);
-  for (const std::string& pick : {"", "0", "front", "FrontNode"}) {
+  for (const char* pick : {"", "0", "front", "FrontNode"}) {
     const Scene s = load(file, pick);
     EXPECT_EQ(s.camera.position, Vec3(0.5f, 0.5f, 6.0f)) << pick;
     EXPECT_EQ(s.camera.height, 480) << pick;
     EXPECT_FALSE(s.load.framedCamera) << pick;
   }
-  for (const std::string& pick : {"1", "SideNode"}) {
+  for (const char* pick : {"1", "SideNode"}) {
     const Scene s = load(file, pick);
     EXPECT_EQ(s.camera.position, Vec3(0.5f, 0.5f, 9.0f)) << pick;
     EXPECT_NEAR(s.camera.fovY, 0.5 * 180.0 / M_PI, 1e-4) << pick;

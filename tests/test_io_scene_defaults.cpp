@@ -167,7 +167,7 @@ TEST(SceneDefaults, AModelsOwnEnvironmentIsKept) {
 
 TEST(SceneDefaults, NoDefaultsKeepsTheFileAsItIs) {
   const ScratchDir dir;
-  const Scene s = loadScene(writeBox(dir, "model.gltf", {0, 0, 0}, {1, 1, 1}).string(), {}, {}, LoadOptions{false});
+  const Scene s = loadScene(writeBox(dir, "model.gltf", {0, 0, 0}, {1, 1, 1}).string(), {}, {}, LoadOptions{false, nullptr, ""});
   const Camera plain;
   EXPECT_EQ(s.camera.position, plain.position);
   EXPECT_EQ(s.camera.lookAt, plain.lookAt);

@@ -3,6 +3,7 @@
 // physical model; the lookup cache within 0.8-2x; gallery scenes always admitted;
 // sizes parsed; long jobs told.
 #include "plan/job_admission.h"
+#include "plan/cost_model.h"
 #include "plan/memory_limit.h"
 #include "plan/pipeline.h"
 #include "core/error.h"
@@ -160,4 +161,15 @@ TEST(MemoryLimit, SizesParseInBinaryUnits) {
     EXPECT_THROW(parseMemorySize(bad), InputError) << bad;
   }
   EXPECT_GT(availableMemoryBytes(), 0u);
+}
+
+// A sky is environment_sky's only light: every global photon starts at it, and each
+// start is charged its map-less cost beyond the segment.
+TEST(ResourceEstimate, EnvironmentPhotonsArePricedAtTheirStart) {
+  const RenderResult r = render(kScenes + "environment_sky.json", {"camera.width=16", "camera.height=12"});
+  const PhotonPlan& p = r.estimate.plan;
+  ASSERT_GT(p.emitted[MapKind::Global], 0u);
+  EXPECT_EQ(p.environmentPhotons, p.emitted[MapKind::Global] + p.emitted[MapKind::Caustic]);
+  EXPECT_GE(r.estimate.photonSeconds * r.estimate.threads * 1e9,
+            double(p.photonPasses) * double(p.environmentPhotons) * (cost::kPhotonSegmentNs + cost::kEnvironmentPhotonNs));
 }

@@ -1,6 +1,6 @@
 // The reach pilot and the budget split it drives: first-hit fractions against solid
 // angles, a light boxed in black getting no photons while the stored power stays that
-// of the power split, and the plan's reasons (issue: budgets go where they matter).
+// of the power split, the plan's reasons, and a global map no bounce can feed.
 #include "plan/render_plan.h"
 #include "support/emit_fixtures.h"
 #include "plan/photon_stage.h"
@@ -130,6 +130,35 @@ TEST(Reach, ThePlanSaysWhichLightsGetNothingAndTurnsOffAPassNoLightFeeds) {
   RenderPlan forced = makePlan(scene, Aov::Beauty, force);
   splitByReach(forced, scene, boxedOnly);
   EXPECT_TRUE(forced[Pass::IndirectPhotons].reach.empty());
+}
+
+// The physical global map stores from the second hit on: a lone convex box under a
+// light leaves every bounce free, so no pilot lands and the pass goes off; a floor
+// under the same box catches bounces, and the pass stays on.
+TEST(Reach, AGlobalMapNoBounceCanFeedIsTurnedOff) {
+  Scene scene;
+  scene.render.model = ShadingModel::Physical;
+  scene.materials = {makeMaterial("grey", Color(0.0f), Color(0.5f))};
+  scene.meshes.push_back(makeBox(Vec3(-1, 0, -1), Vec3(1, 2, 1), 0));
+  scene.lights = {point(Vec3(3, 4, 2), Color(1.0f), 1.0f)};
+  scene.photons.globalPhotons = 100000;
+  const TraceScene lone(scene);
+  EXPECT_EQ(measureRebound(scene, lone), 0.0f);
+  RenderPlan plan = makePlan(scene, Aov::Beauty);
+  ASSERT_TRUE(plan[Pass::GlobalPhotons].on);
+  splitByReach(plan, scene, lone);
+  EXPECT_FALSE(plan[Pass::GlobalPhotons].on);
+  EXPECT_NE(plan[Pass::GlobalPhotons].reason.find("land on a second surface"), std::string::npos)
+      << plan[Pass::GlobalPhotons].reason;
+  EXPECT_EQ(planBudgets(plan)[MapKind::Global], 0u);
+
+  scene.meshes.push_back(makeQuad(Vec3(-50, 0, 50), Vec3(100, 0, 0), Vec3(0, 0, -100), 0));
+  const TraceScene floored(scene);
+  EXPECT_GT(measureRebound(scene, floored), 0.0f);  // the floor sends some bounces into the box
+  RenderPlan kept = makePlan(scene, Aov::Beauty);
+  splitByReach(kept, scene, floored);
+  EXPECT_TRUE(kept[Pass::GlobalPhotons].on);
+  EXPECT_EQ(planBudgets(kept)[MapKind::Global], 100000u);
 }
 
 }  // namespace

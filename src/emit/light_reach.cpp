@@ -49,6 +49,37 @@ std::vector<float> measureReach(const Scene& scene, const TraceScene& tracer, Re
   return fraction;
 }
 
+float measureRebound(const Scene& scene, const TraceScene& tracer, uint32_t pilots) {
+  enum : uint64_t { kReboundStream = 8 };
+  const SceneSphere bounds = tracer.boundingSphere();
+  std::vector<uint32_t> landed(scene.lights.size(), 0);
+  uint32_t emitting = 0;
+  for (const Light& light : scene.lights) emitting += maxComponent(light.radiance()) > 0.0f;
+  if (pilots == 0 || emitting == 0) return 0.0f;
+  tbb::parallel_for(size_t(0), scene.lights.size(), [&](size_t l) {
+    const Light& light = scene.lights[l];
+    if (!(maxComponent(light.radiance()) > 0.0f)) return;
+    Rng rng(hashKey(scene.render.seed, kReboundStream, l));
+    for (uint32_t i = 0; i < pilots; ++i) {
+      const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(), u4 = rng.uniform();
+      const float uLobe = rng.uniform(), v1 = rng.uniform(), v2 = rng.uniform();
+      const PhotonRay r = emitterPhoton(light, bounds, u1, u2, u3, u4);
+      const Ray ray{r.origin, r.dir};
+      Hit hit;
+      if (!tracer.intersect(ray, hit)) continue;
+      const SurfaceRecord s = tracer.surface(ray, hit, kSurfaceShadingNormal);
+      const Bsdf bsdf = makeBsdf(scene.materials[s.material], BsdfFamily::Radiometric, scene.photons.sampling);
+      const BsdfSample bs = sampleBsdf(bsdf, {s.ns, s.ng, s.frontFace}, -ray.dir, uLobe, v1, v2);
+      if (!bs.valid || !(maxComponent(bs.weight) > 0.0f)) continue;
+      Hit next;
+      landed[l] += tracer.intersect(Ray{spawnOrigin(s, bs.wi), bs.wi}, next);
+    }
+  });
+  uint64_t total = 0;
+  for (uint32_t n : landed) total += n;
+  return static_cast<float>(double(total) / (double(pilots) * emitting));
+}
+
 std::vector<double> reachWeighted(std::vector<double> weights, const std::vector<float>& reach) {
   if (reach.size() != weights.size()) return weights;
   for (size_t l = 0; l < weights.size(); ++l) weights[l] *= reach[l];

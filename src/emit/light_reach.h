@@ -30,6 +30,13 @@ constexpr uint32_t kReachPilots = 1024;
 std::vector<float> measureReach(const Scene& scene, const TraceScene& tracer, ReachRule rule,
                                 uint32_t pilots = kReachPilots);
 
+// The physical global map stores from a photon's second hit on: the share of
+// `pilots` photons per emitting light (a stream of their own) whose first hit
+// scatters and whose bounce, sampled from that surface's BSDF, lands on a surface.
+// 0 means no global photon can be stored (a lone convex model under a sky: every
+// bounce leaves), up to the rule of three as for the reach.
+float measureRebound(const Scene& scene, const TraceScene& tracer, uint32_t pilots = kReachPilots);
+
 // Whether a first hit on `material` satisfies `rule`.
 bool reaches(const Scene& scene, int material, ReachRule rule);
 

@@ -12,6 +12,10 @@ constexpr double kShadowRayNs = 50.0;       // rtcOccluded1 to a light (bench_lo
 constexpr double kRayNs = 100.0;            // a camera, shadow or specular ray with its shading
 constexpr double kPhotonSegmentNs = 140.0;  // one photon ray + surface + store (bench_photons)
 constexpr double kBuildNsPerPhoton = 200.0; // KD build per stored photon
+// An environment's photon start beyond its segment, and per level of its map's
+// search (a glTF box and environment_sky, 1 thread: CPU with and without the photons).
+constexpr double kEnvironmentPhotonNs = 120.0;
+constexpr double kEnvironmentMapLevelNs = 13.0;
 constexpr double kGatherNsPerNeighbour = 60.0;  // exact gathers, per neighbour
 // The physical model's exact global and caustic gathers, per neighbour found, with its
 // shading (cornell_physical, 12 passes, 1 thread: the search and shading share of the

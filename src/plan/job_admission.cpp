@@ -5,17 +5,40 @@
 #include "plan/photon_pilot.h"
 #include "plan/photon_stage.h"
 #include "plan/transport_model.h"
+#include "core/lights/environment_map.h"
 #include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 
 namespace penumbra {
 
+namespace {
+
+// Per pass, the physical maps' photons the environment starts: its share of each
+// split, or the whole budget when it is the only light.
+uint64_t environmentPhotons(const RenderPlan& plan, const Scene& scene) {
+  const Light* sky = environmentOf(scene);
+  if (!sky) return 0;
+  uint64_t n = 0;
+  for (Pass pass : {Pass::GlobalPhotons, Pass::CausticPhotons}) {
+    const PassDecision& d = plan[pass];
+    if (!d.on) continue;
+    if (d.perLight.size() == scene.lights.size()) {
+      for (size_t l = 0; l < scene.lights.size(); ++l) n += &scene.lights[l] == sky ? d.perLight[l] : 0;
+    } else if (scene.lights.size() == 1) {
+      n += d.budget;
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
 PhotonPlan photonPlanOf(const RenderPlan& plan, const Scene& scene, bool tracePixel) {
   const MapCounts b = planBudgets(plan);
   const TransportModel& model = transportOf(scene);
   const int passes = tracePixel ? 1 : model.passes(scene, plan.aov);
-  return {b, passes, model.freshPhotonsEachPass() ? passes : 1};
+  return {b, passes, model.freshPhotonsEachPass() ? passes : 1, environmentPhotons(plan, scene)};
 }
 
 Admission admitJob(const Scene& scene, const RenderPlan& plan, int threads, bool tracePixel,

@@ -228,6 +228,10 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
     const std::string pilot = fmt::format("{} pilot photons per light", kReachPilots);
     if (given == 0) {
       d = off(fmt::format("no light's photons reach {} ({})", t.where, pilot));
+    } else if (t.pass == Pass::GlobalPhotons && measureRebound(scene, tracer) == 0.0f) {
+      d = off(fmt::format("no light's photons land on a second surface, where the global map stores them ({}): "
+                          "every bounce leaves the scene",
+                          pilot));
     } else if (emitting > 1 || none > 0) {
       d.reason += fmt::format("; split by the power reaching {} ({}{}{})", t.where, pilot,
                               shares.empty() ? "" : ": " + fmt::format("{}", fmt::join(shares, ", ")),

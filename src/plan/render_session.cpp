@@ -7,6 +7,7 @@
 #include "io/scene_loader.h"
 #include "plan/memory_limit.h"
 #include "plan/output_safety.h"
+#include "plan/passes_identity.h"
 #include <fmt/format.h>
 #include <algorithm>
 #include <filesystem>
@@ -18,26 +19,6 @@ namespace penumbra {
 namespace {
 
 const char* gateModeName(GateMode m) { return m == GateMode::Auto ? "auto" : m == GateMode::On ? "on" : "off"; }
-
-// What a frame's saved passes must have been saved by: the scene file and the files
-// it read (path, size, time: in both keys), every override, loading, the view, the
-// camera, the plan and a tile's bounds. The thread count is left out: passes are
-// seeded by index.
-std::string passesIdentity(const PlannedJob& job, const SessionOptions& o) {
-  const Camera& c = job.scene.camera;
-  auto vec = [](const Vec3& v) { return fmt::format("{} {} {}", v.x, v.y, v.z); };
-  return fmt::format("scene {}\noverrides {}\ndefaults {}\nview {} error {}\ncamera {} / {} / {} fov {} ortho {} "
-                     "{}x{} spp {} lens {} {} {}\nseed {}\nplan {}\ngeometry {}\nphotons {}\nbounds {}\n"
-                     "transparent {}",
-                     job.request.scenePath, fmt::join(job.request.overrides, " "), o.load.defaults, job.viewName,
-                     job.errorView, vec(c.position), vec(c.lookAt), vec(c.up), c.fovY, c.orthoHeight, c.width,
-                     c.height, c.spp, c.apertureRadius, c.fNumber, c.focusDistance, job.scene.render.seed,
-                     planJson(job.plan), job.keys.geometry, job.keys.photons,
-                     job.bounds ? fmt::format("{},{},{},{}", job.bounds->x0, job.bounds->x1, job.bounds->y0,
-                                              job.bounds->y1)
-                                : std::string("frame"),
-                     job.scene.render.transparentBackground);
-}
 
 // A tile's bounds in the frame, and what a tile cannot be: a budget's passes would
 // differ between tiles, and the error view of one sample per pixel probes by the
@@ -189,6 +170,10 @@ void RenderSession::prepare(PlannedJob& job) {
   if (job.prepared) return;
   const SceneAssets& a = assets(job);
   splitByReach(job.plan, job.scene, *a.tracer);  // needs rays: the BVH is the first work
+  // The split may turn a map off (nothing its lights emit can be stored): estimate what is emitted.
+  Admission& admission = job.admission;
+  admission.options.photons = photonPlanOf(job.plan, job.scene, job.request.tracePixel.has_value());
+  admission.estimate = estimateResources(job.scene, admission.options, admission.bound);
   confirmJob(job.admission, job.scene, *a.tracer, options_.notice);
   job.prepared = true;
 }

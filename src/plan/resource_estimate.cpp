@@ -83,6 +83,15 @@ double lightSampleNs(const Light& light) {
   return kMeshLightSampleNs + kMeshLightLevelNs * std::log2(1.0 + table);
 }
 
+// Starting one photon at the environment, beyond its segment: a direction from its
+// map (a search per level of the map's distribution) and a point on the disc facing
+// the scene.
+double environmentPhotonNs(const Scene& scene) {
+  const Light* sky = environmentOf(scene);
+  const double texels = sky && sky->environment ? double(sky->environment->width) * sky->environment->height : 0.0;
+  return kEnvironmentPhotonNs + (texels > 0.0 ? kEnvironmentMapLevelNs * std::log2(1.0 + texels) : 0.0);
+}
+
 // The neighbours one of the physical model's gathers finds, averaged over its passes:
 // pass i gathers the passK(k, i) nearest (a fixed photons.radius shrinks by the same
 // share, so it holds about as many).
@@ -229,7 +238,8 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
 
   // Time: each stored photon is one traced segment, plus the one that escapes.
   const double emitted = double(p.emitted.total());
-  const double photonNs = (e.storedPhotons + emitted) * kPhotonSegmentNs + e.storedPhotons * kBuildNsPerPhoton;
+  const double photonNs = (e.storedPhotons + emitted) * kPhotonSegmentNs + e.storedPhotons * kBuildNsPerPhoton +
+                          double(p.environmentPhotons) * environmentPhotonNs(scene);
   // Past the caches the emission's stores and the build's gathers wait on memory, so
   // the per-photon costs grow with the log of the data past kCacheFriendlyBytes
   // (the constants are in plan/cost_model.h).

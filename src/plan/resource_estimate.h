@@ -23,6 +23,7 @@ struct PhotonPlan {
   MapCounts emitted;  // per pass
   int passes = 1;
   int photonPasses = 1;  // passes that emit their own photons (classic passes reuse pass 0's)
+  uint64_t environmentPhotons = 0;  // per pass, of the global and caustic maps': those the environment starts
 };
 
 struct ResourceEstimate {
