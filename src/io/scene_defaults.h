@@ -18,8 +18,8 @@ struct SceneBounds {
 // Every mesh vertex and sphere of `scene`.
 SceneBounds sceneBounds(const Scene& scene);
 
-// The share of the image's smaller dimension (width or height) the framed model's
-// bounding sphere fills: the silhouette of the sphere spans 90% of it, the rest is margin.
+// The share of the image's smaller dimension (width or height) the silhouette of the
+// framed model's bounding sphere spans; the rest is margin.
 constexpr double kFrameFill = 0.9;
 
 // The ball enclosing every mesh vertex and sphere of `scene` (io/bounding_sphere.h).
