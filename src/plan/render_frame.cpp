@@ -62,9 +62,10 @@ std::unique_ptr<TextureLookup> loadTextures(const Scene& scene) {
 
 SceneAssets prepareAssets(const Scene& scene, bool textures) {
   SceneAssets assets;
-  Stopwatch clock;
+  const CpuSpan clock;
   assets.tracer = std::make_unique<TraceScene>(scene);
-  assets.bvhSeconds = clock.seconds();
+  assets.bvhSeconds = clock.wallSeconds();
+  assets.bvhCpuSeconds = clock.cpuSeconds();
   if (textures) assets.textures = loadTextures(scene);
   return assets;
 }

@@ -21,6 +21,7 @@ struct SceneAssets {
   std::unique_ptr<TraceScene> tracer;
   std::unique_ptr<TextureLookup> textures;
   double bvhSeconds = 0.0;
+  double bvhCpuSeconds = 0.0;  // the build's CPU seconds (a sweep charges each run a lone render's)
 };
 // textures = false: the plan skips them (a view that reads no colour, or --disable textures).
 SceneAssets prepareAssets(const Scene& scene, bool textures = true);

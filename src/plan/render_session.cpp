@@ -306,13 +306,16 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
                    [](const MapCounts& a, const MapCounts& b) { return a.total() > b.total(); });
   // The shared emission is charged to the first budget, in wall and CPU time alike.
   double shared = emitting.wallSeconds(), sharedCpu = emitting.cpuSeconds();
+  const double emittedCpu = sharedCpu;
   for (const MapCounts& b : budgets) {
     BudgetStage s;
     const CpuSpan build;
+    bool alone = false;
     {
       const PhaseGuard phase(options_.progress);
       if (!buildStage(emission, b, false, s.stage, beginPhase(options_.progress, "maps"))) {
         Emission own = emitPhotonsFor(lead.scene, tracer, needs, b, 0);
+        alone = true;
         ++emissions_;
         buildStage(own, own.budgets, true, s.stage);
       } else if (s.stage.fromPrefix) {
@@ -322,7 +325,12 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
     if (!file.loaded) ++photonBuilds_;
     s.stage.buildSeconds += file.seconds;  // the one budget's file, read or written
     if (!file.note.empty()) s.stage.notes.push_back(file.note);
-    s.cpuSeconds = build.cpuSeconds() + sharedCpu;
+    s.buildCpuSeconds = build.cpuSeconds();
+    s.cpuSeconds = s.buildCpuSeconds + sharedCpu;
+    // Its share of the shared emission, as its emitSeconds (a budget emitted alone: in its build).
+    if (!alone && emission.seconds > 0.0) {
+      s.emitCpuSeconds = emittedCpu * std::min(1.0, s.stage.emitSeconds / emission.seconds);
+    }
     s.seconds = build.wallSeconds() + shared;
     shared = sharedCpu = 0.0;
     s.prefixOf = s.stage.fromPrefix ? emission.budgets.total() : 0;

@@ -71,6 +71,9 @@ struct BudgetStage {
   // budget also the emission they share.
   double seconds = 0.0;
   double cpuSeconds = 0.0;  // the process's CPU time over the same span
+  // What a lone render of this budget spends in CPU seconds: its share of the emission
+  // (the share stage.emitSeconds charges) and its maps' build.
+  double emitCpuSeconds = 0.0, buildCpuSeconds = 0.0;
   uint64_t prefixOf = 0;  // > 0: cut out of an emission of this many photons
 };
 

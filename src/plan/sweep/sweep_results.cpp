@@ -25,7 +25,8 @@ struct Column {
 const Column kColumns[] = {
     {"reference", &SweepRow::reference}, {"load_s", &SweepRow::load}, {"bvh_s", &SweepRow::bvh},
     {"emit_s", &SweepRow::emit}, {"maps_s", &SweepRow::maps}, {"precompute_s", &SweepRow::precompute},
-    {"render_s", &SweepRow::render}, {"render_median_s", &SweepRow::renderMedian}, {"total_s", &SweepRow::total}, {"spent_s", &SweepRow::spent},
+    {"render_s", &SweepRow::render}, {"render_median_s", &SweepRow::renderMedian}, {"total_s", &SweepRow::total},
+    {"total_cpu_s", &SweepRow::totalCpu}, {"spent_s", &SweepRow::spent},
     {"cpu_s", &SweepRow::cpu}, {"cpu_share", &SweepRow::cpuShare}, {"load_avg_1m", &SweepRow::loadAverage},
     {"camera_rays", &SweepRow::cameraRays}, {"shadow_rays", &SweepRow::shadowRays},
     {"reflection_rays", &SweepRow::reflectionRays}, {"refraction_rays", &SweepRow::refractionRays},

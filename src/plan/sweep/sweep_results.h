@@ -17,6 +17,7 @@ struct SweepRow {
   std::vector<std::string> values;  // one per knob
   bool reference = false;           // the default reference itself (error 0)
   double load = 0, bvh = 0, emit = 0, maps = 0, precompute = 0, render = 0, total = 0, spent = 0;
+  double totalCpu = 0;  // `total` in CPU seconds: what the same lone render's stages take of the cores
   // --repeat N: render is the fastest of the run's N frames, this their median.
   double renderMedian = 0;
   // The process's CPU time over `spent`, its share of (spent x threads), the load at the run's start.

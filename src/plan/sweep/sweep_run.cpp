@@ -192,7 +192,8 @@ class Sweep {
     std::stable_partition(group.begin(), group.end(), [&](size_t i) { return i == referenceRun_; });
     std::vector<const PlannedJob*> jobs;
     for (size_t i : group) jobs.push_back(&runs_[i].job);
-    const double bvh = session_.assets(*jobs.front()).bvhSeconds;
+    const SceneAssets& assets = session_.assets(*jobs.front());
+    const StageCost bvh{assets.bvhSeconds, assets.bvhCpuSeconds};
     status_ = "photons";
     showProgress();
     session_.photonsByBudget(jobs, [&](BudgetStage& b) {
@@ -204,7 +205,7 @@ class Sweep {
         reuse.bvh = !usedGeometry_.insert(run.job.keys.geometry).second;
         reuse.maps = j != b.jobs.front();
         reuse.prefixOf = b.prefixOf;
-        renderRun(run, b.stage, bvh, spent, spentCpu, reuse);
+        renderRun(run, b, bvh, spent, spentCpu, reuse);
         spent = spentCpu = 0.0;
       }
     });
@@ -218,27 +219,36 @@ class Sweep {
     return session_.frame(ungated, stage);
   }
 
+  struct StageCost {
+    double wall = 0.0, cpu = 0.0;
+  };
+
   struct Reuse {
     bool bvh = false, maps = false;
     uint64_t prefixOf = 0;  // > 0: photons cut out of an emission of this many
   };
 
   // `spentBefore` and `cpuBefore`: what the run's shared photon stage cost first.
-  void renderRun(const PlannedRun& p, PhotonStage& stage, double bvh, double spentBefore, double cpuBefore,
+  // The row's times are a lone render's: every stage in full, the shared ones too, and
+  // each progressive pass's own emission and maps as the frame timed them.
+  void renderRun(const PlannedRun& p, BudgetStage& b, const StageCost& bvh, double spentBefore, double cpuBefore,
                  const Reuse& reuse) {
+    PhotonStage& stage = b.stage;
     const SweepRun& run = spec_.runs[p.index];
     current_ = p.index;
     const CpuSpan clock;
     RenderResult result = renderOne(stage, p, true);
+    const double frameCpu = clock.cpuSeconds(), frameWall = clock.wallSeconds();
     const RenderStats& st = result.stats;
     SweepRow row;
     row.id = run.id;
     row.values = run.values;
     row.reference = p.index == referenceRun_;
     row.load = p.job.loadSeconds;
-    row.bvh = bvh;
-    row.emit = stage.emitSeconds;
-    row.maps = stage.buildSeconds;
+    row.bvh = bvh.wall;
+    // Pass 0's share of the group's emission and its maps, then every later pass's own.
+    row.emit = st.time.emit;
+    row.maps = st.time.buildMaps;
     // A lookup cache reused from an earlier run on these maps still counts in full.
     row.precompute = st.cacheRecords > 0 ? std::max(st.time.precompute, stage.lookupSeconds) : st.time.precompute;
     // --repeat: the same frame again on the same maps (same pixels); the fastest counts.
@@ -249,6 +259,11 @@ class Sweep {
     row.renderMedian = renders.size() % 2 ? renders[renders.size() / 2]
                                           : 0.5 * (renders[renders.size() / 2 - 1] + renders[renders.size() / 2]);
     row.total = row.load + row.bvh + row.emit + row.maps + row.precompute + row.render;
+    // The same account in CPU seconds. Loading is serial (its wall is its CPU); a lookup
+    // cache reused from an earlier run is charged at this frame's CPU per wall second.
+    const double reusedLookup = row.precompute - st.time.precompute;
+    row.totalCpu = row.load + bvh.cpu + b.emitCpuSeconds + b.buildCpuSeconds + frameCpu +
+                   (frameWall > 0.0 ? reusedLookup * frameCpu / frameWall : 0.0);
     fillCounts(row, st);
     row.gate = p.job.plan[Pass::Gate].on && st.rays.gateQueries > 0;
     std::vector<std::string> reused;
