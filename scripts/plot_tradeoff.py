@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Error against time of a penumbra sweep (results.csv -> tradeoff.png).
 
-Log axes: each run's standalone time (total_s) against its error under --metric
+Log axes: each run's standalone time (total_s, or with --cost cpu its CPU seconds,
+total_cpu_s, as penumbra sweep draws it when its runs were contended) against its error under --metric
 (relmse by default; psnr is drawn as the RMSE of clamped values it comes from).
 Every run is a grey dot; one series per varied knob joins the runs that vary only
 that knob, every other knob at the best run's value (the lowest error), so each
@@ -9,7 +10,7 @@ series shows what that knob buys around the best setting; the Pareto front (runs
 no other run beats on both time and error) is the black staircase. The reference
 (error 0) cannot sit on a log axis and is left out.
 
-Usage: plot_tradeoff.py results.csv tradeoff.png [--title TITLE] [--metric NAME]
+Usage: plot_tradeoff.py results.csv tradeoff.png [--title TITLE] [--metric NAME] [--cost wall|cpu]
 """
 import argparse
 import csv
@@ -41,6 +42,13 @@ METRICS = {
 }
 
 
+# What the time axis reads: wall seconds, or CPU seconds where other work shared the cores.
+COSTS = {
+    "wall": ("total_s", "time of the run as a standalone render (s)"),
+    "cpu": ("total_cpu_s", "CPU time of the run as a standalone render (CPU s)"),
+}
+
+
 def pareto(points):
     front, best = [], float("inf")
     for t, e, row in sorted(points, key=lambda p: (p[0], p[1])):
@@ -66,6 +74,7 @@ def main():
     parser.add_argument("png")
     parser.add_argument("--title", default=None)
     parser.add_argument("--metric", default="relmse", choices=sorted(METRICS))
+    parser.add_argument("--cost", default="wall", choices=sorted(COSTS))
     args = parser.parse_args()
 
     with open(args.csv, newline="") as f:
@@ -76,6 +85,10 @@ def main():
         fail(f"{args.csv}: not a penumbra sweep results.csv")
     knobs = header[header.index("run") + 1:header.index("reference")]
     error, ylabel = METRICS[args.metric]
+    column, xlabel = COSTS[args.cost]
+    if column not in header:
+        fail(f"{args.csv}: has no {column} column (written by an older penumbra)")
+    cost = lambda r: float(r[column])
     runs = [r for r in rows if r["reference"] != "1" and error(r) > 0.0]
     if not runs:
         fail(f"{args.csv}: no run with a positive error to plot (every run matches the reference)")
@@ -89,7 +102,7 @@ def main():
         sys.exit(NO_MATPLOTLIB)
 
     fig, ax = plt.subplots(figsize=(7.5, 5.0), dpi=120)
-    ax.scatter([float(r["total_s"]) for r in runs], [error(r) for r in runs],
+    ax.scatter([cost(r) for r in runs], [error(r) for r in runs],
                s=14, color="0.75", zorder=1, label="every run")
     orders = {k: knob_order([r[k] for r in rows]) for k in knobs}
     best = min(runs, key=error)
@@ -101,18 +114,18 @@ def main():
         series.sort(key=lambda r: orders[knob].index(r[knob]))
         if len(series) < 2:
             continue
-        xs = [float(r["total_s"]) for r in series]
+        xs = [cost(r) for r in series]
         ys = [error(r) for r in series]
         line, = ax.plot(xs, ys, marker=markers[i % len(markers)], zorder=3, label=f"{knob} (others as the best run)")
         for x, y, r in zip(xs, ys, series):
             ax.annotate(r[knob], (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7,
                         color=line.get_color())
-    front = pareto([(float(r["total_s"]), error(r), r) for r in runs])
+    front = pareto([(cost(r), error(r), r) for r in runs])
     ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="black", linewidth=1.2,
             zorder=2, label="Pareto front")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("time of the run as a standalone render (s)")
+    ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     title = args.title or os.path.basename(os.path.dirname(os.path.abspath(args.csv)))
     ax.set_title(f"{title}: error against time")

@@ -19,10 +19,10 @@ inline std::string etaText(double elapsed, double done, double remaining) {
   return remaining <= 0.0 ? "done" : done <= 0.0 ? "ETA --" : "ETA " + clockTime(elapsed / done * remaining);
 }
 
-// `paced` of the `remaining + paced` items still to do when the command started
-// are finished; the ETA extrapolates their mean time to the rest.
+// `paced` of the `remaining + paced` items (or their estimated seconds) still to do
+// when the command started are finished; the ETA extrapolates their pace to the rest.
 inline std::string progressLine(const char* what, size_t done, size_t total, const std::string& item,
-                                const std::string& phase, double elapsed, size_t paced, size_t remaining) {
+                                const std::string& phase, double elapsed, double paced, double remaining) {
   return fmt::format("{} {}/{} | {} | {} | {} elapsed, {}", what, done, total, item, phase, clockTime(elapsed),
                      etaText(elapsed, double(paced), double(remaining)));
 }

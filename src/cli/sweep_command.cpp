@@ -117,8 +117,13 @@ int SweepCommand::run() {
       progress.emplace();
       req.session.progress = progress->phases();
       req.progress = [&](const SweepProgress& p) {
-        progress->line(progressLine("sweep", p.done, p.total, p.run, p.phase, p.seconds, p.paced, p.remaining));
+        // Runs differ in cost (the reference most): the ETA extrapolates estimated seconds where known.
+        const bool estimated = p.pacedSeconds + p.remainingSeconds > 0.0;
+        progress->line(progressLine("sweep", p.done, p.total, p.run, p.phase, p.seconds,
+                                    estimated ? p.pacedSeconds : double(p.paced),
+                                    estimated ? p.remainingSeconds : double(p.remaining)));
       };
+      req.notice = [](const std::string& note) { std::cerr << noteLine(note) << "\n"; };
     }
     SweepOutcome out = runSweep(req);
     if (progress) progress->finish();

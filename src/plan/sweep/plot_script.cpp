@@ -26,11 +26,11 @@ int runProgram(const std::vector<std::string>& args) {
 }  // namespace
 
 std::string drawTradeoffPlot(const std::string& script, const std::string& csv, const std::string& png,
-                             const std::string& title, const std::string& metric) {
+                             const std::string& title, const std::string& metric, const std::string& cost) {
   // Debian's interpreter first: python3-matplotlib (make deps) is installed for it,
   // and a python3 earlier on PATH (pyenv, a venv) may not have it.
   const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const int status = runProgram({python, script, csv, png, "--title", title, "--metric", metric});
+  const int status = runProgram({python, script, csv, png, "--title", title, "--metric", metric, "--cost", cost});
   if (status == 0) return "";
   // The script's exit codes: 2 = nothing it can plot (its line above says why),
   // 3 = matplotlib missing; anything else is its own failure.

@@ -5,9 +5,9 @@
 
 namespace penumbra {
 
-// Draws `png` from `csv` with `metric` (sweep_results.h's names) on the error axis;
-// returns "" on success, else one line saying why not.
+// Draws `png` from `csv` with `metric` (sweep_results.h's names) on the error axis and
+// `cost` ("wall" or "cpu") on the time axis; returns "" on success, else one line saying why not.
 std::string drawTradeoffPlot(const std::string& script, const std::string& csv, const std::string& png,
-                             const std::string& title, const std::string& metric);
+                             const std::string& title, const std::string& metric, const std::string& cost = "wall");
 
 }  // namespace penumbra

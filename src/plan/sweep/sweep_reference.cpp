@@ -8,9 +8,14 @@
 #include "core/error_estimate.h"
 #include "io/image_io.h"
 #include <fmt/format.h>
+#include <cstdlib>
 #include <filesystem>
 
 namespace penumbra {
+namespace {
+// The reference's own noise figure, for a rerun that reloads it to mark runs within it.
+constexpr const char* kNoiseAttribute = "penumbra:sweep_reference_noise_rmse";
+}  // namespace
 
 Image givenReference(const std::string& path, const std::string& scenePath,
                      const std::vector<std::pair<std::string, const PlannedJob*>>& runs) {
@@ -24,16 +29,29 @@ Image givenReference(const std::string& path, const std::string& scenePath,
   return reference;
 }
 
+namespace {
+// What the reference is, as its image records it.
+std::string referenceWhat(const SweepRequest& req, const PlannedJob& highest) {
+  return fmt::format("{} passes of the run at every knob's highest value ({})",
+                     highest.scene.photons.passes * req.referencePasses, req.spec.runs[req.spec.highest].id);
+}
+}  // namespace
+
+bool referenceSaved(const SweepRequest& req, const PlannedJob& highest, const std::string& saved) {
+  return imageComplete(saved) && readImageAttribute(saved, "penumbra:sweep_reference") == referenceWhat(req, highest);
+}
+
 LongReference longReference(RenderSession& session, const SweepRequest& req, const PlannedJob& highest,
                             const std::string& saved, const std::function<void()>& rendering) {
   const SweepRun& run = req.spec.runs[req.spec.highest];
   const int passes = highest.scene.photons.passes * req.referencePasses;
-  const std::string what =
-      fmt::format("{} passes of the run at every knob's highest value ({})", passes, run.id);
+  const std::string what = referenceWhat(req, highest);
   LongReference out;
-  if (imageComplete(saved) && readImageAttribute(saved, "penumbra:sweep_reference") == what) {
+  if (referenceSaved(req, highest, saved)) {
     out.image = readImage(saved);
     out.note = what + ", reloaded from `reference.exr`. " + readImageAttribute(saved, "penumbra:sweep_reference_note");
+    const std::string noise = readImageAttribute(saved, kNoiseAttribute);
+    if (!noise.empty()) out.noiseRmse = std::atof(noise.c_str());
     return out;
   }
   std::vector<std::string> overrides = run.overrides;
@@ -51,7 +69,9 @@ LongReference longReference(RenderSession& session, const SweepRequest& req, con
                                        "from converged: {} (docs/accuracy.md)",
                                        clock.wallSeconds(), describeError(r.stats.error));
   out.note = what + ", saved as `reference.exr`. " + note;
-  writeImage(saved, r.image, {{"penumbra:sweep_reference", what}, {"penumbra:sweep_reference_note", note}});
+  out.noiseRmse = sweepNoiseRmse(r.stats.error);
+  writeImage(saved, r.image, {{"penumbra:sweep_reference", what}, {"penumbra:sweep_reference_note", note},
+                              {kNoiseAttribute, fmt::format("{:.9g}", out.noiseRmse)}});
   out.image = std::move(r.image);
   return out;
 }

@@ -202,29 +202,46 @@ size_t bestRun(const std::vector<SweepRow>& rows, SweepMetric metric) {
   return best;
 }
 
-std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric) {
+double runCost(const SweepRow& r, SweepCost cost) { return cost == SweepCost::Cpu ? r.totalCpu : r.total; }
+
+bool contendedRows(const std::vector<SweepRow>& rows) {
+  for (const SweepRow& r : rows) {
+    CpuTiming t;
+    t.wallSeconds = r.spent;
+    t.share = r.cpuShare;
+    if (!r.id.empty() && t.contended()) return true;
+  }
+  return false;
+}
+
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric, SweepCost cost) {
   std::vector<size_t> front;
   for (size_t i = 0; i < rows.size(); ++i) {
     if (rows[i].reference) continue;
     bool beaten = false;
+    const double tb = runCost(rows[i], cost), eb = metricError(rows[i], metric);
     for (size_t j = 0; j < rows.size() && !beaten; ++j) {
       if (j == i || rows[j].reference) continue;
-      const SweepRow& a = rows[j];
-      const SweepRow& b = rows[i];
-      const double ea = metricError(a, metric), eb = metricError(b, metric);
-      beaten = a.total <= b.total && ea <= eb && (a.total < b.total || ea < eb);
+      const double ta = runCost(rows[j], cost), ea = metricError(rows[j], metric);
+      beaten = ta <= tb && ea <= eb && (ta < tb || ea < eb);
     }
     if (!beaten) front.push_back(i);
   }
-  std::sort(front.begin(), front.end(), [&](size_t a, size_t b) { return rows[a].total < rows[b].total; });
+  std::sort(front.begin(), front.end(), [&](size_t a, size_t b) { return runCost(rows[a], cost) < runCost(rows[b], cost); });
   return front;
+}
+
+double sweepNoiseRmse(const ErrorEstimate& e) { return e.known() ? e.noiseRmse : -1.0; }
+
+bool withinReferenceNoise(const SweepRow& r, double referenceNoiseRmse) {
+  return !r.reference && referenceNoiseRmse > 0.0 && r.rmse <= kWithinReferenceNoise * referenceNoiseRmse;
 }
 
 namespace {
 
 // The fastest run reaching each error of a 1-2-5 ladder between the runs' best and
 // worst error under `metric`: what a given accuracy costs on this scene.
-std::string timeToReach(const SweepSpec& spec, const std::vector<SweepRow>& rows, SweepMetric metric) {
+std::string timeToReach(const SweepSpec& spec, const std::vector<SweepRow>& rows, SweepMetric metric, SweepCost cost) {
   double lo = 0.0, hi = 0.0;
   for (const SweepRow& r : rows) {
     const double e = metricError(r, metric);
@@ -233,8 +250,9 @@ std::string timeToReach(const SweepSpec& spec, const std::vector<SweepRow>& rows
     hi = std::max(hi, e);
   }
   if (!(lo > 0.0)) return "";
-  std::string md = fmt::format("\n## Time to reach an error\n\nThe fastest run whose {} is at most E:\n\n| E | time s |",
-                               metricName(metric));
+  const bool cpu = cost == SweepCost::Cpu;
+  std::string md = fmt::format("\n## Time to reach an error\n\nThe {} run whose {} is at most E:\n\n| E | {} |",
+                               cpu ? "cheapest (in CPU seconds)" : "fastest", metricName(metric), cpu ? "CPU s" : "time s");
   std::string rule = "|---|---|";
   for (const SweepKnob& k : spec.knobs) { md += " " + k.name + " |"; rule += "---|"; }
   md += "\n" + rule + "\n";
@@ -246,9 +264,11 @@ std::string timeToReach(const SweepSpec& spec, const std::vector<SweepRow>& rows
       size_t fastest = rows.size();
       for (size_t i = 0; i < rows.size(); ++i) {
         if (rows[i].reference || metricError(rows[i], metric) > target) continue;
-        if (fastest == rows.size() || rows[i].total < rows[fastest].total) fastest = i;
+        if (fastest == rows.size() || runCost(rows[i], cost) < runCost(rows[fastest], cost)) fastest = i;
       }
-      if (fastest < rows.size()) md += fmt::format("| {:.3g} | {:.3f} |", target, rows[fastest].total) + settings(spec, rows[fastest]) + "\n";
+      if (fastest < rows.size()) {
+        md += fmt::format("| {:.3g} | {:.3f} |", target, runCost(rows[fastest], cost)) + settings(spec, rows[fastest]) + "\n";
+      }
     }
   }
   return md;
@@ -264,18 +284,30 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
   std::string md = fmt::format("# Sweep of {}\n\n{} runs. Knobs (`--set` keys they write):\n\n{}\n", scene,
                                rows.size(), knobList(spec));
   md += fmt::format("**Reference:** {}", t.referenceNote);
+  double referenceNoise = t.referenceNoiseRmse;
   for (const SweepRow& r : rows) {
     if (!r.reference) continue;
+    referenceNoise = r.noiseRmse;
     md += r.noiseRmse >= 0.0 ? fmt::format(". Its own error estimate, how far it is from converged: ~{:.3g} RMSE of "
                                            "noise (docs/accuracy.md)", r.noiseRmse)
                              : ". It has no error estimate of its own (one pass of one sample)";
   }
   md += "\n\n";
+  size_t alike = 0;
+  for (const SweepRow& r : rows) alike += withinReferenceNoise(r, referenceNoise);
+  if (referenceNoise > 0.0) {
+    md += fmt::format("**Within the reference's noise:** a run whose RMSE is at most {:.3g} ({:.3g} x the reference's "
+                      "own ~{:.3g}) is marked `~ref` ({} of {} runs): its own error is no larger than the reference's, "
+                      "so the differences among such runs are the reference's noise, not theirs. A longer reference "
+                      "(`--reference-passes`) tells them apart.\n\n",
+                      kWithinReferenceNoise * referenceNoise, kWithinReferenceNoise, referenceNoise, alike, rows.size());
+  }
   md += "**Error:** RMSE, relative MSE (mean of (a-r)^2/(r^2+0.01)) and PSNR (on values clamped to [0,1]) "
         "from OpenImageIO's ImageBufAlgo against the reference; `worst 1%` is the RMSE over the 1% of pixels "
         "with the largest squared error in that run.\n\n"
-        "**Time** is what a run costs as a standalone render: every stage it needs, shared or not (a prefix's "
-        "emission counted as its share of the largest emission's time).\n\n";
+        "**Time** (`time s`, `total_s`) is what a run costs as a standalone render: every stage it needs, shared or "
+        "not, every progressive pass's photons and maps included (a prefix's emission counted as its share of the "
+        "largest emission's time); `CPU s` (`total_cpu_s`) is the same account in CPU seconds.\n\n";
   if (t.repeat > 1) {
     md += fmt::format("**Repeats:** each run's frame was rendered {} times on its maps; `render_s` (and the total) "
                       "is the fastest, `render_median_s` the median.\n\n", t.repeat);
@@ -289,26 +321,54 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
       t.bvhBuilds, t.emissions, t.prefixCuts, t.mapBuilds, t.resumed, t.wallSeconds, t.photonSeconds,
       t.renderSeconds, denom, denom > 0 ? t.wallSeconds / denom : 0.0);
   if (t.cpu.known()) md += "Sweep " + cpuLine(t.cpu) + "; each run's in `results.csv` (`cpu_s`, `cpu_share`).\n\n";
+  if (t.estimatedSeconds > 0.0 && t.cpu.known()) {
+    md += fmt::format("Estimated before the first photon: ~{:.0f} s on {} threads; spent {:.0f} s of wall time, "
+                      "{:.0f} CPU-s ({:.0f} s of {} busy threads).\n\n",
+                      t.estimatedSeconds, t.cpu.threads, t.wallSeconds, t.cpu.cpuSeconds,
+                      t.cpu.cpuSeconds / std::max(t.cpu.threads, 1), t.cpu.threads);
+  }
 
   std::string head = "|";
   std::string rule = "|";
   for (const SweepKnob& k : spec.knobs) { head += " " + k.name + " |"; rule += "---|"; }
-  head += " time s | RMSE | relMSE | PSNR | worst 1% |\n";
-  rule += "---|---|---|---|---|\n";
+  head += " time s | CPU s | RMSE | relMSE | PSNR | worst 1% | |\n";
+  rule += "---|---|---|---|---|---|---|\n";
   auto line = [&](const SweepRow& r) {
+    const char* mark = r.reference ? "reference" : withinReferenceNoise(r, referenceNoise) ? "~ref" : "";
     return "|" + settings(spec, r) +
-           fmt::format(" {:.3f} | {:.4g} | {:.4g} | {:.2f} | {:.4g} |{}\n", r.total, r.rmse, r.relMse, r.psnr,
-                       r.worstRmse, r.reference ? " (reference)" : "");
+           fmt::format(" {:.3f} | {:.3f} | {:.4g} | {:.4g} | {:.2f} | {:.4g} | {} |\n", r.total, r.totalCpu, r.rmse,
+                       r.relMse, r.psnr, r.worstRmse, mark);
   };
-  md += fmt::format("**Ranked by** {} (`--metric`).\n\n", metricName(metric));
+  // On a contended machine wall seconds follow the other work; CPU seconds follow the run's.
+  const SweepCost cost = contendedRows(rows) ? SweepCost::Cpu : SweepCost::Wall;
+  const char* costName = cost == SweepCost::Cpu ? "CPU seconds" : "time";
+  md += fmt::format("**Ranked by** {} (`--metric`); cost is {}.", metricName(metric),
+                    cost == SweepCost::Cpu ? "CPU seconds (`total_cpu_s`), because some runs did not have their cores "
+                                             "all the time (`cpu_share` below 0.9), so their wall time is partly "
+                                             "other work's"
+                                           : "wall time (`total_s`)");
+  md += "\n\n";
   if (const size_t best = bestRun(rows, metric); best < rows.size()) {
     md += "## Best run\n\n" + head + rule + line(rows[best]) + "\n";
+    if (withinReferenceNoise(rows[best], referenceNoise)) {
+      md += "Its error is within the reference's own noise (`~ref`): it is not measurably better than the other "
+            "runs so marked.\n\n";
+    }
   }
-  md += fmt::format("## Pareto front\n\nRuns that no other run beats on both time and {}, fastest first:\n\n",
+  const std::vector<size_t> front = paretoFront(rows, metric, cost);
+  md += fmt::format("## Pareto front\n\nRuns that no other run beats on both {} and {}, cheapest first:\n\n", costName,
                     metricName(metric)) + head + rule;
-  for (size_t i : paretoFront(rows, metric)) md += line(rows[i]);
+  size_t frontAlike = 0;
+  for (size_t i : front) {
+    md += line(rows[i]);
+    frontAlike += withinReferenceNoise(rows[i], referenceNoise);
+  }
+  if (frontAlike > 1) {
+    md += fmt::format("\n{} runs of the front are within the reference's noise (`~ref`): against this reference only "
+                      "the cheapest of them is known to be worth its cost.\n", frontAlike);
+  }
 
-  md += timeToReach(spec, rows, metric);
+  md += timeToReach(spec, rows, metric, cost);
 
   bool anyGate = false;
   for (const SweepRow& r : rows) anyGate = anyGate || r.gate;

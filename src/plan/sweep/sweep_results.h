@@ -59,9 +59,31 @@ SweepMetric parseMetric(const std::string& name);  // throws InputError naming t
 // The row's error under `metric`, lower better (PSNR as its clamped RMSE).
 double metricError(const SweepRow& row, SweepMetric metric);
 
-// Rows no other row beats on both total time and the metric (the reference
-// excluded), fastest first.
-std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric = SweepMetric::RelMse);
+// What the front and the time to reach an error rank a run's cost by: total_s, or
+// total_cpu_s when the runs' times were contended (below).
+enum class SweepCost { Wall, Cpu };
+double runCost(const SweepRow& row, SweepCost cost);
+// Whether some run (of those long enough to judge) had its cores less than
+// kContendedShare of the time (core/cpu_time.h): then its wall seconds follow the
+// machine's other work, and the sweep ranks by CPU seconds.
+bool contendedRows(const std::vector<SweepRow>& rows);
+
+// Rows no other row beats on both cost and the metric (the reference excluded),
+// cheapest first.
+std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric metric = SweepMetric::RelMse,
+                                SweepCost cost = SweepCost::Wall);
+
+// The noise figure the sweep reads from a render's own estimate (a run's noise_rmse,
+// the reference's own error), < 0 unknown. One place: the lighting's figure (the
+// pixels that do not see an emitter) is meant to replace the whole image's here.
+double sweepNoiseRmse(const ErrorEstimate& e);
+
+// A run whose RMSE against the reference is at most this times the reference's own
+// noise: measured RMSE^2 is about the run's own error^2 plus the reference's, so the
+// run's own error is no larger than the reference's and differences among such runs
+// are the reference's, not theirs.
+constexpr double kWithinReferenceNoise = 1.4142135623730951;  // sqrt(2)
+bool withinReferenceNoise(const SweepRow& row, double referenceNoiseRmse);
 
 // The run with the lowest error under `metric` (the reference excluded), rows.size()
 // when there is none.
@@ -74,10 +96,13 @@ struct SweepTotals {
   double renderSeconds = 0;     // sum of every render pass (precompute + render, ungated ones too)
   size_t emissions = 0, prefixCuts = 0, mapBuilds = 0, bvhBuilds = 0, resumed = 0;
   std::string referenceNote;    // which reference the errors are against
+  double referenceNoiseRmse = -1;  // the sweep's own long reference's noise estimate; < 0 unknown
+  double estimatedSeconds = 0;  // what the sweep announced before its first photon (sweep_estimate.h)
   int repeat = 1;               // frames rendered per run (--repeat)
 
   // Adds another session's counts and stage seconds (a --threads list's sessions).
   void addCounts(const SweepTotals& o) {
+    estimatedSeconds += o.estimatedSeconds;
     photonSeconds += o.photonSeconds;
     renderSeconds += o.renderSeconds;
     emissions += o.emissions;

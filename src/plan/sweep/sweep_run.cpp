@@ -4,6 +4,7 @@
 // the same maps.
 #include "plan/sweep/sweep_run.h"
 #include "plan/sweep/plot_script.h"
+#include "plan/sweep/sweep_estimate.h"
 #include "plan/sweep/sweep_folder.h"
 #include "plan/sweep/sweep_idle_knobs.h"
 #include "plan/sweep/sweep_reference.h"
@@ -80,6 +81,7 @@ class Sweep {
     }
     writeSweepFolder(req_.outDir, identity);
     prepare();  // the runs first: a refusal names what a lone render of the run would
+    announceEstimate();
     loadReference();
     rows_.resize(spec_.runs.size());
     for (const PlannedRun& p : runs_) {
@@ -146,8 +148,10 @@ class Sweep {
         status_ = "reference";
         showProgress();
       });
+      estimatedDone_ += estimate_.reference;
       reference_ = std::move(r.image);
       totals_.referenceNote = std::move(r.note);
+      totals_.referenceNoiseRmse = r.noiseRmse;
       return;
     }
     referenceRun_ = spec_.highest;
@@ -176,6 +180,34 @@ class Sweep {
       return std::find(g.begin(), g.end(), referenceRun_) != g.end();
     });
     return groups;
+  }
+
+  // What the sweep will cost, from its runs' own estimates and what they share, told
+  // before the first photon; the ETA counts it down.
+  void announceEstimate() {
+    SweepEstimateInput in;
+    in.runs.assign(spec_.runs.size(), nullptr);
+    size_t todo = 0;
+    for (const PlannedRun& p : runs_) {
+      if (p.done || !p.mine) continue;
+      in.runs[p.index] = &p.job;
+      ++todo;
+    }
+    const PlannedRun& highest = runs_[spec_.highest];
+    const std::string saved = (fs::path(req_.outDir) / "reference.exr").string();
+    if (req_.referencePath.empty() && req_.referencePasses > 1 && !referenceSaved(req_, highest.job, saved)) {
+      // A session of another thread count reloads what the first one rendered.
+      session_.prepare(runs_[spec_.highest].job);
+      in.reference = &highest.job;
+      in.referencePasses = req_.referencePasses;
+    }
+    in.repeat = req_.repeat;
+    in.compareGate = req_.compareGate;
+    estimate_ = estimateSweep(in);
+    totals_.estimatedSeconds = estimate_.seconds();
+    if (req_.notice && (todo > 0 || in.reference)) {
+      req_.notice(describeSweepEstimate(estimate_, todo, session_.options().threads));
+    }
   }
 
   // Each run still to render is prepared as a lone render of it would be (its BVH,
@@ -288,7 +320,7 @@ class Sweep {
     row.relMse = err.relMse;
     row.psnr = err.psnr;
     row.worstRmse = err.worstRmse;
-    row.noiseRmse = st.error.known() ? st.error.noiseRmse : -1.0;
+    row.noiseRmse = sweepNoiseRmse(st.error);
     row.image = "runs/" + run.slug + ".exr";
     // A run's image says what a render's would, and which run it is.
     const std::string runPath = (fs::path(req_.outDir) / row.image).string();
@@ -307,6 +339,7 @@ class Sweep {
     renderedCpu_.push_back(cpu);
     rows_[p.index] = row;
     ++finishedNow_;
+    estimatedDone_ += estimate_.runs[p.index];
     writeCsv();
     status_ = "done";
     showProgress();
@@ -330,7 +363,7 @@ class Sweep {
   void plot(const fs::path& dir) {
     const std::string note = drawTradeoffPlot(req_.plotScript, (dir / "results.csv").string(),
                                               (dir / "tradeoff.png").string(), sceneName_,
-                                              metricName(req_.metric));
+                                              metricName(req_.metric), contendedRows(rows_) ? "cpu" : "wall");
     if (!note.empty()) notes_.push_back(note);
   }
 
@@ -350,6 +383,8 @@ class Sweep {
     p.seconds = clock_.wallSeconds();
     p.paced = finishedNow_;
     p.remaining = todo - finishedNow_;
+    p.pacedSeconds = estimatedDone_;
+    p.remainingSeconds = std::max(0.0, estimate_.seconds() - estimatedDone_);
     req_.progress(p);
   }
 
@@ -368,6 +403,8 @@ class Sweep {
   std::string csvPath_, sceneName_, status_;
   std::vector<std::string> notes_;
   std::vector<CpuTiming> renderedCpu_;  // the runs rendered now (not resumed)
+  SweepEstimate estimate_;
+  double estimatedDone_ = 0.0;  // the estimate's seconds of the work finished so far
   CpuSpan clock_;
 };
 

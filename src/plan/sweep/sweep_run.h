@@ -21,6 +21,9 @@ struct SweepProgress {
   std::string phase;
   double seconds = 0.0;
   size_t paced = 0, remaining = 0;
+  // The same in estimated seconds (plan/sweep/sweep_estimate.h), the reference's
+  // included: runs differ in cost, so the ETA extrapolates these when they are known.
+  double pacedSeconds = 0.0, remainingSeconds = 0.0;
 };
 
 struct SweepRequest {
@@ -42,6 +45,8 @@ struct SweepRequest {
   SweepMetric metric = SweepMetric::RelMse;  // what the front, plot and best run rank by
   // Told on the sweep's own thread as each run's phase changes.
   std::function<void(const SweepProgress&)> progress;
+  // Told once, before the first photon: what the sweep is estimated to cost.
+  std::function<void(const std::string&)> notice;
   int repeat = 1;                    // --repeat: frames per run, the fastest and the median kept
   bool planOnly = false;             // load and plan every run (InputError on a bad one), render nothing
 };

@@ -21,6 +21,7 @@ SweepOutcome runSweep(const SweepRequest& request) {
   }
   // The outcome's rows are the last session's (every row); its totals, all sessions'.
   sum.referenceNote = out.totals.referenceNote;
+  sum.referenceNoiseRmse = out.totals.referenceNoiseRmse;
   sum.repeat = out.totals.repeat;
   sum.cpu = clock.timing(counts.front());
   sum.wallSeconds = sum.cpu.wallSeconds;
