@@ -1,9 +1,14 @@
 // What a sweep charges a run against what the run costs alone: a progressive run's
 // total (every pass's photons and maps, shared stages in full) equals a lone
 // render's --stats total of the same settings, compared in CPU seconds so a busy
-// machine's waits do not enter either side.
+// machine's waits do not enter either side; contended runs are ranked by CPU
+// seconds, runs within the reference's noise are marked, and the up-front estimate
+// charges what runs share once.
+#include "plan/cost_model.h"
 #include "plan/cpu_report.h"
 #include "plan/pipeline.h"
+#include "plan/render_session.h"
+#include "plan/sweep/sweep_estimate.h"
 #include "plan/sweep/sweep_run.h"
 #include "support/scratch_dir.h"
 #include <gtest/gtest.h>
@@ -54,6 +59,95 @@ TEST(SweepCost, AProgressiveRunsTotalIsALoneRendersInCpuSeconds) {
     EXPECT_GT(row.emit, 0.0) << row.id;
     EXPECT_GE(row.total, row.load + row.bvh + row.emit + row.maps + row.render - 1e-9) << row.id;
   }
+}
+
+// The contended pair: k 20 "cost" 12.9 s of wall against 6.9 s for k 100,
+// where CPU time says 1.1 against 1.6 s and k 20 is also the more accurate.
+std::vector<SweepRow> contendedPair(double share) {
+  auto row = [share](const char* id, double wall, double cpu, double relMse) {
+    SweepRow r;
+    r.id = id;
+    r.values = {};
+    r.total = r.spent = wall;
+    r.totalCpu = cpu;
+    r.cpuShare = share;
+    r.relMse = relMse;
+    r.rmse = 0.05;
+    return r;
+  };
+  return {row("k=20", 12.9, 1.1, 0.0067), row("k=100", 6.9, 1.6, 0.0076)};
+}
+
+TEST(SweepCost, ContendedRunsAreRankedByCpuSecondsAndTheReportSaysSo) {
+  const std::vector<SweepRow> quiet = contendedPair(0.95), busy = contendedPair(0.3);
+  EXPECT_FALSE(contendedRows(quiet));
+  EXPECT_TRUE(contendedRows(busy));
+  EXPECT_EQ(paretoFront(quiet, SweepMetric::RelMse, SweepCost::Wall), (std::vector<size_t>{1, 0}));
+  EXPECT_EQ(paretoFront(busy, SweepMetric::RelMse, SweepCost::Cpu), (std::vector<size_t>{0}));
+  const std::string calm = reportMarkdown("scene", SweepSpec{}, quiet, SweepTotals{});
+  EXPECT_NE(calm.find("cost is wall time (`total_s`)"), std::string::npos) << calm;
+  const std::string md = reportMarkdown("scene", SweepSpec{}, busy, SweepTotals{});
+  EXPECT_NE(md.find("cost is CPU seconds (`total_cpu_s`)"), std::string::npos) << md;
+  EXPECT_NE(md.find("The cheapest (in CPU seconds) run"), std::string::npos) << md;
+  const size_t front = md.find("## Pareto front"), reach = md.find("## Time to reach");
+  ASSERT_LT(front, reach);
+  const std::string frontRows = md.substr(front, reach - front);
+  EXPECT_NE(frontRows.find("| 12.900 | 1.100 |"), std::string::npos) << frontRows;
+  EXPECT_EQ(frontRows.find("| 6.900 | 1.600 |"), std::string::npos) << frontRows;
+}
+
+// A reference with ~0.01 RMSE of its own noise: a run measured at 0.012 cannot be told
+// from a perfect one (its own error is at most ~0.0066), one at 0.02 can.
+TEST(SweepCost, RunsWithinTheReferencesNoiseAreMarked) {
+  std::vector<SweepRow> rows = contendedPair(0.95);
+  rows[0].rmse = 0.012;
+  rows[1].rmse = 0.02;
+  EXPECT_TRUE(withinReferenceNoise(rows[0], 0.01));
+  EXPECT_FALSE(withinReferenceNoise(rows[1], 0.01));
+  EXPECT_FALSE(withinReferenceNoise(rows[0], -1.0)) << "no figure, no mark";
+  SweepTotals t;
+  t.referenceNoiseRmse = 0.01;
+  const std::string md = reportMarkdown("scene", SweepSpec{}, rows, t);
+  EXPECT_NE(md.find("is marked `~ref` (1 of 2 runs)"), std::string::npos) << md;
+  EXPECT_NE(md.find("it is not measurably better"), std::string::npos) << md;  // the best run is the marked one
+  EXPECT_NE(md.find("| 0.012 | 0.0067 | 0.00 | 0 | ~ref |"), std::string::npos) << md;
+}
+
+// Two runs on one photon budget (k differs) and one on a smaller budget: pass 0's
+// photons are charged once per budget, later passes per run, the BVH once, and the
+// runs' shares (the ETA's steps) add up to the whole; the long reference is the
+// highest run at its passes times the factor.
+TEST(SweepCost, TheEstimateChargesSharedStagesOnce) {
+  RenderSession session([] {
+    SessionOptions o;
+    o.threads = 2;
+    return o;
+  }());
+  auto planned = [&](const std::string& photons, const std::string& k) {
+    JobRequest r;
+    r.scenePath = kCornell;
+    r.overrides = {"camera.width=32", "camera.height=32", "photons.passes=3", "photons.global=" + photons,
+                   "photons.caustic=" + photons, "photons.k_global=" + k};
+    PlannedJob job = session.plan(r);
+    session.prepare(job);
+    return job;
+  };
+  const PlannedJob a = planned("20000", "10"), b = planned("20000", "40"), c = planned("5000", "10");
+  SweepEstimateInput in;
+  in.runs = {&a, &b, nullptr, &c};
+  in.reference = &b;
+  in.referencePasses = 4;
+  const SweepEstimate e = estimateSweep(in);
+  const ResourceEstimate& ea = a.admission.estimate;
+  const ResourceEstimate& ec = c.admission.estimate;
+  ASSERT_EQ(ea.plan.photonPasses, 3);
+  const double passA = ea.photonSeconds / 3, passC = ec.photonSeconds / 3;
+  EXPECT_NEAR(e.photons, passA + 2 * (2 * passA) + passC + 2 * passC, 1e-9 * e.photons);
+  EXPECT_LT(e.photons, 2 * ea.photonSeconds + ec.photonSeconds);
+  EXPECT_EQ(e.runs[2], 0.0);
+  EXPECT_NEAR(e.runs[0] + e.runs[1] + e.runs[3], e.bvh + e.photons + e.frames, 1e-9 * e.seconds());
+  const double frame = b.admission.estimate.renderSeconds - b.admission.estimate.bvhSeconds - cost::kStartupSeconds;
+  EXPECT_NEAR(e.reference, passA * 12 + frame * 4, 1e-9 * e.reference);
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <map>
-#include <set>
 
 namespace penumbra {
 namespace {
