@@ -148,6 +148,15 @@ TEST(SweepCost, TheEstimateChargesSharedStagesOnce) {
   EXPECT_NEAR(e.runs[0] + e.runs[1] + e.runs[3], e.bvh + e.photons + e.frames, 1e-9 * e.seconds());
   const double frame = b.admission.estimate.renderSeconds - b.admission.estimate.bvhSeconds - cost::kStartupSeconds;
   EXPECT_NEAR(e.reference, passA * 12 + frame * 4, 1e-9 * e.reference);
+  // Two threads joining ten runnable tasks on two cores get a sixth of a core each.
+  EXPECT_DOUBLE_EQ(busyStretch(10.0, 2, 2), 6.0);
+  EXPECT_DOUBLE_EQ(busyStretch(0.0, 2, 2), 1.0);
+  EXPECT_DOUBLE_EQ(busyStretch(-1.0, 2, 2), 1.0) << "load unknown";
+  SweepEstimate busy = e;
+  busy.stretch = 6.0;
+  EXPECT_NE(describeSweepEstimate(busy, 3, 2, 10.0, 2).find("the machine is busy (load 10.0 on 2 cores)"),
+            std::string::npos);
+  EXPECT_EQ(describeSweepEstimate(e, 3, 2).find("busy"), std::string::npos);
 }
 
 }  // namespace

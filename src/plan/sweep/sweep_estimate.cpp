@@ -84,11 +84,22 @@ namespace {
 std::string duration(double s) { return s < 10.0 ? fmt::format("{:.1f} s", s) : formatDuration(s); }
 }  // namespace
 
-std::string describeSweepEstimate(const SweepEstimate& e, size_t runs, int threads) {
+double busyStretch(double load, int cores, int threads) {
+  if (load < 0.0 || cores <= 0) return 1.0;
+  return std::max(1.0, (load + threads) / cores);
+}
+
+std::string describeSweepEstimate(const SweepEstimate& e, size_t runs, int threads, double load, int cores) {
   const std::string reference = e.reference > 0.0 ? fmt::format("reference ~{}, ", duration(e.reference)) : "";
-  return fmt::format("sweep: {} run{} to render, estimated ~{} on {} thread{} ({}photons ~{}, frames ~{})", runs,
-                     runs == 1 ? "" : "s", duration(e.seconds()), threads, threads == 1 ? "" : "s", reference,
-                     duration(e.photons), duration(e.frames + e.bvh));
+  std::string line = fmt::format("sweep: {} run{} to render, estimated ~{} on {} thread{} ({}photons ~{}, frames ~{})",
+                                 runs, runs == 1 ? "" : "s", duration(e.seconds()), threads, threads == 1 ? "" : "s",
+                                 reference, duration(e.photons), duration(e.frames + e.bvh));
+  // Below 1.5 the load's own noise is as large as the stretch.
+  if (e.stretch >= 1.5) {
+    line += fmt::format("; the machine is busy (load {:.1f} on {} cores): ~{}", load, cores,
+                        duration(e.seconds() * e.stretch));
+  }
+  return line;
 }
 
 }  // namespace penumbra

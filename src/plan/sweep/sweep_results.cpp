@@ -322,9 +322,12 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
       t.renderSeconds, denom, denom > 0 ? t.wallSeconds / denom : 0.0);
   if (t.cpu.known()) md += "Sweep " + cpuLine(t.cpu) + "; each run's in `results.csv` (`cpu_s`, `cpu_share`).\n\n";
   if (t.estimatedSeconds > 0.0 && t.cpu.known()) {
-    md += fmt::format("Estimated before the first photon: ~{:.0f} s on {} threads; spent {:.0f} s of wall time, "
+    const std::string busy = t.estimatedBusySeconds > 1.5 * t.estimatedSeconds
+                                 ? fmt::format(", ~{:.0f} s at the machine's load when it started", t.estimatedBusySeconds)
+                                 : "";
+    md += fmt::format("Estimated before the first photon: ~{:.0f} s on {} threads{}; spent {:.0f} s of wall time, "
                       "{:.0f} CPU-s ({:.0f} s of {} busy threads).\n\n",
-                      t.estimatedSeconds, t.cpu.threads, t.wallSeconds, t.cpu.cpuSeconds,
+                      t.estimatedSeconds, t.cpu.threads, busy, t.wallSeconds, t.cpu.cpuSeconds,
                       t.cpu.cpuSeconds / std::max(t.cpu.threads, 1), t.cpu.threads);
   }
 

@@ -98,11 +98,13 @@ struct SweepTotals {
   std::string referenceNote;    // which reference the errors are against
   double referenceNoiseRmse = -1;  // the sweep's own long reference's noise estimate; < 0 unknown
   double estimatedSeconds = 0;  // what the sweep announced before its first photon (sweep_estimate.h)
+  double estimatedBusySeconds = 0;  // ... stretched by the machine's load at the start
   int repeat = 1;               // frames rendered per run (--repeat)
 
   // Adds another session's counts and stage seconds (a --threads list's sessions).
   void addCounts(const SweepTotals& o) {
     estimatedSeconds += o.estimatedSeconds;
+    estimatedBusySeconds += o.estimatedBusySeconds;
     photonSeconds += o.photonSeconds;
     renderSeconds += o.renderSeconds;
     emissions += o.emissions;

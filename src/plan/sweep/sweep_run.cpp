@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <thread>
 
 namespace penumbra {
 namespace {
@@ -204,9 +205,13 @@ class Sweep {
     in.repeat = req_.repeat;
     in.compareGate = req_.compareGate;
     estimate_ = estimateSweep(in);
+    const double load = loadAverage1m();
+    const int cores = static_cast<int>(std::thread::hardware_concurrency());
+    estimate_.stretch = busyStretch(load, cores, session_.options().threads);
     totals_.estimatedSeconds = estimate_.seconds();
+    totals_.estimatedBusySeconds = estimate_.seconds() * estimate_.stretch;
     if (req_.notice && (todo > 0 || in.reference)) {
-      req_.notice(describeSweepEstimate(estimate_, todo, session_.options().threads));
+      req_.notice(describeSweepEstimate(estimate_, todo, session_.options().threads, load, cores));
     }
   }
 
