@@ -389,7 +389,7 @@ class Sweep {
     p.paced = finishedNow_;
     p.remaining = todo - finishedNow_;
     p.pacedSeconds = estimatedDone_;
-    p.remainingSeconds = std::max(0.0, estimate_.seconds() - estimatedDone_);
+    p.remainingSeconds = p.remaining == 0 ? 0.0 : std::max(0.0, estimate_.seconds() - estimatedDone_);
     req_.progress(p);
   }
 
