@@ -10,9 +10,11 @@
 #include "plan/render_session.h"
 #include "plan/sweep/sweep_estimate.h"
 #include "plan/sweep/sweep_run.h"
+#include "core/error.h"
 #include "support/scratch_dir.h"
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <fstream>
 
 namespace penumbra {
 namespace {
@@ -60,6 +62,22 @@ TEST(SweepCost, AProgressiveRunsTotalIsALoneRendersInCpuSeconds) {
         << row.id;
     EXPECT_GT(row.emit, 0.0) << row.id;
     EXPECT_GE(row.total, row.load + row.bvh + row.emit + row.maps + row.render - 1e-9) << row.id;
+  }
+}
+
+// A results.csv from before total_cpu_s: the same knobs, other columns. The refusal
+// names the version, not other knobs.
+TEST(SweepCost, AnOlderResultsCsvIsRefusedAsAnotherVersions) {
+  testing::ScratchDir dir;
+  const std::vector<SweepKnob> knobs = {namedKnob("k", "40,80", physicalTransport())};
+  std::string header = resultsCsv(knobs, {});
+  header.replace(header.find(",total_cpu_s"), 12, "");
+  std::ofstream(dir / "results.csv") << header << "k=40,40,0\n";
+  try {
+    readFinishedRows((dir / "results.csv").string(), knobs);
+    FAIL() << "an older results.csv was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("written by another version of penumbra"), std::string::npos) << e.what();
   }
 }
 

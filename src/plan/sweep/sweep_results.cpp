@@ -155,8 +155,13 @@ std::map<std::string, SweepRow> readFinishedRows(const std::string& path, const 
       if (!row.empty()) break;
     }
     if (row.empty()) return rows;
-    throw InputError(path + ": written by a sweep with other knobs (header differs); use another -o folder "
-                     "or --force to start again");
+    // The same run and knob columns: the file is another penumbra version's (its columns differ).
+    const std::vector<std::string> theirs = splitCsv(line), ours = csvHeader(knobs);
+    const size_t named = 1 + knobs.size();
+    const bool sameKnobs = theirs.size() >= named && std::equal(ours.begin(), ours.begin() + long(named), theirs.begin());
+    throw InputError(path + (sameKnobs ? ": written by another version of penumbra (its columns differ)"
+                                       : ": written by a sweep with other knobs (header differs)") +
+                     "; use another -o folder or --force to start again");
   }
   const size_t columns = csvHeader(knobs).size();
   while (std::getline(in, line)) {
