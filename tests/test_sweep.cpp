@@ -3,6 +3,7 @@
 // within the power packing's rounding for prefix-cut budgets), a rerun resumes
 // without rendering, the gate's trade-off is measured, and bad runs fail first.
 #include "plan/pipeline.h"
+#include "plan/sweep/sweep_report.h"
 #include "plan/sweep/sweep_run.h"
 #include "core/error.h"
 #include "io/image_compare.h"

@@ -9,6 +9,7 @@
 #include "plan/pipeline.h"
 #include "plan/render_session.h"
 #include "plan/sweep/sweep_estimate.h"
+#include "plan/sweep/sweep_report.h"
 #include "plan/sweep/sweep_run.h"
 #include "core/error.h"
 #include "support/scratch_dir.h"

@@ -1,5 +1,6 @@
 // penumbra sweep's results: one row per run, results.csv (rewritten atomically
-// after every run, read back to resume), the Pareto front, and report.md.
+// after every run, read back to resume), the Pareto front and the rules the report
+// ranks and marks runs by (report.md itself: sweep_report.h).
 #pragma once
 #include "plan/sweep/sweep_spec.h"
 #include "core/stats.h"
@@ -115,8 +116,5 @@ struct SweepTotals {
   }
 };
 
-std::string reportMarkdown(const std::string& scene, const SweepSpec& spec,
-                           const std::vector<SweepRow>& rows, const SweepTotals& totals,
-                           SweepMetric metric = SweepMetric::RelMse);
 
 }  // namespace penumbra

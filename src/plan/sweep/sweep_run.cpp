@@ -8,6 +8,7 @@
 #include "plan/sweep/sweep_folder.h"
 #include "plan/sweep/sweep_idle_knobs.h"
 #include "plan/sweep/sweep_reference.h"
+#include "plan/sweep/sweep_report.h"
 #include "plan/cpu_report.h"
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
