@@ -1,9 +1,10 @@
 #!/usr/bin/python3
-"""Mean radiance in the point light's shadows of a scene's spheres on its floor.
+"""Mean radiance in the umbrae of a scene's spheres on its floor.
 
 For each sphere, the umbra is the floor pixels (y = 0) the camera sees directly whose
-every corner's floor point has the sphere between it and the point light (so pixels
-on the shadow's edge, whose samples straddle it, are left out). Prints each region's
+every corner's floor point has the sphere between it and the scene's first light (a
+point light, or every corner of a quad light), so pixels on the shadow's edge, whose
+samples straddle it, are left out. Prints each region's
 pixel count and mean radiance (over RGB) per image, and each image's ratio to the
 first one (the reference) when given more than one:
 
@@ -74,7 +75,12 @@ class Regions:
         self.frame = (forward, right, up)
         self.tan_half = math.tan(math.radians(cam["fov"]) * 0.5)
         self.width, self.height = width, height
-        self.light = [l for l in scene["lights"] if l["type"] == "point"][0]["position"]
+        light = scene["lights"][0]
+        if light["type"] == "quad":  # the umbra: every corner hidden (the light and a sphere are convex)
+            c, e1, e2 = light["corner"], light["edge1"], light["edge2"]
+            self.light_points = [[c[i] + a * e1[i] + b * e2[i] for i in range(3)] for a in (0, 1) for b in (0, 1)]
+        else:
+            self.light_points = [light["position"]]
         mats = scene["materials"]
         self.spheres = [(o["center"], o["radius"], o["material"]) for o in scene["objects"] if o["type"] == "sphere"]
         self.kinds = ["glass" if "transparent" in mats[m] else "mirror" if "reflective" in mats[m] else m
@@ -98,13 +104,16 @@ class Regions:
         p = [self.origin[i] + t * d[i] for i in range(3)]
         if abs(p[0]) > 1 or abs(p[2]) > 1:
             return -2
-        to_light = sub(self.light, p)
-        dist = math.sqrt(dot(to_light, to_light))
-        to_light = [x / dist for x in to_light]
         for i, (c, r, _) in enumerate(self.spheres):
-            if hits_sphere(p, to_light, c, r, dist):
+            if all(self.hidden(p, q, c, r) for q in self.light_points):
                 return i
         return -1
+
+    @staticmethod
+    def hidden(p, light, center, radius):
+        to_light = sub(light, p)
+        dist = math.sqrt(dot(to_light, to_light))
+        return hits_sphere(p, [x / dist for x in to_light], center, radius, dist)
 
     def region(self, x, y):
         corners = {self.shadowing(x + u, y + v) for u in (0.02, 0.98) for v in (0.02, 0.98)}
