@@ -9,6 +9,7 @@
 #include "core/optics.h"
 #include "core/rng.h"
 #include "gather/radiance_estimate.h"
+#include "gather/umbra_gather.h"
 #include "trace/environment_light.h"
 #include "trace/glass_split.h"
 #include "trace/light_visibility.h"
@@ -42,7 +43,8 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
 
 template <MapKind K>
 Color photonTerm(const ShadingContext& ctx, MapKindTag<K> kind, const SurfaceRecord& s, const Bsdf& bsdf,
-                 const BsdfFrame& frame, const Vec3& wo, const CachedAnswer* cached, ThreadState& ts) {
+                 const BsdfFrame& frame, const Vec3& wo, const CachedAnswer* cached, ThreadState& ts,
+                 bool unlit = false) {
   const IndirectPhotonMap* map = ctx.maps.get<K>();
   if (!map || map->empty() || !hasGatheredLobe(bsdf)) return Color(0.0f);
   // The cache holds irradiance / pi: it answers a Lambertian BSDF exactly; a glossy
@@ -54,7 +56,8 @@ Color photonTerm(const ShadingContext& ctx, MapKindTag<K> kind, const SurfaceRec
     return (1.0f - bsdf.kr) * bsdf.diffuse * ctx.lookup->lazyIndirect(*map, s.position, s.ng, *ts.scratch);
   }
   ++ts.counts.gatherQueries;
-  RadianceEstimate e = photonRadiance(*map, gatheredPart(bsdf), frame, s.position, wo, ctx.gathers[kind], *ts.scratch);
+  const PhotonGather gather = unlit ? umbraGather(ctx.gathers[kind]) : ctx.gathers[kind];
+  RadianceEstimate e = photonRadiance(*map, gatheredPart(bsdf), frame, s.position, wo, gather, *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
   return e.value;
 }
@@ -127,12 +130,19 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   if (hasSmoothLobe(bsdf)) {
     CachedAnswer storage;
     const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);
-    if (terms & kTermDirect)
-      color += directLight(ctx, s, bsdf, frame, wo, cached, ts, recIndex >= 0 ? &note : nullptr);
+    // The indirect view traces the direct term too: its gather depends on it.
+    const bool withDirect = terms & kTermDirect;
+    const Color direct = (terms & (kTermDirect | kTermGlobal))
+                             ? directLight(ctx, s, bsdf, frame, wo, cached, ts, withDirect && recIndex >= 0 ? &note : nullptr)
+                             : Color(0.0f);
+    if (withDirect) color += direct;
     if (terms & kTermCaustic)  // caustics are sharp: always the direct gather
       color += photonTerm(ctx, MapKindTag<MapKind::Caustic>{}, s, bsdf, frame, wo, nullptr, ts);
-    if (terms & kTermGlobal)
-      color += photonTerm(ctx, MapKindTag<MapKind::Global>{}, s, bsdf, frame, wo, cached, ts);
+    if (terms & kTermGlobal) {
+      // No light arrives directly: the global estimate is all the pixel has (umbra_gather.h).
+      const bool unlit = !(maxComponent(direct) > 0.0f);
+      color += photonTerm(ctx, MapKindTag<MapKind::Global>{}, s, bsdf, frame, wo, cached, ts, unlit);
+    }
   }
 
   const RenderSettings& rs = ctx.scene.render;
