@@ -14,7 +14,7 @@
 namespace penumbra {
 namespace {
 
-// The furnace at k_global 24: the schedule gathers 24 down to 14 photons over 8
+// The furnace at k_global 24: the schedule gathers 24 down to 13 photons over 8
 // passes, the k at which cells centred on their photons' centroid read +10%.
 const std::vector<std::string> kSettings = {
     "camera.width=32", "camera.height=24", "photons.shadow=0", "photons.gate=false",
