@@ -7,6 +7,7 @@
 #include "plan/pipeline.h"
 #include "core/error.h"
 #include "support/scratch_dir.h"
+#include "support/furnace_scene.h"
 #include "support/render_file.h"
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -158,19 +159,6 @@ TEST(PhysicalRender, DirectCausticAndIndirectViewsSumToBeauty) {
   }
 }
 
-// A closed Lambert sphere (rho 0.5, radius 1.5) with a point light (I = 2 W/sr) at its
-// centre and the camera beside it, looking at the wall with a wide field of view.
-const char* kFurnace = R"({
-  "name": "furnace",
-  "camera": {"position": [0.05, 0.02, 0.03], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov": 120,
-             "width": 64, "height": 48, "spp": 1},
-  "lights": [{"type": "point", "position": [0, 0, 0], "color": [1, 1, 1], "intensity": 2}],
-  "materials": {"wall": {"diffuse": 0.5}},
-  "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5, "material": "wall"}],
-  "render": {"model": "physical", "seed": 3},
-  "photons": {"shadow": 20000, "global": 500000, "caustic": 0, "max_bounces": 64}
-})";
-
 TEST(PhysicalRender, FurnaceThroughThePipelineMatchesTheAnalyticRadiance) {
   // E0 = I / R^2 = 0.889 everywhere; direct radiance rho/pi E0 (through the shadow
   // gate, which is on: every shadow photon here is direct, so the gate says lit), and
@@ -183,7 +171,7 @@ TEST(PhysicalRender, FurnaceThroughThePipelineMatchesTheAnalyticRadiance) {
   const testing::ScratchDir scratch;
   const fs::path& dir = scratch.path();
   const std::string file = (dir / "furnace.json").string();
-  std::ofstream(file) << kFurnace;
+  std::ofstream(file) << testing::kFurnace;
   const double e0 = 2.0 / (1.5 * 1.5), rho = 0.5, kPiD = 3.14159265358979323846;
   Image direct = render(file, {}, 2, "direct").image;
   for (const Color& c : direct.pixels) {

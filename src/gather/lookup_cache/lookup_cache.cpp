@@ -100,6 +100,24 @@ void LookupCache::insertKeys(const std::vector<uint64_t>& keys) {
   }
 }
 
+namespace {
+// Where the irradiance estimate of the record in cell `c` is taken: the cell's centre
+// across the surface, within its photons' extent, on their plane (centroid, mean
+// normal). Not their centroid: the k nearest around a point the photons chose are
+// denser than around a fixed one (on a uniform plane +1% at k 100, +10% at k 17, the
+// k progressive passes reach), and find() blends the cells' values as at their centres.
+Vec3 centredSite(const CellKey& c, const Vec3& centre, const Vec3& centroid, const Vec3& normal,
+                 const Bounds& extent) {
+  const unsigned axis = LookupCache::bucketAxis(c.bucket), t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;
+  Vec3 site = centroid;
+  for (unsigned t : {t1, t2}) site[t] = std::clamp(centre[t], extent.lo[t], extent.hi[t]);
+  // Along the bucket's axis (the normal's largest component): onto the photons' plane.
+  if (std::abs(normal[axis]) > 0.0f)
+    site[axis] -= (normal[t1] * (site[t1] - centroid[t1]) + normal[t2] * (site[t2] - centroid[t2])) / normal[axis];
+  return site;
+}
+}  // namespace
+
 void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* indirect,
                         const LookupCacheParams& params) {
   *this = LookupCache{};
@@ -187,12 +205,20 @@ void LookupCache::build(const ShadowPhotonMap* shadow, const IndirectPhotonMap* 
   tbb::parallel_for(tbb::blocked_range<size_t>(0, records_, 256), [&](const auto& range) {
     for (size_t r = range.begin(); r != range.end(); ++r) {
       Vec3 sum(0.0f), nsum(0.0f);
+      Bounds spread;
       for (uint32_t e = starts[r]; e < starts[r + 1]; ++e) {
-        sum += photonPos(entries[e].source, entries[e].index);
+        const Vec3& pos = photonPos(entries[e].source, entries[e].index);
+        sum += pos;
+        spread.extend(pos);
         nsum += photonNormal(entries[e].source, entries[e].index);
       }
       sites[r] = sum / static_cast<float>(starts[r + 1] - starts[r]);
       normals[r] = glm::length(nsum) > 0.0f ? glm::normalize(nsum) : photonNormal(entries[starts[r]].source, entries[starts[r]].index);
+      if (params.indirect == CachedIndirect::Irradiance) {
+        const CellKey c = decodeCellKey(keys[r]);
+        const Vec3 centre = origin_ + (Vec3(float(c.x), float(c.y), float(c.z)) + Vec3(0.5f)) * cell_;
+        sites[r] = centredSite(c, centre, sites[r], normals[r], spread);
+      }
       const NormalFilter filter(normals[r], minCos);
       for (uint32_t e = starts[r]; e < starts[r + 1]; ++e) {
         const uint32_t src = entries[e].source;

@@ -18,7 +18,8 @@ namespace penumbra {
 struct CacheCells;  // lookup_cache_cells.h: what building a cache knows of its photons
 
 // Which indirect estimate the cache holds (the exact estimators of indirect_estimate.h
-// and radiance_estimate.h, evaluated at the cell's photons' centroid).
+// and radiance_estimate.h, evaluated at the cell's photons' centroid; Irradiance at
+// the cell's centre on their plane, lookup_cache.cpp's centredSite).
 enum class CachedIndirect : uint8_t {
   None,
   Classic,     // the report's cone-weighted average (classic model)
