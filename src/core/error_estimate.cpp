@@ -47,57 +47,58 @@ double driftSquare(const Image& drift, size_t i, int c) {
   return r * std::abs(r);
 }
 
-// The bias figures from the drift products at lighting pixels: their mean over the
-// lighting and over the image, whether it or a coarse cell's stands out of its noise,
-// and where it sits: the box of the fewest cells that stand out and hold
-// kBiasRegionShare of those cells' sum.
+// The bias figures from the drift products at lighting pixels. A pixel's product has
+// the spread of its noise, which at a caustic's edge under one camera sample is heavy
+// tailed (a few pixels' products would outweigh every other's): so the bias counted is
+// the sum over the coarse cells whose sum stands out of its own standard error
+// (kBiasSignificance), as a mean over the lighting and over the image; elsewhere the
+// passes agree within noise. The region is the box of the fewest such cells that hold
+// kBiasRegionShare of it.
 void setBias(ErrorEstimate& e, const Image& drift, const EmitterMask& mask) {
   const int w = drift.width, h = drift.height;
   struct Sums {
     double sum = 0.0, squares = 0.0;
     size_t values = 0;
     void add(double p) { sum += p, squares += p * p, ++values; }
-    // Whether the sum stands out of its standard error (from its values' spread).
     bool significant() const {
       const double mean = values ? sum / double(values) : 0.0;
       return values > 1 && sum > kBiasSignificance * std::sqrt(std::max(0.0, squares - mean * sum));
     }
-  } all;
+  };
   std::vector<Sums> cells(kBiasGrid * kBiasGrid);
+  size_t values = 0;
   auto cellOf = [&](int x, int y) { return (y * kBiasGrid / h) * kBiasGrid + x * kBiasGrid / w; };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * w + x;
       if (!lighting(mask, i)) continue;
-      for (int c = 0; c < 3; ++c) {
-        const double p = driftSquare(drift, i, c);
-        all.add(p);
-        cells[cellOf(x, y)].add(p);
-      }
+      values += 3;
+      for (int c = 0; c < 3; ++c) cells[cellOf(x, y)].add(driftSquare(drift, i, c));
     }
-  e.lightingBiasRmse = std::sqrt(std::max(0.0, meanOf(all.sum, all.values)));
-  e.biasRmse = std::sqrt(std::max(0.0, meanOf(all.sum, 3 * drift.pixels.size())));
   std::vector<int> order;
-  double held = 0.0, found = 0.0;
+  double found = 0.0;
   for (size_t k = 0; k < cells.size(); ++k)
     if (cells[k].significant()) order.push_back(int(k)), found += cells[k].sum;
-  e.biasWithinNoise = !all.significant() && order.empty();
+  e.lightingBiasRmse = std::sqrt(meanOf(found, values));
+  e.biasRmse = std::sqrt(meanOf(found, 3 * drift.pixels.size()));
+  e.biasWithinNoise = order.empty();
+  if (e.biasWithinNoise) return;
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return cells[a].sum > cells[b].sum; });
   int cx0 = kBiasGrid, cx1 = 0, cy0 = kBiasGrid, cy1 = 0;
+  double held = 0.0;
   for (int k : order) {
     if (held >= kBiasRegionShare * found) break;
     held += cells[k].sum;
     cx0 = std::min(cx0, k % kBiasGrid), cx1 = std::max(cx1, k % kBiasGrid + 1);
     cy0 = std::min(cy0, k / kBiasGrid), cy1 = std::max(cy1, k / kBiasGrid + 1);
   }
-  if (order.empty()) return;  // spread thin: no cell stands out
   // Cell cx covers the pixels x with x * kBiasGrid / w == cx.
   auto edge = [](int cell, int size) { return (cell * size + kBiasGrid - 1) / kBiasGrid; };
   e.biasRegion = {edge(cx0, w), edge(cx1, w), edge(cy0, h), edge(cy1, h)};
   double inside = 0.0;
-  for (int cy = cy0; cy < cy1; ++cy)
-    for (int cx = cx0; cx < cx1; ++cx) inside += cells[cy * kBiasGrid + cx].sum;
-  e.biasRegionShare = std::clamp(inside / all.sum, 0.0, 1.0);
+  for (int k : order)
+    if (k % kBiasGrid >= cx0 && k % kBiasGrid < cx1 && k / kBiasGrid >= cy0 && k / kBiasGrid < cy1) inside += cells[k].sum;
+  e.biasRegionShare = inside / found;
   e.biasRegionArea = double(e.biasRegion.pixels()) / double(drift.pixels.size());
 }
 

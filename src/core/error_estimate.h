@@ -25,8 +25,9 @@ struct ErrorEstimate {
   double noiseRmse = -1.0;
   // Passes only: the photon-map bias, the drift of each pixel's expected value between
   // passes 1..h and h+1..2h (the last power of two 2h), measured per pixel with its own
-  // noise taken out, at pixels that do not see an emitter (elsewhere it is 0), as an
-  // RMSE over the whole image. < 0: not measured (fewer than 4 passes).
+  // noise taken out, at pixels that do not see an emitter, summed over the coarse cells
+  // where it stands out of their noise (elsewhere it counts 0), as an RMSE over the
+  // whole image. < 0: not measured (fewer than 4 passes).
   double biasRmse = -1.0;
   int biasHalf = 0;
   // The lighting: the same figures over the pixels that do not see an emitter directly
@@ -40,8 +41,8 @@ struct ErrorEstimate {
   PixelBounds biasRegion;
   double biasRegionShare = 0.0;
   double biasRegionArea = 0.0;  // the box's share of the image's pixels
-  // Neither the image's bias nor a cell's stands out of its noise (kBiasSignificance):
-  // the passes agree within noise.
+  // No cell's bias stands out of its noise (kBiasSignificance): the passes agree
+  // within noise (and the bias figures are 0).
   bool biasWithinNoise = false;
   // Samples or probes of one pass read photon maps they all share, whose noise the
   // figure then leaves out (and says so).
@@ -67,8 +68,8 @@ std::string describeError(const ErrorEstimate& e);
 
 // The coarse grid (cells per side) the bias region is named in.
 constexpr int kBiasGrid = 8;
-// A sum of drift products stands out of noise beyond this many of its standard errors
-// (each of the 64 cells then has a ~2e-4 chance of it in pure noise).
+// A cell's sum of drift products stands out of noise beyond this many of its standard
+// errors (each of the 64 cells then has a ~2e-4 chance of it in pure noise).
 constexpr double kBiasSignificance = 3.5;
 // The bias region holds this share of the sum of the cells whose bias stands out of
 // their noise (the box of the fewest such cells that do).

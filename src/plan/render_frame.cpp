@@ -211,11 +211,12 @@ void renderPass(FrameRun& f, int pass) {
 bool budgetStops(FrameRun& f) {
   if (!f.budgeted) return false;
   const double now = f.clock();
-  const BudgetState state{f.done, now, now - f.passStart, f.spread.estimate().noiseRmse};
+  const BudgetState state{f.done, now, now - f.passStart, f.spread.estimate()};
   f.passStart = now;
-  const char* stop = budgetStop(f.options.budget, state);
-  if (stop) f.stats.budgetStop = stop;
-  return stop != nullptr;
+  std::string stop = budgetStop(f.options.budget, state);
+  if (stop.empty()) return false;
+  f.stats.budgetStop = std::move(stop);
+  return true;
 }
 
 // Continues the frame after its saved passes when they are this frame's (a note says
