@@ -34,8 +34,9 @@ struct RenderBudget {
 
 // What a glTF or OBJ file given as the scene renders to when nothing sets its quality
 // (no camera.spp, photons.passes, --spp, --time-limit or --target-error): passes until
-// the noise RMSE is at most kModelTargetError, a figure that only depends on the scene
-// and seed, or until kModelTimeLimit seconds have passed, whichever comes first.
+// the lighting's noise and bias together are at most kModelTargetError, a figure that
+// only depends on the scene and seed, or until kModelTimeLimit seconds have passed,
+// whichever comes first.
 constexpr double kModelTargetError = 0.005;
 constexpr double kModelTimeLimit = 60.0;
 constexpr RenderBudget kModelBudget{kModelTimeLimit, kModelTargetError, true, ErrorFigure::Lighting};
