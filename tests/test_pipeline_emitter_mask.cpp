@@ -1,7 +1,8 @@
 // The pixels that see an emitter, through the render: an emitting quad over the left
 // half of an orthographic view marks columns 0-15 of 32, and column 16 beside its edge
 // (the one-pixel growth); the lighting's figures leave them out, and the bias view is
-// 0 there; the same for one thread or two.
+// 0 there; the same for one thread or two. The bias view needs 4 passes and the whole
+// frame.
 #include "core/error_estimate.h"
 #include "plan/pipeline.h"
 #include "support/render_file.h"
@@ -46,10 +47,17 @@ TEST(EmitterMask, AnEmitterInViewIsLeftOutOfTheLighting) {
     for (int x = 0; x <= 16; ++x) EXPECT_EQ(bias.image.pixels[size_t(y) * 32 + x], Color(0.0f)) << x << "," << y;
 }
 
-TEST(EmitterMask, TheBiasViewNeedsFourPasses) {
+TEST(EmitterMask, TheBiasViewNeedsFourPassesAndTheWholeFrame) {
   const penumbra::testing::ScratchDir dir;
   const std::string file = dir.write("half.json", kHalfEmitter).string();
   EXPECT_THROW(renderFile(file, {"photons.passes=2"}, 2, "bias"), InputError);
+  RenderRequest req;
+  req.scenePath = file;
+  req.aov = "bias";
+  req.tile = TileRequest{};
+  req.tile->count = 2;
+  req.tile->index = 1;
+  EXPECT_THROW(runRender(req), InputError) << "a tile's neighbours are another tile's";
 }
 
 }  // namespace

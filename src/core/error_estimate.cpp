@@ -145,25 +145,25 @@ void PassSpread::add(const Image& image, int pass) {
   if (passes_ != std::max(2, 2 * snapshotPasses_)) return;
   // Passes 1..h against h+1..2h, once each sequence has a pass in each half.
   if (snapshotPasses_ >= 2) {
-    PassCheckpoint c{snapshotEven_, snapshotOdd_, even_, odd_, passes_, snapshotPasses_};
-    drift_ = driftOf(c);
     biasHalf_ = snapshotPasses_;
-    if (keep_) checkpoint_ = std::move(c);
+    drift_ = driftOf(snapshotEven_, snapshotOdd_, even_, odd_, biasHalf_);
+    if (keep_) checkpoint_ = {snapshotEven_, snapshotOdd_, even_, odd_, passes_, biasHalf_};
   }
   snapshotEven_ = even_;
   snapshotOdd_ = odd_;
   snapshotPasses_ = passes_;
 }
 
-Image PassSpread::driftOf(const PassCheckpoint& c) {
+Image PassSpread::driftOf(const Image& firstEvenSum, const Image& firstOddSum, const Image& even, const Image& odd,
+                          int half) {
   // Each of the four groups (even and odd passes, first and second half) has h/2 passes.
-  const double n = c.half / 2;
-  Image out(c.even.width, c.even.height);
+  const double n = half / 2;
+  Image out(even.width, even.height);
   for (size_t i = 0; i < out.pixels.size(); ++i) {
     for (int ch = 0; ch < 3; ++ch) {
-      const double firstEven = c.firstEven.pixels[i][ch], firstOdd = c.firstOdd.pixels[i][ch];
-      const double evenDrift = (firstEven - (double(c.even.pixels[i][ch]) - firstEven)) / n;
-      const double oddDrift = (firstOdd - (double(c.odd.pixels[i][ch]) - firstOdd)) / n;
+      const double firstEven = firstEvenSum.pixels[i][ch], firstOdd = firstOddSum.pixels[i][ch];
+      const double evenDrift = (firstEven - (double(even.pixels[i][ch]) - firstEven)) / n;
+      const double oddDrift = (firstOdd - (double(odd.pixels[i][ch]) - firstOdd)) / n;
       const double p = evenDrift * oddDrift;
       out.pixels[i][ch] = float(p < 0.0 ? -std::sqrt(-p) : std::sqrt(p));
     }
@@ -173,7 +173,8 @@ Image PassSpread::driftOf(const PassCheckpoint& c) {
 
 ErrorEstimate PassSpread::fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& cp,
                                      const EmitterMask& mask) {
-  return estimateFrom(even, odd, passes, cp.half > 0 ? driftOf(cp) : Image(), cp.half, mask);
+  const Image drift = cp.half > 0 ? driftOf(cp.firstEven, cp.firstOdd, cp.even, cp.odd, cp.half) : Image();
+  return estimateFrom(even, odd, passes, drift, cp.half, mask);
 }
 
 ErrorEstimate PassSpread::estimateFrom(const Image& even, const Image& odd, int passes, const Image& drift,

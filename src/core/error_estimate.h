@@ -144,7 +144,7 @@ class PassSpread {
                                     const EmitterMask& mask);
   // Per pixel channel, the signed root of the drift product (float holds roots of
   // squares that would overflow it).
-  static Image driftOf(const PassCheckpoint& c);
+  static Image driftOf(const Image& firstEven, const Image& firstOdd, const Image& even, const Image& odd, int half);
 
   Image even_, odd_;  // the sums of the even and of the odd passes
   Image snapshotEven_, snapshotOdd_;  // ... among the first `snapshotPasses_`

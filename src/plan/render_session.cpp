@@ -33,6 +33,10 @@ void checkTile(PlannedJob& job) {
                                  "stop after its own passes; set photons.passes instead", option));
   }
   if (request.tracePixel) throw InputError(fmt::format("{} and --trace-pixel: give one of them", option));
+  if (job.derived == DerivedView::Bias) {
+    throw InputError(fmt::format("{}: the bias view averages each pixel's drift with its neighbours', which another "
+                                 "tile holds; render it whole", option));
+  }
   if (job.derived == DerivedView::Error && scene.camera.spp == 1 && transportOf(scene).passes(scene, job.aov) == 1) {
     throw InputError(fmt::format("{}: the error view of one sample per pixel probes by the whole frame's contrast; "
                                  "render it whole, or with --spp 2 or more", option));
