@@ -14,27 +14,31 @@ namespace {
 constexpr int kSide = 64;
 constexpr double kSigma = 0.1;
 
-// Pass p of a flat grey image with per-pixel noise: uniform of sd kSigma, plus `drift`
-// in the first `driftPasses` passes.
-Image noisyPass(int p, double drift = 0.0, int driftPasses = 0) {
+// Where a synthetic drift sits: the pixels x in [x0, x1), y in [y0, y1).
+struct Drift {
+  double size = 0.0;
+  int passes = 0;  // the first `passes` passes have it
+  PixelBounds where = PixelBounds::frame(kSide, kSide);
+};
+
+// Pass p of a flat grey image with per-pixel noise: uniform of sd kSigma, plus the
+// drift's size in its first passes and pixels.
+Image noisyPass(int p, const Drift& drift = {}) {
   Image im(kSide, kSide);
   Rng rng(hashKey(7, uint64_t(p)));
   const double half = kSigma * std::sqrt(3.0);  // uniform on [-half, half] has sd kSigma
-  for (Color& c : im.pixels) {
-    for (int ch = 0; ch < 3; ++ch) c[ch] = float(0.5 + (p < driftPasses ? drift : 0.0) + (2.0 * rng.uniform() - 1.0) * half);
-  }
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      const double shift = p < drift.passes && drift.where.contains(x, y) ? drift.size : 0.0;
+      for (int ch = 0; ch < 3; ++ch) im.pixels[size_t(y) * kSide + x][ch] = float(0.5 + shift + (2.0 * rng.uniform() - 1.0) * half);
+    }
   return im;
 }
 
-// Adds passes 0..n-1 the way a frame does: spread first, then into the sum.
-PassSpread addPasses(int n, Image& sum, double drift = 0.0, int driftPasses = 0) {
+PassSpread addPasses(int n, const Drift& drift = {}, EmitterMask mask = {}) {
   PassSpread spread;
-  for (int p = 0; p < n; ++p) {
-    const Image x = noisyPass(p, drift, driftPasses);
-    spread.add(sum, x, p);
-    if (p == 0) sum = x;
-    else for (size_t i = 0; i < x.pixels.size(); ++i) sum.pixels[i] += x.pixels[i];
-  }
+  spread.setEmitterMask(std::move(mask));
+  for (int p = 0; p < n; ++p) spread.add(noisyPass(p, drift), p);
   return spread;
 }
 
@@ -43,8 +47,7 @@ TEST(ErrorEstimate, NoiseOfPPassesIsSigmaOverRootP) {
   // the estimated variance's relative sd is sqrt(2 / 12288) = 1.3%, so the RMSE's is
   // 0.64%; tolerance 4 sd.
   for (int passes : {2, 8, 32}) {
-    Image sum;
-    const ErrorEstimate e = addPasses(passes, sum).estimate();
+    const ErrorEstimate e = addPasses(passes).estimate();
     ASSERT_TRUE(e.known());
     EXPECT_EQ(e.source, ErrorSource::Passes);
     EXPECT_EQ(e.count, passes);
@@ -57,8 +60,7 @@ TEST(ErrorEstimate, NoiseOfPPassesIsSigmaOverRootP) {
 // n_e n_o / P^2 times the difference of their means, squared.
 TEST(ErrorEstimate, StandardErrorIsTheEvenAndOddPassesFormula) {
   constexpr int kPasses = 5;
-  Image sum;
-  const PassSpread spread = addPasses(kPasses, sum);
+  const PassSpread spread = addPasses(kPasses);
   const Image se = spread.standardError();
   for (size_t i = 0; i < se.pixels.size(); i += 97) {
     for (int c = 0; c < 3; ++c) {
@@ -70,22 +72,107 @@ TEST(ErrorEstimate, StandardErrorIsTheEvenAndOddPassesFormula) {
   }
 }
 
-TEST(ErrorEstimate, ADriftBetweenHalvesIsBiasAndNoDriftIsNone) {
-  // 16 passes: the check compares 1-8 with 9-16. Noise alone gives the halves' means a
-  // difference of sd sigma / 2 per pixel channel; subtracting it leaves a bias
-  // estimate whose spread over 12288 channels is ~0.02 x sigma.
-  Image flat, drifted;
-  const ErrorEstimate none = addPasses(16, flat).estimate();
+// The bias check at 16 passes compares 1-8 with 9-16: the even passes' drift times the
+// odd passes', each a difference of two means of 4 passes (sd sigma / sqrt(2) per
+// pixel channel), so a product's sd is sigma^2 / 2 and the mean over n channels has sd
+// sigma^2 / (2 sqrt(n)).
+TEST(ErrorEstimate, NoDriftIsNoise) {
+  const ErrorEstimate none = addPasses(16).estimate();
   EXPECT_EQ(none.biasHalf, 8);
-  EXPECT_LT(none.biasRmse, 0.1 * kSigma);
+  EXPECT_TRUE(none.biasWithinNoise) << describeError(none);
+  // 12288 channels: the mean square's sd is 0.0045 sigma^2, so its root stays below
+  // 0.1 sigma unless the mean is 2.2 sd high.
+  EXPECT_LT(none.lightingBiasRmse, 0.1 * kSigma);
+  EXPECT_TRUE(none.biasRegion.empty());
+  EXPECT_NE(describeError(none).find("agree within noise"), std::string::npos) << describeError(none);
+}
+
+TEST(ErrorEstimate, ADriftEverywhereIsMeasuredAsBias) {
   const double drift = 0.05;
-  const ErrorEstimate some = addPasses(16, drifted, drift, 8).estimate();
-  EXPECT_NEAR(some.biasRmse, drift, 0.1 * drift);
+  const ErrorEstimate some = addPasses(16, {drift, 8}).estimate();
+  // The mean square's sd is 0.0045 sigma^2 = 0.18 drift^2 / 4: the root is within 3%.
+  EXPECT_NEAR(some.lightingBiasRmse, drift, 0.05 * drift);
+  EXPECT_EQ(some.biasRmse, some.lightingBiasRmse) << "no emitter pixels";
+  EXPECT_FALSE(some.biasWithinNoise);
+}
+
+// A drift in a 16 x 16 block (two by two cells of the 8 x 8 grid) of a 64 x 64 image:
+// the region is that block and holds nearly all of it (each cell's sum stands 14 sd out
+// of its noise); the figure over the image is the drift times the block's root share
+// (1/4), within the noise's 0.0045 sigma^2 on the mean square (7% of the drift's
+// 0.1^2 / 16 here: 3.6% on the root; tolerance 10%).
+TEST(ErrorEstimate, ADriftInOneRegionIsFoundThere) {
+  const double drift = 0.1;
+  const PixelBounds block{16, 32, 40, 56};
+  const ErrorEstimate e = addPasses(16, {drift, 8, block}).estimate();
+  ASSERT_FALSE(e.biasWithinNoise) << describeError(e);
+  EXPECT_EQ(e.biasRegion, block) << e.biasRegion.x0 << "," << e.biasRegion.x1 << "," << e.biasRegion.y0 << ","
+                                 << e.biasRegion.y1;
+  EXPECT_GT(e.biasRegionShare, 0.9);
+  EXPECT_NEAR(e.biasRegionArea, 1.0 / 16.0, 1e-12);
+  EXPECT_NEAR(e.lightingBiasRmse, drift / 4.0, 0.1 * drift / 4.0);
+  EXPECT_NE(describeError(e).find("in x 16-31, y 40-55, 6% of the image"), std::string::npos) << describeError(e);
+}
+
+// The bias view: the mean product over 5 x 5 pixels has sd sigma^2 / 10 = 0.001 per
+// channel, against a drift of 0.08 (0.0064 squared) in the block: inside, the root is
+// within 10% of the drift (2 pixels in from the block's edge); outside, the root of a
+// clamped mean of noise averages ~0.013.
+TEST(ErrorEstimate, TheBiasViewShowsWhereTheDriftIs) {
+  const double drift = 0.08;
+  const PixelBounds block{16, 32, 40, 56}, inner{18, 30, 42, 54};
+  const Image view = addPasses(16, {drift, 8, block}).bias();
+  double inside = 0.0, outside = 0.0;
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      const float v = view.pixels[size_t(y) * kSide + x].r;
+      if (inner.contains(x, y)) inside += v;
+      if (!block.contains(x, y)) outside += v;
+    }
+  EXPECT_NEAR(inside / double(inner.pixels()), drift, 0.1 * drift);
+  EXPECT_LT(outside / double(kSide * kSide - block.pixels()), 0.25 * drift);
+}
+
+// Pixels that see an emitter are no lighting: a drift there (an emitter's edge) is no
+// bias, and the lighting's noise leaves them out.
+TEST(ErrorEstimate, EmitterPixelsAreLeftOutOfTheLighting) {
+  const PixelBounds lamp{0, 64, 0, 16};
+  EmitterMask mask(kSide * kSide, 0);
+  for (int y = lamp.y0; y < lamp.y1; ++y)
+    for (int x = 0; x < kSide; ++x) mask[size_t(y) * kSide + x] = 1;
+  const ErrorEstimate e = addPasses(16, {0.5, 8, lamp}, mask).estimate();
+  EXPECT_TRUE(e.biasWithinNoise) << describeError(e);
+  EXPECT_NEAR(e.emitterShare, 0.25, 1e-12);
+  EXPECT_NEAR(e.lightingNoiseRmse, kSigma / 4.0, 0.03 * kSigma / 4.0);
+  EXPECT_NEAR(addPasses(16, {}, mask).estimate().noiseRmse, e.noiseRmse, 1e-5 * e.noiseRmse) << "the drift is not noise";
+}
+
+// A sharp edge under stratified samples: each sequence's first half lands on one side
+// and its second half on the other (its halves differ by a sign the pixel draws, independently
+// for the two sequences), while the whole is exact. The halves of the image differ far
+// beyond independent noise; the product of the sequences' drifts has mean 0.
+TEST(ErrorEstimate, StrataThatAlternateBetweenHalvesAreNoBias) {
+  PassSpread spread;
+  constexpr int kPasses = 16;
+  for (int p = 0; p < kPasses; ++p) {
+    Image im(kSide, kSide);
+    for (size_t i = 0; i < im.pixels.size(); ++i) {
+      const double side = Rng(hashKey(11, i, uint64_t(p % 2))).uniform() < 0.5 ? 1.0 : -1.0;
+      const double shift = (p < kPasses / 2 ? 0.3 : -0.3) * side;
+      im.pixels[i] = Color(float(0.5 + shift));
+    }
+    spread.add(im, p);
+  }
+  const ErrorEstimate e = spread.estimate();
+  // Products of +-0.6^2 with random signs: the mean over 4096 pixels (3 equal channels)
+  // has sd 0.36 / 64 = 0.0056, its root below 0.15 at 4 sd.
+  EXPECT_LT(e.lightingBiasRmse, 0.15) << describeError(e);
+  EXPECT_TRUE(e.biasWithinNoise) << describeError(e);
 }
 
 TEST(ErrorEstimate, OnePassIsUnknownAndSamplesGiveTheirStandardError) {
-  Image sum;
-  EXPECT_FALSE(addPasses(1, sum).estimate().known());
+  EXPECT_FALSE(addPasses(1).estimate().known());
+  EXPECT_LT(addPasses(3).estimate().biasRmse, 0.0) << "the bias needs 4 passes";
   Image standardError(4, 4);
   for (size_t i = 0; i < standardError.pixels.size(); ++i) standardError.pixels[i] = Color(std::sqrt(i < 8 ? 0.01f : 0.03f));
   const ErrorEstimate e = sampleError(standardError, 16);

@@ -1,6 +1,8 @@
-// The budget's stop rule: two passes always run; a target error stops at the first
-// pass whose estimate reaches it; a time limit stops once it has passed, or before a
-// pass expected to overrun it by more than kTimeLimitOverrun; bad limits are refused.
+// The budget's stop rule: two passes always run (and an overrun of the limit by them is
+// said with its size); a target error stops at the first pass whose noise and bias
+// together reach it, of the lighting or of the image; a time limit stops once it has
+// passed, or before a pass expected to overrun it by more than kTimeLimitOverrun; bad
+// limits are refused.
 #include "plan/render_budget.h"
 #include "core/error.h"
 #include <gtest/gtest.h>
@@ -10,26 +12,57 @@
 namespace penumbra {
 namespace {
 
-TEST(RenderBudget, TwoPassesAlwaysRun) {
-  const RenderBudget b{1.0, 0.5};
-  EXPECT_EQ(budgetStop(b, {1, 100.0, 50.0, 0.0}), nullptr);
-  EXPECT_NE(budgetStop(b, {2, 100.0, 50.0, 0.0}), nullptr);
+// An estimate whose lighting has this noise and bias (< 0: not measured), and whose
+// image has ten times each (a visible emitter's edges).
+ErrorEstimate estimate(double noise, double bias) {
+  ErrorEstimate e;
+  e.source = ErrorSource::Passes;
+  e.lightingNoiseRmse = noise;
+  e.lightingBiasRmse = bias;
+  e.noiseRmse = 10.0 * noise;
+  e.biasRmse = bias < 0.0 ? bias : 10.0 * bias;
+  return e;
 }
 
-TEST(RenderBudget, TargetErrorStopsAtTheFirstPassThatReachesIt) {
-  const RenderBudget b{0.0, 0.03};
-  EXPECT_EQ(budgetStop(b, {4, 1.0, 0.1, 0.0301}), nullptr);
-  EXPECT_EQ(std::string(budgetStop(b, {5, 1.0, 0.1, 0.03})), "target error reached");
-  EXPECT_EQ(budgetStop(b, {5, 1.0, 0.1, -1.0}), nullptr) << "an unknown estimate reaches nothing";
-  EXPECT_EQ(std::string(budgetStop(b, {kBudgetMaxPasses, 1.0, 0.1, 1.0})), "pass limit reached");
+BudgetState state(int passes, double elapsed, double lastPass, const ErrorEstimate& e = estimate(0.1, 0.1)) {
+  return {passes, elapsed, lastPass, e};
+}
+
+TEST(RenderBudget, TwoPassesAlwaysRunAndAnOverrunIsSaidWithItsSize) {
+  const RenderBudget b{1.0, 0.5};
+  EXPECT_EQ(budgetStop(b, state(1, 100.0, 50.0, estimate(0.0, 0.0))), "");
+  EXPECT_EQ(budgetStop(b, state(2, 3.5, 1.7, estimate(1.0, -1.0))),
+            "time limit: the 2-pass minimum overran it by 2.5 s (250%)");
+  EXPECT_EQ(budgetStop({1.0, 0.0}, state(3, 3.5, 1.2)), "time limit reached") << "the minimum was met before";
+}
+
+TEST(RenderBudget, TargetErrorCountsNoiseAndBiasTogether) {
+  const RenderBudget b{0.0, 0.05};
+  EXPECT_EQ(budgetStop(b, state(4, 1.0, 0.1, estimate(0.04, 0.031))), "") << "sqrt(0.04^2 + 0.031^2) = 0.0506";
+  EXPECT_EQ(budgetStop(b, state(5, 1.0, 0.1, estimate(0.04, 0.03))),
+            "target error reached: lighting noise 0.04 and bias 0.03, together 0.05 <= 0.05");
+  EXPECT_EQ(budgetStop(b, state(3, 1.0, 0.1, estimate(0.01, -1.0))), "") << "the bias is not measured before 4 passes";
+  EXPECT_EQ(budgetStop(b, state(5, 1.0, 0.1, estimate(-1.0, 0.0))), "") << "an unknown estimate reaches nothing";
+  EXPECT_EQ(budgetStop(b, state(kBudgetMaxPasses, 1.0, 0.1, estimate(1.0, 1.0))), "pass limit reached");
+}
+
+TEST(RenderBudget, TheImagesFigureIsSelectable) {
+  RenderBudget b{0.0, 0.05};
+  b.figure = ErrorFigure::Image;
+  EXPECT_EQ(budgetStop(b, state(5, 1.0, 0.1, estimate(0.004, 0.003))),
+            "target error reached: image noise 0.04 and bias 0.03, together 0.05 <= 0.05");
+  EXPECT_EQ(budgetStop(b, state(5, 1.0, 0.1, estimate(0.04, 0.03))), "") << "the image's is ten times the lighting's";
+  EXPECT_EQ(parseErrorFigure("image"), ErrorFigure::Image);
+  EXPECT_EQ(parseErrorFigure("lighting"), ErrorFigure::Lighting);
+  EXPECT_THROW(parseErrorFigure("noise"), InputError);
 }
 
 TEST(RenderBudget, TimeLimitRunsUntilMetUnlessTheNextPassWouldOverrunIt) {
   const RenderBudget b{10.0, 0.0};
-  EXPECT_EQ(budgetStop(b, {8, 9.5, 0.5, 0.1}), nullptr) << "ends at 10.0: within the limit";
-  EXPECT_EQ(budgetStop(b, {8, 9.9, 1.0, 0.1}), nullptr) << "ends at 10.9: past it by less than 10%";
-  EXPECT_EQ(std::string(budgetStop(b, {8, 10.0, 0.5, 0.1})), "time limit reached");
-  EXPECT_NE(budgetStop(b, {8, 9.0, 2.5, 0.1}), nullptr) << "would end at 11.5";
+  EXPECT_EQ(budgetStop(b, state(8, 9.5, 0.5)), "") << "ends at 10.0: within the limit";
+  EXPECT_EQ(budgetStop(b, state(8, 9.9, 1.0)), "") << "ends at 10.9: past it by less than 10%";
+  EXPECT_EQ(budgetStop(b, state(8, 10.0, 0.5)), "time limit reached");
+  EXPECT_EQ(budgetStop(b, state(8, 9.0, 2.5)), "time limit: the next pass would overrun it") << "would end at 11.5";
 }
 
 TEST(RenderBudget, BadLimitsAreRefusedAndBothAreDescribed) {
@@ -37,7 +70,7 @@ TEST(RenderBudget, BadLimitsAreRefusedAndBothAreDescribed) {
   EXPECT_THROW(checkBudget({0.0, std::numeric_limits<double>::quiet_NaN()}), InputError);
   EXPECT_NO_THROW(checkBudget({0.0, 0.0}));
   EXPECT_FALSE(RenderBudget{}.any());
-  EXPECT_EQ(describeBudget({10.0, 0.03}), "--time-limit 10 s, --target-error 0.03");
+  EXPECT_EQ(describeBudget({10.0, 0.03}), "--time-limit 10 s, --target-error 0.03 (lighting)");
 }
 
 }  // namespace

@@ -60,8 +60,13 @@ void addBudgetOptions(CLI::App& command, RenderBudget& budget) {
                      "write the image; --stats names the passes done")
       ->check(budgetValue(&RenderBudget::seconds));
   command.add_option("--target-error", budget.targetError,
-                     "Run progressive passes (at least 2) until the estimated noise RMSE is at most this")
+                     "Run progressive passes (at least 4) until the estimated noise and photon-map bias together, "
+                     "sqrt(noise^2 + bias^2), are at most this RMSE (of --target-error-of)")
       ->check(budgetValue(&RenderBudget::targetError));
+  command.add_option_function<std::string>(
+             "--target-error-of", [&budget](const std::string& name) { budget.figure = parseErrorFigure(name); },
+             "The figure --target-error aims at: lighting (default: pixels that see no emitter) or image")
+      ->check(CLI::IsMember(std::vector<std::string>(kErrorFigureNames.begin(), kErrorFigureNames.end())));
 }
 
 void addDisplayOptions(CLI::App& command, SessionArgs& args) {

@@ -9,16 +9,6 @@
 namespace penumbra {
 namespace {
 
-// Sum over pixels and channels of a per-pixel quantity, in double, in pixel order.
-template <class F>
-double sumOver(const Image& like, F perChannel) {
-  double sum = 0.0;
-  for (size_t i = 0; i < like.pixels.size(); ++i) {
-    for (int c = 0; c < 3; ++c) sum += perChannel(i, c);
-  }
-  return sum;
-}
-
 // Its mean over `values` pixel channels.
 double meanOf(double sum, size_t values) { return values == 0 ? 0.0 : sum / double(values); }
 
@@ -30,11 +20,86 @@ double varianceOfMean(const Image& even, const Image& odd, int passes, size_t i,
   return ne * no / (double(passes) * passes) * d * d;
 }
 
-// Passes 1..h against h+1..2h: their difference's mean square, less what noise alone
-// gives it (each half's mean has twice the variance of the whole's), is the bias that
-// changed.
-double biasOf(double squareSum, double noiseSum, size_t values) {
-  return std::sqrt(std::max(0.0, meanOf(squareSum, values) - 4.0 * meanOf(noiseSum, values)));
+bool lighting(const EmitterMask& mask, size_t i) { return mask.empty() || mask[i] == 0; }
+
+// The image's and the lighting's noise figures from per-pixel-channel variances.
+template <class F>
+void setNoise(ErrorEstimate& e, const Image& like, const EmitterMask& mask, F variance) {
+  double all = 0.0, lit = 0.0;
+  size_t litPixels = 0;
+  for (size_t i = 0; i < like.pixels.size(); ++i) {
+    double v = 0.0;
+    for (int c = 0; c < 3; ++c) v += variance(i, c);
+    all += v;
+    if (lighting(mask, i)) {
+      lit += v;
+      ++litPixels;
+    }
+  }
+  e.noiseRmse = std::sqrt(meanOf(all, 3 * like.pixels.size()));
+  e.lightingNoiseRmse = std::sqrt(meanOf(lit, 3 * litPixels));
+  e.emitterShare = like.pixels.empty() ? 0.0 : 1.0 - double(litPixels) / double(like.pixels.size());
+}
+
+// The drift product of one pixel channel (the square of its signed root).
+double driftSquare(const Image& drift, size_t i, int c) {
+  const double r = drift.pixels[i][c];
+  return r * std::abs(r);
+}
+
+// The bias figures from the drift products at lighting pixels. A pixel's product has
+// the spread of its noise, which at a caustic's edge under one camera sample is heavy
+// tailed (a few pixels' products would outweigh every other's): so the bias counted is
+// the sum over the coarse cells whose sum stands out of its own standard error
+// (kBiasSignificance), as a mean over the lighting and over the image; elsewhere the
+// passes agree within noise. The region is the box of the fewest such cells that hold
+// kBiasRegionShare of it.
+void setBias(ErrorEstimate& e, const Image& drift, const EmitterMask& mask) {
+  const int w = drift.width, h = drift.height;
+  struct Sums {
+    double sum = 0.0, squares = 0.0;
+    size_t values = 0;
+    void add(double p) { sum += p, squares += p * p, ++values; }
+    bool significant() const {
+      const double mean = values ? sum / double(values) : 0.0;
+      return values > 1 && sum > kBiasSignificance * std::sqrt(std::max(0.0, squares - mean * sum));
+    }
+  };
+  std::vector<Sums> cells(kBiasGrid * kBiasGrid);
+  size_t values = 0;
+  auto cellOf = [&](int x, int y) { return (y * kBiasGrid / h) * kBiasGrid + x * kBiasGrid / w; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      if (!lighting(mask, i)) continue;
+      values += 3;
+      for (int c = 0; c < 3; ++c) cells[cellOf(x, y)].add(driftSquare(drift, i, c));
+    }
+  std::vector<int> order;
+  double found = 0.0;
+  for (size_t k = 0; k < cells.size(); ++k)
+    if (cells[k].significant()) order.push_back(int(k)), found += cells[k].sum;
+  e.lightingBiasRmse = std::sqrt(meanOf(found, values));
+  e.biasRmse = std::sqrt(meanOf(found, 3 * drift.pixels.size()));
+  e.biasWithinNoise = order.empty();
+  if (e.biasWithinNoise) return;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return cells[a].sum > cells[b].sum; });
+  int cx0 = kBiasGrid, cx1 = 0, cy0 = kBiasGrid, cy1 = 0;
+  double held = 0.0;
+  for (int k : order) {
+    if (held >= kBiasRegionShare * found) break;
+    held += cells[k].sum;
+    cx0 = std::min(cx0, k % kBiasGrid), cx1 = std::max(cx1, k % kBiasGrid + 1);
+    cy0 = std::min(cy0, k / kBiasGrid), cy1 = std::max(cy1, k / kBiasGrid + 1);
+  }
+  // Cell cx covers the pixels x with x * kBiasGrid / w == cx.
+  auto edge = [](int cell, int size) { return (cell * size + kBiasGrid - 1) / kBiasGrid; };
+  e.biasRegion = {edge(cx0, w), edge(cx1, w), edge(cy0, h), edge(cy1, h)};
+  double inside = 0.0;
+  for (int k : order)
+    if (k % kBiasGrid >= cx0 && k % kBiasGrid < cx1 && k / kBiasGrid >= cy0 && k / kBiasGrid < cy1) inside += cells[k].sum;
+  e.biasRegionShare = inside / found;
+  e.biasRegionArea = double(e.biasRegion.pixels()) / double(drift.pixels.size());
 }
 
 }  // namespace
@@ -54,69 +119,79 @@ std::string describeError(const ErrorEstimate& e) {
   std::string out = fmt::format("~{:.3g} RMSE (noise, from {} {})", e.noiseRmse, e.count,
                                 e.source == ErrorSource::Passes ? "passes" : "samples per pixel");
   if (e.source == ErrorSource::Samples && e.sharedMaps) out += "; samples share one photon map, so its noise is not in it";
+  if (e.lightingNoiseRmse >= 0.0 && e.emitterShare > 0.0) {
+    out += fmt::format("; lighting (without the {:.1f}% of pixels that see an emitter) ~{:.3g}",
+                       100.0 * e.emitterShare, e.lightingNoiseRmse);
+  }
   if (e.biasRmse < 0.0) return out;
-  const std::string halves = e.biasHalf == 1 ? "passes 1 and 2"
-                                             : fmt::format("passes 1-{} and {}-{}", e.biasHalf, e.biasHalf + 1,
-                                                           2 * e.biasHalf);
-  out += e.biasRmse > 0.0 ? fmt::format("; photon-map bias: {} differ by ~{:.3g} RMSE beyond noise", halves, e.biasRmse)
-                          : fmt::format("; photon-map bias: {} agree within noise", halves);
+  const std::string halves = fmt::format("passes 1-{} to {}-{}", e.biasHalf, e.biasHalf + 1, 2 * e.biasHalf);
+  if (e.biasWithinNoise) return out + fmt::format("; photon-map bias: {} agree within noise", halves);
+  out += fmt::format("; photon-map bias ~{:.3g} RMSE of the lighting (the drift from {}", e.lightingBiasRmse,
+                     halves);
+  const PixelBounds& r = e.biasRegion;
+  if (!r.empty()) {
+    out += fmt::format("; {:.0f}% of it in x {}-{}, y {}-{}, {:.0f}% of the image", 100.0 * e.biasRegionShare, r.x0,
+                       r.x1 - 1, r.y0, r.y1 - 1, 100.0 * e.biasRegionArea);
+  }
+  out += ")";
   return out;
 }
 
-void PassSpread::add(const Image& sumBefore, const Image& image, int pass) {
+void PassSpread::add(const Image& image, int pass) {
   Image& half = pass % 2 == 0 ? even_ : odd_;
   if (half.pixels.empty()) half = image;
   else for (size_t i = 0; i < image.pixels.size(); ++i) half.pixels[i] += image.pixels[i];
   passes_ = pass + 1;
-  if (pass == 0) {
-    snapshot_ = image;
-    snapshotPasses_ = 1;
-    return;
+  if (passes_ != std::max(2, 2 * snapshotPasses_)) return;
+  // Passes 1..h against h+1..2h, once each sequence has a pass in each half.
+  if (snapshotPasses_ >= 2) {
+    biasHalf_ = snapshotPasses_;
+    drift_ = driftOf(snapshotEven_, snapshotOdd_, even_, odd_, biasHalf_);
+    if (keep_) checkpoint_ = {snapshotEven_, snapshotOdd_, even_, odd_, passes_, biasHalf_};
   }
-  if (passes_ != 2 * snapshotPasses_) return;
-  biasSums(snapshot_, sumBefore, image, even_, odd_, passes_, snapshotPasses_, biasSquareSum_, biasNoiseSum_);
-  biasHalf_ = snapshotPasses_;
-  if (keep_) checkpoint_ = {snapshot_, sumBefore, image, even_, odd_, passes_, snapshotPasses_};
-  for (size_t i = 0; i < image.pixels.size(); ++i) snapshot_.pixels[i] = sumBefore.pixels[i] + image.pixels[i];
+  snapshotEven_ = even_;
+  snapshotOdd_ = odd_;
   snapshotPasses_ = passes_;
 }
 
-void PassSpread::biasSums(const Image& first, const Image& before, const Image& pass, const Image& even,
-                          const Image& odd, int passes, int half, double& squares, double& noise) {
-  const double h = half;
-  squares = sumOver(pass, [&](size_t i, int c) {
-    const double a = first.pixels[i][c] / h;
-    const double b = (double(before.pixels[i][c]) + pass.pixels[i][c] - first.pixels[i][c]) / h;
-    return (a - b) * (a - b);
-  });
-  noise = sumOver(pass, [&](size_t i, int c) { return varianceOfMean(even, odd, passes, i, c); });
+Image PassSpread::driftOf(const Image& firstEvenSum, const Image& firstOddSum, const Image& even, const Image& odd,
+                          int half) {
+  // Each of the four groups (even and odd passes, first and second half) has h/2 passes.
+  const double n = half / 2;
+  Image out(even.width, even.height);
+  for (size_t i = 0; i < out.pixels.size(); ++i) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const double firstEven = firstEvenSum.pixels[i][ch], firstOdd = firstOddSum.pixels[i][ch];
+      const double evenDrift = (firstEven - (double(even.pixels[i][ch]) - firstEven)) / n;
+      const double oddDrift = (firstOdd - (double(odd.pixels[i][ch]) - firstOdd)) / n;
+      const double p = evenDrift * oddDrift;
+      out.pixels[i][ch] = float(p < 0.0 ? -std::sqrt(-p) : std::sqrt(p));
+    }
+  }
+  return out;
 }
 
-ErrorEstimate PassSpread::fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& cp) {
-  double squares = 0.0, noise = 0.0;
-  if (cp.half > 0) biasSums(cp.first, cp.before, cp.pass, cp.even, cp.odd, cp.passes, cp.half, squares, noise);
-  return estimateFrom(even, odd, passes, squares, noise, cp.half);
+ErrorEstimate PassSpread::fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& cp,
+                                     const EmitterMask& mask) {
+  const Image drift = cp.half > 0 ? driftOf(cp.firstEven, cp.firstOdd, cp.even, cp.odd, cp.half) : Image();
+  return estimateFrom(even, odd, passes, drift, cp.half, mask);
 }
 
-ErrorEstimate PassSpread::estimateFrom(const Image& even, const Image& odd, int passes, double biasSquareSum,
-                                       double biasNoiseSum, int biasHalf) {
-  const size_t values = 3 * even.pixels.size();
+ErrorEstimate PassSpread::estimateFrom(const Image& even, const Image& odd, int passes, const Image& drift,
+                                       int biasHalf, const EmitterMask& mask) {
   ErrorEstimate e;
   if (passes < 2) return e;
   e.source = ErrorSource::Passes;
   e.count = passes;
-  e.noiseRmse = std::sqrt(
-      meanOf(sumOver(even, [&](size_t i, int c) { return varianceOfMean(even, odd, passes, i, c); }), values));
+  setNoise(e, even, mask, [&](size_t i, int c) { return varianceOfMean(even, odd, passes, i, c); });
   if (biasHalf > 0) {
-    e.biasRmse = biasOf(biasSquareSum, biasNoiseSum, values);
+    setBias(e, drift, mask);
     e.biasHalf = biasHalf;
   }
   return e;
 }
 
-ErrorEstimate PassSpread::estimate() const {
-  return estimateFrom(even_, odd_, passes_, biasSquareSum_, biasNoiseSum_, biasHalf_);
-}
+ErrorEstimate PassSpread::estimate() const { return estimateFrom(even_, odd_, passes_, drift_, biasHalf_, mask_); }
 
 Image PassSpread::standardError() const {
   Image out(even_.width, even_.height);
@@ -127,32 +202,55 @@ Image PassSpread::standardError() const {
   return out;
 }
 
+Image PassSpread::bias() const {
+  const int w = even_.width, h = even_.height;
+  Image out(w, h);
+  if (biasHalf_ == 0) return out;
+  // One pixel's product has the spread of its noise: the view shows the mean of the
+  // lighting pixels' products around it, as the root of its positive part.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!lighting(mask_, size_t(y) * w + x)) continue;
+      glm::dvec3 sum(0.0);
+      int n = 0;
+      for (int yy = std::max(0, y - kBiasViewRadius); yy <= std::min(h - 1, y + kBiasViewRadius); ++yy)
+        for (int xx = std::max(0, x - kBiasViewRadius); xx <= std::min(w - 1, x + kBiasViewRadius); ++xx) {
+          const size_t j = size_t(yy) * w + xx;
+          if (!lighting(mask_, j)) continue;
+          for (int c = 0; c < 3; ++c) sum[c] += driftSquare(drift_, j, c);
+          ++n;
+        }
+      out.pixels[size_t(y) * w + x] = Color(glm::sqrt(glm::max(sum / double(n), glm::dvec3(0.0))));
+    }
+  return out;
+}
+
 PassSpread::Moments PassSpread::moments() const {
-  return {even_, odd_, snapshot_, snapshotPasses_, passes_, biasHalf_, biasSquareSum_, biasNoiseSum_, keep_, checkpoint_};
+  return {even_, odd_, snapshotEven_, snapshotOdd_, drift_, snapshotPasses_, passes_, biasHalf_, keep_, checkpoint_};
 }
 
 void PassSpread::restore(Moments m) {
   even_ = std::move(m.even);
   odd_ = std::move(m.odd);
-  snapshot_ = std::move(m.snapshot);
+  snapshotEven_ = std::move(m.snapshotEven);
+  snapshotOdd_ = std::move(m.snapshotOdd);
+  drift_ = std::move(m.drift);
   snapshotPasses_ = m.snapshotPasses;
   passes_ = m.passes;
   biasHalf_ = m.biasHalf;
-  biasSquareSum_ = m.biasSquareSum;
-  biasNoiseSum_ = m.biasNoiseSum;
   keep_ = m.keep;
   checkpoint_ = std::move(m.checkpoint);
 }
 
-ErrorEstimate sampleError(const Image& standardError, int spp) {
+ErrorEstimate sampleError(const Image& standardError, int spp, const EmitterMask& mask) {
   ErrorEstimate e;
   if (spp < 2 || standardError.pixels.empty()) return e;
   e.source = ErrorSource::Samples;
   e.count = spp;
-  e.noiseRmse = std::sqrt(meanOf(sumOver(standardError, [&](size_t i, int c) {
+  setNoise(e, standardError, mask, [&](size_t i, int c) {
     const double se = standardError.pixels[i][c];
     return se * se;  // in double: a float square of 1e20 is inf
-  }), 3 * standardError.pixels.size()));
+  });
   return e;
 }
 

@@ -3,7 +3,12 @@
 // error of the mean image, and the photon-map bias that passes shrink, kept apart.
 #pragma once
 #include "core/image.h"
+#include "core/pixel_bounds.h"
+#include <cmath>
+#include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace penumbra {
 
@@ -18,11 +23,27 @@ struct ErrorEstimate {
   // Standard error of the image: sqrt(mean over pixels and channels of SE^2), the
   // RMSE the image has against its own converged mean. < 0: unknown.
   double noiseRmse = -1.0;
-  // Passes only: the change, beyond noise, between the mean of the first `biasHalf`
-  // passes and of the next `biasHalf`: photon-map bias that the shrinking radii take
-  // away. A lower bound on what is left of it. < 0: not measured (fewer than 2 passes).
+  // Passes only: the photon-map bias, the drift of each pixel's expected value between
+  // passes 1..h and h+1..2h (the last power of two 2h), measured per pixel with its own
+  // noise taken out, at pixels that do not see an emitter, summed over the coarse cells
+  // where it stands out of their noise (elsewhere it counts 0), as an RMSE over the
+  // whole image. < 0: not measured (fewer than 4 passes).
   double biasRmse = -1.0;
   int biasHalf = 0;
+  // The lighting: the same figures over the pixels that do not see an emitter directly
+  // or through mirrors and glass (whose edges alias under the camera's samples and
+  // carry no photon-map light). The figures a target error aims at by default.
+  double lightingNoiseRmse = -1.0;
+  double lightingBiasRmse = -1.0;
+  double emitterShare = 0.0;  // the share of the image's pixels that see an emitter
+  // Where the bias sits: the box of the coarse cells (kBiasGrid) that hold most of it
+  // (kBiasRegionShare), and its share inside that box. Empty: no bias beyond its own noise.
+  PixelBounds biasRegion;
+  double biasRegionShare = 0.0;
+  double biasRegionArea = 0.0;  // the box's share of the image's pixels
+  // No cell's bias stands out of its noise (kBiasSignificance): the passes agree
+  // within noise (and the bias figures are 0).
+  bool biasWithinNoise = false;
   // Samples or probes of one pass read photon maps they all share, whose noise the
   // figure then leaves out (and says so).
   bool sharedMaps = false;
@@ -31,17 +52,40 @@ struct ErrorEstimate {
   bool lowerBound = false;
 
   bool known() const { return noiseRmse >= 0.0; }
+  bool lightingKnown() const { return lightingNoiseRmse >= 0.0; }
+  // Noise and bias together, sqrt(noise^2 + bias^2) (bias 0 when not measured); < 0 unknown.
+  double totalRmse() const { return combined(noiseRmse, biasRmse); }
+  double lightingTotalRmse() const { return combined(lightingNoiseRmse, lightingBiasRmse); }
+
+ private:
+  static double combined(double noise, double bias) {
+    return noise < 0.0 ? -1.0 : bias > 0.0 ? std::sqrt(noise * noise + bias * bias) : noise;
+  }
 };
 
 // "~0.012 RMSE (noise, from 8 passes)", or why there is no figure.
 std::string describeError(const ErrorEstimate& e);
 
-// The noise of progressive passes' mean, and the bias check at each power of two.
-// The bias check's inputs at its last power of two, 2h passes: the sum of the first h
-// (`first`), the sum before the last pass, the last pass, and the even and odd sums
-// after it. A tile keeps them so the merge computes the whole frame's check to the bit.
+// The coarse grid (cells per side) the bias region is named in.
+constexpr int kBiasGrid = 8;
+// A cell's sum of drift products stands out of noise beyond this many of its standard
+// errors (each of the 64 cells then has a ~2e-4 chance of it in pure noise).
+constexpr double kBiasSignificance = 3.5;
+// The bias region holds this share of the sum of the cells whose bias stands out of
+// their noise (the box of the fewest such cells that do).
+constexpr double kBiasRegionShare = 0.9;
+// The bias view's pixel shows the mean drift product over (2r+1)^2 pixels around it.
+constexpr int kBiasViewRadius = 2;
+
+// Per pixel, 1 where it sees an emitter directly or through mirrors and glass
+// (trace/emitter_mask.h); empty: none known, every pixel is lighting.
+using EmitterMask = std::vector<uint8_t>;
+
+// The bias check's inputs at its last power of two, 2h passes: the sums of the even and
+// of the odd passes among the first h, and among all 2h. A tile keeps them so the merge
+// computes the whole frame's check to the bit.
 struct PassCheckpoint {
-  Image first, before, pass, even, odd;
+  Image firstEven, firstOdd, even, odd;
   int passes = 0, half = 0;  // 2h and h; half 0: no check yet
 };
 
@@ -50,24 +94,34 @@ struct PassCheckpoint {
 // the pixel: with n_e and n_o passes, the mean's variance is n_e n_o / P^2 times
 // their difference squared. A spread over the passes would also count the strata's
 // differences, which the mean of a stratified sequence does not have.
+//
+// The bias check at 2h passes (h >= 2): the even passes' drift from the first h to the
+// next h, times the odd passes' drift. The two sequences are independent, so the
+// product's mean is the drift squared with each pixel's noise taken out, and neither
+// factor mixes strata of one sequence with another's (at a sharp edge the halves of one
+// sequence differ far more than independent draws would).
 class PassSpread {
  public:
-  // `sumBefore`: the sum of passes 0..pass-1 (unused at pass 0); `image`: pass `pass`.
-  // Call before adding `image` into the sum.
-  void add(const Image& sumBefore, const Image& image, int pass);
+  // `image`: pass `pass` (0-based, in order).
+  void add(const Image& image, int pass);
+  // The pixels that see an emitter: left out of the lighting figures and the bias.
+  void setEmitterMask(EmitterMask mask) { mask_ = std::move(mask); }
 
   int passes() const { return passes_; }
-  // The estimate after the passes added so far (noise needs 2 passes).
+  // The estimate after the passes added so far (noise needs 2 passes, bias 4).
   ErrorEstimate estimate() const;
   // Per pixel, the standard error of the mean of the passes (0 with one pass).
   Image standardError() const;
+  // Per pixel, the bias check's drift: the root of the mean drift product over the
+  // lighting pixels within kBiasViewRadius (0 where noise outweighs it, at emitter
+  // pixels and before 4 passes): the "bias" view.
+  Image bias() const;
 
   // Everything add() has accumulated: a frame's saved passes carry it to another
   // process, which restore()s it and continues at the next pass.
   struct Moments {
-    Image even, odd, snapshot;
+    Image even, odd, snapshotEven, snapshotOdd, drift;
     int snapshotPasses = 0, passes = 0, biasHalf = 0;
-    double biasSquareSum = 0.0, biasNoiseSum = 0.0;
     bool keep = false;  // a tile's: the checkpoint too
     PassCheckpoint checkpoint;
   };
@@ -81,29 +135,31 @@ class PassSpread {
   void keepCheckpoint() { keep_ = true; }
   const PassCheckpoint& checkpoint() const { return checkpoint_; }
   // The estimate of `passes` passes whose even and odd sums are these, with the bias
-  // check of `checkpoint`.
-  static ErrorEstimate fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& checkpoint);
+  // check of `checkpoint`, over the pixels `mask` leaves to the lighting.
+  static ErrorEstimate fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& checkpoint,
+                                  const EmitterMask& mask);
 
  private:
-  static ErrorEstimate estimateFrom(const Image& even, const Image& odd, int passes, double biasSquareSum,
-                                    double biasNoiseSum, int biasHalf);
-  // The bias check's sums over pixels and channels (squared difference of the halves,
-  // and the variance of the mean then).
-  static void biasSums(const Image& first, const Image& before, const Image& pass, const Image& even,
-                       const Image& odd, int passes, int half, double& squares, double& noise);
+  static ErrorEstimate estimateFrom(const Image& even, const Image& odd, int passes, const Image& drift, int biasHalf,
+                                    const EmitterMask& mask);
+  // Per pixel channel, the signed root of the drift product (float holds roots of
+  // squares that would overflow it).
+  static Image driftOf(const Image& firstEven, const Image& firstOdd, const Image& even, const Image& odd, int half);
 
   Image even_, odd_;  // the sums of the even and of the odd passes
-  Image snapshot_;  // the sum of the first `snapshotPasses_` passes
+  Image snapshotEven_, snapshotOdd_;  // ... among the first `snapshotPasses_`
   int snapshotPasses_ = 0;
   int passes_ = 0;
-  double biasSquareSum_ = 0.0, biasNoiseSum_ = 0.0;
+  Image drift_;  // the last check's driftOf
   int biasHalf_ = 0;
   bool keep_ = false;
   PassCheckpoint checkpoint_;
+  EmitterMask mask_;
 };
 
 // An estimate from one pass's per-pixel standard error of the mean (from its samples:
-// its even and odd samples' means, as passes' above), squared and averaged in double.
-ErrorEstimate sampleError(const Image& standardError, int spp);
+// its even and odd samples' means, as passes' above), squared and averaged in double;
+// the lighting's over the pixels `mask` leaves to it.
+ErrorEstimate sampleError(const Image& standardError, int spp, const EmitterMask& mask = {});
 
 }  // namespace penumbra

@@ -21,21 +21,34 @@ inline const char* viewName(Aov aov) { return kViewNames[static_cast<size_t>(aov
 // Depth and normals are geometry: they carry no light, so no photons, passes or budget.
 inline bool readsLight(Aov aov) { return aov != Aov::Depth && aov != Aov::Normal; }
 
-// The "error" view renders the beauty and writes its per-pixel standard error
-// (core/error_estimate.h) in its place.
-inline constexpr const char* kErrorView = "error";
-inline bool isErrorView(const std::string& name) { return name == kErrorView; }
+// Derived views render the beauty and write a per-pixel figure of it in its place:
+// "error" its standard error, "bias" its photon-map bias (core/error_estimate.h).
+enum class DerivedView { None, Error, Bias };
 
-// Parses a view name (the error view renders the beauty); throws InputError naming
+// In enum order after None.
+inline constexpr std::array<const char*, 2> kDerivedViewNames = {"error", "bias"};
+
+inline DerivedView derivedView(const std::string& name) {
+  for (size_t i = 0; i < kDerivedViewNames.size(); ++i)
+    if (name == kDerivedViewNames[i]) return static_cast<DerivedView>(i + 1);
+  return DerivedView::None;
+}
+
+// Every view name a render accepts: the light and geometry views, then the derived ones.
+inline std::string knownViews() {
+  std::string known;
+  for (const char* n : kViewNames) known += (known.empty() ? "" : ", ") + std::string(n);
+  for (const char* n : kDerivedViewNames) known += ", " + std::string(n);
+  return known;
+}
+
+// Parses a view name (a derived view renders the beauty); throws InputError naming
 // the known views otherwise.
 inline Aov parseAov(const std::string& name) {
-  if (isErrorView(name)) return Aov::Beauty;
-  std::string known;
-  for (size_t i = 0; i < kViewNames.size(); ++i) {
+  if (derivedView(name) != DerivedView::None) return Aov::Beauty;
+  for (size_t i = 0; i < kViewNames.size(); ++i)
     if (name == kViewNames[i]) return static_cast<Aov>(i);
-    known += (i == 0 ? "" : ", ") + std::string(kViewNames[i]);
-  }
-  throw InputError("--aov: unknown view '" + name + "' (use " + known + " or " + kErrorView + ")");
+  throw InputError("--aov: unknown view '" + name + "' (use " + knownViews() + ")");
 }
 
 }  // namespace penumbra

@@ -37,6 +37,18 @@ std::string statsToJson(const RenderStats& s) {
                 {"source", source}, {"count", e.count},
                 {"bias_rmse", e.biasRmse >= 0.0 ? nlohmann::json(e.biasRmse) : nlohmann::json(nullptr)},
                 {"bias_half", e.biasHalf}, {"lower_bound", e.lowerBound}, {"text", describeError(e)}};
+  // The lighting: the pixels that see no emitter (core/error_estimate.h).
+  auto known = [](double v) { return v >= 0.0 ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  j["error"]["lighting_noise_rmse"] = known(e.lightingNoiseRmse);
+  j["error"]["lighting_bias_rmse"] = known(e.lightingBiasRmse);
+  j["error"]["emitter_share"] = e.emitterShare;
+  j["error"]["bias_within_noise"] = e.biasWithinNoise;
+  const PixelBounds& box = e.biasRegion;
+  j["error"]["bias_region"] = nullptr;
+  if (!box.empty()) {
+    j["error"]["bias_region"] = {{"x0", box.x0}, {"x1", box.x1}, {"y0", box.y0}, {"y1", box.y1},
+                                 {"share", e.biasRegionShare}, {"area", e.biasRegionArea}};
+  }
   if (!s.budget.empty()) j["budget"] = {{"given", s.budget}, {"stopped", s.budgetStop}, {"passes", s.passes}};
   j["photons"] = {{"final_radius_caustic", s.gatherRadius[MapKind::Caustic]},
                   {"final_radius_global", s.gatherRadius[MapKind::Global]}};

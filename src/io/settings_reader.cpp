@@ -75,7 +75,7 @@ void readRender(const JsonNode& node, RenderSettings& out) {
   out.shadows = node.boolOr("shadows", out.shadows);
   // Checked here so a typo fails at load time.
   std::vector<std::string> views(kViewNames.begin(), kViewNames.end());
-  views.push_back(kErrorView);
+  views.insert(views.end(), kDerivedViewNames.begin(), kDerivedViewNames.end());
   if (node.has("aov")) out.aov = views[node.child("aov").asEnum(views)];
   out.lightSamples = node.intOr("light_samples", out.lightSamples, 1, 1024);
   out.packets = node.boolOr("packets", out.packets);

@@ -58,25 +58,30 @@ ErrorEstimate pooledError(const std::vector<PartHeader>& parts, const std::vecto
                           size_t pixels) {
   int source = 0, count = 0, shared = 0;
   std::istringstream(need(parts.front(), kPartError)) >> source >> count >> shared;
-  auto layer = [&](const char* name) -> const Image& {
+  auto find = [&](const char* name) -> const Image* {
     for (const auto& [n, image] : images)
-      if (n == name) return image;
+      if (n == name) return &image;
+    return nullptr;
+  };
+  auto layer = [&](const char* name) -> const Image& {
+    if (const Image* image = find(name)) return *image;
     throw InputError(parts.front().path + ": part has no '" + name + "' layer for its error figure");
   };
+  const Image* emitterImage = find(kEmitterLayer);
+  const EmitterMask emitters = emitterImage ? emitterMaskOf(*emitterImage) : EmitterMask();
   ErrorEstimate e;
   if (source == static_cast<int>(ErrorSource::Samples)) {
-    e = sampleError(layer("se"), count);
+    e = sampleError(layer("se"), count, emitters);
   } else if (source == static_cast<int>(ErrorSource::Passes)) {
     PassCheckpoint c;
     std::istringstream(need(parts.front(), kPartBias)) >> c.passes >> c.half;
     if (c.half > 0) {
-      c.first = layer("bias_first");
-      c.before = layer("bias_before");
-      c.pass = layer("bias_pass");
+      c.firstEven = layer("bias_first_even");
+      c.firstOdd = layer("bias_first_odd");
       c.even = layer("bias_even");
       c.odd = layer("bias_odd");
     }
-    e = PassSpread::fromHalves(layer("even"), layer("odd"), count, c);
+    e = PassSpread::fromHalves(layer("even"), layer("odd"), count, c, emitters);
   } else if (source == static_cast<int>(ErrorSource::Probes)) {
     double squares = 0.0;
     for (const PartHeader& p : parts) {

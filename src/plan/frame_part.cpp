@@ -22,6 +22,18 @@ const char* contentName(ImageContent c) {
 
 }  // namespace
 
+Image emitterLayer(const EmitterMask& mask, int width, int height) {
+  Image out(width, height);
+  for (size_t i = 0; i < mask.size(); ++i) out.pixels[i] = Color(float(mask[i]));
+  return out;
+}
+
+EmitterMask emitterMaskOf(const Image& layer) {
+  EmitterMask mask(layer.pixels.size());
+  for (size_t i = 0; i < mask.size(); ++i) mask[i] = layer.pixels[i].r > 0.5f ? 1 : 0;
+  return mask;
+}
+
 std::string tilePartPath(const std::string& output, int index, int count) {
   std::filesystem::path p(output);
   p.replace_extension(fmt::format(".tile{}of{}.exr", index, count));
@@ -53,10 +65,15 @@ void writeFramePart(const std::string& path, const RenderResult& result, const P
     const PassCheckpoint& c = e.checkpoint;
     m.emplace_back(kPartBias, fmt::format("{} {}", c.passes, c.half));
     if (c.half > 0) {
-      for (const auto& [name, layer] : {std::pair{"bias_first", &c.first}, {"bias_before", &c.before},
-                                        {"bias_pass", &c.pass}, {"bias_even", &c.even}, {"bias_odd", &c.odd}})
+      for (const auto& [name, layer] : {std::pair{"bias_first_even", &c.firstEven}, {"bias_first_odd", &c.firstOdd},
+                                        {"bias_even", &c.even}, {"bias_odd", &c.odd}})
         layers.push_back({name, layer});
     }
+  }
+  Image emitters;
+  if (!e.emitters.empty()) {
+    emitters = emitterLayer(e.emitters, image.width, image.height);
+    layers.push_back({kEmitterLayer, &emitters});
   }
   if (e.source == ErrorSource::Probes) m.emplace_back(kPartProbes, fmt::format("{:a} {}", e.probeSquareSum, e.probed));
   m.emplace_back(kPartExrKeys, keyList(exr));

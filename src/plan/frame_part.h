@@ -20,6 +20,11 @@ inline constexpr const char* kPartProbes = "penumbra:part.probes";        // "SQ
 inline constexpr const char* kPartExrKeys = "penumbra:part.exr_keys";     // the merged EXR's keys, in order
 inline constexpr const char* kPartPngKeys = "penumbra:part.png_keys";     // the merged PNG's keys, in order
 
+// The layer of the pixels that see an emitter (1, else 0): the lighting's figures leave them out.
+inline constexpr const char* kEmitterLayer = "emitters";
+Image emitterLayer(const EmitterMask& mask, int width, int height);
+EmitterMask emitterMaskOf(const Image& layer);
+
 // Tile I of N's file for a job output: "out/frame.png" -> "out/frame.tile2of4.exr".
 std::string tilePartPath(const std::string& output, int index, int count);
 

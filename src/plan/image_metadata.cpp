@@ -77,6 +77,20 @@ ImageMetadata errorMetadata(const ErrorEstimate& error) {
   // noise_rmse is then a lower bound (probes that found no error), not an estimate.
   if (error.lowerBound) m.emplace_back("penumbra:error.lower_bound", "1");
   if (error.biasRmse >= 0.0) m.emplace_back("penumbra:error.bias_rmse", fmt::format("{}", error.biasRmse));
+  // The lighting's figures (pixels that see no emitter), and where the bias sits as
+  // "x0,x1,y0,y1" (half-open, as --pixel-bounds takes it) with its share there.
+  if (error.lightingKnown()) {
+    m.emplace_back("penumbra:error.lighting_noise_rmse", fmt::format("{}", error.lightingNoiseRmse));
+    m.emplace_back("penumbra:error.emitter_share", fmt::format("{}", error.emitterShare));
+  }
+  if (error.lightingBiasRmse >= 0.0) {
+    m.emplace_back("penumbra:error.lighting_bias_rmse", fmt::format("{}", error.lightingBiasRmse));
+  }
+  const PixelBounds& r = error.biasRegion;
+  if (!r.empty()) {
+    m.emplace_back("penumbra:error.bias_region", fmt::format("{},{},{},{}", r.x0, r.x1, r.y0, r.y1));
+    m.emplace_back("penumbra:error.bias_region_share", fmt::format("{}", error.biasRegionShare));
+  }
   return m;
 }
 

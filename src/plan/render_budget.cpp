@@ -3,20 +3,52 @@
 #include "core/error.h"
 #include "core/scene.h"
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <cmath>
 
 namespace penumbra {
 
-const char* budgetStop(const RenderBudget& b, const BudgetState& s) {
-  if (s.passes < 2) return nullptr;
-  if (b.targetError > 0.0 && s.noiseRmse >= 0.0 && s.noiseRmse <= b.targetError) return "target error reached";
+namespace {
+
+// "target error reached: lighting noise 0.0041 and bias 0.002, together 0.0046 <= 0.005";
+// empty while the figure is above the target or its bias is not measured yet.
+std::string targetReached(const RenderBudget& b, const ErrorEstimate& e) {
+  const bool lighting = b.figure == ErrorFigure::Lighting;
+  const double noise = lighting ? e.lightingNoiseRmse : e.noiseRmse;
+  const double bias = lighting ? e.lightingBiasRmse : e.biasRmse;
+  if (noise < 0.0 || bias < 0.0) return "";
+  const double total = lighting ? e.lightingTotalRmse() : e.totalRmse();
+  if (!(total <= b.targetError)) return "";
+  return fmt::format("target error reached: {} noise {:.3g} and bias {:.3g}, together {:.3g} <= {:g}",
+                     kErrorFigureNames[static_cast<size_t>(b.figure)], noise, bias, total, b.targetError);
+}
+
+}  // namespace
+
+std::string budgetStop(const RenderBudget& b, const BudgetState& s) {
+  if (s.passes < 2) return "";
+  if (b.targetError > 0.0) {
+    std::string reached = targetReached(b, s.error);
+    if (!reached.empty()) return reached;
+  }
   if (s.passes >= kBudgetMaxPasses) return "pass limit reached";
   if (b.seconds > 0.0) {
+    if (s.passes == 2 && s.elapsed > b.seconds) {
+      return fmt::format("time limit: the 2-pass minimum overran it by {:.3g} s ({:.0f}%)", s.elapsed - b.seconds,
+                         100.0 * (s.elapsed - b.seconds) / b.seconds);
+    }
     if (s.elapsed >= b.seconds) return "time limit reached";
     // The next pass is expected to take as long as the last one.
     if (s.elapsed + s.lastPass > b.seconds * (1.0 + kTimeLimitOverrun)) return "time limit: the next pass would overrun it";
   }
-  return nullptr;
+  return "";
+}
+
+ErrorFigure parseErrorFigure(const std::string& name) {
+  for (size_t i = 0; i < kErrorFigureNames.size(); ++i)
+    if (name == kErrorFigureNames[i]) return static_cast<ErrorFigure>(i);
+  throw InputError(fmt::format("--target-error-of: '{}' is not a figure (use {})", name,
+                               fmt::join(kErrorFigureNames, " or ")));
 }
 
 RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load) {
@@ -25,7 +57,8 @@ RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load) {
 }
 
 std::string modelBudgetNote(const std::string& scene) {
-  return fmt::format("{}: no quality set; passes run until the noise RMSE is at most {:g} or {:g} s have passed, "
+  return fmt::format("{}: no quality set; passes run until the lighting's noise and bias together are at most {:g} "
+                     "RMSE or {:g} s have passed, "
                      "whichever comes first (camera.spp, photons.passes, --time-limit or --target-error set your own)",
                      scene, kModelTargetError, kModelTimeLimit);
 }
@@ -33,7 +66,10 @@ std::string modelBudgetNote(const std::string& scene) {
 std::string describeBudget(const RenderBudget& b) {
   std::string out;
   if (b.seconds > 0.0) out = fmt::format("--time-limit {:g} s", b.seconds);
-  if (b.targetError > 0.0) out += fmt::format("{}--target-error {:g}", out.empty() ? "" : ", ", b.targetError);
+  if (b.targetError > 0.0) {
+    out += fmt::format("{}--target-error {:g} ({})", out.empty() ? "" : ", ", b.targetError,
+                       kErrorFigureNames[static_cast<size_t>(b.figure)]);
+  }
   return b.modelDefault ? "the model default (" + out + ")" : out;
 }
 

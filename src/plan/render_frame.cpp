@@ -7,6 +7,7 @@
 #include "gather/lookup_cache/lookup_cache.h"
 #include "gather/radiance_estimate.h"
 #include "trace/camera.h"
+#include "trace/emitter_mask.h"
 #include "trace/light_visibility.h"
 #include "trace/probe_error.h"
 #include "trace/shading.h"
@@ -126,6 +127,7 @@ struct FrameRun {
   RenderOptions render;
   PassSpread spread;
   Image sampleSpread;  // one pass: its samples' standard error per pixel
+  EmitterMask emitters;  // the pixels that see an emitter (the lighting's figures leave them out)
 };
 
 // The maps pass `pass` reads: pass 0's, or a later physical pass's own fresh photons.
@@ -178,6 +180,16 @@ void prepareLookups(FrameRun& f, int pass) {
   }
 }
 
+// The pixels that see an emitter, for a frame whose error figure has a spread (passes
+// or samples); its rays count as render time, as the probes' do.
+void findEmitters(FrameRun& f) {
+  if (!f.needsLight || (f.passes < 2 && !f.render.standardError)) return;
+  Stopwatch tracing;
+  f.emitters = emitterMask(f.ctx, f.options.bounds ? &*f.options.bounds : nullptr);
+  f.spread.setEmitterMask(f.emitters);
+  f.stats.time.render += tracing.seconds();
+}
+
 // Renders pass `pass` and adds it to the frame's sum and spread.
 void renderPass(FrameRun& f, int pass) {
   Stopwatch phase;
@@ -187,7 +199,7 @@ void renderPass(FrameRun& f, int pass) {
   endPhase(f.options.progress);
   if (f.ctx.lookup) f.stats.cacheLazyCells = f.ctx.lookup->lazyCells();
   Image& sum = f.result.image;
-  if (f.passes > 1) f.spread.add(sum, image, pass);
+  if (f.passes > 1) f.spread.add(image, pass);
   if (pass == 0) sum = std::move(image);
   else for (size_t i = 0; i < image.pixels.size(); ++i) sum.pixels[i] += image.pixels[i];
   if (pass > 0) for (size_t i = 0; i < image.coverage.size(); ++i) sum.coverage[i] += image.coverage[i];
@@ -200,11 +212,12 @@ void renderPass(FrameRun& f, int pass) {
 bool budgetStops(FrameRun& f) {
   if (!f.budgeted) return false;
   const double now = f.clock();
-  const BudgetState state{f.done, now, now - f.passStart, f.spread.estimate().noiseRmse};
+  const BudgetState state{f.done, now, now - f.passStart, f.spread.estimate()};
   f.passStart = now;
-  const char* stop = budgetStop(f.options.budget, state);
-  if (stop) f.stats.budgetStop = stop;
-  return stop != nullptr;
+  std::string stop = budgetStop(f.options.budget, state);
+  if (stop.empty()) return false;
+  f.stats.budgetStop = std::move(stop);
+  return true;
 }
 
 // Continues the frame after its saved passes when they are this frame's (a note says
@@ -277,6 +290,7 @@ void keepTileError(FrameRun& f, const ErrorEstimate& e) {
     t.odd = f.spread.oddSum();
     t.checkpoint = f.spread.checkpoint();
   }
+  t.emitters = f.emitters;
   if (e.source == ErrorSource::Probes) {
     t.probeSquareSum = e.noiseRmse * e.noiseRmse * double(f.options.bounds->pixels());
     t.probed = e.count;
@@ -300,17 +314,20 @@ void finishFrame(FrameRun& f) {
     // its error, at every pixel for the error view; their samples count as render time.
     Image probed;
     const bool probes = f.done == 1 && !f.render.standardError;
+    const bool errorView = options.derived == DerivedView::Error;
     Stopwatch probing;
     const PixelBounds* bounds = options.bounds ? &*options.bounds : nullptr;
     stats.error = f.done > 1 ? f.spread.estimate()
-                  : probes   ? probeError(f.ctx, result.image, f.render.aov, options.errorView ? &probed : nullptr, bounds)
-                             : sampleError(f.sampleSpread, f.scene.camera.spp);
+                  : probes   ? probeError(f.ctx, result.image, f.render.aov, errorView ? &probed : nullptr, bounds)
+                             : sampleError(f.sampleSpread, f.scene.camera.spp, f.emitters);
     if (probes) stats.time.render += probing.seconds();
     if (bounds) keepTileError(f, stats.error);
     for (MapKind k : kAllMaps) stats.error.sharedMaps = stats.error.sharedMaps || stats.stored[k] > 0;
-    if (options.errorView) {
+    // The derived views, written in the beauty's place.
+    if (errorView) {
       result.image = f.done > 1 ? f.spread.standardError() : probes ? std::move(probed) : std::move(f.sampleSpread);
     }
+    if (options.derived == DerivedView::Bias) result.image = f.spread.bias();
   }
   stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, f.stage.bytes() + f.later.bytes());
 }
@@ -337,6 +354,7 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
       f.done = 1;
       break;
     }
+    if (pass == f.first) findEmitters(f);
     renderPass(f, pass);
     termHookAfterPass(f.done);
     if (budgetStops(f)) break;

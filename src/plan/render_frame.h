@@ -43,8 +43,8 @@ struct FrameOptions {
   // wall clock since the frame began (the session adds the job's earlier stages;
   // tests give a deterministic clock).
   std::function<double()> clock;
-  // The image written is the beauty's per-pixel standard error (the "error" view).
-  bool errorView = false;
+  // Set: the image written is a per-pixel figure of the beauty (core/view.h).
+  DerivedView derived = DerivedView::None;
   // Set: only these pixels are rendered (a tile); the error figure is the tile's share
   // (RenderResult::tileError), for the merge to pool.
   std::optional<PixelBounds> bounds;

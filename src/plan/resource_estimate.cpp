@@ -202,11 +202,12 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
                                               lookupPhotons > 0.0);
   }
   const double pixels = double(scene.camera.width) * scene.camera.height;
-  // The frame; with progressive passes a second one to sum them, their spread and the
-  // bias check (core/error_estimate.h); else the samples' spread, or at one sample the
+  // The frame; with progressive passes a second one to sum them, their spread (even and
+  // odd sums) and the bias check's (the first half's even and odd sums, the drift:
+  // core/error_estimate.h); else the samples' spread, or at one sample the
   // probes' error view (trace/probe_error.h); the writer's copy, its conversion to half,
   // and the encoded file, which is written from memory (io/image_io.cpp).
-  const int frames = p.passes > 1 ? 4 : 2;
+  const int frames = p.passes > 1 ? 7 : 2;
   if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * frames + 12 + 6 + 6);
   double meshBytes = 0.0, tracerBytes = 0.0;
   size_t triangles = 0;

@@ -17,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[16] = {'p', 'e', 'n', 'u', 'm', 'b', 'r', 'a', ' ', 'p', 'a', 's', 's', 'e', 's', '\n'};
-constexpr uint32_t kVersion = 3;  // 3: an image carries its coverage (alpha)
+constexpr uint32_t kVersion = 4;  // 4: the bias check's even and odd halves
 // Native byte order and the sizes of the records copied whole: a file of another
 // machine or build reads as "another format", never as garbage.
 constexpr uint32_t kLayout = 0x01020304u;
@@ -113,14 +113,13 @@ uint64_t savePasses(const std::string& path, const SavedPasses& s) {
   for (int v : {s.spread.snapshotPasses, s.spread.passes, s.spread.biasHalf, int(s.spread.keep), int(checkpoint),
                 c.passes, c.half})
     w.put<int32_t>(v);
-  w.put(s.spread.biasSquareSum);
-  w.put(s.spread.biasNoiseSum);
   w.put(s.emitted.values);
   w.put(s.stored.values);
   w.put(s.rays);
   w.put(s.gatherRadius.values);
-  for (const Image* im : {&s.sum, &s.spread.even, &s.spread.odd, &s.spread.snapshot}) w.image(*im);
-  if (checkpoint) for (const Image* im : {&c.first, &c.before, &c.pass, &c.even, &c.odd}) w.image(*im);
+  const PassSpread::Moments& m = s.spread;
+  for (const Image* im : {&s.sum, &m.even, &m.odd, &m.snapshotEven, &m.snapshotOdd, &m.drift}) w.image(*im);
+  if (checkpoint) for (const Image* im : {&c.firstEven, &c.firstOdd, &c.even, &c.odd}) w.image(*im);
   w.put(fnv1a(reinterpret_cast<const unsigned char*>(w.bytes.data()), w.bytes.size()));
   writeFileAtomic(path, w.bytes.data(), w.bytes.size(), "saved passes");
   return w.bytes.size();
@@ -177,8 +176,6 @@ std::optional<SavedPasses> loadPasses(const std::string& path, const std::string
     const bool checkpoint = r.get<int32_t>() != 0;
     s.spread.checkpoint.passes = r.get<int32_t>();
     s.spread.checkpoint.half = r.get<int32_t>();
-    s.spread.biasSquareSum = r.get<double>();
-    s.spread.biasNoiseSum = r.get<double>();
     s.emitted.values = r.get<decltype(s.emitted.values)>();
     s.stored.values = r.get<decltype(s.stored.values)>();
     s.rays = r.get<RayCounts>();
@@ -190,10 +187,12 @@ std::optional<SavedPasses> loadPasses(const std::string& path, const std::string
       return std::nullopt;
     }
     bool sized = r.image(s.sum, width, height) && !s.sum.pixels.empty();
-    for (Image* im : {&s.spread.even, &s.spread.odd, &s.spread.snapshot}) sized = sized && r.image(*im, width, height);
+    PassSpread::Moments& m = s.spread;
+    for (Image* im : {&m.even, &m.odd, &m.snapshotEven, &m.snapshotOdd, &m.drift})
+      sized = sized && r.image(*im, width, height);
     PassCheckpoint& c = s.spread.checkpoint;
     if (checkpoint) {
-      for (Image* im : {&c.first, &c.before, &c.pass, &c.even, &c.odd}) sized = sized && r.image(*im, width, height);
+      for (Image* im : {&c.firstEven, &c.firstOdd, &c.even, &c.odd}) sized = sized && r.image(*im, width, height);
     }
     if (!sized || r.at != content.size()) {
       why = "its images do not match its header";

@@ -129,18 +129,19 @@ TEST(HardModelScenes, NoQualitySetRendersToTheModelDefaultAndSaysWhichBoundStopp
   const std::string base = renderCommand(cube, dir / "o.png", stats);
   CliResult r = runCli(base);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_EQ(occurrences(r.err, "note: " + cube.string() + ": no quality set; passes run until the noise RMSE is at "
-                                   "most 0.005 or 60 s have passed, whichever comes first"),
+  EXPECT_EQ(occurrences(r.err, "note: " + cube.string() + ": no quality set; passes run until the lighting's noise and "
+                                   "bias together are at most 0.005 RMSE or 60 s have passed, whichever comes first"),
             1u)
       << r.err;
-  EXPECT_EQ(occurrences(r.err, "budget the model default (--time-limit 60 s, --target-error 0.005): target error "
-                               "reached after 2 passes"),
+  // The bias is checked from 4 passes: a target error waits for it.
+  EXPECT_EQ(occurrences(r.err, "budget the model default (--time-limit 60 s, --target-error 0.005 (lighting)): target "
+                               "error reached: lighting noise 0 and bias 0, together 0 <= 0.005 after 4 passes"),
             1u)
       << r.err;
   const json budget = statsOf(stats)["budget"];
-  EXPECT_EQ(budget["given"], "the model default (--time-limit 60 s, --target-error 0.005)");
-  EXPECT_EQ(budget["stopped"], "target error reached");
-  EXPECT_EQ(budget["passes"], 2);
+  EXPECT_EQ(budget["given"], "the model default (--time-limit 60 s, --target-error 0.005 (lighting))");
+  EXPECT_EQ(budget["stopped"], "target error reached: lighting noise 0 and bias 0, together 0 <= 0.005");
+  EXPECT_EQ(budget["passes"], 4);
 }
 
 TEST(HardModelScenes, AnyQualitySettingIsTheUsersAndATileRendersItsOwnPass) {

@@ -15,6 +15,7 @@ RenderBudget jobBudget(const BatchJob& job, const RenderBudget& command) {
   RenderBudget b = job.budget;
   if (command.seconds > 0.0) b.seconds = command.seconds;
   if (command.targetError > 0.0) b.targetError = command.targetError;
+  b.figure = command.figure;  // the command line's, for every job
   return b;
 }
 
@@ -29,7 +30,10 @@ JobDefinition definitionOf(const BatchJob& job, const SessionOptions& s) {
   for (Pass p : s.plan.disable) d.choices.push_back(std::string("--disable ") + passName(p));
   const RenderBudget b = jobBudget(job, s.budget);
   if (b.seconds > 0.0) d.choices.push_back(fmt::format("time_limit={}", b.seconds));
-  if (b.targetError > 0.0) d.choices.push_back(fmt::format("target_error={}", b.targetError));
+  if (b.targetError > 0.0) {
+    d.choices.push_back(fmt::format("target_error={} of {}", b.targetError,
+                                    kErrorFigureNames[static_cast<size_t>(b.figure)]));
+  }
   return d;
 }
 
