@@ -259,4 +259,15 @@ TEST(ImageCompare, KnownDifferences) {
   // PSNR on display values: 1.5 clamps to 1, off by 0.5 in one pixel of 100.
   EXPECT_NEAR(e.psnr, 20.0 * std::log10(1.0 / std::sqrt(0.25 / 100.0)), 1e-3);
   EXPECT_THROW(compareImages(Image(3, 3), ref), InputError);
+
+  // Left out (e.g. a pixel that sees an emitter): the figures are the other pixels'.
+  // Pixel (3, 4) off by 1 is left out; (5, 5) off by 0.2 is one of the 99 kept.
+  img.at(5, 5) = Color(0.7f);
+  EmitterMask leaveOut(img.pixels.size(), 0);
+  leaveOut[size_t(4 * img.width + 3)] = 1;
+  const ImageError kept = compareImages(img, ref, leaveOut);
+  EXPECT_NEAR(kept.rmse, std::sqrt(0.04 / 99.0), 1e-6);
+  EXPECT_NEAR(kept.relMse, 0.04 / (0.25 + 0.01) / 99.0, 1e-5);
+  EXPECT_NEAR(kept.worstRmse, 0.2, 1e-6);  // the worst one of the 99 (1%, at least one)
+  EXPECT_NEAR(kept.psnr, 20.0 * std::log10(1.0 / std::sqrt(0.04 / 99.0)), 1e-3);
 }

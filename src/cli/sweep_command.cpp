@@ -25,6 +25,7 @@ struct SweepCommand::Options {
   SessionArgs session;  // its budget is every run's
   int repeat = 1, referencePasses = 8;
   std::string metric = "relmse";
+  ErrorFigure errorOf = ErrorFigure::Lighting;
   bool force = false, noGateCompare = false;
 };
 
@@ -44,6 +45,10 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("--reference-passes", o.referencePasses, "Without --reference: the reference is the run at every knob's highest value "
                 "with N times its progressive passes (default 8); 1 = that run itself")->check(CLI::Range(1, 4096));
   c->add_option("--metric", o.metric, "What the front, the plot and the best run rank by: relmse (default), rmse, psnr or rmse-clamped; results.csv keeps every one");
+  c->add_option_function<std::string>(
+       "--error-of", [&o](const std::string& name) { o.errorOf = parseErrorFigure(name); },
+       "The pixels every error column is over: lighting (default: those that see no emitter directly) or image")
+      ->check(CLI::IsMember(std::vector<std::string>(kErrorFigureNames.begin(), kErrorFigureNames.end())));
   c->add_option("--aov", o.aov, "View to render (default: the scene's render.aov)");
   c->add_flag("--force", o.force, "Render every run again, even those results.csv already has");
   c->add_flag("--no-gate-compare", o.noGateCompare, "Skip the ungated render of each gated run");
@@ -96,6 +101,7 @@ int SweepCommand::run() {
     req.referencePath = o.reference;
     req.referencePasses = o.referencePasses;
     req.metric = metric;
+    req.errorOf = o.errorOf;
     req.aov = o.aov;
     req.force = o.force;
     req.compareGate = !o.noGateCompare;

@@ -2,6 +2,7 @@
 // RMSE and PSNR from ImageBufAlgo::compare, relative MSE from its pixel maths,
 // and the RMSE over the worst pixels (penumbra sweep's error figures).
 #pragma once
+#include "core/error_estimate.h"
 #include "core/image.h"
 
 namespace penumbra {
@@ -21,7 +22,10 @@ struct ImageError {
 // worst, e.g. a caustic or a shadow edge that the whole-image RMSE averages away.
 constexpr double kWorstPixelFraction = 0.01;
 
-// Throws InputError when the sizes differ.
-ImageError compareImages(const Image& image, const Image& reference);
+// Throws InputError when the sizes differ. `leaveOut` (empty, or one entry per pixel):
+// the pixels set there count in none of the figures but maxError and referenceMean,
+// e.g. those that see an emitter directly, whose aliased edges are the camera's error,
+// not the lighting's.
+ImageError compareImages(const Image& image, const Image& reference, const EmitterMask& leaveOut = {});
 
 }  // namespace penumbra

@@ -53,6 +53,7 @@ struct RenderResult {
   std::vector<std::string> notes;  // things the user should know ("no point lights: ...")
   ResourceEstimate estimate;       // made before any allocation (plan/resource_estimate.h)
   TileError tileError;             // a tile of the frame (JobRequest::bounds) that reads light
+  EmitterMask emitters;            // FrameOptions::findEmitters: the pixels that see an emitter
 };
 
 RenderResult runRender(const RenderRequest& request);

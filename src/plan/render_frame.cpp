@@ -182,12 +182,15 @@ void prepareLookups(FrameRun& f, int pass) {
 
 // The pixels that see an emitter, for a frame whose error figure has a spread (passes
 // or samples); its rays count as render time, as the probes' do.
+// A frame without a spread finds them only when asked (the sweep's lighting error),
+// off its render time: a lone render of it would not trace them.
 void findEmitters(FrameRun& f) {
-  if (!f.needsLight || (f.passes < 2 && !f.render.standardError)) return;
+  const bool spread = f.passes >= 2 || f.render.standardError;
+  if (!f.needsLight || (!spread && !f.options.findEmitters)) return;
   Stopwatch tracing;
   f.emitters = emitterMask(f.ctx, f.options.bounds ? &*f.options.bounds : nullptr);
   f.spread.setEmitterMask(f.emitters);
-  f.stats.time.render += tracing.seconds();
+  if (spread) f.stats.time.render += tracing.seconds();
 }
 
 // Renders pass `pass` and adds it to the frame's sum and spread.
@@ -329,6 +332,7 @@ void finishFrame(FrameRun& f) {
     }
     if (options.derived == DerivedView::Bias) result.image = f.spread.bias();
   }
+  if (options.findEmitters) result.emitters = f.emitters;
   stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, f.stage.bytes() + f.later.bytes());
 }
 

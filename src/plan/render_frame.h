@@ -45,6 +45,9 @@ struct FrameOptions {
   std::function<double()> clock;
   // Set: the image written is a per-pixel figure of the beauty (core/view.h).
   DerivedView derived = DerivedView::None;
+  // Set: RenderResult::emitters holds the pixels that see an emitter, even for a frame
+  // whose error figure does not need them.
+  bool findEmitters = false;
   // Set: only these pixels are rendered (a tile); the error figure is the tile's share
   // (RenderResult::tileError), for the merge to pool.
   std::optional<PixelBounds> bounds;

@@ -393,6 +393,7 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage, std
     frame.clock = [spent, wall = Stopwatch()] { return spent + wall.seconds(); };
   }
   frame.derived = job.derived;
+  frame.findEmitters = job.findEmitters;
   frame.bounds = job.bounds;
   frame.afterPass = std::move(afterPass);
   // A scene read from stdin cannot be told from another: its passes are not kept.

@@ -53,6 +53,7 @@ struct PlannedJob {
   std::string viewName;
   Aov aov = Aov::Beauty;  // the view whose light is rendered (the beauty for the error view)
   DerivedView derived = DerivedView::None;  // writes a per-pixel figure of the beauty
+  bool findEmitters = false;  // FrameOptions::findEmitters (the sweep's lighting error)
   RenderPlan plan;
   ReuseKeys keys;
   Admission admission;

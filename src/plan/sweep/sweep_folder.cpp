@@ -54,6 +54,7 @@ SweepIdentity sweepIdentity(const SweepRequest& req, const std::vector<std::stri
   for (Pass p : req.session.plan.enable) id.plan.push_back(std::string("+") + passName(p));
   for (Pass p : req.session.plan.disable) id.plan.push_back(std::string("-") + passName(p));
   for (const std::string& f : req.session.load.flags()) id.plan.push_back(f);  // another picture of a model
+  id.plan.push_back(std::string("error-of=") + kErrorFigureNames[static_cast<size_t>(req.errorOf)]);
   if (!req.referencePath.empty()) {
     id.reference = inputsStamp({req.referencePath});
   } else if (req.referencePasses > 1) {

@@ -8,13 +8,16 @@
 #include "core/error_estimate.h"
 #include "io/image_io.h"
 #include <fmt/format.h>
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 
 namespace penumbra {
 namespace {
-// The reference's own noise figure, for a rerun that reloads it to mark runs within it.
-constexpr const char* kNoiseAttribute = "penumbra:sweep_reference_noise_rmse";
+// The reference's own noise figures, for a rerun that reloads it to mark runs within
+// it: over the lighting's pixels and over the whole image (--error-of), in enum order.
+constexpr std::array<const char*, 2> kNoiseAttributes = {"penumbra:sweep_reference_lighting_noise_rmse",
+                                                         "penumbra:sweep_reference_noise_rmse"};
 }  // namespace
 
 Image givenReference(const std::string& path, const std::string& scenePath,
@@ -50,7 +53,7 @@ LongReference longReference(RenderSession& session, const SweepRequest& req, con
   if (referenceSaved(req, highest, saved)) {
     out.image = readImage(saved);
     out.note = what + ", reloaded from `reference.exr`. " + readImageAttribute(saved, "penumbra:sweep_reference_note");
-    const std::string noise = readImageAttribute(saved, kNoiseAttribute);
+    const std::string noise = readImageAttribute(saved, kNoiseAttributes[static_cast<size_t>(req.errorOf)]);
     if (!noise.empty()) out.noiseRmse = std::atof(noise.c_str());
     return out;
   }
@@ -69,9 +72,13 @@ LongReference longReference(RenderSession& session, const SweepRequest& req, con
                                        "from converged: {} (docs/accuracy.md)",
                                        clock.wallSeconds(), describeError(r.stats.error));
   out.note = what + ", saved as `reference.exr`. " + note;
-  out.noiseRmse = sweepNoiseRmse(r.stats.error);
-  writeImage(saved, r.image, {{"penumbra:sweep_reference", what}, {"penumbra:sweep_reference_note", note},
-                              {kNoiseAttribute, fmt::format("{:.9g}", out.noiseRmse)}});
+  out.noiseRmse = sweepNoiseRmse(r.stats.error, req.errorOf);
+  ImageMetadata meta = {{"penumbra:sweep_reference", what}, {"penumbra:sweep_reference_note", note}};
+  for (ErrorFigure figure : {ErrorFigure::Lighting, ErrorFigure::Image}) {
+    meta.emplace_back(kNoiseAttributes[static_cast<size_t>(figure)],
+                      fmt::format("{:.9g}", sweepNoiseRmse(r.stats.error, figure)));
+  }
+  writeImage(saved, r.image, meta);
   out.image = std::move(r.image);
   return out;
 }

@@ -139,6 +139,11 @@ std::string reportMarkdown(const std::string& scene, const SweepSpec& spec, cons
                                              "all the time (`cpu_share` below 0.9), so their wall time is partly "
                                              "other work's"
                                            : "wall time (`total_s`)");
+  md += t.errorOf == ErrorFigure::Image
+            ? std::string(" Errors are over the whole image (`--error-of image`).")
+            : fmt::format(" Errors are over the lighting's pixels (`--error-of lighting`): those that see an emitter "
+                          "directly ({:.1f}% of the image at most) are left out, their aliased edges being the "
+                          "camera's error.", 100.0 * t.emitterShare);
   md += "\n\n";
   if (const size_t best = bestRun(rows, metric); best < rows.size()) {
     md += "## Best run\n\n" + head + rule + line(rows[best]) + "\n";

@@ -220,7 +220,10 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric m
   return front;
 }
 
-double sweepNoiseRmse(const ErrorEstimate& e) { return e.known() ? e.noiseRmse : -1.0; }
+double sweepNoiseRmse(const ErrorEstimate& e, ErrorFigure figure) {
+  if (figure == ErrorFigure::Lighting && e.lightingKnown()) return e.lightingNoiseRmse;
+  return e.known() ? e.noiseRmse : -1.0;
+}
 
 bool withinReferenceNoise(const SweepRow& r, double referenceNoiseRmse) {
   return !r.reference && referenceNoiseRmse > 0.0 && r.rmse <= kWithinReferenceNoise * referenceNoiseRmse;

@@ -3,6 +3,7 @@
 // ranks and marks runs by (report.md itself: sweep_report.h).
 #pragma once
 #include "plan/sweep/sweep_spec.h"
+#include "plan/render_budget.h"
 #include "core/stats.h"
 #include <map>
 #include <string>
@@ -75,9 +76,9 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric m
                                 SweepCost cost = SweepCost::Wall);
 
 // The noise figure the sweep reads from a render's own estimate (a run's noise_rmse,
-// the reference's own error), < 0 unknown. One place: the lighting's figure (the
-// pixels that do not see an emitter) is meant to replace the whole image's here.
-double sweepNoiseRmse(const ErrorEstimate& e);
+// the reference's own error), over the pixels its errors are of (--error-of): the
+// lighting's (pixels that see no emitter) or the whole image's; < 0 unknown.
+double sweepNoiseRmse(const ErrorEstimate& e, ErrorFigure figure);
 
 // A run whose RMSE against the reference is at most this times the reference's own
 // noise: measured RMSE^2 is about the run's own error^2 plus the reference's, so the
@@ -98,6 +99,8 @@ struct SweepTotals {
   size_t emissions = 0, prefixCuts = 0, mapBuilds = 0, bvhBuilds = 0, resumed = 0;
   std::string referenceNote;    // which reference the errors are against
   double referenceNoiseRmse = -1;  // the sweep's own long reference's noise estimate; < 0 unknown
+  ErrorFigure errorOf = ErrorFigure::Lighting;  // the pixels the errors are over (--error-of)
+  double emitterShare = 0;  // lighting: the largest share of a run's pixels left out as seeing an emitter
   double estimatedSeconds = 0;  // what the sweep announced before its first photon (sweep_estimate.h)
   double estimatedBusySeconds = 0;  // ... stretched by the machine's load at the start
   int repeat = 1;               // frames rendered per run (--repeat)

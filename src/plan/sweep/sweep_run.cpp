@@ -128,6 +128,7 @@ class Sweep {
         job.view = req_.aov;
         job.budget = req_.session.budget;
         p.job = session_.plan(job);
+        p.job.findEmitters = req_.errorOf == ErrorFigure::Lighting;
       } catch (const InputError& e) {
         throw InputError("sweep run '" + run.id + "': " + e.what());
       }
@@ -321,12 +322,17 @@ class Sweep {
       row.gateRmse = compareImages(result.image, ungated.image).rmse;
       totals_.renderSeconds += row.ungatedRender;
     }
-    const ImageError err = compareImages(result.image, reference_);
+    const ImageError err = compareImages(result.image, reference_, result.emitters);
+    totals_.errorOf = req_.errorOf;
+    if (!result.emitters.empty()) {
+      const auto seen = std::count_if(result.emitters.begin(), result.emitters.end(), [](uint8_t m) { return m != 0; });
+      totals_.emitterShare = std::max(totals_.emitterShare, double(seen) / double(result.emitters.size()));
+    }
     row.rmse = err.rmse;
     row.relMse = err.relMse;
     row.psnr = err.psnr;
     row.worstRmse = err.worstRmse;
-    row.noiseRmse = sweepNoiseRmse(st.error);
+    row.noiseRmse = sweepNoiseRmse(st.error, req_.errorOf);
     row.image = "runs/" + run.slug + ".exr";
     // A run's image says what a render's would, and which run it is.
     const std::string runPath = (fs::path(req_.outDir) / row.image).string();

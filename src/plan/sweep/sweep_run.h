@@ -43,6 +43,9 @@ struct SweepRequest {
   bool compareGate = true;    // gated runs: render again ungated for the gate's trade-off
   std::string plotScript;     // scripts/plot_tradeoff.py; empty: no plot
   SweepMetric metric = SweepMetric::RelMse;  // what the front, plot and best run rank by
+  // --error-of: the pixels every error column is over; lighting leaves out those that
+  // see an emitter directly (their aliased edges are the camera's error).
+  ErrorFigure errorOf = ErrorFigure::Lighting;
   // Told on the sweep's own thread as each run's phase changes.
   std::function<void(const SweepProgress&)> progress;
   // Told once, before the first photon: what the sweep is estimated to cost.

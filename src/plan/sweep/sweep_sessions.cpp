@@ -22,6 +22,8 @@ SweepOutcome runSweep(const SweepRequest& request) {
   // The outcome's rows are the last session's (every row); its totals, all sessions'.
   sum.referenceNote = out.totals.referenceNote;
   sum.referenceNoiseRmse = out.totals.referenceNoiseRmse;
+  sum.errorOf = out.totals.errorOf;
+  sum.emitterShare = out.totals.emitterShare;
   sum.repeat = out.totals.repeat;
   sum.cpu = clock.timing(counts.front());
   sum.wallSeconds = sum.cpu.wallSeconds;
