@@ -21,21 +21,31 @@ inline const char* viewName(Aov aov) { return kViewNames[static_cast<size_t>(aov
 // Depth and normals are geometry: they carry no light, so no photons, passes or budget.
 inline bool readsLight(Aov aov) { return aov != Aov::Depth && aov != Aov::Normal; }
 
-// The "error" view renders the beauty and writes its per-pixel standard error
-// (core/error_estimate.h) in its place.
-inline constexpr const char* kErrorView = "error";
-inline bool isErrorView(const std::string& name) { return name == kErrorView; }
+// Views derived from a render of the beauty, written in its place: "error", its
+// per-pixel standard error (core/error_estimate.h); "spp", the camera samples each
+// pixel took (core/adaptive_sampling.h).
+enum class DerivedView { None, Error, Spp };
+// In enum order, from Error on.
+inline constexpr std::array<const char*, 2> kDerivedViewNames = {"error", "spp"};
 
-// Parses a view name (the error view renders the beauty); throws InputError naming
+inline DerivedView derivedView(const std::string& name) {
+  for (size_t i = 0; i < kDerivedViewNames.size(); ++i) {
+    if (name == kDerivedViewNames[i]) return static_cast<DerivedView>(i + 1);
+  }
+  return DerivedView::None;
+}
+
+// Parses a view name (a derived view renders the beauty); throws InputError naming
 // the known views otherwise.
 inline Aov parseAov(const std::string& name) {
-  if (isErrorView(name)) return Aov::Beauty;
+  if (derivedView(name) != DerivedView::None) return Aov::Beauty;
   std::string known;
   for (size_t i = 0; i < kViewNames.size(); ++i) {
     if (name == kViewNames[i]) return static_cast<Aov>(i);
     known += (i == 0 ? "" : ", ") + std::string(kViewNames[i]);
   }
-  throw InputError("--aov: unknown view '" + name + "' (use " + known + " or " + kErrorView + ")");
+  for (const char* d : kDerivedViewNames) known += ", " + std::string(d);
+  throw InputError("--aov: unknown view '" + name + "' (use " + known + ")");
 }
 
 }  // namespace penumbra

@@ -12,7 +12,7 @@ std::string passesIdentity(const PlannedJob& job, const SessionOptions& o) {
                      "{}x{} spp {} lens {} {} {}\nseed {}\nplan {}\ngeometry {}\nphotons {}\nbounds {}\n"
                      "transparent {}",
                      job.request.scenePath, fmt::join(job.request.overrides, " "), o.load.defaults, job.viewName,
-                     job.errorView, vec(c.position), vec(c.lookAt), vec(c.up), c.fovY, c.orthoHeight, c.width,
+                     job.derived == DerivedView::Error, vec(c.position), vec(c.lookAt), vec(c.up), c.fovY, c.orthoHeight, c.width,
                      c.height, c.spp, c.apertureRadius, c.fNumber, c.focusDistance, job.scene.render.seed,
                      planJson(job.plan), job.keys.geometry, job.keys.photons,
                      job.bounds ? fmt::format("{},{},{},{}", job.bounds->x0, job.bounds->x1, job.bounds->y0,

@@ -42,8 +42,9 @@ struct FrameOptions {
   // wall clock since the frame began (the session adds the job's earlier stages;
   // tests give a deterministic clock).
   std::function<double()> clock;
-  // The image written is the beauty's per-pixel standard error (the "error" view).
-  bool errorView = false;
+  // The image written is derived from the beauty's render (core/view.h): its per-pixel
+  // standard error, or each pixel's camera samples.
+  DerivedView derived = DerivedView::None;
   // Set: only these pixels are rendered (a tile); the error figure is the tile's share
   // (RenderResult::tileError), for the merge to pool.
   std::optional<PixelBounds> bounds;

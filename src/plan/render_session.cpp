@@ -33,7 +33,7 @@ void checkTile(PlannedJob& job) {
                                  "stop after its own passes; set photons.passes instead", option));
   }
   if (request.tracePixel) throw InputError(fmt::format("{} and --trace-pixel: give one of them", option));
-  if (job.errorView && scene.camera.spp == 1 && transportOf(scene).passes(scene, job.aov) == 1) {
+  if (job.derived == DerivedView::Error && scene.camera.spp == 1 && transportOf(scene).passes(scene, job.aov) == 1) {
     throw InputError(fmt::format("{}: the error view of one sample per pixel probes by the whole frame's contrast; "
                                  "render it whole, or with --spp 2 or more", option));
   }
@@ -123,7 +123,7 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
   const JobRequest& request = job.request;
   job.viewName = request.view.empty() ? scene.render.aov : request.view;
   job.aov = parseAov(job.viewName);
-  job.errorView = isErrorView(job.viewName);
+  job.derived = derivedView(job.viewName);
   checkBudget(request.budget);
   if (!transportOf(scene).hasView(job.aov)) {
     const char* physical = shadingModelName(ShadingModel::Physical);
@@ -374,7 +374,7 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage, std
     const double spent = job.loadSeconds + a.bvhSeconds + stage.emitSeconds + stage.buildSeconds;
     frame.clock = [spent, wall = Stopwatch()] { return spent + wall.seconds(); };
   }
-  frame.errorView = job.errorView;
+  frame.derived = job.derived;
   frame.bounds = job.bounds;
   frame.afterPass = std::move(afterPass);
   // A scene read from stdin cannot be told from another: its passes are not kept.

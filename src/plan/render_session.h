@@ -52,7 +52,7 @@ struct PlannedJob {
   Scene scene;
   std::string viewName;
   Aov aov = Aov::Beauty;  // the view whose light is rendered (the beauty for the error view)
-  bool errorView = false;  // writes the beauty's per-pixel standard error
+  DerivedView derived = DerivedView::None;  // writes a view derived from the beauty in its place
   RenderPlan plan;
   ReuseKeys keys;
   Admission admission;
