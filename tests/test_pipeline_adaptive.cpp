@@ -1,10 +1,12 @@
 // Adaptive pixel sampling through the pipeline: the same pixels for one and two
 // threads in both models, the spp view counting every camera sample (and holding the
-// per-pixel cap), and the pixels of uniform sampling when it is off.
+// per-pixel cap), the pixels of uniform sampling when it is off, and the error
+// estimate against the noise measured between two seeds.
 #include "plan/pipeline.h"
 #include "support/render_file.h"
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -71,6 +73,26 @@ TEST(Adaptive, SppViewCountsEverySampleWithinTheCap) {
   unset.erase(unset.begin() + 5);
   EXPECT_TRUE(samePixels(testing::renderFile(cornell, physical("false"), 2).image,
                          testing::renderFile(cornell, unset, 2).image));
+}
+
+// Two seeds' renders differ by twice one render's variance: their RMS difference over
+// sqrt(2) is the noise each estimate claims (the default threshold, 8 passes).
+TEST(Adaptive, EstimateMatchesTheNoiseBetweenSeeds) {
+  const std::string cornell = kScenes + "cornell_physical.json";
+  std::vector<std::string> o = {"camera.width=64", "camera.height=64", "photons.global=20000",
+                                "photons.caustic=20000", "photons.passes=8", "render.adaptive=true"};
+  const RenderResult a = testing::renderFile(cornell, o, 2);
+  o.push_back("render.seed=2");
+  const RenderResult b = testing::renderFile(cornell, o, 2);
+  double squares = 0.0;
+  for (size_t i = 0; i < a.image.pixels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) squares += std::pow(double(a.image.pixels[i][c]) - b.image.pixels[i][c], 2);
+  }
+  const double noise = std::sqrt(squares / (2.0 * 3.0 * a.image.pixels.size()));
+  const double estimate = 0.5 * (a.stats.error.noiseRmse + b.stats.error.noiseRmse);
+  std::printf("estimate %.5f, noise between seeds %.5f (x%.3f)\n", estimate, noise, estimate / noise);
+  EXPECT_GT(a.stats.rays.camera, 64u * 64u * 8u);
+  EXPECT_NEAR(estimate / noise, 1.0, 0.25);
 }
 
 }  // namespace

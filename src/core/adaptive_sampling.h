@@ -17,7 +17,7 @@ inline constexpr int kAdaptiveFirstPass = 2;
 inline constexpr int kAdaptiveSppLimit = 1024;
 
 struct AdaptiveRule {
-  double threshold = 4.0;  // a pixel's standard error over this many times the image's noise RMSE
+  double threshold = 2.0;  // a pixel's standard error over this many times the image's noise RMSE
   int spp = 1;             // every pixel's samples a pass
   int maxSpp = 16;         // the most one pixel takes in a pass
 };
