@@ -165,8 +165,8 @@ int runCommandLine(int argc, char** argv) {
   render->add_option("--stats", statsPath, "Write render statistics as JSON to this file (- : stdout)");
   render->add_option("--aov", req.aov,
                      "What to render: beauty, depth, normal, indirect, direct, caustic, error (the beauty's "
-                     "per-pixel standard error) or bias (its per-pixel photon-map bias, 4 passes or more) (default: "
-                     "the scene's render.aov, else beauty)");
+                     "per-pixel standard error), bias (its per-pixel photon-map bias, 4 passes or more) or spp "
+                     "(the camera samples each pixel took) (default: the scene's render.aov, else beauty)");
   std::string tileArg, boundsArg;
   render->add_option("--tile", tileArg,
                      "Render tile I of N (1-based, as batch --shard): a band of whole rows, written as a part file "

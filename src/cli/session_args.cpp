@@ -32,6 +32,10 @@ void addPlanOptions(CLI::App& command, PlanArgs& args) {
   command.add_option("--gate", args.gate, "The shadow gate: on, off or auto (default: the scene's photons.gate, else auto)")
       ->check(CLI::IsMember({"on", "off", "auto"}));
   command.add_flag("--no-gate", args.noGate, "Cast every shadow ray instead of asking the shadow photon map (--gate off)");
+  command.add_option("--adaptive", args.adaptive,
+                     "Adaptive pixel sampling: from pass 3 on, pixels whose error is high take more camera samples "
+                     "(render.adaptive; default: the scene's, else off)")
+      ->check(CLI::IsMember({"on", "off"}));
   addDefaultsOption(command, args);
 }
 
@@ -111,6 +115,10 @@ std::string PlanArgs::gateSetting() const {
   return mode.empty() ? "" : "photons.gate=" + mode;
 }
 
+std::string PlanArgs::adaptiveSetting() const {
+  return adaptive.empty() ? "" : std::string("render.adaptive=") + (adaptive == "on" ? "true" : "false");
+}
+
 int SessionArgs::threadCount() const {
   if (threads.empty()) return 0;
   char* end = nullptr;
@@ -135,6 +143,7 @@ SessionOptions SessionArgs::options(const std::vector<std::string>& own) const {
   o.overrides = overrides;
   o.overrides.insert(o.overrides.end(), own.begin(), own.end());
   if (!plan.gateSetting().empty()) o.overrides.push_back(plan.gateSetting());
+  if (!plan.adaptiveSetting().empty()) o.overrides.push_back(plan.adaptiveSetting());
   return o;
 }
 

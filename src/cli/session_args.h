@@ -16,6 +16,7 @@ struct PlanArgs {
   std::vector<std::string> enable, disable;
   std::string gate;     // on, off, auto; empty: the scene's photons.gate
   bool noGate = false;  // --no-gate: --gate off
+  std::string adaptive;  // --adaptive on|off; empty: the scene's render.adaptive
   bool noDefaults = false;  // --no-defaults: a glTF scene gets no framed camera or default sky
   std::string camera;       // --camera auto|NAME|INDEX (LoadOptions::camera)
   LoadOptions load() const {
@@ -29,6 +30,8 @@ struct PlanArgs {
   PlanOverrides passes() const;
   // The photons.gate override --gate or --no-gate ask for ("photons.gate=off"); empty: none.
   std::string gateSetting() const;
+  // The render.adaptive override --adaptive asks for ("render.adaptive=true"); empty: none.
+  std::string adaptiveSetting() const;
 };
 
 // Which shared options a command takes (addSessionOptions).
@@ -37,7 +40,7 @@ enum SessionOption : unsigned {
   kMaxMemoryOption = 1u << 1,  // --max-memory
   kSetOption = 1u << 2,        // -D/--set
   kQuietOption = 1u << 3,      // -q/--quiet
-  kPlanOption = 1u << 4,       // --enable, --disable, --gate, --no-gate, --no-defaults, --camera
+  kPlanOption = 1u << 4,       // --enable, --disable, --gate, --no-gate, --adaptive, --no-defaults, --camera
   kDefaultsOption = 1u << 5,   // --no-defaults and --camera alone (check: no plan)
   kBudgetOption = 1u << 6,     // --time-limit, --target-error
   kMapDirOption = 1u << 7,     // --map-dir
@@ -65,7 +68,7 @@ struct SessionArgs {
   uint64_t maxMemoryBytes() const;
   // Every job's options, checked (InputError): the thread count (0 where -t is a list),
   // memory, plan overrides, loading, budget, the map folder, and -D, then `own` (a command's options
-  // that stand for scene values, e.g. render's --seed), then --gate.
+  // that stand for scene values, e.g. render's --seed), then --gate and --adaptive.
   SessionOptions options(const std::vector<std::string>& own = {}) const;
 };
 

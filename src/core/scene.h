@@ -197,6 +197,10 @@ struct RenderSettings {
   // Camera rays that leave the scene see nothing: colour premultiplied by coverage, and
   // the beauty carries A = coverage (docs/scene-format.md, "Alpha").
   bool transparentBackground = false;
+  // Adaptive pixel sampling (core/adaptive_sampling.h): unset, the model's default.
+  std::optional<bool> adaptive;
+  float adaptiveThreshold = 2.0f;  // a pixel's error over this many times the image's takes more samples
+  int adaptiveMaxSpp = 16;         // the most camera samples one pixel takes in a pass
 };
 
 enum class IndirectEstimator { Classic, Density };

@@ -22,11 +22,12 @@ inline const char* viewName(Aov aov) { return kViewNames[static_cast<size_t>(aov
 inline bool readsLight(Aov aov) { return aov != Aov::Depth && aov != Aov::Normal; }
 
 // Derived views render the beauty and write a per-pixel figure of it in its place:
-// "error" its standard error, "bias" its photon-map bias (core/error_estimate.h).
-enum class DerivedView { None, Error, Bias };
+// "error" its standard error, "bias" its photon-map bias (core/error_estimate.h),
+// "spp" the camera samples each pixel took (core/adaptive_sampling.h).
+enum class DerivedView { None, Error, Bias, Spp };
 
 // In enum order after None.
-inline constexpr std::array<const char*, 2> kDerivedViewNames = {"error", "bias"};
+inline constexpr std::array<const char*, 3> kDerivedViewNames = {"error", "bias", "spp"};
 
 inline DerivedView derivedView(const std::string& name) {
   for (size_t i = 0; i < kDerivedViewNames.size(); ++i)

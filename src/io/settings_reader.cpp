@@ -1,4 +1,5 @@
 // The scene's settings sections: camera, render and photons.
+#include "core/adaptive_sampling.h"
 #include "core/view.h"
 #include "io/scene_sections.h"
 
@@ -63,7 +64,8 @@ void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
 
 void readRender(const JsonNode& node, RenderSettings& out) {
   node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
-                  "aov", "light_samples", "packets", "transparent_background"});
+                  "aov", "light_samples", "packets", "transparent_background", "adaptive", "adaptive_threshold",
+                  "adaptive_max_spp"});
   std::vector<std::string> models;
   for (const ShadingModelInfo& m : kShadingModels) models.push_back(m.name);
   out.model = static_cast<ShadingModel>(node.enumOr("model", static_cast<size_t>(out.model), models));
@@ -80,6 +82,9 @@ void readRender(const JsonNode& node, RenderSettings& out) {
   out.lightSamples = node.intOr("light_samples", out.lightSamples, 1, 1024);
   out.packets = node.boolOr("packets", out.packets);
   out.transparentBackground = node.boolOr("transparent_background", out.transparentBackground);
+  if (node.has("adaptive")) out.adaptive = node.boolOr("adaptive", false);
+  out.adaptiveThreshold = node.floatOr("adaptive_threshold", out.adaptiveThreshold, Range::between(0.1, 1000.0));
+  out.adaptiveMaxSpp = node.intOr("adaptive_max_spp", out.adaptiveMaxSpp, 1, kAdaptiveSppLimit);
 }
 
 void readPhotons(const JsonNode& node, PhotonSettings& out) {

@@ -11,6 +11,7 @@
 #include "trace/light_visibility.h"
 #include "trace/probe_error.h"
 #include "trace/shading.h"
+#include "core/adaptive_sampling.h"
 #include "core/error.h"
 #include "core/error_estimate.h"
 #include "io/temp_file.h"
@@ -103,6 +104,11 @@ struct FrameRun {
     render.bounds = options.bounds;
     if (options.bounds) spread.keepCheckpoint();
     if (needsLight && passes == 1 && scene.camera.spp > 1) render.standardError = &sampleSpread;
+    // A tile cannot know the whole frame's error, which the rule measures pixels against.
+    adaptive = adaptiveSampling(scene.render) && needsLight && !options.tracePixel && !options.bounds &&
+               passes > kAdaptiveFirstPass;
+    rule = adaptiveRule(scene.render, scene.camera.spp);
+    if (options.derived == DerivedView::Spp) samples.assign(size_t(scene.camera.width) * scene.camera.height, 0);
     passStart = clock();
   }
   FrameRun(const FrameRun&) = delete;
@@ -128,7 +134,31 @@ struct FrameRun {
   PassSpread spread;
   Image sampleSpread;  // one pass: its samples' standard error per pixel
   EmitterMask emitters;  // the pixels that see an emitter (the lighting's figures leave them out)
+  bool adaptive = false;
+  AdaptiveRule rule;
+  std::vector<uint16_t> extra;    // this pass's extra samples per pixel
+  std::vector<uint32_t> samples;  // the spp view: each pixel's camera samples so far
 };
+
+// Adaptive sampling: from the passes so far, the pixels whose error is high take more
+// samples in pass `pass`; the spp view counts every pixel's.
+void planSamples(FrameRun& f, int pass) {
+  f.render.extra = nullptr;
+  if (f.adaptive && pass >= kAdaptiveFirstPass) {
+    adaptiveExtras(f.spread.standardError(), f.spread.estimate().noiseRmse, f.rule, f.extra);
+    f.render.extra = &f.extra;
+  }
+  for (size_t i = 0; i < f.samples.size(); ++i) {
+    f.samples[i] += uint32_t(f.scene.camera.spp) + (f.render.extra ? f.extra[i] : 0u);
+  }
+}
+
+// The spp view: each pixel's camera samples, in every channel.
+Image sampleCounts(const FrameRun& f) {
+  Image out(f.scene.camera.width, f.scene.camera.height);
+  for (size_t i = 0; i < f.samples.size(); ++i) out.pixels[i] = Color(float(f.samples[i]));
+  return out;
+}
 
 // The maps pass `pass` reads: pass 0's, or a later physical pass's own fresh photons.
 const PhotonStage& mapsForPass(FrameRun& f, int pass) {
@@ -196,6 +226,7 @@ void findEmitters(FrameRun& f) {
 // Renders pass `pass` and adds it to the frame's sum and spread.
 void renderPass(FrameRun& f, int pass) {
   Stopwatch phase;
+  planSamples(f, pass);
   f.render.tiles = beginPhase(f.options.progress, f.budgeted ? fmt::format("render {}", pass + 1)
                                                              : phaseName("render", pass, f.passes));
   Image image = renderImage(f.ctx, f.render, f.stats.rays);
@@ -331,6 +362,7 @@ void finishFrame(FrameRun& f) {
       result.image = f.done > 1 ? f.spread.standardError() : probes ? std::move(probed) : std::move(f.sampleSpread);
     }
     if (options.derived == DerivedView::Bias) result.image = f.spread.bias();
+    if (options.derived == DerivedView::Spp) result.image = sampleCounts(f);
   }
   if (options.findEmitters) result.emitters = f.emitters;
   stats.photonMapBytes = std::max<uint64_t>(stats.photonMapBytes, f.stage.bytes() + f.later.bytes());
@@ -344,7 +376,9 @@ void renderFrame(const Scene& scene, const SceneAssets& assets, PhotonStage& sta
   if (terminationRequested()) throw Terminated{"SIGTERM: stopped before the next frame"};
   FrameRun f(scene, assets, stage, options, result);
   // Between passes, SIGTERM saves the passes instead of killing them.
-  const bool resumable = !options.resume.path.empty() && f.passes > 1 && !options.tracePixel;
+  // The spp view counts samples of this run's passes only: it starts at pass 1.
+  const bool resumable = !options.resume.path.empty() && f.passes > 1 && !options.tracePixel &&
+                         options.derived != DerivedView::Spp;
   std::optional<TermDeferral> deferTerm;
   if (resumable) {
     deferTerm.emplace();

@@ -43,7 +43,7 @@ struct FrameOptions {
   // wall clock since the frame began (the session adds the job's earlier stages;
   // tests give a deterministic clock).
   std::function<double()> clock;
-  // Set: the image written is a per-pixel figure of the beauty (core/view.h).
+  // Set: the image written is a per-pixel figure of the beauty's render (core/view.h).
   DerivedView derived = DerivedView::None;
   // Set: RenderResult::emitters holds the pixels that see an emitter, even for a frame
   // whose error figure does not need them.

@@ -1,6 +1,7 @@
 // Tiles are scheduled by tbb::parallel_for and write disjoint pixels; every
 // sample's random numbers come from (seed, pixel, sample), never from a thread.
 #include "trace/render.h"
+#include "core/adaptive_sampling.h"
 #include "core/error.h"
 #include "core/rng.h"
 #include "trace/camera.h"
@@ -125,6 +126,36 @@ CameraSample cameraSample(const ShadingContext& ctx, uint64_t pixel, int s) {
   return {key, sobol02(point, hashKey(seed, pixel, ~uint64_t(sequence)))};
 }
 
+// Extra sample `e` of this pass (adaptive sampling): its stream is past every base
+// sample's (passes x spp < 2^32), a run of kAdaptiveSppLimit per pass; its offset is
+// point e of a (0,2)-sequence of the pass's own, scrambled apart from A's and B's.
+CameraSample extraSample(const ShadingContext& ctx, uint64_t pixel, int e) {
+  const uint64_t seed = ctx.scene.render.seed;
+  const uint64_t index = (uint64_t(1) << 32) + uint64_t(ctx.pass) * kAdaptiveSppLimit + uint64_t(e);
+  return {hashKey(seed, pixel, index), sobol02(static_cast<uint32_t>(e), hashKey(seed, pixel, ~uint64_t(2 + ctx.pass)))};
+}
+
+// One camera sample traced alone and added to the pixel's sums.
+inline void addSample(const ShadingContext& ctx, const CameraRays& camera, Aov aov, int x, int y,
+                      const CameraSample& cs, bool odd, PixelSums& sums, ThreadState& ts) {
+  beginSample(ts, cs.key);
+  const Ray ray = camera.generate(x + cs.offset.x, y + cs.offset.y, cs.key);
+  Hit hit;
+  const bool found = ctx.tracer.intersect(ray, hit);
+  sums.add(shadeTraced(ctx, ray, found ? &hit : nullptr, aov, ts), aov, odd, found, ts);
+}
+
+// The pixel's extra samples of this pass, after its spp (their parity goes on
+// alternating, so one pass's even and odd samples stay two equal sets).
+void addExtraSamples(const ShadingContext& ctx, const CameraRays& camera, Aov aov, int x, int y, int count,
+                     PixelSums& sums, ThreadState& ts) {
+  const Camera& cam = ctx.scene.camera;
+  const uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
+  for (int e = 0; e < count; ++e) {
+    addSample(ctx, camera, aov, x, y, extraSample(ctx, pixel, e), (cam.spp + e) % 2 == 1, sums, ts);
+  }
+}
+
 // The packet path's per-thread buffers, sized for one tile on first use.
 struct TileBuffers {
   std::vector<glm::ivec2> pixels;
@@ -142,7 +173,8 @@ struct TileBuffers {
 // Each pixel still adds its samples in sample order, so the sums equal the single path's.
 void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov aov,
                        uint32_t shadowLights, int x0, int y0, int x1, int y1, const PixelBounds& keep,
-                       TileBuffers& b, ThreadState& ts, Image& image, Image* standardError) {
+                       const std::vector<uint16_t>* extra, TileBuffers& b, ThreadState& ts, Image& image,
+                       Image* standardError) {
   const Camera& cam = ctx.scene.camera;
   const size_t cap = static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0);
   if (b.pixels.size() < cap) {
@@ -183,6 +215,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
   for (int i = 0; i < n; ++i) {
     if (!whole && !keep.contains(b.pixels[i].x, b.pixels[i].y)) continue;
     const size_t index = static_cast<size_t>(b.pixels[i].y) * cam.width + b.pixels[i].x;
+    if (extra && (*extra)[index] > 0) addExtraSamples(ctx, camera, aov, b.pixels[i].x, b.pixels[i].y, (*extra)[index], b.sums[i], ts);
     storePixel(b.sums[i], aov, cam.spp, index, image, standardError);
   }
 }
@@ -226,8 +259,8 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
       int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
       int x1 = std::min(x0 + tile, cam.width), y1 = std::min(y0 + tile, cam.height);
       if (packets) {
-        renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, keep, buffers.local(), ts, image,
-                            options.standardError);
+        renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, keep, options.extra,
+                          buffers.local(), ts, image, options.standardError);
       } else {
         for (int y = y0; y < y1; ++y) {
           for (int x = x0; x < x1; ++x) {
@@ -235,13 +268,10 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
             uint64_t pixel = static_cast<uint64_t>(y) * cam.width + x;
             PixelSums sums;
             for (int s = 0; s < cam.spp; ++s) {
-              const CameraSample cs = cameraSample(ctx, pixel, s);
-              beginSample(ts, cs.key);
-              const Ray ray = camera.generate(x + cs.offset.x, y + cs.offset.y, cs.key);
-              Hit hit;
-              const bool found = ctx.tracer.intersect(ray, hit);
-              const Color c = shadeTraced(ctx, ray, found ? &hit : nullptr, options.aov, ts);
-              sums.add(c, options.aov, s % 2 == 1, found, ts);
+              addSample(ctx, camera, options.aov, x, y, cameraSample(ctx, pixel, s), s % 2 == 1, sums, ts);
+            }
+            if (options.extra && (*options.extra)[pixel] > 0) {
+              addExtraSamples(ctx, camera, options.aov, x, y, (*options.extra)[pixel], sums, ts);
             }
             storePixel(sums, options.aov, cam.spp, static_cast<size_t>(pixel), image, options.standardError);
           }

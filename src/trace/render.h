@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace penumbra {
 
@@ -27,6 +28,9 @@ struct RenderOptions {
   // Set: only these pixels are rendered (a tile of the frame); the others stay 0. Each
   // pixel's samples and packets are the whole frame's, so its value is too.
   std::optional<PixelBounds> bounds;
+  // Set (adaptive sampling, core/adaptive_sampling.h): pixel i takes extra[i] samples
+  // after its spp, from streams and a sequence of this pass's own; null: none.
+  const std::vector<uint16_t>* extra = nullptr;
 };
 
 // One sample of view `aov` along a camera ray, its first hit traced here (the caller
