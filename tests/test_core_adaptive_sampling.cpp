@@ -67,7 +67,7 @@ Outcome simulate(bool adaptive) {
       samples += uint64_t(n);
       for (int c = 0; c < 3; ++c) image.pixels[size_t(i)][c] = float(0.5 * gaussian(rng) + sd / std::sqrt(double(n)) * gaussian(rng));
     }
-    spread.add(sum, image, pass);
+    spread.add(image, pass);
     for (int i = 0; i < pixels; ++i) sum.pixels[size_t(i)] += image.pixels[size_t(i)];
   }
   double squares = 0.0;

@@ -144,7 +144,7 @@ TEST(HardLateRefusals, ABudgetThatMayRunLongSaysItsBoundBeforeItStarts) {
   tinyError.targetError = 1e-30;
   const std::vector<std::string> error = notesOfPreparing(scene, tinyError);
   ASSERT_EQ(error.size(), 1u);
-  EXPECT_NE(error[0].find("--target-error 1e-30 may run up to"), std::string::npos) << error[0];
+  EXPECT_NE(error[0].find("--target-error 1e-30 (lighting) may run up to"), std::string::npos) << error[0];
   EXPECT_NE(error[0].find("100000 passes"), std::string::npos) << error[0];
 
   RenderBudget hugeTime;
