@@ -16,10 +16,11 @@ inline constexpr int kAdaptiveFirstPass = 2;
 // has its own random stream below the scrambles' (trace/render.cpp).
 inline constexpr int kAdaptiveSppLimit = 1024;
 
+// Its defaults are render.adaptive_threshold's and adaptive_max_spp's (core/scene.h).
 struct AdaptiveRule {
-  double threshold = 2.0;  // a pixel's standard error over this many times the image's noise RMSE
+  double threshold = 0.0;  // a pixel's standard error over this many times the lighting's noise RMSE
   int spp = 1;             // every pixel's samples a pass
-  int maxSpp = 16;         // the most one pixel takes in a pass
+  int maxSpp = 1;          // the most one pixel takes in a pass
 };
 
 // Whether the scene's progressive frames sample adaptively: render.adaptive, else its
@@ -29,7 +30,8 @@ bool adaptiveSampling(const RenderSettings& render);
 AdaptiveRule adaptiveRule(const RenderSettings& render, int spp);
 
 // Fills `extra` (one count per pixel) with the samples each pixel takes beyond `spp` in
-// the next pass and returns their sum. With u = threshold x imageRmse, a pixel whose
+// the next pass and returns their sum. With u = threshold x imageRmse (the frame's
+// lighting noise: pixels that see an emitter would set it by their edges), a pixel whose
 // standard error (RMS over its channels) is e > u takes ceil(spp e / u) samples in all,
 // at most maxSpp: samples in proportion to a pixel's deviation, the split that
 // minimises the mean's squared error for a given number of samples.

@@ -37,7 +37,8 @@ void setNoise(ErrorEstimate& e, const Image& like, const EmitterMask& mask, F va
     }
   }
   e.noiseRmse = std::sqrt(meanOf(all, 3 * like.pixels.size()));
-  e.lightingNoiseRmse = std::sqrt(meanOf(lit, 3 * litPixels));
+  // Every pixel sees an emitter: the lighting has no figure (not a zero one).
+  e.lightingNoiseRmse = litPixels ? std::sqrt(meanOf(lit, 3 * litPixels)) : -1.0;
   e.emitterShare = like.pixels.empty() ? 0.0 : 1.0 - double(litPixels) / double(like.pixels.size());
 }
 
@@ -51,9 +52,9 @@ double driftSquare(const Image& drift, size_t i, int c) {
 // the spread of its noise, which at a caustic's edge under one camera sample is heavy
 // tailed (a few pixels' products would outweigh every other's): so the bias counted is
 // the sum over the coarse cells whose sum stands out of its own standard error
-// (kBiasSignificance), as a mean over the lighting and over the image; elsewhere the
-// passes agree within noise. The region is the box of the fewest such cells that hold
-// kBiasRegionShare of it.
+// (kBiasSignificance, from its blocks), as a mean over the lighting and over the image;
+// elsewhere the passes agree within noise. The region is the box of the fewest such
+// cells that hold kBiasRegionShare of it.
 void setBias(ErrorEstimate& e, const Image& drift, const EmitterMask& mask) {
   const int w = drift.width, h = drift.height;
   struct Sums {
@@ -65,21 +66,36 @@ void setBias(ErrorEstimate& e, const Image& drift, const EmitterMask& mask) {
       return values > 1 && sum > kBiasSignificance * std::sqrt(std::max(0.0, squares - mean * sum));
     }
   };
-  std::vector<Sums> cells(kBiasGrid * kBiasGrid);
+  // Cell cx covers the pixels x with x * kBiasGrid / w == cx, from edge(cx, w) on.
+  auto edge = [](int cell, int size) { return (cell * size + kBiasGrid - 1) / kBiasGrid; };
+  // Each cell's blocks, `side` pixels a side from its own corner, in one array.
+  const int side = std::max(1, std::min(w, h) / (kBiasGrid * kBiasBlocks));
+  const int bw = (w / kBiasGrid + side) / side, bh = (h / kBiasGrid + side) / side;
+  std::vector<double> blockSum(size_t(kBiasGrid) * bw * kBiasGrid * bh, 0.0);
+  std::vector<uint8_t> blockUsed(blockSum.size(), 0);
   size_t values = 0;
-  auto cellOf = [&](int x, int y) { return (y * kBiasGrid / h) * kBiasGrid + x * kBiasGrid / w; };
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t i = size_t(y) * w + x;
       if (!lighting(mask, i)) continue;
       values += 3;
-      for (int c = 0; c < 3; ++c) cells[cellOf(x, y)].add(driftSquare(drift, i, c));
+      const int cx = x * kBiasGrid / w, cy = y * kBiasGrid / h;
+      const int bx = cx * bw + (x - edge(cx, w)) / side, by = cy * bh + (y - edge(cy, h)) / side;
+      const size_t b = size_t(by) * (kBiasGrid * bw) + bx;
+      for (int c = 0; c < 3; ++c) blockSum[b] += driftSquare(drift, i, c);
+      blockUsed[b] = 1;
     }
+  std::vector<Sums> cells(kBiasGrid * kBiasGrid);
+  for (size_t b = 0; b < blockSum.size(); ++b) {
+    if (!blockUsed[b]) continue;
+    const int bx = int(b % (kBiasGrid * bw)), by = int(b / (kBiasGrid * bw));
+    cells[size_t(by / bh) * kBiasGrid + bx / bw].add(blockSum[b]);
+  }
   std::vector<int> order;
   double found = 0.0;
   for (size_t k = 0; k < cells.size(); ++k)
     if (cells[k].significant()) order.push_back(int(k)), found += cells[k].sum;
-  e.lightingBiasRmse = std::sqrt(meanOf(found, values));
+  e.lightingBiasRmse = values ? std::sqrt(meanOf(found, values)) : -1.0;
   e.biasRmse = std::sqrt(meanOf(found, 3 * drift.pixels.size()));
   e.biasWithinNoise = order.empty();
   if (e.biasWithinNoise) return;
@@ -92,8 +108,6 @@ void setBias(ErrorEstimate& e, const Image& drift, const EmitterMask& mask) {
     cx0 = std::min(cx0, k % kBiasGrid), cx1 = std::max(cx1, k % kBiasGrid + 1);
     cy0 = std::min(cy0, k / kBiasGrid), cy1 = std::max(cy1, k / kBiasGrid + 1);
   }
-  // Cell cx covers the pixels x with x * kBiasGrid / w == cx.
-  auto edge = [](int cell, int size) { return (cell * size + kBiasGrid - 1) / kBiasGrid; };
   e.biasRegion = {edge(cx0, w), edge(cx1, w), edge(cy0, h), edge(cy1, h)};
   double inside = 0.0;
   for (int k : order)

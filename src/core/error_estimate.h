@@ -66,11 +66,16 @@ struct ErrorEstimate {
 // "~0.012 RMSE (noise, from 8 passes)", or why there is no figure.
 std::string describeError(const ErrorEstimate& e);
 
+// The fewest passes the bias check reads: two halves, each with an even and an odd pass.
+constexpr int kBiasMinPasses = 4;
 // The coarse grid (cells per side) the bias region is named in.
 constexpr int kBiasGrid = 8;
 // A cell's sum of drift products stands out of noise beyond this many of its standard
-// errors (each of the 64 cells then has a ~2e-4 chance of it in pure noise).
+// errors, estimated from the spread of its blocks' sums: a pixel's three channels, and
+// neighbours that share photons, are not independent draws; blocks nearly are. A cell
+// holds about kBiasBlocks x kBiasBlocks blocks, enough for its spread to be known.
 constexpr double kBiasSignificance = 3.5;
+constexpr int kBiasBlocks = 8;
 // The bias region holds this share of the sum of the cells whose bias stands out of
 // their noise (the box of the fewest such cells that do).
 constexpr double kBiasRegionShare = 0.9;

@@ -199,7 +199,7 @@ struct RenderSettings {
   bool transparentBackground = false;
   // Adaptive pixel sampling (core/adaptive_sampling.h): unset, the model's default.
   std::optional<bool> adaptive;
-  float adaptiveThreshold = 2.0f;  // a pixel's error over this many times the image's takes more samples
+  float adaptiveThreshold = 2.0f;  // a pixel's error over this many times the lighting's takes more samples
   int adaptiveMaxSpp = 16;         // the most camera samples one pixel takes in a pass
 };
 

@@ -23,9 +23,9 @@ struct ImageError {
 constexpr double kWorstPixelFraction = 0.01;
 
 // Throws InputError when the sizes differ. `leaveOut` (empty, or one entry per pixel):
-// the pixels set there count in none of the figures but maxError and referenceMean,
-// e.g. those that see an emitter directly, whose aliased edges are the camera's error,
-// not the lighting's.
+// the pixels set there count in none of the figures but referenceMean, e.g. those that
+// see an emitter directly, whose aliased edges are the camera's error, not the
+// lighting's. With every pixel set, the figures are the whole image's.
 ImageError compareImages(const Image& image, const Image& reference, const EmitterMask& leaveOut = {});
 
 }  // namespace penumbra

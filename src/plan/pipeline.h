@@ -54,6 +54,7 @@ struct RenderResult {
   ResourceEstimate estimate;       // made before any allocation (plan/resource_estimate.h)
   TileError tileError;             // a tile of the frame (JobRequest::bounds) that reads light
   EmitterMask emitters;            // FrameOptions::findEmitters: the pixels that see an emitter
+  double emitterSeconds = 0.0;     // ... and the wall time they took, where no render time counts it
 };
 
 RenderResult runRender(const RenderRequest& request);

@@ -13,14 +13,16 @@ namespace {
 // "target error reached: lighting noise 0.0041 and bias 0.002, together 0.0046 <= 0.005";
 // empty while the figure is above the target or its bias is not measured yet.
 std::string targetReached(const RenderBudget& b, const ErrorEstimate& e) {
-  const bool lighting = b.figure == ErrorFigure::Lighting;
+  // A frame whose every pixel sees an emitter has no lighting figure: the image's stands in.
+  const bool lighting = b.figure == ErrorFigure::Lighting && e.lightingKnown();
   const double noise = lighting ? e.lightingNoiseRmse : e.noiseRmse;
   const double bias = lighting ? e.lightingBiasRmse : e.biasRmse;
   if (noise < 0.0 || bias < 0.0) return "";
   const double total = lighting ? e.lightingTotalRmse() : e.totalRmse();
   if (!(total <= b.targetError)) return "";
   return fmt::format("target error reached: {} noise {:.3g} and bias {:.3g}, together {:.3g} <= {:g}",
-                     kErrorFigureNames[static_cast<size_t>(b.figure)], noise, bias, total, b.targetError);
+                     kErrorFigureNames[static_cast<size_t>(lighting ? ErrorFigure::Lighting : ErrorFigure::Image)],
+                     noise, bias, total, b.targetError);
 }
 
 }  // namespace

@@ -145,7 +145,8 @@ struct FrameRun {
 void planSamples(FrameRun& f, int pass) {
   f.render.extra = nullptr;
   if (f.adaptive && pass >= kAdaptiveFirstPass) {
-    adaptiveExtras(f.spread.standardError(), f.spread.estimate().noiseRmse, f.rule, f.extra);
+    const ErrorEstimate e = f.spread.estimate();
+    adaptiveExtras(f.spread.standardError(), e.lightingKnown() ? e.lightingNoiseRmse : e.noiseRmse, f.rule, f.extra);
     f.render.extra = &f.extra;
   }
   for (size_t i = 0; i < f.samples.size(); ++i) {
@@ -220,7 +221,7 @@ void findEmitters(FrameRun& f) {
   Stopwatch tracing;
   f.emitters = emitterMask(f.ctx, f.options.bounds ? &*f.options.bounds : nullptr);
   f.spread.setEmitterMask(f.emitters);
-  if (spread) f.stats.time.render += tracing.seconds();
+  (spread ? f.stats.time.render : f.result.emitterSeconds) += tracing.seconds();
 }
 
 // Renders pass `pass` and adds it to the frame's sum and spread.

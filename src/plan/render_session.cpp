@@ -130,10 +130,10 @@ void RenderSession::planAndAdmit(PlannedJob& job) const {
   job.derived = derivedView(job.viewName);
   checkBudget(request.budget);
   const int passes = transportOf(scene).passes(scene, job.aov);
-  if (job.derived == DerivedView::Bias && passes < 4 && !request.budget.any()) {
+  if (job.derived == DerivedView::Bias && passes < kBiasMinPasses && !request.budget.any()) {
     throw InputError(fmt::format("{}: the bias view compares the first half of the passes with the second, each "
-                                 "sequence in both: it needs photons.passes 4 or more (the scene renders {})",
-                                 scene.file, passes));
+                                 "sequence in both: it needs photons.passes {} or more (the scene renders {})",
+                                 scene.file, kBiasMinPasses, passes));
   }
   if (!transportOf(scene).hasView(job.aov)) {
     const char* physical = shadingModelName(ShadingModel::Physical);

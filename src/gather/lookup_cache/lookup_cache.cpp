@@ -104,8 +104,8 @@ namespace {
 // Where the irradiance estimate of the record in cell `c` is taken: the cell's centre
 // across the surface, within its photons' extent, on their plane (centroid, mean
 // normal). Not their centroid: the k nearest around a point the photons chose are
-// denser than around a fixed one (on a uniform plane +1% at k 100, +10% at k 17, the
-// k progressive passes reach), and find() blends the cells' values as at their centres.
+// denser than around a fixed one, more so at the small k late progressive passes
+// reach, and find() blends the cells' values as at their centres.
 Vec3 centredSite(const CellKey& c, const Vec3& centre, const Vec3& centroid, const Vec3& normal,
                  const Bounds& extent) {
   const unsigned axis = LookupCache::bucketAxis(c.bucket), t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;

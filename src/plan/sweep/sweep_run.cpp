@@ -50,6 +50,7 @@ class Sweep {
       return {};
     }
     plan();  // a bad run refuses before the folder is made
+    totals_.errorOf = req_.errorOf;
     if (!req_.referencePath.empty()) {  // before the folder is made: a wrong one leaves nothing behind
       std::vector<std::pair<std::string, const PlannedJob*>> runs;
       for (const PlannedRun& p : runs_) runs.push_back({spec_.runs[p.index].id, &p.job});
@@ -277,7 +278,9 @@ class Sweep {
     current_ = p.index;
     const CpuSpan clock;
     RenderResult result = renderOne(stage, p, true);
-    const double frameCpu = clock.cpuSeconds(), frameWall = clock.wallSeconds();
+    // The emitter mask a lone render of a run without a spread would not trace is not its cost.
+    const double frameWall = clock.wallSeconds();
+    const double frameCpu = std::max(0.0, clock.cpuSeconds() * (1.0 - result.emitterSeconds / std::max(frameWall, 1e-9)));
     const RenderStats& st = result.stats;
     SweepRow row;
     row.id = run.id;
@@ -323,7 +326,6 @@ class Sweep {
       totals_.renderSeconds += row.ungatedRender;
     }
     const ImageError err = compareImages(result.image, reference_, result.emitters);
-    totals_.errorOf = req_.errorOf;
     if (!result.emitters.empty()) {
       const auto seen = std::count_if(result.emitters.begin(), result.emitters.end(), [](uint8_t m) { return m != 0; });
       totals_.emitterShare = std::max(totals_.emitterShare, double(seen) / double(result.emitters.size()));
