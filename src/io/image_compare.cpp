@@ -23,6 +23,7 @@ ImageError compareImages(const Image& image, const Image& reference, const Emitt
   if (masked) kept -= size_t(std::count_if(leaveOut.begin(), leaveOut.end(), [](uint8_t m) { return m != 0; }));
   // Every pixel left out: the whole image's figures, not a perfect zero.
   if (kept == 0) masked = false, kept = image.pixels.size();
+  e.leftOutShare = 1.0 - double(kept) / double(image.pixels.size());
   // A left-out pixel takes the reference's value, so it adds nothing to the sums; the
   // means are then over the pixels kept.
   Image compared;

@@ -15,6 +15,7 @@ struct ImageError {
   double maxError = 0.0;  // largest per-channel difference
   double referenceMean = 0.0;  // the reference's mean over pixels and channels: the
                                // scale "RMSE within x% of the image mean" is read against
+  double leftOutShare = 0.0;   // the share of the pixels the figures leave out (leaveOut)
 };
 
 // The worst pixels are the 1% (at least one) with the largest squared error summed

@@ -15,7 +15,6 @@
 #include "core/error.h"
 #include "core/error_estimate.h"
 #include "io/temp_file.h"
-#include "io/texture_gen.h"
 #include <fmt/format.h>
 #include <filesystem>
 #include <optional>
@@ -45,34 +44,6 @@ void gatherRadii(const TransportModel& model, const PhotonStage& maps, const Sha
 std::string phaseName(const char* phase, int pass, int passes) {
   return passes > 1 ? fmt::format("{} {}/{}", phase, pass + 1, passes) : std::string(phase);
 }
-
-}  // namespace
-
-std::unique_ptr<TextureLookup> loadTextures(const Scene& scene) {
-  if (scene.textures.empty()) return nullptr;
-  std::vector<std::string> paths;
-  std::vector<bool> data;
-  std::vector<std::optional<TextureSampling>> samplers;
-  for (const Texture& t : scene.textures) {
-    // Procedural textures are generated once into the cache, then read like files.
-    paths.push_back(t.path.rfind("builtin:", 0) == 0 ? builtinTexturePath(t.path) : t.path);
-    data.push_back(t.data);
-    samplers.push_back(t.sampler);
-  }
-  return std::make_unique<TextureLookup>(paths, data, samplers);
-}
-
-SceneAssets prepareAssets(const Scene& scene, bool textures) {
-  SceneAssets assets;
-  const CpuSpan clock;
-  assets.tracer = std::make_unique<TraceScene>(scene);
-  assets.bvhSeconds = clock.wallSeconds();
-  assets.bvhCpuSeconds = clock.cpuSeconds();
-  if (textures) assets.textures = loadTextures(scene);
-  return assets;
-}
-
-namespace {
 
 // One frame's running state: the context every pass shades with, the maps of the pass
 // being rendered, the image sum and spread, and the budget's clock.

@@ -1,32 +1,17 @@
-// The stages after the photons: a scene's Embree scene and textures (shareable by
-// every render of the same geometry), and one frame rendered from built photon
-// maps, with its precomputed lookups and progressive passes.
+// The stage after the photons: one frame rendered from built photon maps and the
+// scene's assets (plan/scene_assets.h), with its precomputed lookups and progressive passes.
 #pragma once
 #include "plan/photon_stage.h"
 #include "plan/pipeline.h"
 #include "plan/render_budget.h"
+#include "plan/scene_assets.h"
 #include "core/progress.h"
-#include "geometry/trace_scene.h"
-#include "trace/texture_lookup.h"
 #include "core/pixel_bounds.h"
 #include <functional>
 #include <memory>
 #include <optional>
 
 namespace penumbra {
-
-// Built once per geometry; the tracer reads the Scene it was built from, which
-// must outlive it (the render session keeps it with the assets).
-struct SceneAssets {
-  std::unique_ptr<TraceScene> tracer;
-  std::unique_ptr<TextureLookup> textures;
-  double bvhSeconds = 0.0;
-  double bvhCpuSeconds = 0.0;  // the build's CPU seconds (a sweep charges each run a lone render's)
-};
-// textures = false: the plan skips them (a view that reads no colour, or --disable textures).
-SceneAssets prepareAssets(const Scene& scene, bool textures = true);
-// The scene's textures (procedural ones generated once into the cache); null: none.
-std::unique_ptr<TextureLookup> loadTextures(const Scene& scene);
 
 struct FrameOptions {
   Aov aov = Aov::Beauty;

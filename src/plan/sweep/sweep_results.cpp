@@ -4,6 +4,7 @@
 #include "core/cpu_time.h"
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <algorithm>
 #include <iterator>
 #include <fstream>
@@ -218,6 +219,29 @@ std::vector<size_t> paretoFront(const std::vector<SweepRow>& rows, SweepMetric m
   }
   std::sort(front.begin(), front.end(), [&](size_t a, size_t b) { return runCost(rows[a], cost) < runCost(rows[b], cost); });
   return front;
+}
+
+void fillErrors(SweepRow& row, const ImageError& error, const ErrorEstimate& own, ErrorFigure figure) {
+  row.rmse = error.rmse;
+  row.relMse = error.relMse;
+  row.psnr = error.psnr;
+  row.worstRmse = error.worstRmse;
+  row.noiseRmse = sweepNoiseRmse(own, figure);
+}
+
+void setRenderTimes(SweepRow& row, std::vector<double> renders) {
+  std::sort(renders.begin(), renders.end());
+  const size_t n = renders.size();
+  row.render = renders.front();
+  row.renderMedian = n % 2 ? renders[n / 2] : 0.5 * (renders[n / 2 - 1] + renders[n / 2]);
+}
+
+std::string reusedList(bool bvh, uint64_t prefixOf, bool maps) {
+  std::vector<std::string> parts;
+  if (bvh) parts.push_back("bvh");
+  if (prefixOf > 0) parts.push_back(fmt::format("photons(prefix of {})", prefixOf));
+  if (maps) parts.push_back("maps");
+  return fmt::format("{}", fmt::join(parts, ";"));
 }
 
 double sweepNoiseRmse(const ErrorEstimate& e, ErrorFigure figure) {

@@ -5,6 +5,7 @@
 #include "plan/sweep/sweep_spec.h"
 #include "plan/render_budget.h"
 #include "core/stats.h"
+#include "io/image_compare.h"
 #include <map>
 #include <string>
 #include <vector>
@@ -38,6 +39,14 @@ struct SweepRow {
 
 // Rays and photons of a finished render, into its row.
 void fillCounts(SweepRow& row, const RenderStats& stats);
+// The run's error columns: its image against the reference (over the pixels --error-of
+// keeps), and its own noise estimate over the same pixels.
+void fillErrors(SweepRow& row, const ImageError& error, const ErrorEstimate& own, ErrorFigure figure);
+// --repeat: the render times of the run's frames; the fastest is render_s, the median
+// render_median_s.
+void setRenderTimes(SweepRow& row, std::vector<double> renders);
+// The reused column: "bvh;photons(prefix of N);maps", what came from earlier runs.
+std::string reusedList(bool bvh, uint64_t prefixOf, bool maps);
 
 // The CSV header for these knobs.
 std::vector<std::string> csvHeader(const std::vector<SweepKnob>& knobs);

@@ -3,8 +3,8 @@
 // once, its budgets' maps from largest to smallest, and every run of a budget on
 // the same maps.
 #include "plan/sweep/sweep_run.h"
-#include "plan/sweep/plot_script.h"
 #include "plan/sweep/sweep_estimate.h"
+#include "plan/sweep/sweep_pictures.h"
 #include "plan/sweep/sweep_folder.h"
 #include "plan/sweep/sweep_idle_knobs.h"
 #include "plan/sweep/sweep_reference.h"
@@ -13,7 +13,6 @@
 #include "plan/image_metadata.h"
 #include "plan/render_session.h"
 #include "core/error.h"
-#include "io/contact_sheet.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
 #include "io/temp_file.h"
@@ -109,8 +108,12 @@ class Sweep {
     out.rows = rows_;
     out.totals = totals_;
     writeTextFileAtomic((dir / "report.md").string(), reportMarkdown(sceneName_, spec_, rows_, totals_, req_.metric));
-    contactSheet(dir);
-    if (!req_.plotScript.empty()) plot(dir);
+    for (const std::string& n : {drawRunsSheet(dir.string(), rows_, req_.metric),
+                                 req_.plotScript.empty() ? std::string()
+                                                         : drawTradeoff(req_.plotScript, dir.string(), rows_,
+                                                                        sceneName_, req_.metric)}) {
+      if (!n.empty()) notes_.push_back(n);
+    }
     out.notes = notes_;
     return out;
   }
@@ -233,7 +236,6 @@ class Sweep {
     std::vector<const PlannedJob*> jobs;
     for (size_t i : group) jobs.push_back(&runs_[i].job);
     const SceneAssets& assets = session_.assets(*jobs.front());
-    const StageCost bvh{assets.bvhSeconds, assets.bvhCpuSeconds};
     status_ = "photons";
     showProgress();
     session_.photonsByBudget(jobs, [&](BudgetStage& b) {
@@ -245,7 +247,7 @@ class Sweep {
         reuse.bvh = !usedGeometry_.insert(run.job.keys.geometry).second;
         reuse.maps = j != b.jobs.front();
         reuse.prefixOf = b.prefixOf;
-        renderRun(run, b, bvh, spent, spentCpu, reuse);
+        renderRun(run, b, assets, spent, spentCpu, reuse);
         spent = spentCpu = 0.0;
       }
     });
@@ -259,10 +261,6 @@ class Sweep {
     return session_.frame(ungated, stage);
   }
 
-  struct StageCost {
-    double wall = 0.0, cpu = 0.0;
-  };
-
   struct Reuse {
     bool bvh = false, maps = false;
     uint64_t prefixOf = 0;  // > 0: photons cut out of an emission of this many
@@ -271,7 +269,7 @@ class Sweep {
   // `spentBefore` and `cpuBefore`: what the run's shared photon stage cost first.
   // The row's times are a lone render's: every stage in full, the shared ones too, and
   // each progressive pass's own emission and maps as the frame timed them.
-  void renderRun(const PlannedRun& p, BudgetStage& b, const StageCost& bvh, double spentBefore, double cpuBefore,
+  void renderRun(const PlannedRun& p, BudgetStage& b, const SceneAssets& bvh, double spentBefore, double cpuBefore,
                  const Reuse& reuse) {
     PhotonStage& stage = b.stage;
     const SweepRun& run = spec_.runs[p.index];
@@ -287,7 +285,7 @@ class Sweep {
     row.values = run.values;
     row.reference = p.index == referenceRun_;
     row.load = p.job.loadSeconds;
-    row.bvh = bvh.wall;
+    row.bvh = bvh.bvhSeconds;
     // Pass 0's share of the group's emission and its maps, then every later pass's own.
     row.emit = st.time.emit;
     row.maps = st.time.buildMaps;
@@ -296,23 +294,16 @@ class Sweep {
     // --repeat: the same frame again on the same maps (same pixels); the fastest counts.
     std::vector<double> renders = {st.time.render};
     for (int k = 1; k < req_.repeat; ++k) renders.push_back(renderOne(stage, p, true).stats.time.render);
-    std::sort(renders.begin(), renders.end());
-    row.render = renders.front();
-    row.renderMedian = renders.size() % 2 ? renders[renders.size() / 2]
-                                          : 0.5 * (renders[renders.size() / 2 - 1] + renders[renders.size() / 2]);
+    setRenderTimes(row, std::move(renders));
     row.total = row.load + row.bvh + row.emit + row.maps + row.precompute + row.render;
     // The same account in CPU seconds. Loading is serial (its wall is its CPU); a lookup
     // cache reused from an earlier run is charged at this frame's CPU per wall second.
     const double reusedLookup = row.precompute - st.time.precompute;
-    row.totalCpu = row.load + bvh.cpu + b.emitCpuSeconds + b.buildCpuSeconds + frameCpu +
+    row.totalCpu = row.load + bvh.bvhCpuSeconds + b.emitCpuSeconds + b.buildCpuSeconds + frameCpu +
                    (frameWall > 0.0 ? reusedLookup * frameCpu / frameWall : 0.0);
     fillCounts(row, st);
     row.gate = p.job.plan[Pass::Gate].on && st.rays.gateQueries > 0;
-    std::vector<std::string> reused;
-    if (reuse.bvh) reused.push_back("bvh");
-    if (reuse.prefixOf > 0) reused.push_back(fmt::format("photons(prefix of {})", reuse.prefixOf));
-    if (reuse.maps) reused.push_back("maps");
-    for (size_t i = 0; i < reused.size(); ++i) row.reused += (i ? ";" : "") + reused[i];
+    row.reused = reusedList(reuse.bvh, reuse.prefixOf, reuse.maps);
     totals_.renderSeconds += row.precompute + row.render;
 
     if (row.reference) reference_ = result.image;
@@ -326,15 +317,8 @@ class Sweep {
       totals_.renderSeconds += row.ungatedRender;
     }
     const ImageError err = compareImages(result.image, reference_, result.emitters);
-    if (!result.emitters.empty()) {
-      const auto seen = std::count_if(result.emitters.begin(), result.emitters.end(), [](uint8_t m) { return m != 0; });
-      totals_.emitterShare = std::max(totals_.emitterShare, double(seen) / double(result.emitters.size()));
-    }
-    row.rmse = err.rmse;
-    row.relMse = err.relMse;
-    row.psnr = err.psnr;
-    row.worstRmse = err.worstRmse;
-    row.noiseRmse = sweepNoiseRmse(st.error, req_.errorOf);
+    totals_.emitterShare = std::max(totals_.emitterShare, err.leftOutShare);
+    fillErrors(row, err, st.error, req_.errorOf);
     row.image = "runs/" + run.slug + ".exr";
     // A run's image says what a render's would, and which run it is.
     const std::string runPath = (fs::path(req_.outDir) / row.image).string();
@@ -357,28 +341,6 @@ class Sweep {
     writeCsv();
     status_ = "done";
     showProgress();
-  }
-
-  // Every run's image labelled with its settings, time and error (runs.png).
-  void contactSheet(const fs::path& dir) {
-    std::vector<SheetTile> tiles;
-    for (const SweepRow& r : rows_) {
-      if (r.image.empty()) continue;
-      tiles.push_back({(dir / r.image).string(),
-                       {r.id, r.reference ? fmt::format("{:.2f} s  the reference", r.total)
-                                          : fmt::format("{:.2f} s  {} {:.3g}", r.total, metricName(req_.metric),
-                                                        metricError(r, req_.metric))}});
-    }
-    const std::string note = writeContactSheet((dir / "runs.png").string(), tiles);
-    if (!note.empty()) notes_.push_back(note);
-  }
-
-  // A machine without matplotlib still gets every result, and a note saying why no plot.
-  void plot(const fs::path& dir) {
-    const std::string note = drawTradeoffPlot(req_.plotScript, (dir / "results.csv").string(),
-                                              (dir / "tradeoff.png").string(), sceneName_,
-                                              metricName(req_.metric), contendedRows(rows_) ? "cpu" : "wall");
-    if (!note.empty()) notes_.push_back(note);
   }
 
   void writeCsv() { writeTextFileAtomic(csvPath_, resultsCsv(spec_.knobs, rows_)); }

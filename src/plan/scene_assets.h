@@ -1,0 +1,24 @@
+// A scene's Embree scene and textures: built once per geometry and shared by every
+// render of it.
+#pragma once
+#include "geometry/trace_scene.h"
+#include "trace/texture_lookup.h"
+#include "core/scene.h"
+#include <memory>
+
+namespace penumbra {
+
+// Built once per geometry; the tracer reads the Scene it was built from, which
+// must outlive it (the render session keeps it with the assets).
+struct SceneAssets {
+  std::unique_ptr<TraceScene> tracer;
+  std::unique_ptr<TextureLookup> textures;
+  double bvhSeconds = 0.0;
+  double bvhCpuSeconds = 0.0;  // the build's CPU seconds (a sweep charges each run a lone render's)
+};
+// textures = false: the plan skips them (a view that reads no colour, or --disable textures).
+SceneAssets prepareAssets(const Scene& scene, bool textures = true);
+// The scene's textures (procedural ones generated once into the cache); null: none.
+std::unique_ptr<TextureLookup> loadTextures(const Scene& scene);
+
+}  // namespace penumbra
