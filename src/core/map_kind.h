@@ -11,15 +11,16 @@
 namespace penumbra {
 
 // Shadow: the gate's shadow photons (both models); Indirect: the classic model's
-// indirect map; Global and Caustic: the physical model's maps (Jensen's split).
-enum class MapKind : uint8_t { Shadow, Indirect, Global, Caustic };
-inline constexpr size_t kMapKinds = 4;
+// indirect map; Global and Caustic: the physical model's surface maps (Jensen's split);
+// Volume: its photons scattered in participating media (scenes with a medium only).
+enum class MapKind : uint8_t { Shadow, Indirect, Global, Caustic, Volume };
+inline constexpr size_t kMapKinds = 5;
 inline constexpr std::array<MapKind, kMapKinds> kAllMaps = {MapKind::Shadow, MapKind::Indirect, MapKind::Global,
-                                                           MapKind::Caustic};
+                                                           MapKind::Caustic, MapKind::Volume};
 
-// "shadow", "indirect", "global", "caustic": the photons.* keys and the stats' suffixes.
+// "shadow", "indirect", "global", "caustic", "volume": the photons.* keys and the stats' suffixes.
 inline const char* mapName(MapKind k) {
-  constexpr const char* kNames[kMapKinds] = {"shadow", "indirect", "global", "caustic"};
+  constexpr const char* kNames[kMapKinds] = {"shadow", "indirect", "global", "caustic", "volume"};
   return kNames[static_cast<size_t>(k)];
 }
 
@@ -38,11 +39,11 @@ using MapKindTag = std::integral_constant<MapKind, K>;
 template <class F>
 void forEachKind(F&& f) {
   static_assert(kAllMaps[0] == MapKind(0) && kAllMaps[1] == MapKind(1) && kAllMaps[2] == MapKind(2) &&
-                    kAllMaps[3] == MapKind(3) && kMapKinds == 4,
+                    kAllMaps[3] == MapKind(3) && kAllMaps[4] == MapKind(4) && kMapKinds == 5,
                 "kAllMaps lists the kinds in enum order");
   [&f](auto... i) { (f(MapKindTag<kAllMaps[decltype(i)::value]>{}), ...); }(
       std::integral_constant<size_t, 0>{}, std::integral_constant<size_t, 1>{}, std::integral_constant<size_t, 2>{},
-      std::integral_constant<size_t, 3>{});
+      std::integral_constant<size_t, 3>{}, std::integral_constant<size_t, 4>{});
 }
 
 // One Slot<PhotonOf<K>> per kind (a map, its photons, a pointer to it): the

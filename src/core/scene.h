@@ -3,6 +3,7 @@
 #pragma once
 #include "core/alpha_mask.h"
 #include "core/light_types.h"
+#include "core/media/medium.h"
 #include "core/shading_model.h"
 #include "core/math.h"
 #include "core/shared_list.h"
@@ -68,6 +69,8 @@ struct Light {
   // Environment: the lat-long map and its sampling tables, shared by the copies of a
   // scene a sweep or batch makes (null: a constant sky).
   std::shared_ptr<const EnvironmentMap> environment;
+  // The medium around the light, where its photons start (kNoMedium without media).
+  int medium = kNoMedium;
   Color radiance() const { return color * intensity; }
 };
 
@@ -141,6 +144,7 @@ struct Sphere {
   Vec3 center{0.0f};
   float radius = 1.0f;
   int material = 0;
+  MediumInterface media;  // what its surface separates (scenes with media)
 };
 
 struct TriangleMesh {
@@ -157,6 +161,7 @@ struct TriangleMesh {
   std::vector<glm::vec4> colors;
   std::vector<std::array<uint32_t, 3>> triangles;
   int material = 0;
+  MediumInterface media;  // what its surface separates (scenes with media)
 };
 
 // Embree reads each vertex with a 16-byte load, 4 bytes past the last one's end. The
@@ -268,6 +273,16 @@ struct Scene {
   RenderSettings render;
   PhotonSettings photons;
   LoadReport load;
+  // Participating media (core/media/medium.h). A medium fills the scene (sceneMedium),
+  // or the inside of closed objects (their MediumInterface). A medium's boundary without
+  // a material is invisible: it only changes a ray's medium, and lives in the boundary
+  // lists, which no surface query sees. cameraMedium: the medium around the camera.
+  std::vector<Medium> media;
+  int sceneMedium = kNoMedium;
+  int cameraMedium = kNoMedium;
+  std::vector<Sphere> boundarySpheres;
+  SharedList<TriangleMesh> boundaryMeshes;
+  bool hasMedia() const { return !media.empty(); }
 };
 
 }  // namespace penumbra

@@ -214,6 +214,19 @@ SurfaceRecord TraceScene::surface(const Ray& ray, const Hit& hit, uint8_t fields
                                         : meshSurface(ray, hit, fields);
 }
 
+int TraceScene::mediumBeyond(const Hit& hit, const SurfaceRecord& s, const Vec3& dir, int current) const {
+  const GeometryRef& g = geometries_[hit.geomId];
+  const MediumInterface& mi = g.sphere ? scene_.spheres[hit.primId].media : scene_.meshes[g.index].media;
+  if (!mi.separates) return current;
+  // ng faces the arriving ray; frontFace says whether that side is the outside.
+  const Vec3 outward = s.frontFace ? s.ng : -s.ng;
+  return glm::dot(dir, outward) < 0.0f ? mi.inside : mi.outside;
+}
+
+bool TraceScene::nextBoundary(const Ray&, float, BoundaryCrossing&) const {
+  return false;  // TODO(media): the boundary scene
+}
+
 SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const {
   const Sphere& s = scene_.spheres[hit.primId];
   SurfaceRecord rec;

@@ -93,6 +93,19 @@ class TraceScene {
   // decide which fields it needs (uv only for textured materials).
   int materialOf(const Hit& hit) const;
 
+  // Participating media (scenes with a medium; core/media/medium.h). The medium a ray
+  // leaving this hit towards `dir` travels in, when it arrived in `current`: a closed
+  // object's inside or outside, or `current` where the surface separates no media.
+  int mediumBeyond(const Hit& hit, const SurfaceRecord& s, const Vec3& dir, int current) const;
+  // The first invisible medium boundary (Scene::boundarySpheres and boundaryMeshes)
+  // along `ray` before tMax: its distance and the medium beyond it, towards ray.dir.
+  struct BoundaryCrossing {
+    float t = kInf;
+    int beyond = kNoMedium;
+    SurfaceRecord surface;  // for the next ray's origin (spawnOrigin)
+  };
+  bool nextBoundary(const Ray& ray, float tMax, BoundaryCrossing& out) const;
+
   // A sphere around all geometry (Embree's bounds): directional lights emit from it.
   SceneSphere boundingSphere() const { return bounds_; }
 

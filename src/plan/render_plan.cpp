@@ -20,7 +20,7 @@ namespace penumbra {
 namespace {
 
 constexpr const char* kNames[kPassCount] = {
-    "gate", "indirect-photons", "global-photons", "caustic-photons", "shadow-rays", "reflection",
+    "gate", "indirect-photons", "global-photons", "caustic-photons", "volume-photons", "shadow-rays", "reflection",
     "refraction", "textures", "light-samples", "packets", "precompute"};
 
 PassDecision on(std::string reason, uint64_t budget = 0) { return {true, std::move(reason), budget, {}, {}}; }

@@ -19,6 +19,7 @@ enum class Pass : uint8_t {
   IndirectPhotons,  // classic indirect map
   GlobalPhotons,    // physical global map
   CausticPhotons,   // physical caustic map
+  VolumePhotons,    // physical volume map: photons scattered in media (scenes with a medium)
   ShadowRays,
   Reflection,       // mirror and glass-reflected recursion
   Refraction,       // glass-transmitted recursion
@@ -32,7 +33,8 @@ constexpr size_t kPassCount = static_cast<size_t>(Pass::Count);
 
 // The pass that emits and builds a map (the gate's is the shadow map).
 constexpr Pass photonPass(MapKind k) {
-  constexpr Pass kPasses[kMapKinds] = {Pass::Gate, Pass::IndirectPhotons, Pass::GlobalPhotons, Pass::CausticPhotons};
+  constexpr Pass kPasses[kMapKinds] = {Pass::Gate, Pass::IndirectPhotons, Pass::GlobalPhotons, Pass::CausticPhotons,
+                                        Pass::VolumePhotons};
   return kPasses[static_cast<size_t>(k)];
 }
 
