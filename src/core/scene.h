@@ -239,6 +239,12 @@ struct PhotonSettings {
   // of the passes' bias and its noise both fall as passes^(-1/3) (Knaus & Zwicker 2011).
   float alpha = 2.0f / 3.0f;
   float radius = 0.0f;    // passes > 1: one first-pass radius for every point; 0 = each point's k nearest
+  // Scenes with a medium (docs/photon-maps.md, "volume map"): photons emitted per pass
+  // for the volume map; the photons a camera ray's beam gathers at the first pass; a
+  // fixed first-pass beam radius (0: from k_volume).
+  uint64_t volumePhotons = 200'000;
+  int kVolume = 100;
+  float volumeRadius = 0.0f;
   PhotonLookup lookup = PhotonLookup::Auto;
   float lookupCell = 1.0f;  // precomputed: cell size in units of the typical gather radius
 };

@@ -23,6 +23,10 @@ struct RayCounts {
   uint64_t cacheLookups = 0, cacheFallbacks = 0;
   // Samples whose radiance came out NaN or infinite: dropped from their pixel.
   uint64_t nonfiniteSamples = 0;
+  // Participating media (scenes with a medium): ray stretches inside a medium, their
+  // light and distance samples (and tracking steps in grids), volume-map gathers and
+  // the photons they found, shadow rays that carried a transmittance.
+  uint64_t mediumSegments = 0, mediumSamples = 0, volumeGathers = 0, volumeNeighbours = 0, transmittanceRays = 0;
 
   RayCounts& operator+=(const RayCounts& o) {
     camera += o.camera; shadow += o.shadow; reflection += o.reflection; refraction += o.refraction;
@@ -31,6 +35,8 @@ struct RayCounts {
     gatherQueries += o.gatherQueries; gatherNeighbours += o.gatherNeighbours;
     cacheLookups += o.cacheLookups; cacheFallbacks += o.cacheFallbacks;
     nonfiniteSamples += o.nonfiniteSamples;
+    mediumSegments += o.mediumSegments; mediumSamples += o.mediumSamples; volumeGathers += o.volumeGathers;
+    volumeNeighbours += o.volumeNeighbours; transmittanceRays += o.transmittanceRays;
     return *this;
   }
 };
