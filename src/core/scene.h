@@ -141,6 +141,9 @@ struct Material {
 };
 
 struct Sphere {
+  Sphere() = default;
+  // The shape and material, as `{centre, radius, material}` read everywhere.
+  Sphere(const Vec3& c, float r, int m = 0) : center(c), radius(r), material(m) {}
   Vec3 center{0.0f};
   float radius = 1.0f;
   int material = 0;
