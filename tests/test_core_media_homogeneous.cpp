@@ -66,14 +66,8 @@ TEST(HomogeneousMedium, RgbWeightsAreUnbiasedPerChannel) {
   const int n = 300000;
   const auto s = collisions(m, kOrigin, kDir, a, b, n, 19, 30, d);
   ASSERT_TRUE(s.finite);
-  double pNone = 0.0;
-  for (int c = 0; c < 3; ++c) pNone += std::exp(-double(st[c]) * d) / 3.0;
-  const auto mixture = [&](double x) {
-    double p = 0.0;
-    for (int c = 0; c < 3; ++c) p += (1.0 - std::exp(-double(st[c]) * x)) / 3.0;
-    return p;
-  };
-  expectChi2(collisionChi2(s, mixture, d, pNone), "rgb mixture");
+  const auto mixture = [&](double x) { return testing::heroMixtureCdf(st, x); };
+  expectChi2(collisionChi2(s, mixture, d, 1.0 - mixture(d)), "rgb mixture");
   for (int c = 0; c < 3; ++c) {
     const double tr = std::exp(-double(st[c]) * d), scattered = double(ss[c]) / st[c] * (1.0 - tr);
     EXPECT_NEAR(s.weightNone[c].mean(), tr, 5.0 * s.weightNone[c].stdError() + 1e-6) << "channel " << c;

@@ -66,6 +66,14 @@ inline CollisionStats collisions(const Medium& m, const Vec3& o, const Vec3& d, 
   return s;
 }
 
+// P(a collision before x) in a homogeneous medium with RGB sigmaT: sampleCollision
+// draws each channel's exponential with probability 1/3 (its hero channel).
+inline double heroMixtureCdf(const Color& sigmaT, double x) {
+  double p = 0.0;
+  for (int c = 0; c < 3; ++c) p += (1.0 - std::exp(-double(sigmaT[c]) * x)) / 3.0;
+  return p;
+}
+
 // Chi-squared of the histogram plus the no-collision cell against cdf(x) = P(a
 // collision before a + x); the last bin takes everything past `span`.
 inline chi2::Result collisionChi2(const CollisionStats& s, const std::function<double(double)>& cdf, float span,

@@ -1,0 +1,189 @@
+// Density grids tracked against their majorant equal the closed forms: a constant grid
+// is the homogeneous medium (ratio-tracked transmittance, delta-tracked collision
+// distances and RGB weights), a linear ramp follows exp(-integral), a ray through the
+// whole grid sees its trilinear edges, and extreme or empty grids stay finite. Every
+// grid has a scaled, translated worldToGrid.
+#include "core/media/density_grid.h"
+#include "support/media_tracking.h"
+#include <gtest/gtest.h>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace penumbra {
+namespace {
+
+using testing::collisionChi2;
+using testing::collisions;
+using testing::makeMedium;
+using testing::Mean;
+
+constexpr int kN = 8;                        // voxels per axis
+const Vec3 kLatticeOrigin(1.0f, -2.0f, 0.5f);  // voxel (0, 0, 0)'s centre in the world
+const Vec3 kVoxel(0.25f, 0.5f, 0.2f);          // anisotropic voxel size
+constexpr int kCases = 3;                    // chi-squared cases in this file
+const double kLevel = chi2::sidakLevel(0.01, kCases);
+
+Vec3 world(const Vec3& lattice) { return kLatticeOrigin + lattice * kVoxel; }
+
+// A grid of kN^3 voxels holding density(i, j, k); majorant 0: the largest value.
+std::shared_ptr<DensityGrid> makeGrid(const std::function<float(int, int, int)>& density, float majorant = 0.0f) {
+  auto g = std::make_shared<DensityGrid>();
+  g->nx = g->ny = g->nz = kN;
+  g->values.resize(size_t(kN) * kN * kN);
+  for (int k = 0; k < kN; ++k)
+    for (int j = 0; j < kN; ++j)
+      for (int i = 0; i < kN; ++i) {
+        const float v = density(i, j, k);
+        g->values[(size_t(k) * kN + j) * kN + i] = v;
+        g->maxDensity = std::max(g->maxDensity, v);
+      }
+  if (majorant > 0.0f) g->maxDensity = majorant;
+  g->worldToGrid = glm::mat4(1.0f);
+  for (int a = 0; a < 3; ++a) {
+    g->worldToGrid[a][a] = 1.0f / kVoxel[a];
+    g->worldToGrid[3][a] = -kLatticeOrigin[a] / kVoxel[a];
+  }
+  g->worldLo = world(Vec3(-1.0f));  // trilinear support reaches one voxel past the centres
+  g->worldHi = world(Vec3(float(kN)));
+  return g;
+}
+
+Medium gridMedium(const Color& sigmaA, const Color& sigmaS, std::shared_ptr<DensityGrid> g) {
+  Medium m = makeMedium(sigmaA, sigmaS);
+  m.density = std::move(g);
+  return m;
+}
+
+// A segment between two lattice points inside the centres' hull (no edge ramp), the ray
+// starting 0.3 before it.
+struct Segment {
+  Vec3 o, d;
+  float a, b;
+};
+Segment interiorSegment() {
+  const Vec3 p0 = world(Vec3(0.5f, 1.0f, 0.5f)), p1 = world(Vec3(6.5f, 6.0f, 6.2f));
+  const Vec3 d = glm::normalize(p1 - p0);
+  const float len = glm::length(p1 - p0);
+  return {p0 - 0.3f * d, d, 0.3f, 0.3f + len};
+}
+
+Mean ratioTracked(const Medium& m, const Segment& s, int channel, int n, uint64_t seed) {
+  Mean t;
+  Rng rng(seed);
+  for (int k = 0; k < n; ++k) t.add(mediumTransmittance(m, s.o, s.d, s.a, s.b, rng)[channel]);
+  return t;
+}
+
+void expectChi2(const chi2::Result& r, const std::string& name) {
+  EXPECT_TRUE(r.failure.empty()) << name << ": " << r.failure;
+  EXPECT_GE(r.pValue, kLevel) << name << ": chi2 " << r.statistic << " on " << r.dof << " dof;" << r.worst;
+}
+
+TEST(DensityGridTracking, ConstantGridEqualsTheHomogeneousMedium) {
+  const float rho = 0.8f;
+  const Color sa(0.2f, 0.1f, 0.3f), ss(0.6f, 0.9f, 1.2f);
+  const Segment s = interiorSegment();
+  const double d = double(s.b) - s.a;
+  const Color st = rho * (sa + ss);  // the homogeneous equivalent: 0.64, 0.8, 1.2
+  // The tight majorant (the grid's maximum) and a loose one (1.25 x): both unbiased.
+  uint64_t seed = 41;
+  for (float majorant : {0.0f, 1.0f}) {
+    const std::string name = majorant > 0.0f ? "loose majorant" : "tight majorant";
+    const Medium m = gridMedium(sa, ss, makeGrid([&](int, int, int) { return rho; }, majorant));
+    for (int c = 0; c < 3; ++c) {
+      const Mean t = ratioTracked(m, s, c, 40000, seed++);
+      EXPECT_NEAR(t.mean(), std::exp(-double(st[c]) * d), 5.0 * t.stdError() + 1e-6) << name << " channel " << c;
+    }
+    const auto stats = collisions(m, s.o, s.d, s.a, s.b, 200000, seed++, 30, float(d));
+    ASSERT_TRUE(stats.finite) << name;
+    const auto mixture = [&](double x) { return testing::heroMixtureCdf(st, x); };
+    expectChi2(collisionChi2(stats, mixture, float(d), 1.0 - mixture(d)), name);
+    for (int c = 0; c < 3; ++c) {
+      const double tr = std::exp(-double(st[c]) * d), scattered = double(ss[c]) / (sa + ss)[c] * (1.0 - tr);
+      EXPECT_NEAR(stats.weightNone[c].mean(), tr, 5.0 * stats.weightNone[c].stdError() + 1e-6) << name << c;
+      EXPECT_NEAR(stats.weightHit[c].mean(), scattered, 5.0 * stats.weightHit[c].stdError() + 1e-6) << name << c;
+    }
+  }
+}
+
+TEST(DensityGridTracking, LinearRampFollowsTheIntegralOfItsDensity) {
+  // Density 0.1 + 0.1 i: trilinear makes it linear along any interior segment, so the
+  // optical depth to x is sigmaT (rho0 x + (rho1 - rho0) x^2 / 2d). A grey medium.
+  const Medium m = gridMedium(Color(0.3f), Color(1.2f), makeGrid([](int i, int, int) { return 0.1f + 0.1f * i; }));
+  const Segment s = interiorSegment();
+  const double d = double(s.b) - s.a, sigmaT = 1.5, rho0 = 0.1 + 0.1 * 0.5, rho1 = 0.1 + 0.1 * 6.5;
+  const auto depth = [&](double x) { return sigmaT * (rho0 * x + (rho1 - rho0) * x * x / (2.0 * d)); };
+  const Mean t = ratioTracked(m, s, 1, 40000, 51);
+  EXPECT_NEAR(t.mean(), std::exp(-depth(d)), 5.0 * t.stdError() + 1e-6);
+  const auto stats = collisions(m, s.o, s.d, s.a, s.b, 200000, 53, 30, float(d));
+  ASSERT_TRUE(stats.finite);
+  expectChi2(collisionChi2(stats, [&](double x) { return 1.0 - std::exp(-depth(x)); }, float(d), std::exp(-depth(d))),
+             "ramp");
+  // Grey: the weights are exact, the albedo on a collision and 1 without.
+  Rng rng(3);
+  for (int k = 0; k < 1000; ++k) {
+    const MediumCollision c = sampleCollision(m, s.o, s.d, s.a, s.b, rng);
+    EXPECT_NEAR(c.weight.r, c.collided ? 0.8f : 1.0f, 1e-6f);
+  }
+}
+
+TEST(DensityGridTracking, AnInfiniteRaySeesTheWholeGridAndItsEdges) {
+  // Along x through voxel centres (y, z interior): the trilinear density ramps from 0 to
+  // rho over the voxel past each end, so the depth is rho x kN voxels x 0.25 x sigmaT.
+  const float rho = 0.6f;
+  const Medium m = gridMedium(Color(0.5f, 0.0f, 1.0f), Color(0.5f, 1.0f, 0.0f),
+                              makeGrid([&](int, int, int) { return rho; }));
+  const Vec3 start = world(Vec3(-5.0f, 3.0f, 4.0f));
+  const double depth = double(rho) * kN * kVoxel.x;  // per unit sigmaT (1 in every channel)
+  Rng rng(61);
+  Mean t;
+  for (int k = 0; k < 40000; ++k) t.add(mediumTransmittance(m, start, Vec3(1.0f, 0.0f, 0.0f), 0.0f, kInf, rng).g);
+  EXPECT_NEAR(t.mean(), std::exp(-depth), 5.0 * t.stdError() + 1e-6);
+  const auto stats = collisions(m, start, Vec3(1.0f, 0.0f, 0.0f), 0.0f, kInf, 100000, 67, 10, 10.0f);
+  ASSERT_TRUE(stats.finite);  // a flight without a collision ends at b = inf, not the box
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(stats.weightNone[c].mean(), std::exp(-depth), 5.0 * stats.weightNone[c].stdError() + 1e-6) << c;
+  }
+  // Starting at the box's far side and leaving: nothing on the way.
+  Rng rng2(1);
+  EXPECT_EQ(mediumTransmittance(m, world(Vec3(9.0f, 3.0f, 4.0f)), Vec3(1.0f, 0.0f, 0.0f), 0.0f, kInf, rng2),
+            Color(1.0f));
+}
+
+TEST(DensityGridTracking, ExtremeAndEmptyGridsStayFinite) {
+  const Segment s = interiorSegment();
+  Rng rng(71);
+  // Density scaled to sigma ~ 1e30: opaque, every weight finite, and the call returns
+  // (the step limit) even where the trilinear edge makes the density tiny.
+  const Medium wall = gridMedium(Color(0.5e30f), Color(0.5e30f), makeGrid([](int, int, int) { return 1.0f; }));
+  for (const Vec3& o : {s.o, world(Vec3(-3.0f, 3.0f, 3.0f))}) {
+    const Vec3 d = o == s.o ? s.d : Vec3(1.0f, 0.0f, 0.0f);
+    const Color t = mediumTransmittance(wall, o, d, 0.0f, kInf, rng);
+    EXPECT_TRUE(isFinite(t) && t.r < 1e-6f) << t.r;
+    const MediumCollision c = sampleCollision(wall, o, d, 0.0f, kInf, rng);
+    EXPECT_TRUE(c.collided && isFinite(c.weight) && std::isfinite(c.t));
+  }
+  // An all-zero grid, a zero majorant, a ray that misses the box (one direction
+  // component 0), and an empty segment: vacuum.
+  const Medium empty = gridMedium(Color(1.0f), Color(1.0f), makeGrid([](int, int, int) { return 0.0f; }));
+  const Medium full = gridMedium(Color(1.0f), Color(1.0f), makeGrid([](int, int, int) { return 1.0f; }));
+  const Vec3 above = world(Vec3(3.0f, float(kN) + 2.0f, 3.0f));
+  const struct {
+    const Medium* m;
+    Vec3 o, d;
+    float a, b;
+  } cases[] = {{&empty, s.o, s.d, s.a, s.b},
+               {&full, above, Vec3(1.0f, 0.0f, 0.0f), 0.0f, kInf},
+               {&full, s.o, s.d, 1.0f, 1.0f}};
+  for (const auto& c : cases) {
+    EXPECT_EQ(mediumTransmittance(*c.m, c.o, c.d, c.a, c.b, rng), Color(1.0f));
+    const MediumCollision col = sampleCollision(*c.m, c.o, c.d, c.a, c.b, rng);
+    EXPECT_FALSE(col.collided);
+    EXPECT_EQ(col.weight, Color(1.0f));
+    EXPECT_EQ(col.t, c.b);
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
