@@ -154,6 +154,10 @@ Color gridTransmittance(const Medium& m, const Vec3& o, const Vec3& d, float a, 
 
 }  // namespace
 
+float mediumMajorant(const Medium& m) {
+  return m.homogeneous() ? maxComponent(m.sigmaT()) : float(majorant(m));
+}
+
 Color mediumTransmittance(const Medium& m, const Vec3& o, const Vec3& d, float a, float b, Rng& rng) {
   if (!(b > a)) return Color(1.0f);
   if (m.homogeneous()) return transmittance(m.sigmaT(), b - a);
