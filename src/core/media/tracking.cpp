@@ -63,17 +63,14 @@ MediumCollision homogeneousCollision(const Medium& m, float a, float b, Rng& rng
   return {true, t, color({f[0] / norm, f[1] / norm, f[2] / norm})};
 }
 
-// Grid: delta tracking against the majorant, with the same one-sample MIS over the
-// channels: the hero accepts a real collision with probability sigmaT_h(x) / majorant;
-// f is the channels' contribution over the hero's path density, r each channel's path
-// density over the hero's, and the weight f / mean(r) stays unbiased per channel. The
-// majorant is piecewise constant over the walk's blocks; free flights are memoryless,
-// so a flight past a block's end restarts at the boundary with the next bound.
-MediumCollision gridCollision(const Medium& m, const Vec3& o, const Vec3& d, float a, float b, Rng& rng) {
-  const Rgb st = rgb(m.sigmaT()), ss = rgb(m.sigmaS);
+// The tentative collisions along [a, b] in a grid: free flights against each block's
+// majorant (memoryless, so a flight past a block's end restarts at the boundary with
+// the next bound), calling event(t, density, majorant) until it returns false.
+enum class TrackEnd { Reached, Stopped, Opaque };
+template <class Event>
+TrackEnd trackEvents(const Medium& m, const Vec3& o, const Vec3& d, float a, float b, Rng& rng, double& t,
+                     Event&& event) {
   const double channelMax = maxComponent(m.sigmaT());
-  const int h = heroChannel(rng);
-  Rgb f{1.0, 1.0, 1.0}, r{1.0, 1.0, 1.0};
   MajorantWalk walk(*m.density, o, d, a, b);
   double t0, t1;
   float bound;
@@ -81,35 +78,51 @@ MediumCollision gridCollision(const Medium& m, const Vec3& o, const Vec3& d, flo
   while (walk.next(t0, t1, bound)) {
     const double mu = double(bound) * channelMax;
     if (!(mu > 0.0)) continue;  // an empty block: nothing to meet
-    for (double t = t0;;) {
-      if (++steps > kMaxTrackingSteps) return {true, float(t), Color(0.0f)};  // opaque: absorbed
+    for (t = t0;;) {
+      if (++steps > kMaxTrackingSteps) return TrackEnd::Opaque;
       t -= std::log1p(-double(std::min(rng.uniform(), 0.99999994f))) / mu;
       if (t >= t1) break;
-      const double rho = m.density->at(o + float(t) * d);
-      Rgb p;  // each channel's real-collision probability
-      for (int c = 0; c < 3; ++c) p[c] = std::clamp(rho * st[c] / mu, 0.0, 1.0);
-      if (rng.uniform() < p[h]) {
-        // The real collision's event: f_c *= (rho sigmaS_c / majorant) / p_h and
-        // r_k *= p_k / p_h; the p_h cancels in f / mean(r). r_h = 1, so the sum >= p_h.
-        const double norm = (r[0] * p[0] + r[1] * p[1] + r[2] * p[2]) / 3.0;
-        Rgb w;
-        for (int c = 0; c < 3; ++c) w[c] = f[c] * rho * ss[c] / mu / norm;
-        return {true, float(t), color(w)};
-      }
-      const double q = 1.0 - p[h];  // > 0: a null collision was drawn
-      double rMax = 0.0;
-      for (int c = 0; c < 3; ++c) {
-        f[c] *= (1.0 - p[c]) / q;  // sigma_n,c / majorant = 1 - p_c
-        r[c] *= (1.0 - p[c]) / q;
-        rMax = std::max(rMax, r[c]);
-      }
-      // Both f and r are ratios to the hero's density; rescaling them together keeps
-      // f / mean(r) and keeps either from overflowing over many null collisions.
-      if (rMax > 1e100) {
-        for (int c = 0; c < 3; ++c) f[c] /= rMax, r[c] /= rMax;
-      }
+      if (!event(t, double(m.density->at(o + float(t) * d)), mu)) return TrackEnd::Stopped;
     }
   }
+  return TrackEnd::Reached;
+}
+
+// Grid: delta tracking with the same one-sample MIS over the channels: the hero
+// accepts a real collision with probability sigmaT_h(x) / majorant; f is the channels'
+// contribution over the hero's path density, r each channel's path density over the
+// hero's, and the weight f / mean(r) stays unbiased per channel.
+MediumCollision gridCollision(const Medium& m, const Vec3& o, const Vec3& d, float a, float b, Rng& rng) {
+  const Rgb st = rgb(m.sigmaT()), ss = rgb(m.sigmaS);
+  const int h = heroChannel(rng);
+  Rgb f{1.0, 1.0, 1.0}, r{1.0, 1.0, 1.0}, w{0.0, 0.0, 0.0};
+  double t = a;
+  const TrackEnd end = trackEvents(m, o, d, a, b, rng, t, [&](double, double rho, double mu) {
+    Rgb p;  // each channel's real-collision probability
+    for (int c = 0; c < 3; ++c) p[c] = std::clamp(rho * st[c] / mu, 0.0, 1.0);
+    if (rng.uniform() < p[h]) {
+      // The real collision's event: f_c *= (rho sigmaS_c / majorant) / p_h and
+      // r_k *= p_k / p_h; the p_h cancels in f / mean(r). r_h = 1, so the sum >= p_h.
+      const double norm = (r[0] * p[0] + r[1] * p[1] + r[2] * p[2]) / 3.0;
+      for (int c = 0; c < 3; ++c) w[c] = f[c] * rho * ss[c] / mu / norm;
+      return false;
+    }
+    const double q = 1.0 - p[h];  // > 0: a null collision was drawn
+    double rMax = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      f[c] *= (1.0 - p[c]) / q;  // sigma_n,c / majorant = 1 - p_c
+      r[c] *= (1.0 - p[c]) / q;
+      rMax = std::max(rMax, r[c]);
+    }
+    // Both f and r are ratios to the hero's density; rescaling them together keeps
+    // f / mean(r) and keeps either from overflowing over many null collisions.
+    if (rMax > 1e100) {
+      for (int c = 0; c < 3; ++c) f[c] /= rMax, r[c] /= rMax;
+    }
+    return true;
+  });
+  if (end == TrackEnd::Stopped) return {true, float(t), color(w)};
+  if (end == TrackEnd::Opaque) return {true, float(t), Color(0.0f)};  // absorbed
   const double norm = mean(r);
   return {false, b, color({f[0] / norm, f[1] / norm, f[2] / norm})};
 }
@@ -118,33 +131,22 @@ MediumCollision gridCollision(const Medium& m, const Vec3& o, const Vec3& d, flo
 // estimate is the product of its null fractions, 1 - sigmaT_c(x) / majorant.
 Color gridTransmittance(const Medium& m, const Vec3& o, const Vec3& d, float a, float b, Rng& rng) {
   const Rgb st = rgb(m.sigmaT());
-  const double channelMax = maxComponent(m.sigmaT());
   Rgb tr{1.0, 1.0, 1.0};
-  MajorantWalk walk(*m.density, o, d, a, b);
-  double t0, t1;
-  float bound;
-  int steps = 0;
-  while (walk.next(t0, t1, bound)) {
-    const double mu = double(bound) * channelMax;
-    if (!(mu > 0.0)) continue;
-    for (double t = t0;;) {
-      if (++steps > kMaxTrackingSteps) return Color(0.0f);
-      t -= std::log1p(-double(std::min(rng.uniform(), 0.99999994f))) / mu;
-      if (t >= t1) break;
-      const double rho = m.density->at(o + float(t) * d);
-      for (int c = 0; c < 3; ++c) tr[c] *= std::max(0.0, 1.0 - rho * st[c] / mu);
-      const double tMax = std::max(tr[0], std::max(tr[1], tr[2]));
-      if (!(tMax > 0.0)) return Color(0.0f);
-      if (tMax < kRouletteBelow) {
-        // Survive with probability tMax / kRouletteBelow: the survivors' estimate is
-        // divided by it, so the mean is kept and thick media stop early.
-        const double survive = tMax / kRouletteBelow;
-        if (rng.uniform() >= survive) return Color(0.0f);
-        for (double& c : tr) c /= survive;
-      }
+  double t = a;
+  const TrackEnd end = trackEvents(m, o, d, a, b, rng, t, [&](double, double rho, double mu) {
+    for (int c = 0; c < 3; ++c) tr[c] *= std::max(0.0, 1.0 - rho * st[c] / mu);
+    const double tMax = std::max(tr[0], std::max(tr[1], tr[2]));
+    if (!(tMax > 0.0)) return false;
+    if (tMax < kRouletteBelow) {
+      // Survive with probability tMax / kRouletteBelow: the survivors' estimate is
+      // divided by it, so the mean is kept and thick media stop early.
+      const double survive = tMax / kRouletteBelow;
+      if (rng.uniform() >= survive) return false;
+      for (double& c : tr) c /= survive;
     }
-  }
-  return color(tr);
+    return true;
+  });
+  return end == TrackEnd::Reached ? color(tr) : Color(0.0f);
 }
 
 }  // namespace
