@@ -165,6 +165,25 @@ TEST_P(DensityGridTracking, AnInfiniteRaySeesTheWholeGridAndItsEdges) {
   EXPECT_EQ(mediumTransmittance(m, world(Vec3(kN + 1.0f, 3.0f, 4.0f)), x, 0.0f, kInf, rng2), Color(1.0f));
 }
 
+TEST_P(DensityGridTracking, AClearChannelPassesAndTheOthersKeepTheirOwnWeights) {
+  // sigmaT (0, 0.5, 2) in a ramp: the red channel never meets anything (mean weight 1
+  // without a collision, 0 with one) while green and blue follow their own depths.
+  const Color sa(0.0f, 0.25f, 0.5f), ss(0.0f, 0.25f, 1.5f);
+  const Medium m = gridMedium(sa, ss, makeGrid([](int i, int, int) { return 0.1f + 0.05f * i; }, GetParam()));
+  const Segment s = interiorSegment();
+  const double d = double(s.b) - s.a, rho = 0.1 + 0.05 * 0.5 + 0.5 * 0.05 * 17.0;  // the mean density
+  const auto stats = collisions(m, s.o, s.d, s.a, s.b, 200000, 91, 10, float(d));
+  ASSERT_TRUE(stats.finite);
+  EXPECT_NEAR(stats.weightNone[0].mean(), 1.0, 5.0 * stats.weightNone[0].stdError() + 1e-6);
+  EXPECT_EQ(stats.weightHit[0].mean(), 0.0);
+  for (int c = 1; c < 3; ++c) {
+    const double st = (sa + ss)[c], tr = std::exp(-st * rho * d);
+    EXPECT_NEAR(stats.weightNone[c].mean(), tr, 5.0 * stats.weightNone[c].stdError() + 1e-6) << c;
+    EXPECT_NEAR(stats.weightHit[c].mean(), ss[c] / st * (1.0 - tr), 5.0 * stats.weightHit[c].stdError() + 1e-6) << c;
+  }
+  EXPECT_LE(stats.maxWeight, 3.0 + 1e-5);  // the balance heuristic's bound, albedo <= 1
+}
+
 TEST_P(DensityGridTracking, ASparseBlobMatchesQuadratureOfItsDensity) {
   // Density 3 in two 3^3 blobs of voxels, 0 elsewhere: most of the ray crosses empty
   // blocks (the case per-block majorants are for). The blobs sit just inside majorant
