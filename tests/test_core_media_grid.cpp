@@ -238,6 +238,10 @@ TEST_P(DensityGridTracking, ExtremeAndEmptyGridsStayFinite) {
   } cases[] = {{&empty, s.o, s.d, s.a, s.b},
                {&full, above, x, 0.0f, kInf},
                {&full, s.o, s.d, 1.0f, 1.0f}};
+  // The majorant the cost model prices: sigmaT's largest channel x the largest density.
+  EXPECT_FLOAT_EQ(mediumMajorant(full), 2.0f);
+  EXPECT_FLOAT_EQ(mediumMajorant(empty), 0.0f);
+  EXPECT_FLOAT_EQ(mediumMajorant(makeMedium(Color(0.1f, 0.2f, 0.3f), Color(1.0f, 0.5f, 0.0f))), 1.1f);
   for (const auto& c : cases) {
     EXPECT_EQ(mediumTransmittance(*c.m, c.o, c.d, c.a, c.b, rng), Color(1.0f));
     const MediumCollision col = sampleCollision(*c.m, c.o, c.d, c.a, c.b, rng);
