@@ -17,15 +17,25 @@ namespace {
 // Henyey–Greenstein's phase diverges at |g| = 1 (a delta): open at both ends.
 const Range kAsymmetry{-1.0, 1.0, true, true};
 
+// A coefficient per scene unit: one number or [r, g, b], each a finite float >= 0.
+// Not a colour's 1e30 cap: an opaque 1e30 only makes transmittance 0.
+Color readCoefficient(const JsonNode& node) {
+  if (node.value().is_number()) return Color(node.asFloat(Range::atLeast(0.0)));
+  if (!node.value().is_array() || node.value().size() != 3) {
+    node.fail("must be a number or [r, g, b] (per scene unit), got " + describeJson(node.value()));
+  }
+  return Color(node.element(0).asFloat(Range::atLeast(0.0)), node.element(1).asFloat(Range::atLeast(0.0)),
+               node.element(2).asFloat(Range::atLeast(0.0)));
+}
+
 Medium readMedium(const JsonNode& node, Scene& scene) {
   node.allowKeys({"name", "sigma_a", "sigma_s", "g", "emission", "density"});
   Medium m;
   const JsonNode name = node.required("name", " for a medium");
   m.name = name.asString();
   if (m.name.empty()) name.fail("must not be empty");
-  // Per scene unit, RGB or one grey number; asColor refuses < 0, non-finite and > 1e30.
-  m.sigmaA = node.colorOr("sigma_a", m.sigmaA);
-  m.sigmaS = node.colorOr("sigma_s", m.sigmaS);
+  if (node.has("sigma_a")) m.sigmaA = readCoefficient(node.child("sigma_a"));
+  if (node.has("sigma_s")) m.sigmaS = readCoefficient(node.child("sigma_s"));
   m.g = node.floatOr("g", m.g, kAsymmetry);
   m.emission = node.colorOr("emission", m.emission);
   if (node.has("density")) m.density = readDensity(node.child("density"), scene);
