@@ -63,6 +63,12 @@ TEST(MediaBinding, TheCameraTakesTheInnermostMediumAroundIt) {
   EXPECT_EQ(parseScene(nested("[0, 0.5, 0.5]"), "x.json").cameraMedium, kNoMedium);  // in the glass ball
 }
 
+TEST(MediaBinding, ACameraOnABoundaryIsOutsideIt) {
+  // On the water sphere's surface: outside it, so in the smoke; on the box's face: in the fog.
+  EXPECT_EQ(parseScene(nested("[0, 0, 2]"), "x.json").cameraMedium, kSmoke);
+  EXPECT_EQ(parseScene(nested("[0.5, 0.25, 3]"), "x.json").cameraMedium, kFog);
+}
+
 TEST(MediaBinding, LightsStartInTheMediumAroundThem) {
   const Scene s = parseScene(nested("[0, 0, 10]"), "x.json");
   EXPECT_EQ(s.lights[0].medium, kNoMedium);  // inside the glass ball
