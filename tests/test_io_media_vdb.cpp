@@ -45,7 +45,7 @@ class Vdb : public ::testing::Test {
     openvdb::io::File(path).write(grids);
     return path;
   }
-  static std::string problem(const std::string& path, const VdbRequest& request = {}) {
+  static std::string problem(const std::string& path, const DensityRequest& request = {}) {
     try {
       loadDensityGrid(path, request);
     } catch (const VdbError& e) {
@@ -59,7 +59,7 @@ class Vdb : public ::testing::Test {
 TEST_F(Vdb, ValuesAndPlacementRoundTrip) {
   auto ramp = [](int i, int j, int k) { return float(i + 10 * j + 100 * k); };
   const std::string path = write("ramp.vdb", {grid(4, 0.5, {1.0, 2.0, 3.0}, ramp)});
-  VdbRequest request;
+  DensityRequest request;
   request.scale = 2.0;
   const DensityGrid g = loadDensityGrid(path, request);
   ASSERT_EQ(g.nx, 4);
@@ -78,7 +78,7 @@ TEST_F(Vdb, ValuesAndPlacementRoundTrip) {
 
 TEST_F(Vdb, TheObjectsTransformMovesTheGrid) {
   const std::string path = write("one.vdb", {grid(2, 1.0, {0, 0, 0}, [](int, int, int) { return 1.0f; })});
-  VdbRequest request;
+  DensityRequest request;
   request.objectToWorld = glm::dmat4(1.0);
   request.objectToWorld[3] = glm::dvec4(10.0, 0.0, 0.0, 1.0);
   const DensityGrid g = loadDensityGrid(path, request);
@@ -93,7 +93,7 @@ TEST_F(Vdb, TheNamedGridOrTheFirstFloatGrid) {
   auto heat = grid(1, 1.0, {0, 0, 0}, [](int, int, int) { return 3.0f; }, "heat");
   EXPECT_EQ(loadDensityGrid(write("heat.vdb", {vec, heat}), {}).maxDensity, 3.0f);  // the float grid after a vector one
   const std::string path = write("two.vdb", {vec, heat, grid(1, 1.0, {0, 0, 0}, [](int, int, int) { return 5.0f; })});
-  VdbRequest named;
+  DensityRequest named;
   named.grid = "density";
   EXPECT_EQ(loadDensityGrid(path, named).maxDensity, 5.0f);
   named.grid = "velocity";
@@ -127,7 +127,7 @@ TEST_F(Vdb, TheVoxelBudgetIsCheckedBeforeTheLattice) {
   sparse->tree().setValueOn(openvdb::Coord(0), 1.0f);
   sparse->tree().setValueOn(openvdb::Coord(1000), 1.0f);
   const std::string path = write("sparse.vdb", {sparse});
-  VdbRequest request;
+  DensityRequest request;
   request.maxVoxels = 1000000;
   EXPECT_NE(problem(path, request).find("1003003001 voxels, more than the 1000000"), std::string::npos)
       << problem(path, request);

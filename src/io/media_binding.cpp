@@ -2,7 +2,7 @@
 // its medium (or vacuum); a point's medium is the inside of the smallest solid holding it.
 #include "io/media_binding.h"
 
-#include "core/light_types.h"
+#include "core/light_sample.h"
 #include "io/closed_mesh.h"
 
 #include <limits>
@@ -89,22 +89,16 @@ bool isEmitter(const Scene& scene, int material) {
   return material >= 0 && size_t(material) < scene.materials.size() && scene.materials[material].light >= 0;
 }
 
-// Where a light's photons start; directional and environment light come from outside.
+// Where a light's photons start; light from a direction or from infinity comes from
+// outside. An area light's centre: its bounds' for a mesh, position + (edge1 + edge2) / 2
+// otherwise (a quad's middle; spheres and disks have no edges, so their centre).
 std::optional<Vec3> lightPoint(const Light& light) {
-  switch (light.type) {
-    case LightType::Directional:
-    case LightType::Environment:
-      return std::nullopt;
-    case LightType::Quad:
-      return light.position + 0.5f * (light.edge1 + light.edge2);
-    case LightType::Mesh: {
-      Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-      for (const Vec3& p : light.triangles) lo = glm::min(lo, p), hi = glm::max(hi, p);
-      return light.triangles.empty() ? light.position : 0.5f * (lo + hi);
-    }
-    default:
-      return light.position;
-  }
+  const LightSupport support = lightTraits(light).support;
+  if (support == LightSupport::Direction || support == LightSupport::Infinite) return std::nullopt;
+  if (light.triangles.empty()) return light.position + 0.5f * (light.edge1 + light.edge2);
+  Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Vec3& p : light.triangles) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  return 0.5f * (lo + hi);
 }
 
 }  // namespace

@@ -1,10 +1,9 @@
-// Density grids from OpenVDB files: the named float grid (or the first one), its active
-// box resampled into a dense core/media/density_grid.h lattice in world space.
+// Density grids from OpenVDB files, through the module core/density_codec.h loads: the
+// named float grid (or the first one), its active box resampled into a dense lattice.
 #pragma once
-#include "core/media/density_grid.h"
+#include "core/density_codec.h"
 #include "core/scene.h"
 #include "io/json_reader.h"
-#include <glm/mat4x4.hpp>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -16,20 +15,12 @@ struct VdbError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-struct VdbRequest {
-  std::string grid;                 // empty: the first float grid in the file
-  double scale = 1.0;               // multiplies every value
-  glm::dmat4 objectToWorld{1.0};    // after the grid's own index-to-world transform
-  uint64_t maxVoxels = 0;           // the dense lattice's limit (kMaxDensityVoxels)
-  uint64_t maxBytes = 0;            // the load budget (0: unchecked)
-};
+// `path` read by the OpenVDB module (core/density_codec.h says what it checks), after
+// io's own check that the file can be opened. Throws VdbError.
+DensityGrid loadDensityGrid(const std::string& path, const DensityRequest& request);
 
-// Reads and checks `path`: a VDB, the grid (float, linear transform), the lattice within
-// the limits before it is allocated, every value finite and >= 0. Throws VdbError.
-DensityGrid loadDensityGrid(const std::string& path, const VdbRequest& request);
-
-// A medium's "density": {"file", "grid", "scale", "transform"} read into a grid; the file
-// joins Scene::inputs. Refuses at the node in one line.
+// A medium's "density": {"file", "grid", "scale", "transform"} read into a grid within
+// the scene's limits; the file joins Scene::inputs. Refuses at the node in one line.
 std::shared_ptr<const DensityGrid> readDensity(const JsonNode& density, Scene& scene);
 
 }  // namespace penumbra
