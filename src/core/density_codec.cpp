@@ -10,8 +10,8 @@
 namespace penumbra {
 
 const DensityCodec& densityCodec() {
-  static const auto* const codec = static_cast<const DensityCodec*>(
-      moduleEntry(kVolumeModuleName, kDensityCodecEntry, PENUMBRA_VOLUME_MODULE, "OpenVDB"));
+  static const DensityCodec* const codec =
+      moduleObject<DensityCodec>(kVolumeModuleName, kDensityCodecEntry, PENUMBRA_VOLUME_MODULE, "OpenVDB");
   return *codec;
 }
 

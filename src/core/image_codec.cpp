@@ -18,14 +18,14 @@ namespace {
 }  // namespace
 
 const ImageCodec& imageCodec() {
-  static const auto* const codec = static_cast<const ImageCodec*>(
-      moduleEntry(kImageModuleName, kImageCodecEntry, PENUMBRA_IMAGE_MODULE, "image"));
+  static const ImageCodec* const codec =
+      moduleObject<ImageCodec>(kImageModuleName, kImageCodecEntry, PENUMBRA_IMAGE_MODULE, "image");
   return *codec;
 }
 
 const ImageEncoder& imageEncoder() {
-  static const auto* const encoder = static_cast<const ImageEncoder*>(
-      moduleEntry(kImageEncoderModuleName, kImageEncoderEntry, PENUMBRA_ENCODER_MODULE, "image"));
+  static const ImageEncoder* const encoder =
+      moduleObject<ImageEncoder>(kImageEncoderModuleName, kImageEncoderEntry, PENUMBRA_ENCODER_MODULE, "image");
   return *encoder;
 }
 

@@ -1,4 +1,4 @@
-// Finds a module beside the executable or where the build put it, and calls its entry.
+// Finds a module beside the executable or where the build put it, and its entry.
 #include "core/module_loader.h"
 
 #include <dlfcn.h>
@@ -21,10 +21,9 @@ std::string executableDir() {
 
 }  // namespace
 
-const void* moduleEntry(const char* name, const char* entry, const char* buildPath, const char* what) {
-  using Entry = const void* (*)();
+void* moduleSymbol(const char* name, const char* entry, const char* buildPath, const char* what) {
   // Already in the process: an executable (a test, a fuzzer) that links the module.
-  if (void* symbol = ::dlsym(RTLD_DEFAULT, entry)) return reinterpret_cast<Entry>(symbol)();
+  if (void* symbol = ::dlsym(RTLD_DEFAULT, entry)) return symbol;
   std::string errors;
   std::vector<std::string> candidates = {executableDir() + "/" + name};
   if (buildPath) candidates.push_back(buildPath);
@@ -34,7 +33,7 @@ const void* moduleEntry(const char* name, const char* entry, const char* buildPa
       errors += std::string(errors.empty() ? "" : "; ") + ::dlerror();
       continue;
     }
-    if (void* symbol = ::dlsym(module, entry)) return reinterpret_cast<Entry>(symbol)();
+    if (void* symbol = ::dlsym(module, entry)) return symbol;
     errors += std::string(errors.empty() ? "" : "; ") + path + " has no " + entry;
   }
   throw std::runtime_error(std::string("cannot load the ") + what + " module " + name + ": " + errors);

@@ -5,10 +5,17 @@
 
 namespace penumbra {
 
-// The object the module `name` returns from its symbol `entry`: found in the process
-// when an executable links the module, else beside the executable, else at `buildPath`
-// (where the build put it, for executables run from elsewhere). Throws
-// std::runtime_error "cannot load the <what> module NAME: why".
-const void* moduleEntry(const char* name, const char* entry, const char* buildPath, const char* what);
+// The function `entry` of the module `name`: found in the process when an executable
+// links the module, else beside the executable, else at `buildPath` (where the build put
+// it, for executables run from elsewhere). The caller casts it to the entry's own type
+// (calling through another type is undefined). Throws std::runtime_error "cannot load
+// the <what> module NAME: why".
+void* moduleSymbol(const char* name, const char* entry, const char* buildPath, const char* what);
+
+// The object a module's entry `const T* entry()` returns.
+template <class T>
+const T* moduleObject(const char* name, const char* entry, const char* buildPath, const char* what) {
+  return reinterpret_cast<const T* (*)()>(moduleSymbol(name, entry, buildPath, what))();
+}
 
 }  // namespace penumbra

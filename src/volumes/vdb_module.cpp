@@ -175,7 +175,10 @@ DensityGrid loadGrid(const std::string& path, const DensityRequest& request) {
     throw VdbError(fmt::format("cannot be read ({})", e.what()));
   } catch (const std::bad_alloc&) {
     throw VdbError("cannot be read (out of memory while reading its tree)");
-  } catch (const std::ios_base::failure& e) {
+  } catch (const VdbError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // OpenVDB's stream errors, length errors from sizes a damaged file gives.
     throw VdbError(fmt::format("cannot be read ({})", e.what()));
   }
 }
