@@ -28,10 +28,10 @@ Color emissionAlong(const Medium& m, const Ray& ray, float a, float b, Rng& rng,
   }
   if (!gridSpan(m, ray, a, b)) return Color(0.0f);
   const FreeFlight flight((st.r + st.g + st.b) / 3.0f * m.density->maxDensity, a, b);
-  if (!flight.valid()) return Color(0.0f);
+  const DistanceSample d = flight.sample(rng.uniform());
+  if (!(d.pdf > 0.0f)) return Color(0.0f);
   ++ts.counts.mediumSamples;
-  const float t = flight.sample(rng.uniform());
-  return emissionAt(m, ray.origin + t * ray.dir) * stretchTransmittance(m, ray, a, t, ts) / flight.pdf(t);
+  return emissionAt(m, ray.origin + d.t * ray.dir) * stretchTransmittance(m, ray, a, d.t, ts) / d.pdf;
 }
 
 }  // namespace

@@ -10,32 +10,7 @@
 
 namespace penumbra {
 
-FreeFlight::FreeFlight(float rate, float from, float to) : a(from), b(to), s(rate) {
-  norm = std::isfinite(to) ? -std::expm1(-s * (to - from)) : 1.0f;
-}
-
-float FreeFlight::sample(float u) const { return std::min(b, a - std::log1p(-u * norm) / s); }
-
-float FreeFlight::pdf(float t) const { return s * std::exp(-s * (t - a)) / norm; }
-
 namespace {
-
-// Equiangular distances about point p (homogeneous.h's density, kept with its angles
-// so the pdf of the other technique's distance costs one division).
-struct Equiangular {
-  float delta = 0.0f, dist = 0.0f, thetaA = 0.0f, thetaB = 0.0f;
-  Equiangular(const Ray& ray, const Vec3& p, float a, float b) {
-    delta = glm::dot(p - ray.origin, ray.dir);
-    dist = std::max(glm::length(ray.origin + delta * ray.dir - p), 1e-7f);
-    thetaA = std::atan2(a - delta, dist);
-    thetaB = std::atan2(b - delta, dist);
-  }
-  bool valid() const { return thetaB > thetaA; }
-  float sample(float u, float a, float b) const {
-    return std::clamp(delta + dist * std::tan(thetaA + u * (thetaB - thetaA)), a, b);
-  }
-  float pdf(float t) const { return equiangularPdf(delta, dist, thetaA, thetaB, t); }
-};
 
 // The point equiangular samples centre on: a light small enough to have one. A mesh
 // light's triangles can spread anywhere; lights at infinity have none.
@@ -58,7 +33,6 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
   if (!(maxComponent(m.sigmaS) > 0.0f) || !gridSpan(m, ray, a, b)) return Color(0.0f);
   const Color st = m.sigmaT();
   const FreeFlight flight((st.r + st.g + st.b) / 3.0f * (m.density ? m.density->maxDensity : 1.0f), a, b);
-  if (!flight.valid()) return Color(0.0f);
   // sigma_s T(a, t) p(wi, ray) L_i T_shadow at distance t: the integrand, before its pdf.
   auto scatterAt = [&](uint32_t li, float t) {
     ++ts.counts.mediumSamples;
@@ -104,16 +78,15 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
     if (!(maxComponent(light.radiance()) > 0.0f)) continue;
     Vec3 centre(0.0f);
     const bool equiangular = equiangularCentre(light, centre);
-    const Equiangular eq(ray, centre, a, b);
-    if (equiangular && eq.valid()) {
+    const EquiangularFrame eq(ray.origin, ray.dir, centre, a, b);
+    const DistanceSample td = flight.sample(rng.uniform());
+    if (equiangular && eq.thetaB > eq.thetaA) {
       // One sample of each technique, each weighted by the balance heuristic: f / (p_e + p_d).
-      const float te = eq.sample(rng.uniform(), a, b);
-      add(li, te, eq.pdf(te) + flight.pdf(te));
-      const float td = flight.sample(rng.uniform());
-      add(li, td, eq.pdf(td) + flight.pdf(td));
-    } else {
-      const float td = flight.sample(rng.uniform());
-      add(li, td, flight.pdf(td));
+      const DistanceSample te = sampleEquiangular(ray.origin, ray.dir, centre, a, b, rng.uniform());
+      if (te.pdf > 0.0f) add(li, te.t, te.pdf + flight.pdf(te.t));
+      if (td.pdf > 0.0f) add(li, td.t, float(eq.pdf(td.t)) + td.pdf);
+    } else if (td.pdf > 0.0f) {
+      add(li, td.t, td.pdf);
     }
   }
   return sum;

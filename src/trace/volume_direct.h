@@ -1,20 +1,24 @@
 // Light scattered once in a medium into a ray, by light sampling: equiangular and
 // distance samples under the balance heuristic (Kulla & Fajardo 2012).
 #pragma once
+#include "core/media/homogeneous.h"
 #include "core/rng.h"
 #include "trace/shading.h"
 
 namespace penumbra {
 
-// Distances along one stretch [a, b] (b may be infinite) drawn with density
-// s exp(-s (t - a)), truncated to the stretch: s is the medium's mean extinction (its
-// majorant in a grid), the free-flight density of sampleCollision.
+// Distances along one stretch [a, b] (b may be infinite) by free flight at the medium's
+// mean extinction (its majorant in a grid), truncated to the stretch
+// (core/media/homogeneous.h), in the ray's own parameter.
 struct FreeFlight {
-  float a = 0.0f, b = 0.0f, s = 0.0f, norm = 0.0f;  // norm: the mass inside [a, b]
-  FreeFlight(float rate, float from, float to);
-  bool valid() const { return s > 0.0f && norm > 0.0f; }
-  float sample(float u) const;
-  float pdf(float t) const;
+  float a = 0.0f, length = 0.0f, s = 0.0f;
+  FreeFlight(float rate, float from, float to) : a(from), length(to - from), s(rate) {}
+  DistanceSample sample(float u) const {
+    DistanceSample d = sampleTruncatedFreeFlight(s, length, u);
+    d.t += a;
+    return d;
+  }
+  float pdf(float t) const { return float(truncatedFreeFlightPdf(s, length, t - a)); }
 };
 
 // The radiance that medium `medium` scatters once from every light into `ray` over its
