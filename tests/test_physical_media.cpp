@@ -142,6 +142,41 @@ TEST(PhysicalMedia, SingleScatteringFromAPointLightMatchesQuadrature) {
   }
 }
 
+TEST(PhysicalMedia, GlassBallOfAbsorbingFogPassesItsMediumToTheRefractedRay) {
+  // A ball of index 1 (no reflection, no bending) filled with an absorbing medium in a
+  // white background: the ray through its centre enters the medium at the first
+  // surface (mediumBeyond) and leaves it at the second, so it sees exp(-sigma_a 2R).
+  Scene scene = physicalScene();
+  Material glass = lambert("clear", Color(0.0f));
+  glass.transparent = true;
+  glass.ior = 1.0f;
+  scene.materials.push_back(glass);
+  scene.render.background = Color(1.0f);
+  scene.media.push_back(fog(Color(0.3f, 0.6f, 0.9f), Color(0.0f)));
+  scene.spheres.push_back(Sphere{Vec3(0.0f), 0.75f, 0, {0, kNoMedium, true}});
+  Rig rig(scene);
+  ThreadState ts;
+  beginSample(ts, 3);
+  const Color got = sample(rig, makeRay(Vec3(0.0f, 0.0f, 5.0f), Vec3(0, 0, -1)), ts);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], std::exp(-scene.media[0].sigmaA[c] * 1.5f), 1e-5f) << c;
+  EXPECT_EQ(ts.counts.mediumSegments, 1u);
+}
+
+TEST(PhysicalMedia, EmissiveInfiniteMediumGlowsAtSigmaALeOverSigmaT) {
+  // No lights, no surfaces: a camera inside an emitting medium sees the integral of
+  // exp(-sigma_t t) sigma_a Le over t, sigma_a Le / sigma_t (closed form, 1e-6).
+  Scene scene = physicalScene();
+  Medium m = fog(Color(0.2f, 0.4f, 0.1f), Color(0.3f));
+  m.emission = Color(2.0f, 1.0f, 0.5f);
+  scene.media.push_back(m);
+  scene.sceneMedium = scene.cameraMedium = 0;
+  Rig rig(scene);
+  ThreadState ts;
+  beginSample(ts, 5);
+  const Color got = sample(rig, makeRay(Vec3(0.0f), Vec3(0.3f, 0.2f, -1.0f)), ts);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], m.sigmaA[c] * m.emission[c] / m.sigmaT()[c], 1e-6f) << c;
+}
+
 // A plane, a ball and a quad light over them, a point light: shading with area samples.
 Scene litRoom() {
   Scene scene = physicalScene();
