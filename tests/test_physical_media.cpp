@@ -255,5 +255,27 @@ TEST(PhysicalMedia, FogRendersTheSameForOneAndTwoThreads) {
   for (const Color& c : images[0].pixels) EXPECT_TRUE(isFinite(c));
 }
 
+TEST(PhysicalMedia, ExtremeMediaKeepEveryPixelFinite) {
+  // sigma 1e30 (opaque fog), g = +-0.999999 (a needle lobe) and sigma 0 side by side in
+  // the scene fog: no sample NaN or infinite, no pixel negative.
+  for (float g : {0.999999f, -0.999999f}) {
+    Scene scene = litRoom();
+    scene.media.push_back(fog(Color(0.01f), Color(0.3f), g));
+    scene.media.push_back(fog(Color(1e30f), Color(1e30f), g));
+    scene.media.push_back(fog(Color(0.0f), Color(0.0f), g));
+    scene.sceneMedium = scene.cameraMedium = 0;
+    addFogBox(scene, Vec3(-2.0f, -1.0f, -1.0f), Vec3(-0.8f, 1.0f, 1.0f), 1);
+    addFogBox(scene, Vec3(0.8f, -1.0f, -1.0f), Vec3(2.0f, 1.0f, 1.0f), 2);
+    for (TriangleMesh& box : scene.boundaryMeshes.edit()) box.media.outside = 0;
+    Rig rig(scene);
+    RayCounts counts;
+    const Image image = renderImage(rig.ctx, RenderOptions{}, counts);
+    EXPECT_EQ(counts.nonfiniteSamples, 0u) << "g " << g;  // the pixel sums drop those: count them
+    int bad = 0;
+    for (const Color& c : image.pixels) bad += !isFinite(c) || c.r < 0.0f || c.g < 0.0f || c.b < 0.0f;
+    EXPECT_EQ(bad, 0) << "g " << g;
+  }
+}
+
 }  // namespace
 }  // namespace penumbra
