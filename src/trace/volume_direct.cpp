@@ -12,17 +12,21 @@ namespace penumbra {
 
 namespace {
 
-// The point equiangular samples centre on: a light small enough to have one. A mesh
-// light's triangles can spread anywhere; lights at infinity have none.
-bool equiangularCentre(const Light& light, Vec3& c) {
-  switch (light.type) {
-    case LightType::Point:
-    case LightType::Spot:
-    case LightType::Sphere:
-    case LightType::Disk: c = light.position; return true;
-    case LightType::Quad: c = light.position + 0.5f * (light.edge1 + light.edge2); return true;
-    default: return false;
+// The point equiangular samples centre on: a delta light's position, or a point drawn
+// on an area light as seen from the stretch's start (given the point, both techniques'
+// densities are known, so any point keeps the estimate unbiased). Lights at infinity
+// have none.
+bool equiangularCentre(const Light& light, const Ray& ray, float a, Rng& rng, Vec3& c) {
+  const LightSupport support = lightTraits(light).support;
+  if (support == LightSupport::Position) {
+    c = light.position;
+    return true;
   }
+  if (support != LightSupport::Area) return false;
+  const float u1 = rng.uniform(), u2 = rng.uniform();
+  const LightIncidence in = sampleLight(prepareLight(light, ray.origin + a * ray.dir), u1, u2);
+  c = in.point;
+  return in.valid;
 }
 
 }  // namespace
@@ -77,7 +81,7 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
     const Light& light = ctx.scene.lights[li];
     if (!(maxComponent(light.radiance()) > 0.0f)) continue;
     Vec3 centre(0.0f);
-    const bool equiangular = equiangularCentre(light, centre);
+    const bool equiangular = equiangularCentre(light, ray, a, rng, centre);
     const EquiangularFrame eq(ray.origin, ray.dir, centre, a, b);
     const DistanceSample td = flight.sample(rng.uniform());
     if (equiangular && eq.thetaB > eq.thetaA) {
