@@ -23,9 +23,10 @@ struct RayCounts {
   uint64_t cacheLookups = 0, cacheFallbacks = 0;
   // Samples whose radiance came out NaN or infinite: dropped from their pixel.
   uint64_t nonfiniteSamples = 0;
-  // Participating media (scenes with a medium): ray stretches inside a medium, their
-  // light and distance samples (and tracking steps in grids), volume-map gathers and
-  // the photons they found, shadow rays that carried a transmittance.
+  // Participating media (scenes with a medium): camera and specular ray stretches inside
+  // a medium, the scattering points sampled on them (equiangular and distance, per light;
+  // a grid's emission sample), volume-map gathers and the photons they found, shadow
+  // rays that spent any length in a medium (from surfaces and from scattering points).
   uint64_t mediumSegments = 0, mediumSamples = 0, volumeGathers = 0, volumeNeighbours = 0, transmittanceRays = 0;
 
   RayCounts& operator+=(const RayCounts& o) {
