@@ -108,9 +108,9 @@ TEST(GatherVolume, UniformIsotropicCloudGivesTheAnalyticInScatter) {
     // ~1000 photons per beam, 25 beams: ~0.6% noise.
     EXPECT_NEAR(sum / beams, want, 0.025 * want) << "sigma_t " << sigmaT;
   }
-  // The radius rule: a unit cube's mean chord 2/3, so k = n pi r^2 2/3.
-  EXPECT_NEAR(map.radiusFor(100), std::sqrt(100.0 / (kPi * n * 2.0 / 3.0)), 0.01 * map.radiusFor(100));
-  VolumeQuery q{Vec3(0.5f, 0.5f, 0.0f), Vec3(0.0f, 0.0f, 1.0f), 0.0f, 2.0f / 3.0f};
+  // The radius rule: a beam across the unit cube meets k = n pi r^2 x 1.
+  EXPECT_NEAR(map.radiusFor(100), std::sqrt(100.0 / (kPi * n)), 0.01 * map.radiusFor(100));
+  VolumeQuery q{Vec3(0.5f, 0.5f, 0.0f), Vec3(0.0f, 0.0f, 1.0f), 0.0f, 1.0f};
   const VolumeEstimate e = volumeRadiance(map, q, medium(Color(0.0f), 0.0f), 100, 0.0f, scratch);
   EXPECT_GT(e.found, 60u);
   EXPECT_LT(e.found, 150u);

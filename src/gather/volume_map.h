@@ -14,7 +14,7 @@ namespace penumbra {
 class VolumePhotonMap {
  public:
   // Takes ownership; sorts the photons by grid cell (a stable counting sort, so the
-  // order depends only on the emission's). The cell is the radius of a 64-photon beam.
+  // order depends only on the emission's). The cell is the radius of a 400-photon beam.
   void build(PhotonBatches<VolumePhoton> photons, const MapBuildOptions& options = {});
   bool empty() const { return photons_.empty(); }
   size_t size() const { return photons_.size(); }
@@ -24,7 +24,8 @@ class VolumePhotonMap {
 
   // The radius rule: the beam radius at which a ray crossing the photons' region meets
   // about k of them, k = n pi r^2 L with n the photons per unit volume of the occupied
-  // region and L = 2/3 V^(1/3) its mean chord (a cube's of the same volume V).
+  // region and L = V^(1/3) the side of a cube of its volume V (a camera ray crossing a
+  // room of fog; a random chord of that cube averages 2/3 of it).
   float radiusFor(int k) const;
 
   // The part of [tMin, tMax] along o + t d (d unit) within `radius` of the grid's box:
@@ -39,10 +40,12 @@ class VolumePhotonMap {
   void beam(const Vec3& o, const Vec3& d, float tMin, float tMax, float radius, F&& f) const;
 
  private:
-  // The t where o + t d has grid coordinate axis in [a0, a1], intersected with [lo, hi].
-  bool slab(int axis, const Vec3& g, const Vec3& gd, float a0, float a1, float& lo, float& hi) const {
+  // The t where o + t d has grid coordinate axis in [a0, a1], intersected with [lo, hi]
+  // (inv: 1 / gd, per axis).
+  static bool slab(int axis, const Vec3& g, const Vec3& gd, const Vec3& inv, float a0, float a1, float& lo,
+                   float& hi) {
     if (std::abs(gd[axis]) < 1e-12f) return g[axis] >= a0 && g[axis] <= a1 && lo <= hi;
-    float t0 = (a0 - g[axis]) / gd[axis], t1 = (a1 - g[axis]) / gd[axis];
+    float t0 = (a0 - g[axis]) * inv[axis], t1 = (a1 - g[axis]) * inv[axis];
     if (t0 > t1) std::swap(t0, t1);
     lo = std::max(lo, t0);
     hi = std::min(hi, t1);
@@ -71,29 +74,31 @@ template <class F>
 void VolumePhotonMap::beam(const Vec3& o, const Vec3& d, float tMin, float tMax, float radius, F&& f) const {
   float ta = tMin, tb = tMax;
   if (photons_.empty() || !(radius > 0.0f) || !span(o, d, radius, ta, tb)) return;
-  // Grid coordinates along the ray; the cell walk is widened a hair past the radius,
-  // so rounding never drops a photon the exact test below accepts.
-  const Vec3 g = (o - lo_) * invCell_, gd = d * invCell_;
-  const float r = radius * invCell_ * 1.0001f + 1e-4f, r2 = radius * radius;
+  // Grid coordinates along the ray. A photon within r of the ray lies within
+  // r sqrt(1 - d_a^2) of its projection along axis a (the offset is normal to d), so each
+  // axis widens by that; a hair more, so rounding never drops a photon the exact test
+  // below accepts.
+  const Vec3 g = (o - lo_) * invCell_, gd = d * invCell_, inv = 1.0f / gd;
+  const Vec3 w = radius * invCell_ * glm::sqrt(glm::max(Vec3(1.0f) - d * d, Vec3(0.0f))) * 1.0001f + 1e-4f;
+  const float r2 = radius * radius;
   int z0, z1;
-  if (!cellsOf(2, g, gd, ta, tb, r, z0, z1)) return;
+  if (!cellsOf(2, g, gd, ta, tb, w.z, z0, z1)) return;
   for (int z = z0; z <= z1; ++z) {
     float za = ta, zb = tb;
     int y0, y1;
-    if (!slab(2, g, gd, z - r, z + 1 + r, za, zb) || !cellsOf(1, g, gd, za, zb, r, y0, y1)) continue;
+    if (!slab(2, g, gd, inv, z - w.z, z + 1 + w.z, za, zb) || !cellsOf(1, g, gd, za, zb, w.y, y0, y1)) continue;
     for (int y = y0; y <= y1; ++y) {
       float ya = za, yb = zb;
       int x0, x1;
-      if (!slab(1, g, gd, y - r, y + 1 + r, ya, yb) || !cellsOf(0, g, gd, ya, yb, r, x0, x1)) continue;
+      if (!slab(1, g, gd, inv, y - w.y, y + 1 + w.y, ya, yb) || !cellsOf(0, g, gd, ya, yb, w.x, x0, x1)) continue;
       const size_t row = (static_cast<size_t>(z) * dims_[1] + y) * dims_[0];
       const uint32_t end = cellStart_[row + x1 + 1];
       for (uint32_t i = cellStart_[row + x0]; i < end; ++i) {
         const VolumePhoton& p = photons_[i];
         const Vec3 v = p.position - o;
-        const float t = glm::dot(v, d);
-        if (t < tMin || t > tMax) continue;
-        const float d2 = glm::dot(v, v) - t * t;
-        if (d2 < r2) f(p, t, d2);
+        const float t = glm::dot(v, d), d2 = glm::dot(v, v) - t * t;
+        // One branch for the three tests: which way it goes is a coin toss per photon.
+        if ((t >= tMin) & (t <= tMax) & (d2 < r2)) f(p, t, d2);
       }
     }
   }
