@@ -116,6 +116,32 @@ TEST(GatherVolume, UniformIsotropicCloudGivesTheAnalyticInScatter) {
   EXPECT_LT(e.found, 150u);
 }
 
+// Light leaving a room into fog that fills the scene: a sparse halo 100 times wider
+// than the dense cloud changes neither the radius rule's answer much nor the bytes
+// per photon, and beams through the halo still equal the brute-force sum.
+TEST(GatherVolume, ASparseHaloKeepsTheDenseRadiusAndTheMemory) {
+  PhotonArray<VolumePhoton> photons = cloud(100000, 1.0f, 1e-3f, false, 8);
+  const PhotonArray<VolumePhoton> halo = cloud(5000, 100.0f, 1e-3f, false, 9);
+  for (VolumePhoton p : halo) {
+    p.position -= Vec3(50.0f);
+    photons.push_back(p);
+  }
+  const PhotonArray<VolumePhoton> copy = photons;
+  VolumePhotonMap map;
+  map.build(PhotonBatches<VolumePhoton>(std::move(photons)));
+  const double dense = std::sqrt(100.0 / (kPi * 100000.0));  // the cube alone
+  EXPECT_NEAR(map.radiusFor(100), dense, 0.1 * dense);
+  EXPECT_LT(map.memoryBytes(), 80 * copy.size());
+  GatherScratch scratch;
+  const Medium m = medium(Color(0.05f), 0.2f);
+  VolumeQuery q{Vec3(-40.0f, 0.5f, 0.5f), glm::normalize(Vec3(1.0f, 0.01f, 0.0f)), 0.0f, 90.0f};
+  const VolumeEstimate got = volumeRadiance(map, q, m, 0, 0.5f, scratch);
+  const VolumeEstimate want = bruteForce(copy, q, m, 0.5f);
+  ASSERT_GT(want.found, 0u);
+  EXPECT_EQ(got.found, want.found);
+  EXPECT_NEAR(got.value.g, want.value.g, 1e-4f * want.value.g);
+}
+
 TEST(GatherVolume, ConstantGridMatchesHomogeneousAndMediaStayApart) {
   PhotonArray<VolumePhoton> a = cloud(20000, 1.0f, 1e-3f, false, 3, 0);
   const PhotonArray<VolumePhoton> b = cloud(20000, 1.0f, 1e-3f, false, 4, 1);

@@ -1,29 +1,57 @@
-// Building the volume photon map's grid and its radius rule (gather/volume_map.h).
+// Building the volume photon map's sparse grid and its radius rule (gather/volume_map.h).
 #include "gather/volume_map.h"
 #include "core/error.h"
 #include <fmt/format.h>
 #include <limits>
+#include <utility>
 
 namespace penumbra {
 namespace {
 
-// The cell is the radius of a beam meeting this many photons, twice the default k's:
+// The cell is the radius of a beam meeting this many photons, four times the default k:
 // fewer, longer rows beat tighter bounds (bench_volume: cells of the 64-, 150-, 400-,
 // 1000- and 2500-photon radius walked a k = 100 beam in 8.2, 6.8, 5.3, 5.6, 6.8 us).
 constexpr int kCellPhotons = 400;
-// The occupancy lattice that measures the occupied region's volume, per axis at most.
-constexpr int kOccupancyCells = 32;
-// Grid cells per stored photon at most (4 B each): coarser cells past it.
-constexpr double kCellsPerPhoton = 4.0;
+// The radius rule's cells hold about this many photons where a typical photon lies.
+constexpr double kDensityCellPhotons = 8.0;
+// Cells per axis at most, so a cell's key (z ny + y) nx + x fits 63 bits.
+constexpr double kMaxAxisCells = double(1 << 20);
 
-// A box's cells of size `cell` per axis (at least 1).
-void cellsFor(const Vec3& extent, float cell, int dims[3]) {
-  for (int a = 0; a < 3; ++a) dims[a] = std::max(1, static_cast<int>(std::ceil(extent[a] / cell)));
+struct Lattice {
+  Vec3 lo;
+  float invCell;
+  int dims[3];
+  uint64_t key(const Vec3& p) const {
+    uint64_t c[3];
+    for (int a = 0; a < 3; ++a) {
+      c[a] = static_cast<uint64_t>(std::clamp(static_cast<int>((p[a] - lo[a]) * invCell), 0, dims[a] - 1));
+    }
+    return (c[2] * dims[1] + c[1]) * dims[0] + c[0];
+  }
+};
+
+Lattice latticeOf(const Vec3& lo, const Vec3& extent, float cell) {
+  const float largest = std::max({extent.x, extent.y, extent.z});
+  cell = std::max(cell, static_cast<float>(largest / kMaxAxisCells));
+  Lattice l{lo, 1.0f / cell, {}};
+  for (int a = 0; a < 3; ++a) l.dims[a] = std::max(1, static_cast<int>(std::ceil(extent[a] / cell)));
+  return l;
 }
 
-int cellOf(const Vec3& p, const Vec3& lo, float invCell, const int dims[3], int axis) {
-  const int c = static_cast<int>((p[axis] - lo[axis]) * invCell);
-  return std::clamp(c, 0, dims[axis] - 1);
+// The photon-weighted mean density over cells of size `cell`: sum of count (count - 1)
+// / (N cell^3), the -1 removing the photon's own share (Poisson counts: E = lambda^2).
+double typicalDensity(const PhotonArray<VolumePhoton>& photons, const Vec3& lo, const Vec3& extent, float cell) {
+  const Lattice l = latticeOf(lo, extent, cell);
+  std::vector<uint64_t> keys(photons.size());
+  for (size_t i = 0; i < photons.size(); ++i) keys[i] = l.key(photons[i].position);
+  std::sort(keys.begin(), keys.end());
+  double pairs = 0.0;
+  for (size_t i = 0, j; i < keys.size(); i = j) {
+    for (j = i + 1; j < keys.size() && keys[j] == keys[i]; ++j) {}
+    pairs += double(j - i) * double(j - i - 1);
+  }
+  const double c = 1.0 / l.invCell;
+  return std::max(pairs, 1.0) / (double(photons.size()) * c * c * c);
 }
 
 }  // namespace
@@ -34,12 +62,11 @@ void VolumePhotonMap::build(PhotonBatches<VolumePhoton> batches, const MapBuildO
     throw InputError(fmt::format("photons: {} stored volume photons exceed the 2^32 one map can index; emit fewer", n));
   }
   photons_.clear();
+  cellKeys_.clear();
   cellStart_.clear();
+  rows_.clear();
   density_ = chord_ = 0.0;
-  if (n == 0) {
-    progressAdd(options.progress, 0);
-    return;
-  }
+  if (n == 0) return;
   PhotonArray<VolumePhoton> input = std::move(batches).takeArray();
   Vec3 lo(kInf), hi(-kInf);
   for (const VolumePhoton& p : input) {
@@ -52,47 +79,47 @@ void VolumePhotonMap::build(PhotonBatches<VolumePhoton> batches, const MapBuildO
   hi_ = hi + pad;
   const Vec3 extent = hi_ - lo_;
 
-  // The radius rule's region: the occupied cells of a coarse lattice over the box.
-  const float coarse = std::max({extent.x, extent.y, extent.z}) / kOccupancyCells;
-  int od[3];
-  cellsFor(extent, coarse, od);
-  std::vector<uint8_t> occupied(static_cast<size_t>(od[0]) * od[1] * od[2], 0);
-  size_t filled = 0;
-  for (const VolumePhoton& p : input) {
-    uint8_t& o = occupied[(static_cast<size_t>(cellOf(p.position, lo_, 1.0f / coarse, od, 2)) * od[1] +
-                           cellOf(p.position, lo_, 1.0f / coarse, od, 1)) * od[0] +
-                          cellOf(p.position, lo_, 1.0f / coarse, od, 0)];
-    filled += o == 0;
-    o = 1;
-  }
-  const double volume = double(filled) * coarse * coarse * coarse;
-  density_ = double(n) / volume;
-  chord_ = std::cbrt(volume);
+  // The radius rule's density: cells of ~8 photons at the box's mean density, then at
+  // the density a typical photon sees there (dense rooms inside a sparse halo).
+  const double boxVolume = double(extent.x) * extent.y * extent.z;
+  double dense = typicalDensity(input, lo_, extent, float(std::cbrt(kDensityCellPhotons * boxVolume / n)));
+  dense = typicalDensity(input, lo_, extent, float(std::cbrt(kDensityCellPhotons / dense)));
+  density_ = dense;
+  chord_ = std::cbrt(double(n) / dense);
 
-  // The grid: cells of the 64-photon radius, coarser if the box would need too many.
-  cell_ = std::max(radiusFor(kCellPhotons), 1e-6f * std::max({extent.x, extent.y, extent.z}));
-  cellsFor(extent, cell_, dims_);
-  while (double(dims_[0]) * dims_[1] * dims_[2] > std::max(4096.0, kCellsPerPhoton * double(n))) {
-    cell_ *= 1.25f;
-    cellsFor(extent, cell_, dims_);
-  }
-  invCell_ = 1.0f / cell_;
+  const Lattice grid = latticeOf(lo_, extent, radiusFor(kCellPhotons));
+  cell_ = 1.0f / grid.invCell;
+  invCell_ = grid.invCell;
+  for (int a = 0; a < 3; ++a) dims_[a] = grid.dims[a];
 
-  // A stable counting sort by cell: x fastest, so a row's cells hold one run of photons.
-  const size_t cells = static_cast<size_t>(dims_[0]) * dims_[1] * dims_[2];
-  std::vector<uint32_t> cellIndex(n);
-  cellStart_.assign(cells + 1, 0);
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3& p = input[i].position;
-    cellIndex[i] = static_cast<uint32_t>((static_cast<size_t>(cellOf(p, lo_, invCell_, dims_, 2)) * dims_[1] +
-                                          cellOf(p, lo_, invCell_, dims_, 1)) * dims_[0] +
-                                         cellOf(p, lo_, invCell_, dims_, 0));
-    ++cellStart_[cellIndex[i] + 1];
-  }
-  for (size_t c = 0; c < cells; ++c) cellStart_[c + 1] += cellStart_[c];
+  // Photons by cell key, ties in emission order; then the occupied cells and their rows.
+  std::vector<std::pair<uint64_t, uint32_t>> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = {grid.key(input[i].position), static_cast<uint32_t>(i)};
+  std::sort(order.begin(), order.end());
   photons_.resize(n);
-  std::vector<uint32_t> next(cellStart_.begin(), cellStart_.end() - 1);
-  for (size_t i = 0; i < n; ++i) photons_[next[cellIndex[i]]++] = input[i];
+  size_t rows = 0;
+  for (size_t i = 0; i < n; ++i) {
+    photons_[i] = input[order[i].second];
+    if (i == 0 || order[i].first != order[i - 1].first) {
+      const uint64_t rowKey = order[i].first / uint64_t(dims_[0]);
+      rows += cellKeys_.empty() || cellKeys_.back() / uint64_t(dims_[0]) != rowKey;
+      cellKeys_.push_back(order[i].first);
+      cellStart_.push_back(static_cast<uint32_t>(i));
+    }
+  }
+  cellStart_.push_back(static_cast<uint32_t>(n));
+  size_t slots = 16;
+  while (slots < 2 * rows) slots *= 2;
+  rows_.assign(slots, Row{});
+  for (size_t c = 0; c < cellKeys_.size();) {
+    const uint64_t rowKey = cellKeys_[c] / uint64_t(dims_[0]);
+    size_t e = c + 1;
+    while (e < cellKeys_.size() && cellKeys_[e] / uint64_t(dims_[0]) == rowKey) ++e;
+    size_t i = hashOf(rowKey) & (slots - 1);
+    while (rows_[i].key != ~uint64_t(0)) i = (i + 1) & (slots - 1);
+    rows_[i] = {rowKey, static_cast<uint32_t>(c), static_cast<uint32_t>(e)};
+    c = e;
+  }
   progressAdd(options.progress, 2 * n);
 }
 

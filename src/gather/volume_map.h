@@ -1,5 +1,5 @@
-// The volume photon map: media scattering events in a uniform grid whose x rows are
-// contiguous, so a beam reads every row that passes within its radius as one run.
+// The volume photon map: media scattering events in a sparse uniform grid whose x rows
+// are contiguous, so a beam reads every row that passes within its radius as one run.
 #pragma once
 #include "core/photon.h"
 #include "core/photon_batches.h"
@@ -13,19 +13,24 @@ namespace penumbra {
 
 class VolumePhotonMap {
  public:
-  // Takes ownership; sorts the photons by grid cell (a stable counting sort, so the
-  // order depends only on the emission's). The cell is the radius of a 400-photon beam.
+  // Takes ownership; sorts the photons by grid cell (ties in emission order). Only
+  // occupied cells are kept, rows found by hash: a halo of photons far from the rest
+  // (light leaving a room into fog that fills the scene) costs memory per photon, not
+  // per cell of its box. The cell is the radius of a 400-photon beam.
   void build(PhotonBatches<VolumePhoton> photons, const MapBuildOptions& options = {});
   bool empty() const { return photons_.empty(); }
   size_t size() const { return photons_.size(); }
-  size_t memoryBytes() const { return photons_.capacity() * sizeof(VolumePhoton) + cellStart_.capacity() * 4; }
+  size_t memoryBytes() const {
+    return photons_.capacity() * sizeof(VolumePhoton) + cellStart_.capacity() * 4 + cellKeys_.capacity() * 8 +
+           rows_.capacity() * sizeof(Row);
+  }
   const PhotonArray<VolumePhoton>& photons() const { return photons_; }
   float cellSize() const { return cell_; }
 
   // The radius rule: the beam radius at which a ray crossing the photons' region meets
-  // about k of them, k = n pi r^2 L with n the photons per unit volume of the occupied
-  // region and L = V^(1/3) the side of a cube of its volume V (a camera ray crossing a
-  // room of fog; a random chord of that cube averages 2/3 of it).
+  // about k of them, k = n pi r^2 L, with n the density a typical photon sees (the
+  // photon-weighted mean over cells holding ~8) and L = (N / n)^(1/3) the side of a
+  // cube holding all N photons at it (a camera ray crossing a room of fog).
   float radiusFor(int k) const;
 
   // The part of [tMin, tMax] along o + t d (d unit) within `radius` of the grid's box:
@@ -58,12 +63,27 @@ class VolumePhotonMap {
     const float lo = std::floor(std::min(a, b) - r), hi = std::floor(std::max(a, b) + r);
     if (!(hi >= 0.0f) || !(lo < static_cast<float>(dims_[axis]))) return false;
     first = lo < 0.0f ? 0 : static_cast<int>(lo);
-    last = std::min(dims_[axis] - 1, static_cast<int>(hi));
+    last = static_cast<int>(std::min(hi, static_cast<float>(dims_[axis] - 1)));
     return true;
   }
 
+  // A row's occupied cells: [first, last) of cellKeys_; key = z rows + y.
+  struct Row {
+    uint64_t key = ~uint64_t(0);
+    uint32_t first = 0, last = 0;
+  };
+  const Row* row(uint64_t key) const {
+    for (size_t i = hashOf(key) & (rows_.size() - 1);; i = (i + 1) & (rows_.size() - 1)) {
+      if (rows_[i].key == key) return &rows_[i];
+      if (rows_[i].key == ~uint64_t(0)) return nullptr;
+    }
+  }
+  static size_t hashOf(uint64_t k) { return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> 20); }
+
   PhotonArray<VolumePhoton> photons_;  // by cell: x fastest, then y, then z
-  std::vector<uint32_t> cellStart_;    // cell c's photons: [cellStart_[c], cellStart_[c + 1])
+  std::vector<uint64_t> cellKeys_;     // the occupied cells, ascending: (z ny + y) nx + x
+  std::vector<uint32_t> cellStart_;    // occupied cell c's photons: [cellStart_[c], cellStart_[c + 1])
+  std::vector<Row> rows_;              // open addressing, a power of two, at most half full
   Vec3 lo_{0.0f}, hi_{0.0f};           // the grid's box
   float cell_ = 1.0f, invCell_ = 1.0f;
   int dims_[3] = {0, 0, 0};
@@ -91,9 +111,21 @@ void VolumePhotonMap::beam(const Vec3& o, const Vec3& d, float tMin, float tMax,
       float ya = za, yb = zb;
       int x0, x1;
       if (!slab(1, g, gd, inv, y - w.y, y + 1 + w.y, ya, yb) || !cellsOf(0, g, gd, ya, yb, w.x, x0, x1)) continue;
-      const size_t row = (static_cast<size_t>(z) * dims_[1] + y) * dims_[0];
-      const uint32_t end = cellStart_[row + x1 + 1];
-      for (uint32_t i = cellStart_[row + x0]; i < end; ++i) {
+      const uint64_t key = static_cast<uint64_t>(z) * dims_[1] + y;
+      const Row* cells = row(key);
+      if (!cells) continue;
+      const uint64_t base = key * dims_[0];
+      const uint64_t* first = cellKeys_.data() + cells->first;
+      const uint64_t* last = cellKeys_.data() + cells->last;
+      if (cells->last - cells->first > 1) {
+        first = std::lower_bound(first, last, base + x0);
+        last = std::upper_bound(first, last, base + x1);
+      } else if (*first < base + x0 || *first > base + x1) {
+        continue;
+      }
+      if (first == last) continue;
+      const uint32_t end = cellStart_[last - cellKeys_.data()];
+      for (uint32_t i = cellStart_[first - cellKeys_.data()]; i < end; ++i) {
         const VolumePhoton& p = photons_[i];
         const Vec3 v = p.position - o;
         const float t = glm::dot(v, d), d2 = glm::dot(v, v) - t * t;
