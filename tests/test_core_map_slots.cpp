@@ -19,6 +19,7 @@ static_assert(std::is_same_v<PhotonOf<MapKind::Shadow>, ShadowPhoton>);
 static_assert(std::is_same_v<PhotonOf<MapKind::Indirect>, IndirectPhoton>);
 static_assert(std::is_same_v<PhotonOf<MapKind::Global>, IndirectPhoton>);
 static_assert(std::is_same_v<PhotonOf<MapKind::Caustic>, IndirectPhoton>);
+static_assert(std::is_same_v<PhotonOf<MapKind::Volume>, VolumePhoton>);
 static_assert(std::is_same_v<decltype(std::declval<MapSlots<Records>&>().get<MapKind::Shadow>()), Records<ShadowPhoton>&>);
 
 TEST(MapSlots, EachKindHoldsItsOwnPhotonType) {
@@ -27,6 +28,7 @@ TEST(MapSlots, EachKindHoldsItsOwnPhotonType) {
   slots.get<MapKind::Indirect>().resize(2);
   slots.get<MapKind::Global>().resize(3);
   slots.get<MapKind::Caustic>().resize(4);
+  slots.get<MapKind::Volume>().resize(5);
   std::vector<std::string> seen;
   std::vector<size_t> sizes, bytes;
   slots.forEach([&](MapKind k, const auto& records) {
@@ -34,10 +36,13 @@ TEST(MapSlots, EachKindHoldsItsOwnPhotonType) {
     sizes.push_back(records.size());
     bytes.push_back(sizeof(typename std::decay_t<decltype(records)>::value_type));
   });
-  EXPECT_EQ(seen, (std::vector<std::string>{"shadow", "indirect", "global", "caustic"}));  // kAllMaps order
-  EXPECT_EQ(sizes, (std::vector<size_t>{1, 2, 3, 4}));
+  EXPECT_EQ(seen, (std::vector<std::string>{"shadow", "indirect", "global", "caustic", "volume"}));  // kAllMaps order
+  EXPECT_EQ(sizes, (std::vector<size_t>{1, 2, 3, 4, 5}));
   EXPECT_EQ(bytes, (std::vector<size_t>{sizeof(ShadowPhoton), sizeof(IndirectPhoton), sizeof(IndirectPhoton),
-                                        sizeof(IndirectPhoton)}));
+                                        sizeof(IndirectPhoton), sizeof(VolumePhoton)}));
+  // The surface light maps' run-time slot; Shadow and Volume hold other records.
+  EXPECT_EQ(slots.light(MapKind::Volume), nullptr);
+  EXPECT_EQ(slots.light(MapKind::Caustic)->size(), 4u);
 }
 
 TEST(MapSlots, KindIsACompileTimeConstantAndIndexesAPerMap) {
