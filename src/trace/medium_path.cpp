@@ -52,7 +52,7 @@ MediumStretch traceMediumStretch(const ShadingContext& ctx, const Ray& ray, floa
       ++ts.counts.volumeGathers;
       const PhotonGather gather = ctx.gathers[MapKind::Volume];
       const VolumeEstimate e =
-          volumeRadiance(*volumeMap, VolumeQuery{ray.origin, ray.dir, a, b}, m, gather.k, gather.maxRadius, *ts.scratch);
+          volumeRadiance(*volumeMap, VolumeQuery{ray.origin, ray.dir, a, b, mi}, m, gather.k, gather.maxRadius, *ts.scratch);
       ts.counts.volumeNeighbours += e.found;
       added += e.value;
     }
