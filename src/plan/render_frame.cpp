@@ -35,6 +35,8 @@ void gatherRadii(const TransportModel& model, const PhotonStage& maps, const Sha
                  RenderStats& stats) {
   GatherScratch scratch;
   for (MapKind k : model.lightMaps()) {
+    // A scene without a medium builds no volume map and keeps its stats as they were.
+    if (k == MapKind::Volume && maps.maps.light(k)->empty()) continue;
     const PhotonGather& g = ctx.gathers[k];
     stats.gatherRadius[k] = g.k == 0 ? g.maxRadius : typicalKnnRadius(*maps.maps.light(k), g.k, scratch);
   }
