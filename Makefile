@@ -7,7 +7,7 @@ OUT ?= out
 PKGS := cmake ninja-build g++ pkg-config libtbb-dev libembree-dev libglm-dev \
         libopenimageio-dev openimageio-tools libnanoflann-dev libbenchmark-dev \
         libgtest-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libtinygltf-dev libfmt-dev zlib1g-dev libpng-dev libopenexr-dev \
-        fonts-dejavu-core python3 python3-matplotlib
+        libopenvdb-dev python3-openvdb fonts-dejavu-core python3 python3-matplotlib
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 .PHONY: all deps configure build renderer render test test-fast bench bench-startup scaling bench-profile gallery gallery-docs \

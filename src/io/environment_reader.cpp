@@ -130,7 +130,7 @@ void readEnvironment(const JsonNode& node, Scene& scene) {
   }
   const JsonNode keys = named ? JsonNode(kNoKeys, node.path(), node.context()) : node;
   const size_t preset = named ? node.asEnum(kPresets) : keys.enumOr("preset", kUniform, kPresets);
-  keys.allowKeys({"preset", "color", "intensity", "map", "rotation", "background"});
+  keys.allowKeys({"preset", "color", "intensity", "map", "rotation", "background", "medium"});  // medium: io/media_reader.h
   const Color color = keys.colorOr("color", Color(1.0f));
   const float intensity = keys.floatOr("intensity", 1.0f, Range::atLeast(0.0));
   // Checked before a map is decoded: bad input is refused before heavy work.

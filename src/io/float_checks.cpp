@@ -153,13 +153,15 @@ void checkSpheres(const JsonNode& root, const Scene& scene) {
   // Scene::spheres holds the objects' spheres in "objects" order, then (from
   // addEmitters) the emitting spheres of lights, whose material names the light: walk
   // both lists to name the JSON path.
-  size_t sphere = 0;
+  size_t sphere = 0, boundary = 0;
   if (root.has("objects")) {
     const JsonNode objects = root.child("objects");
     for (size_t i = 0; i < objects.arraySize(); ++i) {
       const JsonNode object = objects.element(i);
       if (object.child("type").asString() != "sphere") continue;
-      const Sphere& sp = scene.spheres[sphere++];
+      // A medium's boundary (a medium, no material) went to Scene::boundarySpheres.
+      const bool isBoundary = object.has("medium") && !object.has("material");
+      const Sphere& sp = isBoundary ? scene.boundarySpheres[boundary++] : scene.spheres[sphere++];
       checkRadius(object.child("radius"), sp.radius, sp.center);
     }
   }

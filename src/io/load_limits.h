@@ -6,6 +6,11 @@
 
 namespace penumbra {
 
+// The most voxels a density grid (io/vdb_reader.h) may resample into: 2^27 floats,
+// 512 MiB, four times a 320^3 smoke simulation. Checked from the grid's bounding box
+// before anything is allocated, so a file claiming more is refused, not attempted.
+inline constexpr uint64_t kMaxDensityVoxels = uint64_t(1) << 27;
+
 struct LoadLimits {
   // Bytes the loaded scene may allocate (meshes, buffers, decoded images): the
   // render's --max-memory or the memory available; 0: not checked.

@@ -4,6 +4,7 @@
 #include "core/byte_size.h"
 
 #include "io/float_checks.h"
+#include "io/media_reader.h"
 #include "io/mesh_cleanup.h"
 #include "io/load_cache.h"
 #include "io/model_import.h"
@@ -69,7 +70,7 @@ float uniformScale(const JsonNode& node) {
 }
 
 Sphere readSphere(const JsonNode& node) {
-  node.allowKeys({"type", "center", "radius", "material", "translate", "scale"});
+  node.allowKeys({"type", "center", "radius", "material", "medium", "translate", "scale"});
   Sphere s;
   s.center = readPosition(node.required("center", " for a sphere"));
   JsonNode radius = node.required("radius", " for a sphere");
@@ -155,9 +156,11 @@ void readModelObject(const JsonNode& node, const MaterialLookup& materials, Mesh
   const int named = node.has("material") ? materials.resolve(node) : -1;
   const Transform transform = readTransform(node);
   LoadedModel model = cachedModel(fileNode, file, cache, scene);  // moved into the scene: a copy
-  int fallback = -1;
+  // A medium's boundary (a medium, no material) is invisible: its faces need no material.
+  const bool boundary = node.has("medium") && !node.has("material");
+  int fallback = boundary ? 0 : -1;
   for (const TriangleMesh& mesh : model.meshes) {
-    if (named >= 0 || mesh.material >= 0) continue;
+    if (named >= 0 || mesh.material >= 0 || boundary) continue;
     const std::string why = model.materials.empty()
         ? " (" + file + " has no materials" + (model.warning.empty() ? "" : ": " + model.warning) + ")"
         : " (some faces of " + file + " have no material)";
@@ -210,14 +213,25 @@ void readObject(const JsonNode& node, const MaterialLookup& materials, MeshCache
   auto type = static_cast<ObjectType>(
       node.required("type", " (\"sphere\", \"mesh\", \"quad\", \"box\" or \"teapot\")")
           .asEnum({"sphere", "mesh", "quad", "box", "teapot"}));
+  // Its inside's medium (media_reader.h); with no material, the object is only that
+  // medium's invisible boundary.
+  const int medium = objectMedium(node, scene);
+  const bool boundary = medium != kNoMedium && !node.has("material");
+  const size_t firstMesh = scene.meshes.size();
   if (type == ObjectType::Mesh) {
-    node.allowKeys({"type", "file", "material", "translate", "rotate", "scale"});
+    node.allowKeys({"type", "file", "material", "medium", "translate", "rotate", "scale"});
     readModelObject(node, materials, cache, scene);
+    placeMediumMeshes(node, medium, scene, firstMesh);
     return;
   }
   if (type == ObjectType::Sphere) {
     Sphere sphere = readSphere(node);
-    sphere.material = materials.resolve(node);
+    sphere.media.inside = medium;
+    sphere.material = boundary ? -1 : materials.resolve(node);
+    if (boundary) {
+      scene.boundarySpheres.push_back(sphere);
+      return;
+    }
     if (maxComponent(scene.materials[sphere.material].emission) > 0.0f) {
       node.child("material").fail("an emitting material on a sphere object is not supported (use a sphere light)");
     }
@@ -226,17 +240,17 @@ void readObject(const JsonNode& node, const MaterialLookup& materials, MeshCache
   }
   switch (type) {
     case ObjectType::Quad:
-      node.allowKeys({"type", "corner", "edge1", "edge2", "material", "translate", "rotate", "scale"});
+      node.allowKeys({"type", "corner", "edge1", "edge2", "material", "medium", "translate", "rotate", "scale"});
       break;
     case ObjectType::Box:
-      node.allowKeys({"type", "min", "max", "material", "translate", "rotate", "scale"});
+      node.allowKeys({"type", "min", "max", "material", "medium", "translate", "rotate", "scale"});
       break;
     default:
-      node.allowKeys({"type", "subdivisions", "material", "translate", "rotate", "scale"});
+      node.allowKeys({"type", "subdivisions", "material", "medium", "translate", "rotate", "scale"});
       break;
   }
   // Check cheap fields before an expensive OBJ load or tessellation.
-  int material = materials.resolve(node);
+  int material = boundary ? -1 : materials.resolve(node);
   Transform transform = readTransform(node);
   TriangleMesh mesh = type == ObjectType::Quad ? readQuad(node)
                       : type == ObjectType::Box  ? readBox(node)
@@ -250,6 +264,7 @@ void readObject(const JsonNode& node, const MaterialLookup& materials, MeshCache
   }
   mesh.material = material;
   scene.meshes.push_back(std::move(mesh));
+  placeMediumMeshes(node, medium, scene, firstMesh);
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include "io/json_reader.h"
 #include "io/mesh_tangents.h"
 #include "io/load_cache.h"
+#include "io/media_binding.h"
+#include "io/media_reader.h"
 #include "io/model_import.h"
 #include "io/overrides.h"
 #include "io/scene_defaults.h"
@@ -78,7 +80,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   if (!document.is_object()) {
     root.fail("a scene must be a JSON object, got " + describeJson(document));
   }
-  root.allowKeys({"name", "camera", "lights", "materials", "objects", "render", "photons", "environment"});
+  root.allowKeys({"name", "camera", "lights", "materials", "objects", "render", "photons", "environment", "media"});
   LoadedModel model;
   if (!modelPath.empty()) {
     try {
@@ -112,12 +114,16 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   // render first: the model decides how materials are checked.
   scene.render.model = defaultShadingModel(!modelPath.empty());
   if (root.has("render")) readRender(root.child("render"), scene.render);
+  // Media before objects, which name them; after render, whose model may refuse them.
+  readMedia(root, scene);
+  readSceneMedium(root, scene);
   if (!root.has("materials")) ++scene.load.implicitMaterials;  // readMaterials adds "default"
   readMaterials(root, scene);
   readObjects(root, scene);
   if (!modelPath.empty()) addSceneModel(root, model, scene);
   addMissingTangents(scene);  // normal-mapped meshes only
   for (TriangleMesh& mesh : scene.meshes) padVertices(mesh.positions);  // the BVH reads them in place
+  for (TriangleMesh& mesh : scene.boundaryMeshes) padVertices(mesh.positions);
   if (scene.lights.size() > 65535) root.fail("at most 65535 lights, the model's included");
   addEmitters(scene);
   addMeshEmitters(scene);
@@ -134,6 +140,7 @@ Scene buildScene(const json& document, const LoadContext& context, const std::st
   }
   checkSceneNumbers(root, scene);
   if (root.has("photons")) readPhotons(root.child("photons"), scene.photons);
+  bindMedia(scene);  // last: the camera, lights and objects are where they will render
   // Each file once, in the order first read (a glTF without sidecar is both).
   std::vector<std::string> inputs;
   for (std::string& f : scene.inputs) {

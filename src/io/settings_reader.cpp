@@ -65,7 +65,7 @@ void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
 void readRender(const JsonNode& node, RenderSettings& out) {
   node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
                   "aov", "light_samples", "packets", "transparent_background", "adaptive", "adaptive_threshold",
-                  "adaptive_max_spp"});
+                  "adaptive_max_spp", "medium"});  // medium: io/media_reader.h
   std::vector<std::string> models;
   for (const ShadingModelInfo& m : kShadingModels) models.push_back(m.name);
   out.model = static_cast<ShadingModel>(node.enumOr("model", static_cast<size_t>(out.model), models));
@@ -90,7 +90,7 @@ void readRender(const JsonNode& node, RenderSettings& out) {
 void readPhotons(const JsonNode& node, PhotonSettings& out) {
   node.allowKeys({"shadow", "indirect", "k_shadow", "k_indirect", "max_radius", "estimator",
                   "sampling", "max_bounces", "gate", "global", "caustic", "k_global", "k_caustic",
-                  "passes", "alpha", "radius", "lookup", "lookup_cell"});
+                  "passes", "alpha", "radius", "lookup", "lookup_cell", "volume", "k_volume", "volume_radius"});
   out.shadowPhotons = node.uintOr("shadow", out.shadowPhotons, 0, kMaxPhotons);
   out.indirectPhotons = node.uintOr("indirect", out.indirectPhotons, 0, kMaxPhotons);
   out.kShadow = node.intOr("k_shadow", out.kShadow, 1, 10000);
@@ -122,6 +122,9 @@ void readPhotons(const JsonNode& node, PhotonSettings& out) {
   out.passes = node.intOr("passes", out.passes, 1, 100000);
   out.alpha = node.floatOr("alpha", out.alpha, Range{0.0, 1.0, true, false});
   out.radius = gatherRadius(node, "radius", out.radius);
+  out.volumePhotons = node.uintOr("volume", out.volumePhotons, 0, kMaxPhotons);
+  out.kVolume = node.intOr("k_volume", out.kVolume, 1, 10000);
+  out.volumeRadius = gatherRadius(node, "volume_radius", out.volumeRadius);
   // In PhotonLookup's order.
   out.lookup = static_cast<PhotonLookup>(
       node.enumOr("lookup", static_cast<size_t>(out.lookup), {"exact", "precomputed", "auto"}));

@@ -1,0 +1,20 @@
+// Meshes as solids: whether a mesh bounds a volume (edge-manifold and consistently
+// wound), whether a point lies inside it, and the volume it encloses.
+#pragma once
+#include "core/scene.h"
+#include <cstdint>
+
+namespace penumbra {
+
+// Edges (vertices welded by exact position) not shared by exactly two triangles of
+// opposite orientation, degenerate ones included: 0 for a closed mesh.
+uint64_t openEdgeCount(const TriangleMesh& mesh);
+
+// Whether `p` lies inside a closed mesh: the parity of a ray's crossings, voted over
+// three skew rays so one grazing an edge cannot decide alone.
+bool meshContains(const TriangleMesh& mesh, const Vec3& p);
+
+// The volume a closed mesh encloses (the divergence theorem over its triangles).
+double enclosedVolume(const TriangleMesh& mesh);
+
+}  // namespace penumbra
