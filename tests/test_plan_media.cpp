@@ -2,6 +2,7 @@
 // scatters light, its reason naming the media, the physical model's volume gather per
 // pass, the estimates and reuse keys that cover the volume map, and nothing of media
 // anywhere in a scene without one.
+#include "io/scene_loader.h"
 #include "io/shapes.h"
 #include "plan/render_plan.h"
 #include "plan/resource_estimate.h"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 
 namespace penumbra {
@@ -199,6 +201,25 @@ TEST(MediaPlan, ReuseKeysCoverTheMedia) {
     EXPECT_NE(k.photons, keys.photons) << geometry;
     EXPECT_NE(k.geometry, keys.geometry) << geometry;
   }
+}
+
+// A density grid's .vdb is one of the scene's inputs: editing it changes the stamp
+// both reuse keys carry, so batch and sweep never share a stale grid's photons.
+TEST(MediaPlan, AGridFileIsAnInputOfBothKeys) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "penumbra_test_plan_media_grid";
+  fs::create_directories(dir);
+  for (const char* f : {"smoke.json", "smoke.vdb"}) {
+    fs::copy_file(fs::path(PENUMBRA_SOURCE_DIR) / "scenes" / f, dir / f, fs::copy_options::overwrite_existing);
+  }
+  const Scene scene = loadScene((dir / "smoke.json").string());
+  const auto vdb = std::find_if(scene.inputs.begin(), scene.inputs.end(),
+                                [](const std::string& p) { return fs::path(p).extension() == ".vdb"; });
+  ASSERT_NE(vdb, scene.inputs.end());
+  const std::string before = inputsStamp(scene.inputs);
+  fs::last_write_time(*vdb, fs::last_write_time(*vdb) + std::chrono::seconds(5));
+  EXPECT_NE(inputsStamp(scene.inputs), before);
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -82,7 +82,8 @@ TEST(HardMedia, AMediumInAnOpenMeshIsRefusedInOneLine) {
   const CliResult r = runCli("render " + quote(scene.string()) + " -o " + quote((dir / "out.png").string()));
   EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_EQ(occurrences(r.err, "\n"), 1u) << r.err;
-  EXPECT_NE(r.err.find("fog"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("objects[3].medium"), std::string::npos) << r.err;  // the file's JSON path
+  EXPECT_NE(r.err.find("open"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out.png"));
 }
 
