@@ -2,6 +2,7 @@
 // world-to-lattice transform (io/vdb_reader fills it from an OpenVDB float grid).
 #pragma once
 #include "core/math.h"
+#include "core/media/majorant_grid.h"
 #include <cstdint>
 #include <vector>
 
@@ -14,6 +15,9 @@ struct DensityGrid {
   glm::mat4 worldToGrid{1.0f};
   Vec3 worldLo{0.0f}, worldHi{0.0f};  // a world box holding every voxel (density 0 outside)
   float maxDensity = 0.0f;            // the majorant of every lookup: the largest value
+  // Per-block majorants: the reader fills them once (buildMajorantGrid) after the values,
+  // and tracking steps through thin regions at their own bound; empty: maxDensity alone.
+  MajorantGrid majorants;
 
   float voxel(int i, int j, int k) const {
     if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz) return 0.0f;
