@@ -131,6 +131,8 @@ TSAN_TBB ?= $(TSAN_BUILD)/tbb
 # scene is 3.6 kB); one input taking FUZZ_TIMEOUT s is a hang finding.
 FUZZ_SECONDS ?= 60
 FUZZ_MAX_LEN ?= 8192
+# A .vdb's smallest tree (one 8^3 leaf under OpenVDB's 32^3 and 16^3 nodes) is ~10 kB.
+FUZZ_VDB_MAX_LEN ?= 32768
 FUZZ_TIMEOUT ?= 10
 FUZZ_RSS_MB ?= 2048
 # Every fuzz/fuzz_*.cpp is a target, with seeds in fuzz/corpus/<target>/ and an
@@ -163,9 +165,10 @@ fuzz: san-deps
 	  work=$(FUZZ_BUILD)/run/$$t; rm -rf $$work; mkdir -p $$work/corpus $$work/artifacts; \
 	  cp fuzz/corpus/$$t/* $$work/corpus/; \
 	  dict=; [ -f fuzz/dict/$$t.dict ] && dict=-dict=fuzz/dict/$$t.dict; \
+	  len=$(FUZZ_MAX_LEN); [ $$t = fuzz_vdb_reader ] && len=$(FUZZ_VDB_MAX_LEN); \
 	  echo "== $$t: $(FUZZ_SECONDS) s, log $$work/log.txt"; \
 	  if $(SAN_ENV) $(FUZZ_BUILD)/fuzz/$$t -max_total_time=$(FUZZ_SECONDS) \
-	       -max_len=$(FUZZ_MAX_LEN) -timeout=$(FUZZ_TIMEOUT) -rss_limit_mb=$(FUZZ_RSS_MB) \
+	       -max_len=$$len -timeout=$(FUZZ_TIMEOUT) -rss_limit_mb=$(FUZZ_RSS_MB) \
 	       -print_final_stats=1 -artifact_prefix=$$work/artifacts/ $$dict \
 	       $$work/corpus > $$work/log.txt 2>&1; then \
 	    grep -E '^#[0-9]+[[:space:]]+(INITED|DONE)|^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)' $$work/log.txt; \

@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "core/scene.h"
 #include "io/scene_loader.h"
+#include "fuzz_media_checks.h"
 
 #include <cmath>
 #include <cstdint>
@@ -109,6 +110,7 @@ void checkScene(const penumbra::Scene& scene) {
   if (!finite(c.position) || !finite(c.lookAt) || !finite(c.up) || !std::isfinite(c.fovY)) {
     broken("camera not finite");
   }
+  penumbra_fuzz::checkMedia(scene);
 }
 
 }  // namespace

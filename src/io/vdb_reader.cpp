@@ -129,6 +129,11 @@ DensityGrid resample(const openvdb::FloatGrid& grid, const VdbRequest& request) 
   const double det = glm::determinant(toWorld);
   if (!std::isfinite(det) || det == 0.0) throw VdbError("its transform is singular (a voxel of zero size)");
   out.worldToGrid = glm::mat4(glm::inverse(toWorld));
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(out.worldToGrid[c][r])) throw VdbError("its voxels are too small for single precision");
+    }
+  }
   // Trilinear lookups reach one voxel past the centres at either end: lattice [-1, n].
   glm::dvec3 wlo(INFINITY), whi(-INFINITY);
   for (int corner = 0; corner < 8; ++corner) {
