@@ -30,6 +30,14 @@ struct AlphaCut {
 struct TraceScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  // The invisible medium boundaries (geometry/boundary_scene.cpp): a scene of their own,
+  // null without any, so surface queries never see them and a scene without pays nothing.
+  RTCScene boundaries = nullptr;
+  struct BoundaryRef {
+    bool sphere;
+    uint32_t index;  // boundary mesh index; the spheres share one geometry and use primID
+  };
+  std::vector<BoundaryRef> boundaryRefs;  // by Embree geomID in `boundaries`
   std::string embreeError;  // first error Embree reported, if any (its error callback writes here)
   bool compact = false;     // the BVH's leaves index the vertices (BvhLayout::Compact)
   std::vector<AlphaCut> cuts;  // one per cut-out mesh, reserved up front (filters hold pointers)
@@ -38,6 +46,7 @@ struct TraceScene::Impl {
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
   ~Impl() {
+    if (boundaries) rtcReleaseScene(boundaries);
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
   }
@@ -46,6 +55,14 @@ struct TraceScene::Impl {
 // Creates the user geometry for all scene spheres (primID = sphere index). The
 // spheres vector must outlive the Embree scene. (geometry/sphere_geometry.cpp)
 RTCGeometry createSphereGeometry(RTCDevice device, const std::vector<Sphere>& spheres);
+
+// A triangle mesh reading the scene's arrays in place where it can, with the cut-out
+// filter when `cut` is set. (geometry/trace_scene.cpp)
+RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh, const AlphaCut* cut);
+
+// The nearest hit of one ray in an Embree scene; false on a miss, a non-finite
+// distance or a ray Embree would refuse. (geometry/trace_scene.cpp)
+bool intersectScene(RTCScene scene, const Ray& ray, Hit& hit);
 
 // Makes `geom` drop the hits `cut` cuts out, for intersection and occlusion queries
 // alike, single rays and packets. (geometry/alpha_filter.cpp)

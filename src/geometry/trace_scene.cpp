@@ -20,6 +20,8 @@ void onEmbreeError(void* userPtr, RTCError code, const char* message) {
   if (first->empty()) first->assign(std::string("Embree error ") + std::to_string(code) + ": " + (message ? message : ""));
 }
 
+}  // namespace
+
 RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh, const AlphaCut* cut) {
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   // The scene outlives the tracer and never changes: Embree reads its arrays in place,
@@ -39,8 +41,6 @@ RTCGeometry createMeshGeometry(RTCDevice device, const TriangleMesh& mesh, const
   rtcCommitGeometry(geom);
   return geom;
 }
-
-}  // namespace
 
 bool compactBvh(size_t triangles, BvhLayout layout) {
   return layout == BvhLayout::Compact || (layout == BvhLayout::Auto && triangles >= kCompactBvhTriangles);
@@ -71,13 +71,16 @@ void TraceScene::computeFrames(const TriangleMesh& mesh, TriangleFrame* frames) 
   tbb::parallel_for(tbb::blocked_range<size_t>(0, mesh.triangles.size(), 4096), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const auto& tri = mesh.triangles[i];
-      const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
-      const Vec3 ng = unitCross(p1 - p0, p2 - p0);
-      const Vec3 extent = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
-      frames[i] = {ng, std::max(gammaBound(7) * glm::dot(glm::abs(ng), extent), 0x1p-40f * maxComponent(extent)),
-                   gammaBound(7) * maxComponent(extent)};
+      frames[i] = frameOf(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
     }
   });
+}
+
+TraceScene::TriangleFrame TraceScene::frameOf(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  const Vec3 ng = unitCross(p1 - p0, p2 - p0);
+  const Vec3 extent = glm::max(glm::abs(p0), glm::max(glm::abs(p1), glm::abs(p2)));
+  return {ng, std::max(gammaBound(7) * glm::dot(glm::abs(ng), extent), 0x1p-40f * maxComponent(extent)),
+          gammaBound(7) * maxComponent(extent)};
 }
 
 TraceScene::TraceScene(const Scene& scene, bool robust, BvhLayout layout) : scene_(scene), impl_(std::make_unique<Impl>()) {
@@ -127,6 +130,7 @@ TraceScene::TraceScene(const Scene& scene, bool robust, BvhLayout layout) : scen
     geometries_[id] = {true, 0};
   }
   rtcCommitScene(rtcScene);
+  if (!scene.boundarySpheres.empty() || !scene.boundaryMeshes.empty()) buildBoundaries(robust);
   RTCBounds b;
   rtcGetSceneBounds(rtcScene, &b);
   Vec3 lo(b.lower_x, b.lower_y, b.lower_z), hi(b.upper_x, b.upper_y, b.upper_z);
@@ -160,7 +164,7 @@ const AlphaCut* TraceScene::alphaCutOf(const Scene& scene, size_t meshIndex, con
 
 TraceScene::~TraceScene() = default;  // here, where Impl is complete
 
-bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
+bool intersectScene(RTCScene scene, const Ray& ray, Hit& hit) {
   if (!embreeAccepts(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -175,7 +179,7 @@ bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &context, &rh);
+  rtcIntersect1(scene, &context, &rh);
   // A non-finite distance can only come from geometry at the edge of float range;
   // treating it as a miss keeps NaN out of every position and offset after it.
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || !std::isfinite(rh.ray.tfar)) return false;
@@ -186,6 +190,8 @@ bool TraceScene::intersect(const Ray& ray, Hit& hit) const {
   hit.primId = rh.hit.primID;
   return true;
 }
+
+bool TraceScene::intersect(const Ray& ray, Hit& hit) const { return intersectScene(impl_->scene, ray, hit); }
 
 bool TraceScene::occluded(const Ray& ray) const {
   if (!embreeAccepts(ray)) return true;  // no light along a ray that is not one
@@ -223,17 +229,16 @@ int TraceScene::mediumBeyond(const Hit& hit, const SurfaceRecord& s, const Vec3&
   return glm::dot(dir, outward) < 0.0f ? mi.inside : mi.outside;
 }
 
-bool TraceScene::nextBoundary(const Ray&, float, BoundaryCrossing&) const {
-  return false;  // TODO(media): the boundary scene
+SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const {
+  return sphereRecord(scene_.spheres[hit.primId], ray, hit.t, fields);
 }
 
-SurfaceRecord TraceScene::sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const {
-  const Sphere& s = scene_.spheres[hit.primId];
+SurfaceRecord TraceScene::sphereRecord(const Sphere& s, const Ray& ray, float t, uint8_t fields) {
   SurfaceRecord rec;
   // The normal in double: o + t d lands within float rounding of the centre's
   // neighbourhood on a tiny sphere, where a float p - c would cancel to zero.
   const glm::dvec3 c(s.center);
-  const glm::dvec3 d = glm::dvec3(ray.origin) + double(hit.t) * glm::dvec3(ray.dir) - c;
+  const glm::dvec3 d = glm::dvec3(ray.origin) + double(t) * glm::dvec3(ray.dir) - c;
   const double len = glm::length(d);
   const Vec3 n = len > 0.0 ? Vec3(d / len) : -ray.dir;
   // Re-project onto the sphere: removes the error of o + t d at large t. What is

@@ -104,7 +104,9 @@ class TraceScene {
     int beyond = kNoMedium;
     SurfaceRecord surface;  // for the next ray's origin (spawnOrigin)
   };
+  // False (at once) in a scene without boundaries.
   bool nextBoundary(const Ray& ray, float tMax, BoundaryCrossing& out) const;
+  bool hasBoundaries() const;
 
   // A sphere around all geometry (Embree's bounds): directional lights emit from it.
   SceneSphere boundingSphere() const { return bounds_; }
@@ -130,9 +132,13 @@ class TraceScene {
     float spread;  // in any direction
   };
   static void computeFrames(const TriangleMesh& mesh, TriangleFrame* frames);
+  static TriangleFrame frameOf(const Vec3& p0, const Vec3& p1, const Vec3& p2);
+  // The invisible boundaries' own Embree scene (geometry/boundary_scene.cpp).
+  void buildBoundaries(bool robust);
   // The cut-out rule of mesh `meshIndex` kept in impl_ (null for an opaque material).
   const AlphaCut* alphaCutOf(const Scene& scene, size_t meshIndex, const Vec3& centre);
   SurfaceRecord sphereSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
+  static SurfaceRecord sphereRecord(const Sphere& s, const Ray& ray, float t, uint8_t fields);
   SurfaceRecord meshSurface(const Ray& ray, const Hit& hit, uint8_t fields) const;
   glm::vec4 meshColor(const Hit& hit) const;
 

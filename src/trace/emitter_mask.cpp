@@ -20,7 +20,7 @@ bool seesEmitter(const ShadingContext& ctx, const CameraRays& camera, int x, int
     const float ox = (float(j % kEmitterGrid) + 0.5f) / kEmitterGrid, oy = (float(j / kEmitterGrid) + 0.5f) / kEmitterGrid;
     beginSample(ts, key);
     const Color glow = tracePhysical(ctx, camera.generate(x + ox, y + oy, key), 0, Color(1.0f), RayKind::Camera,
-                                     kTermEmitters, -1, ts);
+                                     kTermEmitters, -1, ts, ctx.scene.cameraMedium);
     if (maxComponent(glow) > 0.0f) return true;
   }
   return false;

@@ -4,6 +4,7 @@
 #include "gather/photon_map.h"
 #include "core/bsdf.h"
 #include "core/light_sample.h"
+#include "trace/medium_shadow.h"
 
 namespace penumbra {
 
@@ -28,16 +29,9 @@ Color shadowTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, uin
   }
   const bool finite = std::isfinite(in.distance);
   const bool tinted = ctx.hasGlass && ctx.choices.integrator->glass == GlassShadows::Tint;
-  if (lightTraits(ctx.scene.lights[lightIndex]).shadowTest == ShadowTest::FirstHitIsEmitter && !tinted) {
-    // Near a sphere light's silhouette the ray from the lifted origin can enter the
-    // sphere before the sampled point: whatever it meets first decides, and meeting
-    // the light itself means it arrived.
-    Hit hit;
-    if (!ctx.tracer.intersect(ray, hit)) return Color(1.0f);
-    return ctx.scene.materials[ctx.tracer.materialOf(hit)].light == static_cast<int>(lightIndex)
-               ? Color(1.0f) : Color(0.0f);
-  }
-  if (!tinted) return ctx.tracer.occluded(ray) ? Color(0.0f) : Color(1.0f);
+  // Opaque surfaces (glass too, in the physical model) block; media attenuate
+  // (trace/medium_shadow.h).
+  if (!tinted) return lightTransmittance(ctx, ray, in.margin, lightIndex, ts.medium, ts);
   Color t(1.0f);
   for (int crossing = 0; crossing < 32; ++crossing) {
     Hit hit;
@@ -167,6 +161,13 @@ Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t ligh
   return t;
 }
 
+Color litMediaTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, const LightIncidence& in,
+                            ThreadState& ts) {
+  Ray ray;
+  if (!shadowRayTo(s, in, ray)) return Color(1.0f);
+  return segmentTransmittance(ctx, ray, ray.tMax + in.margin, ts.medium, ts);
+}
+
 Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Material& m,
                   const CachedAnswer* cached, ThreadState& ts) {
   const IndirectPhotonMap* map = ctx.maps.get<MapKind::Indirect>();
@@ -208,7 +209,9 @@ Color ambientTerm(const ShadingContext& ctx, const SurfaceRecord& s, const Mater
 uint32_t packetShadowLights(const ShadingContext& ctx, bool direct) {
   const Scene& scene = ctx.scene;
   const bool tinted = ctx.hasGlass && ctx.choices.integrator->glass == GlassShadows::Tint;
-  if (!direct || !ctx.choices.shadows || tinted) return 0;
+  // With media a shadow ray carries a transmittance, not a bit: those scenes cast
+  // their rays one by one (packets would only save the occlusion half of the walk).
+  if (!direct || !ctx.choices.shadows || tinted || scene.hasMedia()) return 0;
   uint32_t mask = 0;
   for (uint32_t li = 0; li < scene.lights.size() && li < 32; ++li) {
     const Light& light = scene.lights[li];

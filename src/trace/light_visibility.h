@@ -71,6 +71,19 @@ bool shadowRayTo(const SurfaceRecord& s, const LightIncidence& in, Ray& ray);
 Color shadowRay(const ShadingContext& ctx, const SurfaceRecord& s, uint32_t lightIndex,
                 const LightIncidence& in, ThreadState& ts);
 
+// What a lit gate verdict (or a render without shadows) lets through in a scene with
+// media. The gate's photons vote on surfaces only: "shadowed" stays exact (an opaque
+// blocker absorbs everything, whatever the medium), while "lit" says no surface blocks,
+// so the segment stays in the shading point's medium but at invisible boundaries and
+// its transmittance still multiplies the light: in closed form when that medium is
+// homogeneous and no boundary exists, else walked (trace/medium_shadow.h).
+Color litMediaTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, const LightIncidence& in,
+                            ThreadState& ts);
+inline Color litTransmittance(const ShadingContext& ctx, const SurfaceRecord& s, const LightIncidence& in,
+                              ThreadState& ts) {
+  return ctx.scene.hasMedia() ? litMediaTransmittance(ctx, s, in, ts) : Color(1.0f);
+}
+
 // The closed-form Lambertian light of an area light none of whose samples reached
 // the shading point: k_d E (E clipped to the point's horizon) when the gate says
 // lit (or `asked`: a lit verdict is already known), else 0. Asks the gate only
@@ -117,7 +130,9 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   Bsdf glossy;
   GateVerdict v = shadows ? GateVerdict::Mixed : GateVerdict::Lit;
   std::optional<PointStrata> strata;  // a mixed light's strata, if precomputed
-  bool asked = !shadows, closedTried = !area;
+  // With media the lit closed forms (unoccludedIrradiance) would leave out the
+  // transmittance, which varies over the light: the samples carry it instead.
+  bool asked = !shadows, closedTried = !area || ctx.scene.hasMedia();
   Color closed(0.0f), sum(0.0f);
   const Stratified2D stratified(n);
   for (int j = 0; j < n; ++j) {
@@ -174,13 +189,13 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
       if (!parametricStrata) sv = (*strata)(sampleStratum(light, u, in.point));
       if (sv != GateVerdict::Mixed) {
         ++ts.counts.shadowRaysAvoided;
-        if (sv == GateVerdict::Lit) sum += weigh(Color(1.0f), f, in);
+        if (sv == GateVerdict::Lit) sum += weigh(litTransmittance(ctx, s, in, ts), f, in);
         continue;
       }
     }
     if (v == GateVerdict::Lit) {
       if (shadows) ++ts.counts.shadowRaysAvoided;
-      sum += weigh(Color(1.0f), f, in);
+      sum += weigh(litTransmittance(ctx, s, in, ts), f, in);
       continue;
     }
     const Color t = shadowRay(ctx, s, li, in, ts);

@@ -2,6 +2,7 @@
 // shadow rays (opaque and glass both block), plus the caustic and global photon
 // estimates; mirror and glass lobes are followed by rays, weighted by their
 // reflectance and Fresnel (both branches of glass, as the Whitted tracer does).
+// In scenes with media the ray's medium travels with it (trace/medium_path.h).
 #include "trace/physical.h"
 #include "core/bsdf.h"
 #include "core/lights/environment_map.h"
@@ -13,6 +14,7 @@
 #include "trace/environment_light.h"
 #include "trace/glass_split.h"
 #include "trace/light_visibility.h"
+#include "trace/medium_path.h"
 #include "trace/normal_map.h"
 #include "trace/texture_lookup.h"
 
@@ -62,19 +64,36 @@ Color photonTerm(const ShadingContext& ctx, MapKindTag<K> kind, const SurfaceRec
   return e.value;
 }
 
+
+// The ray's first hit shaded (or what a miss sees), `medium` the medium it arrived in.
+Color shadeSurface(const ShadingContext& ctx, const Ray& ray, const Hit* found, int depth, const Color& throughput,
+                   RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts, int medium);
+
 }  // namespace
 
 Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const Color& throughput,
-                    RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts) {
+                    RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts, int medium) {
   Hit hit;
   const bool found = ctx.tracer.intersect(ray, hit);
   return tracePhysicalHit(ctx, ray, found ? &hit : nullptr, depth, throughput, kind, terms,
-                          parentRecord, ts);
+                          parentRecord, ts, medium);
 }
 
 Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* found, int depth,
                        const Color& throughput, RayKind kind, uint8_t terms, int parentRecord,
-                       ThreadState& ts) {
+                       ThreadState& ts, int medium) {
+  if (!ctx.scene.hasMedia()) return shadeSurface(ctx, ray, found, depth, throughput, kind, terms, parentRecord, ts, kNoMedium);
+  // What the media add on the way, and what they let through of what lies beyond.
+  const MediumStretch st = traceMediumStretch(ctx, ray, found ? found->t : kInf, medium, terms, ts);
+  const Color beyond = shadeSurface(ctx, ray, found, depth, throughput * st.transmittance, kind, terms,
+                                    parentRecord, ts, st.medium);
+  return st.radiance + st.transmittance * beyond;
+}
+
+namespace {
+
+Color shadeSurface(const ShadingContext& ctx, const Ray& ray, const Hit* found, int depth, const Color& throughput,
+                   RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts, int medium) {
   countRay(kind, ts.counts);
   --ts.raysLeft;
   int recIndex = ts.recorder ? beginRecord(ts, kind, ray, depth, throughput, parentRecord) : -1;
@@ -132,6 +151,7 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
     const CachedAnswer* cached = lookupAt(ctx, s, storage, ts);
     // The indirect view traces the direct term too: its gather depends on it.
     const bool withDirect = terms & kTermDirect;
+    ts.medium = medium;  // where this point's shadow rays start
     const Color direct = (terms & (kTermDirect | kTermGlobal))
                              ? directLight(ctx, s, bsdf, frame, wo, cached, ts, withDirect && recIndex >= 0 ? &note : nullptr)
                              : Color(0.0f);
@@ -151,7 +171,8 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
     if (!(k == RayKind::Reflection ? ctx.choices.reflection : ctx.choices.refraction)) return;  // the plan skips it
     if (maxComponent(next) <= rs.minWeight || ts.raysLeft <= 0) return;
     Ray r{spawnOrigin(s, dir), dir};
-    color += w * tracePhysical(ctx, r, depth + 1, next, k, rayTerms, recIndex, ts);
+    const int beyond = ctx.scene.hasMedia() ? ctx.tracer.mediumBeyond(hit, s, dir, medium) : kNoMedium;
+    color += w * tracePhysical(ctx, r, depth + 1, next, k, rayTerms, recIndex, ts, beyond);
   };
   if (depth < rs.maxDepth && (bsdfFlags(bsdf) & kBsdfNarrow)) {
     // One sampled ray of the narrow lobe carries its indirect light; the lights it
@@ -183,8 +204,6 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   return color;
 }
 
-namespace {
-
 uint8_t physicalTerms(Aov aov) {
   switch (aov) {
     case Aov::Direct: return kTermDirect | kTermEmitters;
@@ -195,11 +214,12 @@ uint8_t physicalTerms(Aov aov) {
 }
 
 Color physicalSample(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov aov, ThreadState& ts) {
-  return tracePhysicalHit(ctx, ray, hit, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts);
+  return tracePhysicalHit(ctx, ray, hit, 0, Color(1.0f), RayKind::Camera, physicalTerms(aov), -1, ts,
+                          ctx.scene.cameraMedium);
 }
 
 void physicalTree(const ShadingContext& ctx, const Ray& ray, ThreadState& ts) {
-  tracePhysical(ctx, ray, 0, Color(1.0f), RayKind::Camera, kTermAll, -1, ts);
+  tracePhysical(ctx, ray, 0, Color(1.0f), RayKind::Camera, kTermAll, -1, ts, ctx.scene.cameraMedium);
 }
 
 // Direct light lands on smooth lobes only; a mirror or glass has none, unless a

@@ -16,13 +16,14 @@ enum PhysicalTerms : uint8_t {
 };
 
 // Radiance along `ray` in W/(sr m^2). `throughput` is the product of the delta
-// lobes' weights so far; recursion stops at max_depth or below min_weight.
+// lobes' weights so far; recursion stops at max_depth or below min_weight. `medium`:
+// the medium the ray starts in (a camera ray: Scene::cameraMedium).
 Color tracePhysical(const ShadingContext& ctx, const Ray& ray, int depth, const Color& throughput,
-                    RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts);
+                    RayKind kind, uint8_t terms, int parentRecord, ThreadState& ts, int medium = kNoMedium);
 // The same for a ray already traced (a camera ray of a packet): `hit` is its first
 // hit, null on a miss.
 Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* hit, int depth,
                        const Color& throughput, RayKind kind, uint8_t terms, int parentRecord,
-                       ThreadState& ts);
+                       ThreadState& ts, int medium = kNoMedium);
 
 }  // namespace penumbra

@@ -80,6 +80,11 @@ struct ThreadState {
   // packet (tracePrimaryShadows, light_visibility.h): bit li of `knownShadows` says light li's
   // answer is in bit li of `blockedShadows`. Zero outside the packet path.
   uint32_t knownShadows = 0, blockedShadows = 0;
+  // Scenes with media: the medium around the shading point whose shadow rays are being
+  // cast (the side its ray arrived from, the only side a light sample faces), and how
+  // many medium streams this sample has drawn (each seeds one from sampleKey).
+  int medium = kNoMedium;
+  uint32_t mediumDraws = 0;
 };
 
 // A camera sample starts: its key seeds every light sample of its ray tree.
@@ -87,6 +92,7 @@ inline void beginSample(ThreadState& ts, uint64_t key) {
   ts.sampleKey = key ^ 0x6c69676874736d70ull;  // "lightsmp": a stream apart from the pixel's
   ts.shadingPoint = 0;
   ts.knownShadows = ts.blockedShadows = 0;
+  ts.mediumDraws = 0;
 }
 
 enum class RayKind { Camera, Reflection, Refraction };

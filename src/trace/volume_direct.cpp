@@ -1,0 +1,95 @@
+// Single scattering by light sampling along a camera (or specular) ray's medium stretch.
+#include "trace/volume_direct.h"
+#include "core/light_sample.h"
+#include "core/lights/environment_map.h"
+#include "core/media/density_grid.h"
+#include "core/media/homogeneous.h"
+#include "core/media/phase_function.h"
+#include "core/media/tracking.h"
+#include "trace/medium_shadow.h"
+
+namespace penumbra {
+
+namespace {
+
+// The point equiangular samples centre on: a light small enough to have one. A mesh
+// light's triangles can spread anywhere; lights at infinity have none.
+bool equiangularCentre(const Light& light, Vec3& c) {
+  switch (light.type) {
+    case LightType::Point:
+    case LightType::Spot:
+    case LightType::Sphere:
+    case LightType::Disk: c = light.position; return true;
+    case LightType::Quad: c = light.position + 0.5f * (light.edge1 + light.edge2); return true;
+    default: return false;
+  }
+}
+
+}  // namespace
+
+Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, int medium, Rng& rng,
+                   ThreadState& ts) {
+  const Medium& m = ctx.scene.media[static_cast<size_t>(medium)];
+  if (!(maxComponent(m.sigmaS) > 0.0f) || !gridSpan(m, ray, a, b)) return Color(0.0f);
+  const Color st = m.sigmaT();
+  const FreeFlight flight((st.r + st.g + st.b) / 3.0f * (m.density ? m.density->maxDensity : 1.0f), a, b);
+  // sigma_s T(a, t) p(wi, ray) L_i T_shadow at distance t: the integrand, before its pdf.
+  auto scatterAt = [&](uint32_t li, float t) {
+    ++ts.counts.mediumSamples;
+    const Light& light = ctx.scene.lights[li];
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    const Vec3 x = ray.origin + t * ray.dir;
+    const Color sigmaS = sigmaSAt(m, x);
+    if (!(maxComponent(sigmaS) > 0.0f)) return Color(0.0f);
+    LightIncidence in;
+    if (lightTraits(light).direct == DirectSampling::EnvironmentMis) {
+      const EnvironmentSample e = sampleEnvironmentSphere(light, u1, u2);
+      if (!e.valid) return Color(0.0f);
+      in.wi = e.wi;
+      in.radiance = e.radiance / e.pdf;
+    } else {
+      in = sampleLight(prepareLight(light, x), isDeltaLight(light) ? 0.5f : u1, isDeltaLight(light) ? 0.5f : u2);
+      if (!in.valid) return Color(0.0f);
+    }
+    // Propagation directions: from the light along -wi, then back along -ray.dir.
+    Color f = sigmaS * henyeyGreenstein(m.g, glm::dot(in.wi, ray.dir)) * in.radiance;
+    if (!(maxComponent(f) > 0.0f)) return Color(0.0f);
+    f *= stretchTransmittance(m, ray, a, t, ts);
+    if (!ctx.choices.shadows || !(maxComponent(f) > 0.0f)) return f;
+    Ray shadow{x, in.wi};
+    float margin = 0.0f;
+    if (std::isfinite(in.distance)) {
+      const Vec3 d = in.point - x;
+      const float len = glm::length(d);
+      if (!(len > in.margin)) return f;  // at the light
+      shadow.dir = d / len;
+      shadow.tMax = len - in.margin;
+      margin = in.margin;
+    }
+    return f * lightTransmittance(ctx, shadow, margin, li, medium, ts);
+  };
+  Color sum(0.0f);
+  // A far sample can underflow both its pdf and its integrand (T = 0): it adds nothing.
+  auto add = [&](uint32_t li, float t, float pdf) {
+    if (std::isfinite(t) && pdf > 0.0f) sum += scatterAt(li, t) / pdf;
+  };
+  for (uint32_t li = 0; li < ctx.scene.lights.size(); ++li) {
+    const Light& light = ctx.scene.lights[li];
+    if (!(maxComponent(light.radiance()) > 0.0f)) continue;
+    Vec3 centre(0.0f);
+    const bool equiangular = equiangularCentre(light, centre);
+    const EquiangularFrame eq(ray.origin, ray.dir, centre, a, b);
+    const DistanceSample td = flight.sample(rng.uniform());
+    if (equiangular && eq.thetaB > eq.thetaA) {
+      // One sample of each technique, each weighted by the balance heuristic: f / (p_e + p_d).
+      const DistanceSample te = sampleEquiangular(ray.origin, ray.dir, centre, a, b, rng.uniform());
+      if (te.pdf > 0.0f) add(li, te.t, te.pdf + flight.pdf(te.t));
+      if (td.pdf > 0.0f) add(li, td.t, float(eq.pdf(td.t)) + td.pdf);
+    } else if (td.pdf > 0.0f) {
+      add(li, td.t, td.pdf);
+    }
+  }
+  return sum;
+}
+
+}  // namespace penumbra
