@@ -26,10 +26,13 @@ inline const char* mapName(MapKind k) {
 
 struct ShadowPhoton;
 struct IndirectPhoton;
+struct VolumePhoton;
 
-// The photon record a map of kind K stores: the gate's shadow photons, or power-carrying ones.
+// The photon record a map of kind K stores: the gate's shadow photons, the volume
+// map's scattering events, or the surface maps' power-carrying photons.
 template <MapKind K>
-using PhotonOf = std::conditional_t<K == MapKind::Shadow, ShadowPhoton, IndirectPhoton>;
+using PhotonOf = std::conditional_t<K == MapKind::Shadow, ShadowPhoton,
+                                    std::conditional_t<K == MapKind::Volume, VolumePhoton, IndirectPhoton>>;
 
 // A kind known at compile time; converts to MapKind, so it indexes a PerMap too.
 template <MapKind K>
@@ -78,7 +81,8 @@ class MapSlots {
   void with(MapKind k, F&& f) const {
     forEach([&](auto kind, const auto& slot) { if (kind == k) f(kind, slot); });
   }
-  // The slot of a light-carrying kind (any but Shadow) chosen at run time; null for Shadow.
+  // The slot of a surface light map (Indirect, Global, Caustic) chosen at run time;
+  // null for Shadow and Volume, whose records differ.
   Slot<IndirectPhoton>* light(MapKind k) {
     Slot<IndirectPhoton>* out = nullptr;
     forEach([&](auto kind, auto& slot) {

@@ -145,4 +145,15 @@ struct IndirectPhoton {
 };
 static_assert(sizeof(IndirectPhoton) == 24, "IndirectPhoton: 12 B position + 3 x 4 B codes");
 
+// A volume-map photon: stored at a scattering event in a medium, with the power that
+// arrives there and its direction of travel. It keeps its medium instead of a normal,
+// so a beam in one medium never reads the photons of another across their boundary.
+struct VolumePhoton {
+  Vec3 position;
+  PackedPower power;   // shared-exponent RGB, as IndirectPhoton's
+  uint32_t direction;  // octahedral, arriving direction of travel
+  int32_t medium;      // index into Scene::media
+};
+static_assert(sizeof(VolumePhoton) == 24, "VolumePhoton: 12 B position + 3 x 4 B fields");
+
 }  // namespace penumbra

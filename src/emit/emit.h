@@ -21,7 +21,7 @@ struct EmitOptions {
   int maxHitsPerLine = 64;    // shadow photons kept per line at most
   // The maps to emit (false: nobody reads it, e.g. the gate's shadow photons under
   // --aov indirect); each emitter skips the maps of the other model.
-  PerMap<bool> maps{{true, true, true, true}};
+  PerMap<bool> maps{{true, true, true, true, true}};
   // Smaller budgets to record inside this emission (emit/photon_prefix.h), for every
   // map emitted: a budget below a map's own is cut out of it afterwards.
   std::vector<uint64_t> prefixBudgets;
@@ -38,7 +38,7 @@ struct EmitOptions {
 // expectation, and exactly when every surface's sample weight is <= 1 with survival 1 (glass).
 struct PhotonTally {
   glm::dvec3 emitted{0.0}, escaped{0.0}, absorbed{0.0}, capped{0.0};
-  PerMap<glm::dvec3> stored;  // power of the photons stored, caustic and global
+  PerMap<glm::dvec3> stored;  // power of the photons stored, per map
   PhotonTally& operator+=(const PhotonTally& o);
 };
 
@@ -74,6 +74,8 @@ inline MapCounts budgetsOf(const Scene& scene) {
   b[MapKind::Indirect] = ps.indirectPhotons;
   b[MapKind::Global] = ps.globalPhotons;
   b[MapKind::Caustic] = ps.causticPhotons;
+  // No volume photons without a medium: that scene runs none of the media work.
+  b[MapKind::Volume] = scene.hasMedia() ? ps.volumePhotons : 0;
   return b;
 }
 

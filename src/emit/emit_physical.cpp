@@ -1,6 +1,7 @@
 // Physical photon emission. The global pass shoots photons from every light in
 // proportion to its power; the caustic pass aims them at the specular objects'
-// bounding spheres (Jensen's projection maps) and keeps only L S+ D paths.
+// bounding spheres (Jensen's projection maps) and keeps only L S+ D paths; in a
+// scene with a medium the volume pass stores photons scattered in media.
 #include "emit/emit_physical.h"
 #include "emit/photon_pass.h"
 #include "core/bsdf.h"
@@ -10,25 +11,62 @@
 #include "emit/batch_buffers.h"
 #include "emit/budget.h"
 #include "emit/caustic_aim.h"
+#include "emit/medium_walk.h"
+#include "core/media/phase_function.h"
 #include <tbb/parallel_for.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <type_traits>
 
 namespace penumbra {
 
 namespace {
 
-enum : uint64_t { kGlobalStream = 3, kCausticStream = 4 };
+enum : uint64_t { kGlobalStream = 3, kCausticStream = 4, kVolumeStream = 6 };
 
-// Follows one photon; stores it at smooth surfaces as the pass dictates and plays
-// Russian roulette by the sampled weight: survive with q = min(1, max weight), then
-// power *= weight / q, so E[power after] = power x albedo, per channel.
-void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray ray, Color power,
-                 Rng& rng, BatchAppender<IndirectPhoton>& out, PhotonTally& tally) {
+// Follows one photon; stores it as the pass dictates and plays Russian roulette by
+// each sampled weight. kMedia (a scene with a medium, decided once per pass): the
+// photon also flies through media, where a collision scatters it by the phase
+// function after the albedo roulette; the global pass counts that as a diffuse bounce,
+// the caustic pass ends there, the volume pass (Photon = VolumePhoton) stores it when
+// an event came before. Without media the code is the surface-only walk, as it was.
+template <bool kMedia, class Photon>
+void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray ray, int medium, Color power,
+                 Rng& rng, BatchAppender<Photon>& out, PhotonTally& tally) {
+  constexpr bool kVolume = std::is_same_v<Photon, VolumePhoton>;
   const PhotonSettings& ps = scene.photons;
   int diffuseBounces = 0, specularBounces = 0;
   for (int bounce = 0;; ++bounce) {
     Hit hit;
-    if (!tracer.intersect(ray, hit)) {
+    if constexpr (kMedia) {
+      const FlightEnd f = flyToEvent(scene, tracer, ray, medium, power, rng, tally);
+      if (f.kind == FlightEnd::Escaped) {
+        tally.escaped += glm::dvec3(power);
+        return;
+      }
+      if (f.kind == FlightEnd::Absorbed) return;
+      if (f.kind == FlightEnd::Lost || bounce > ps.maxBounces) {
+        tally.capped += glm::dvec3(power);
+        return;
+      }
+      if (f.kind == FlightEnd::Collision) {
+        if (pass == MapKind::Caustic) {  // L S+ D paths only
+          tally.absorbed += glm::dvec3(power);
+          return;
+        }
+        const float uRr = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+        if (!surviveRoulette(power, f.weight, uRr, tally)) return;
+        if constexpr (kVolume) {
+          if (bounce > 0) {  // L -> V is the camera's single scattering
+            out.push_back({f.position, power, encodeOctahedral(ray.dir), medium});
+            tally.stored[pass] += glm::dvec3(power);
+          }
+        }
+        ++diffuseBounces;
+        ray = Ray{f.position, sampleHenyeyGreenstein(scene.media[medium].g, ray.dir, u1, u2).dir};
+        continue;
+      }
+      hit = f.hit;
+    } else if (!tracer.intersect(ray, hit)) {
       tally.escaped += glm::dvec3(power);
       return;
     }
@@ -40,11 +78,13 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray
     // The albedo camera paths see at this hit: the vertex colour tints the base.
     Bsdf bsdf =
         makeBsdf(scene.materials[s.material], BsdfFamily::Radiometric, ps.sampling, Color(tracer.vertexColor(hit)));
-    if (hasGatheredLobe(bsdf)) {  // where a camera path reads the maps
-      bool store = pass == MapKind::Global ? diffuseBounces > 0 : specularBounces > 0;
-      if (store) {
-        out.push_back({s.position, power, encodeOctahedral(ray.dir), encodeOctahedral(s.ng)});
-        tally.stored[pass] += glm::dvec3(power);
+    if constexpr (!kVolume) {
+      if (hasGatheredLobe(bsdf)) {  // where a camera path reads the maps
+        bool store = pass == MapKind::Global ? diffuseBounces > 0 : specularBounces > 0;
+        if (store) {
+          out.push_back({s.position, power, encodeOctahedral(ray.dir), encodeOctahedral(s.ng)});
+          tally.stored[pass] += glm::dvec3(power);
+        }
       }
     }
     float uLobe = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), uRr = rng.uniform();
@@ -57,12 +97,9 @@ void tracePhoton(const Scene& scene, const TraceScene& tracer, MapKind pass, Ray
       tally.absorbed += glm::dvec3(power);
       return;
     }
-    float q = std::min(1.0f, maxComponent(bs.weight));
-    Color next = uRr < q ? power * bs.weight / q : Color(0.0f);
-    tally.absorbed += glm::dvec3(power) - glm::dvec3(next);
-    if (!(maxComponent(next) > 0.0f) || !isFinite(next)) return;  // NaN or Inf: never stored
-    power = next;
+    if (!surviveRoulette(power, bs.weight, uRr, tally)) return;
     if (delta) ++specularBounces; else ++diffuseBounces;
+    if constexpr (kMedia) medium = tracer.mediumBeyond(hit, s, bs.wi, medium);
     ray = Ray{spawnOrigin(s, bs.wi), bs.wi};
   }
 }
@@ -96,28 +133,33 @@ std::vector<CausticAim> aimsOf(const Scene& scene, const SceneSphere& bounds, co
   return aims;
 }
 
-PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& tracer, MapKind kind,
-                                      uint64_t pass, uint64_t total, const EmitOptions& options,
-                                      uint64_t& emitted, PhotonTally& tally, PrefixCuts& cuts) {
+template <bool kMedia, class Photon>
+PhotonBatches<Photon> runPass(const Scene& scene, const TraceScene& tracer, MapKind kind, uint64_t pass,
+                              uint64_t total, const EmitOptions& options, uint64_t& emitted, PhotonTally& tally,
+                              PrefixCuts& cuts) {
   const SceneSphere bounds = tracer.boundingSphere();
   std::vector<SceneSphere> targets = kind == MapKind::Caustic ? specularTargets(scene)
                                                                : std::vector<SceneSphere>{};
   if (kind == MapKind::Caustic && targets.empty()) total = 0;
   const std::vector<CausticAim> aims = aimsOf(scene, bounds, targets);
+  // The volume pass splits by power alone: every light's photons can scatter in a medium.
   const std::vector<double> weights =
       photonWeights(scene, bounds, aims, kind == MapKind::Caustic,
-                    options.reach[kind]);
+                    kind == MapKind::Volume ? std::vector<float>{} : options.reach[kind]);
   const std::vector<uint64_t> counts = splitByWeight(weights, total);
   tbb::enumerable_thread_specific<PhotonTally> tallies;
-  const uint64_t stream = kind == MapKind::Caustic ? kCausticStream : kGlobalStream;
-  PhotonBatches<IndirectPhoton> photons = runPhotonPass<IndirectPhoton>(
+  const uint64_t stream = kind == MapKind::Caustic ? kCausticStream
+                          : kind == MapKind::Volume ? kVolumeStream
+                                                    : kGlobalStream;
+  PhotonBatches<Photon> photons = runPhotonPass<Photon>(
       weights, counts, options, &cuts, emitted, [&](const PhotonBatch& batch) {
         const Light& light = scene.lights[batch.light];
         const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
         const bool aimed = kind == MapKind::Caustic && aimsCausticPhotons(light);
-        return [&, &light = light, share, aimed, aim = aims[batch.light], &t = tallies.local(),
+        const int medium = kMedia ? startMedium(scene, light) : kNoMedium;
+        return [&, &light = light, share, aimed, medium, aim = aims[batch.light], &t = tallies.local(),
                 rng = Rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch))),
-                scratch = std::vector<float>()](BatchAppender<IndirectPhoton>& out) mutable {
+                scratch = std::vector<float>()](BatchAppender<Photon>& out) mutable {
           PhotonRay r;
           Color power = share;
           if (aimed) {
@@ -131,11 +173,26 @@ PhotonBatches<IndirectPhoton> runPass(const Scene& scene, const TraceScene& trac
           power *= r.weight;  // 1 but for an environment map's photons and a textured emitter's
           t.emitted += glm::dvec3(power);
           if (maxComponent(power) <= 0.0f) return;
-          tracePhoton(scene, tracer, kind, Ray{r.origin, r.dir}, power, rng, out, t);
+          tracePhoton<kMedia>(scene, tracer, kind, Ray{r.origin, r.dir}, medium, power, rng, out, t);
         };
       });
   for (const PhotonTally& t : tallies) tally += t;
   return photons;
+}
+
+template <bool kMedia>
+void emitPasses(const Scene& scene, const TraceScene& tracer, uint64_t pass, const EmitOptions& options,
+                EmittedPhotons& out) {
+  const MapCounts& budgets = options.budgets;
+  for (MapKind k : {MapKind::Global, MapKind::Caustic}) {
+    *out.batches.light(k) = runPass<kMedia, IndirectPhoton>(scene, tracer, k, pass, options.maps[k] ? budgets[k] : 0,
+                                                            options, out.emitted[k], out.tally[k], out.cuts[k]);
+  }
+  if constexpr (kMedia) {
+    const MapKind v = MapKind::Volume;
+    out.batches.get<MapKind::Volume>() = runPass<true, VolumePhoton>(
+        scene, tracer, v, pass, options.maps[v] ? budgets[v] : 0, options, out.emitted[v], out.tally[v], out.cuts[v]);
+  }
 }
 
 }  // namespace
@@ -169,11 +226,8 @@ std::vector<uint64_t> splitPhysicalBudget(const Scene& scene, const TraceScene& 
 
 void emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass, const EmitOptions& options,
                          EmittedPhotons& out) {
-  const MapCounts& budgets = options.budgets;
-  for (MapKind k : {MapKind::Global, MapKind::Caustic}) {
-    *out.batches.light(k) = runPass(scene, tracer, k, pass, options.maps[k] ? budgets[k] : 0, options, out.emitted[k],
-                                    out.tally[k], out.cuts[k]);
-  }
+  if (scene.hasMedia()) emitPasses<true>(scene, tracer, pass, options, out);
+  else emitPasses<false>(scene, tracer, pass, options, out);
 }
 
 }  // namespace penumbra

@@ -9,7 +9,8 @@
 
 namespace penumbra {
 
-// The global and caustic maps, their tallies and cuts, into `out`. Pass `pass` of a
+// The global and caustic maps (and in a scene with a medium the volume map), their
+// tallies and cuts, into `out`. Pass `pass` of a
 // progressive render draws from its own random streams, so passes are independent
 // estimates. Identical for any thread count.
 void emitPhysicalPhotons(const Scene& scene, const TraceScene& tracer, uint64_t pass, const EmitOptions& options,

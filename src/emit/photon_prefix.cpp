@@ -95,11 +95,23 @@ PhotonArray<ShadowPhoton> takePrefix(const PhotonBatches<ShadowPhoton>& all, con
   return copyRanges(all, cut, [](const ShadowPhoton& p, size_t) { return p; });
 }
 
-PhotonArray<IndirectPhoton> takePrefix(const PhotonBatches<IndirectPhoton>& all, const PrefixCut& cut) {
-  return copyRanges(all, cut, [&](IndirectPhoton p, size_t light) {
+namespace {
+// Power-carrying photons, rescaled to the cut's count per light.
+template <class Photon>
+PhotonArray<Photon> rescaledPrefix(const PhotonBatches<Photon>& all, const PrefixCut& cut) {
+  return copyRanges(all, cut, [&](Photon p, size_t light) {
     p.power = PackedPower(p.power.color() * cut.powerScale[light]);
     return p;
   });
+}
+}  // namespace
+
+PhotonArray<IndirectPhoton> takePrefix(const PhotonBatches<IndirectPhoton>& all, const PrefixCut& cut) {
+  return rescaledPrefix(all, cut);
+}
+
+PhotonArray<VolumePhoton> takePrefix(const PhotonBatches<VolumePhoton>& all, const PrefixCut& cut) {
+  return rescaledPrefix(all, cut);
 }
 
 }  // namespace penumbra

@@ -58,6 +58,7 @@ PhotonArray<ShadowPhoton> takePrefix(const PhotonBatches<ShadowPhoton>& all, con
 // Indirect photons carry power / count: each light's are rescaled to the smaller
 // count (then packed again, so within the packing's 2^-8 of a fresh emission's).
 PhotonArray<IndirectPhoton> takePrefix(const PhotonBatches<IndirectPhoton>& all, const PrefixCut& cut);
+PhotonArray<VolumePhoton> takePrefix(const PhotonBatches<VolumePhoton>& all, const PrefixCut& cut);  // as indirect
 
 // Traces batch b's photons one at a time through `tracePhoton(i)`, recording the
 // cuts' marks as it goes. Keeps the loop of each emitter free of the bookkeeping.

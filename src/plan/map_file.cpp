@@ -24,7 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[8] = {'P', 'N', 'B', 'R', 'P', 'M', 'A', 'P'};
-constexpr uint32_t kFormatVersion = 1;
+// 2: five kinds, the fifth the volume map's records (1 held four kinds).
+constexpr uint32_t kFormatVersion = 2;
 constexpr uint32_t kByteOrder = 0x01020304;  // read back swapped on a machine of the other order
 constexpr uint64_t kPreambleBytes = sizeof kMagic + 4 + 4 + 8;
 constexpr uint64_t kMaxHeaderBytes = uint64_t(1) << 30;  // a key and notes; more is not a header
@@ -88,8 +89,9 @@ std::string hex64(uint64_t v) { return fmt::format("{:016x}", v); }
 }  // namespace
 
 std::string mapFileKey(const PhotonStageKey& key, const PhotonNeeds& needs, bool loadDefaults) {
-  std::string text = fmt::format("penumbra {} map format {}\nrecords shadow {} indirect {}\ndefaults {}\n",
+  std::string text = fmt::format("penumbra {} map format {}\nrecords shadow {} indirect {} volume {}\ndefaults {}\n",
                                  PENUMBRA_VERSION, kFormatVersion, sizeof(ShadowPhoton), sizeof(IndirectPhoton),
+                                 sizeof(VolumePhoton),
                                  loadDefaults ? "on" : "off");
   for (MapKind k : kAllMaps) {
     text += fmt::format("{} {} {}", mapName(k), key.maps[k] ? "on" : "off", key.budgets[k]);

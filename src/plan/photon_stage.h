@@ -9,6 +9,7 @@
 #include "emit/emit_physical.h"
 #include "gather/lookup_cache/lookup_cache.h"
 #include "gather/photon_map.h"
+#include "gather/volume_map.h"
 #include "geometry/trace_scene.h"
 #include "plan/render_plan.h"
 #include "plan/reuse_key.h"
