@@ -35,7 +35,7 @@ std::vector<std::string> shippedScenes() {
 // Small and quick; budgets cut so the photon passes that do run stay short.
 std::vector<std::string> quick(uint64_t seed = 1) {
   return {"camera.width=48", "camera.height=32", "camera.spp=1", "photons.shadow=20000",
-          "photons.indirect=20000", "photons.global=20000", "photons.caustic=20000",
+          "photons.indirect=20000", "photons.global=20000", "photons.caustic=20000", "photons.volume=20000",
           "render.seed=" + std::to_string(seed)};
 }
 

@@ -45,17 +45,19 @@ TEST(TransportModel, ClassicLacksOnlyTheDirectAndCausticViews) {
 }
 
 TEST(TransportModel, ThePlanRunsOnlyTheModelsOwnLightMaps) {
+  // The physical model's volume map is its own too, but on only with a medium (test_plan_media).
   struct Case {
     ShadingModel model;
-    std::vector<MapKind> on, off;
+    std::vector<MapKind> on, off, own;
   };
-  for (const Case& c : {Case{ShadingModel::Classic, {MapKind::Indirect}, {MapKind::Global, MapKind::Caustic}},
-                        Case{ShadingModel::Physical, {MapKind::Global, MapKind::Caustic}, {MapKind::Indirect}}}) {
+  const MapKind global = MapKind::Global, caustic = MapKind::Caustic;
+  for (const Case& c : {Case{ShadingModel::Classic, {MapKind::Indirect}, {global, caustic, MapKind::Volume}, {MapKind::Indirect}},
+                        Case{ShadingModel::Physical, {global, caustic}, {MapKind::Indirect}, {global, caustic, MapKind::Volume}}}) {
     const Scene scene = floorAndSpheres(c.model);
     const TransportModel& model = transportOf(scene);
     const RenderPlan plan = makePlan(scene, Aov::Beauty);
     EXPECT_EQ(plan.model, &model);
-    EXPECT_EQ(model.lightMaps(), c.on);
+    EXPECT_EQ(model.lightMaps(), c.own);
     for (MapKind k : c.on) EXPECT_TRUE(plan[photonPass(k)].on) << model.name() << " " << mapName(k);
     for (MapKind k : c.off) {
       EXPECT_FALSE(plan[photonPass(k)].on) << model.name() << " " << mapName(k);
@@ -80,6 +82,8 @@ TEST(TransportModel, ProgressivePassesEmitTheGatePhotonsOnceAndNoOtherModelsMap)
   EXPECT_FALSE(first[MapKind::Indirect]);
   EXPECT_FALSE(later[MapKind::Shadow]);
   EXPECT_TRUE(later[MapKind::Global] && later[MapKind::Caustic]);
+  EXPECT_TRUE(first[MapKind::Volume] && later[MapKind::Volume]);  // fresh each pass, like the surface maps
+  EXPECT_FALSE(classic[MapKind::Volume]);
 
   Scene scene = floorAndSpheres(ShadingModel::Physical);
   scene.photons.passes = 4;

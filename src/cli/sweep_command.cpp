@@ -36,8 +36,8 @@ SweepCommand::SweepCommand(CLI::App& app) : o_(std::make_unique<Options>()) {
   c->add_option("scenes", o.scenes, "Scene files (JSON); with several, each is swept into OUTPUT/<its name>/ and "
                 "OUTPUT/scenes.md sums them up")->required();
   c->add_option("-o,--output", o.out, "Folder for results.csv, report.md, tradeoff.png and the images")->required();
-  c->add_option("--photons", o.photons, "Photon budgets, e.g. 1e4,1e5,1e6 (classic: photons.indirect; physical: photons.global and photons.caustic)");
-  c->add_option("--k", o.k, "Photons per estimate, e.g. 10,50,200 (classic: k_indirect; physical: k_global and k_caustic)");
+  c->add_option("--photons", o.photons, "Photon budgets, e.g. 1e4,1e5,1e6 (classic: photons.indirect; physical: photons.global and photons.caustic, and photons.volume with a medium)");
+  c->add_option("--k", o.k, "Photons per estimate, e.g. 10,50,200 (classic: k_indirect; physical: k_global and k_caustic, and k_volume with a medium)");
   c->add_option("--depth", o.depth, "render.max_depth values, e.g. 1,2,4,8");
   c->add_option("--spp", o.spp, "camera.spp values, e.g. 1,4");
   c->add_option("--vary", o.vary, "Any scene key and its values: --vary photons.shadow=1e5,1e6 (repeatable)");
@@ -88,7 +88,7 @@ int SweepCommand::run() {
     const std::pair<const char*, const std::string*> named[] = {
         {"photons", &o.photons}, {"k", &o.k}, {"depth", &o.depth}, {"spp", &o.spp}};
     for (const auto& [name, list] : named) {
-      if (!list->empty()) knobs.push_back(namedKnob(name, *list, transportOf(base)));
+      if (!list->empty()) knobs.push_back(namedKnob(name, *list, transportOf(base), base.hasMedia()));
     }
     for (const std::string& v : o.vary) knobs.push_back(keyKnob(v));
     if (threadList.values.size() > 1) knobs.push_back(threadList);

@@ -1,6 +1,7 @@
 // The commands' calls into io and core, so the command line includes only the plan layer.
 #include "plan/command_support.h"
 #include "plan/cpu_report.h"
+#include "plan/media_report.h"
 #include "core/cpu_time.h"
 #include "io/image_io.h"
 #include "io/report_json.h"
@@ -14,7 +15,8 @@ namespace penumbra {
 std::string rayTreeReport(const RenderResult& result, int x, int y) { return rayTreeToJson(result.rayTree, x, y); }
 
 std::string renderSummary(const RenderResult& result, bool detail) {
-  return statsSummary(result.stats, detail) + "  " + cpuLine(result.stats.cpu);
+  return statsSummary(result.stats, detail) + (result.media ? mediaCountsLine(result.stats) : "") + "  " +
+         cpuLine(result.stats.cpu);
 }
 
 void writeTextOutput(const std::string& path, const std::string& text) { writeTextFileAtomic(path, text); }

@@ -36,6 +36,17 @@ constexpr double kMeshLightLevelNs = 12.0;    // ... plus per level of its searc
 // points stand in for it elsewhere (soft_shadows, 32 samples a point, 1 thread).
 constexpr double kLightSampleShadeNs = 30.0;
 
+// Participating media (plan/media_estimate.h): a photon's flight through a medium
+// (free-flight sample, albedo roulette, phase sample), one light sample on a camera
+// ray's segment (equiangular or distance, with the phase function; its transmittance
+// ray is a kRayNs), a tracking step in a density grid, and the beam gather of the
+// volume map per call and per photon found (bench_media measures them).
+constexpr double kMediumEventNs = 60.0;
+constexpr double kMediumSampleNs = 40.0;
+constexpr double kTrackingStepNs = 15.0;
+constexpr double kVolumeGatherNs = 150.0;
+constexpr double kVolumeGatherNsPerNeighbour = 40.0;
+
 // Shares.
 constexpr double kAvoidable = 0.85;  // shadow tests a gate answers without a ray (soft_shadows)
 // The same where precomputed cells keep a verdict per stratum of an area light, and a

@@ -2,6 +2,7 @@
 // sweep, batch and bench.
 #include "plan/cpu_report.h"
 #include "io/report_json.h"
+#include "plan/media_report.h"
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -44,6 +45,7 @@ std::string statsReport(const RenderResult& result) {
   nlohmann::json stats = nlohmann::json::parse(statsToJson(result.stats));
   addCpuFields(stats, result.stats.cpu);
   stats["estimate"] = nlohmann::json::parse(estimateToJson(result.estimate));
+  if (result.media) stats["media"] = mediaCountsJson(result.stats.rays);
   stats["notes"] = result.notes;
   return stats.dump(2) + "\n";
 }

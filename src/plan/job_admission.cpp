@@ -14,13 +14,14 @@ namespace penumbra {
 
 namespace {
 
-// Per pass, the physical maps' photons the environment starts: its share of each
-// split, or the whole budget when it is the only light.
+// Per pass, the physical maps' photons the environment starts (the volume map's
+// too, in a scene with a medium): its share of each split, or the whole budget when
+// it is the only light.
 uint64_t environmentPhotons(const RenderPlan& plan, const Scene& scene) {
   const Light* sky = environmentOf(scene);
   if (!sky) return 0;
   uint64_t n = 0;
-  for (Pass pass : {Pass::GlobalPhotons, Pass::CausticPhotons}) {
+  for (Pass pass : {Pass::GlobalPhotons, Pass::CausticPhotons, Pass::VolumePhotons}) {
     const PassDecision& d = plan[pass];
     if (!d.on) continue;
     if (d.perLight.size() == scene.lights.size()) {

@@ -34,7 +34,7 @@ StoreRates measureStoreRates(const Scene& scene, const TraceScene& tracer, const
   }
   EmittedPhotons photons;
   if (n[K::Shadow] > 0 || n[K::Indirect] > 0) emitPhotons(scene, tracer, options, photons);
-  if (n[K::Global] > 0 || n[K::Caustic] > 0) emitPhysicalPhotons(scene, tracer, 0, options, photons);
+  if (n[K::Global] > 0 || n[K::Caustic] > 0 || n[K::Volume] > 0) emitPhysicalPhotons(scene, tracer, 0, options, photons);
   photons.batches.forEach([&](MapKind k, const auto& stored) {
     if (n[k] > 0) r.perPhoton[k] = margin(rate(stored.size(), photons.emitted[k]), bound.perPhoton[k]);
   });

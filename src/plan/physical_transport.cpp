@@ -1,8 +1,9 @@
 // The physical model: BSDFs and lights in radiometric units, direct light by shadow
-// rays (or the gate), Jensen's caustic and global maps, and progressive passes whose
-// fixed gather radii shrink so that the mean of the passes converges.
+// rays (or the gate), Jensen's caustic, global and volume maps, and progressive passes
+// whose gather radii shrink so that the mean of the passes converges.
 #include "core/bsdf.h"
 #include "emit/emit_physical.h"
+#include "plan/media_facts.h"
 #include "plan/photon_stage.h"
 #include "plan/transport_model.h"
 #include <fmt/format.h>
@@ -17,11 +18,13 @@ class PhysicalTransport final : public TransportModel {
   bool hasView(Aov) const override { return true; }
 
   const std::vector<MapKind>& lightMaps() const override {
-    static const std::vector<MapKind> kMaps = {MapKind::Global, MapKind::Caustic};
+    static const std::vector<MapKind> kMaps = {MapKind::Global, MapKind::Caustic, MapKind::Volume};
     return kMaps;
   }
+  // Light scattered more than once in a medium is indirect; single scattering is the
+  // camera's light sampling (direct), so no view but these reads the volume map.
   bool readsMap(MapKind map, Aov aov) const override {
-    if (map == MapKind::Global) return aov == Aov::Beauty || aov == Aov::Indirect;
+    if (map == MapKind::Global || map == MapKind::Volume) return aov == Aov::Beauty || aov == Aov::Indirect;
     return map == MapKind::Caustic && (aov == Aov::Beauty || aov == Aov::Caustic);
   }
   const char* cannotStore(MapKind map, const Scene& scene) const override {
@@ -31,6 +34,8 @@ class PhysicalTransport final : public TransportModel {
         smooth = smooth || hasGatheredLobe(makeBsdf(m, info().bsdf, scene.photons.sampling));
       }
       if (!smooth) return "no diffuse or glossy surface to store a photon on";
+    } else if (map == MapKind::Volume) {
+      if (scatteringMedia(scene).empty()) return scene.hasMedia() ? "no medium scatters (every sigma_s is 0)" : "no medium";
     } else if (specularTargets(scene).empty()) {
       return "no specular surface for a caustic";
     }
@@ -46,6 +51,7 @@ class PhysicalTransport final : public TransportModel {
     maps[MapKind::Shadow] = wanted[MapKind::Shadow] && pass == 0;
     maps[MapKind::Global] = wanted[MapKind::Global];
     maps[MapKind::Caustic] = wanted[MapKind::Caustic];
+    maps[MapKind::Volume] = wanted[MapKind::Volume];
     return maps;
   }
   void emit(const Scene& scene, const TraceScene& tracer, const EmitOptions& options, uint32_t pass,
@@ -64,12 +70,15 @@ class PhysicalTransport final : public TransportModel {
   // Progressive pass `pass` (Knaus & Zwicker 2011): each map gathers k x passRadiusShare
   // nearest photons, so every point's radius shrinks from its own k-nearest one;
   // photons.radius > 0 instead fixes one radius for all points, shrunk by the same
-  // share. A frame of one pass gathers the k nearest at any distance.
+  // share. A frame of one pass gathers the k nearest at any distance. The volume
+  // map's beam keeps its own k and radius (photons.k_volume, photons.volume_radius)
+  // and shrinks by the same schedule.
   PerMap<PhotonGather> gathers(const PhotonSettings& ps, uint32_t pass, uint32_t passes) const override {
     const MapKind caustic = MapKind::Caustic, global = MapKind::Global;
     PerMap<PhotonGather> g;
     g[caustic] = {ps.kCaustic, 0.0f};
     g[global] = {ps.kGlobal, 0.0f};
+    g[MapKind::Volume] = volumeGather(ps, passes <= 1 ? 0 : pass);
     if (passes <= 1) return g;
     if (ps.radius > 0.0f) {
       const float radius = static_cast<float>(ps.radius * std::sqrt(passRadiusShare(pass, ps.alpha)));
@@ -89,7 +98,11 @@ class PhysicalTransport final : public TransportModel {
         "passes={} alpha={} radius={} max_bounces={} shadow_photons={} "
         "k_shadow={} gate={}",
         budgets[MapKind::Global], budgets[MapKind::Caustic], ps.kGlobal, ps.kCaustic, stats.passes, ps.alpha, ps.radius,
-        ps.maxBounces, stats.emitted[MapKind::Shadow], ps.kShadow, gate ? "on" : "off");
+        ps.maxBounces, stats.emitted[MapKind::Shadow], ps.kShadow, gate ? "on" : "off") +
+           // Only a scene with a medium says anything of media: the others' lines stay as they were.
+           (scene.hasMedia() ? fmt::format(" volume_photons={} k_volume={} volume_radius={}", budgets[MapKind::Volume],
+                                           ps.kVolume, ps.volumeRadius)
+                             : std::string());
   }
   void addModelSettings(const Scene& scene, const MapCounts& budgets, const RenderStats& stats,
                         ImageMetadata& m) const override {
@@ -106,6 +119,20 @@ class PhysicalTransport final : public TransportModel {
     add("photons.radius", ps.radius);
     if (stats.passes > 1) add("photons.final_global_radius", stats.gatherRadius[MapKind::Global]);
     if (stats.passes > 1) add("photons.final_caustic_radius", stats.gatherRadius[MapKind::Caustic]);
+    if (!scene.hasMedia()) return;
+    add("photons.volume", budgets[MapKind::Volume]);
+    add("photons.k_volume", ps.kVolume);
+    add("photons.volume_radius", ps.volumeRadius);
+    if (stats.passes > 1) add("photons.final_volume_radius", stats.gatherRadius[MapKind::Volume]);
+  }
+
+ private:
+  // Pass `pass`'s beam: passK of photons.k_volume, or a fixed photons.volume_radius
+  // shrunk like the surface maps' (0: the volume map picks its radius from k).
+  static PhotonGather volumeGather(const PhotonSettings& ps, uint32_t pass) {
+    const double share = passRadiusShare(pass, ps.alpha);
+    const float radius = ps.volumeRadius > 0.0f ? static_cast<float>(ps.volumeRadius * std::sqrt(share)) : 0.0f;
+    return {passK(ps.kVolume, pass, ps.alpha), radius};
   }
 };
 

@@ -55,6 +55,7 @@ struct RenderResult {
   TileError tileError;             // a tile of the frame (JobRequest::bounds) that reads light
   EmitterMask emitters;            // FrameOptions::findEmitters: the pixels that see an emitter
   double emitterSeconds = 0.0;     // ... and the wall time they took, where no render time counts it
+  bool media = false;              // the scene has a medium: its reports carry the media counters
 };
 
 RenderResult runRender(const RenderRequest& request);

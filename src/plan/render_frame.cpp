@@ -6,6 +6,7 @@
 #include "plan/transport_model.h"
 #include "gather/lookup_cache/lookup_cache.h"
 #include "gather/radiance_estimate.h"
+#include "gather/volume_map.h"
 #include "trace/camera.h"
 #include "trace/emitter_mask.h"
 #include "trace/light_visibility.h"
@@ -36,6 +37,13 @@ void gatherRadii(const TransportModel& model, const PhotonStage& maps, const Sha
   GatherScratch scratch;
   for (MapKind k : model.lightMaps()) {
     const PhotonGather& g = ctx.gathers[k];
+    if (k == MapKind::Volume) {
+      // Its beam's radius (the map's rule from k); a scene without a medium builds no
+      // volume map and keeps its stats as they were.
+      const VolumePhotonMap& volume = maps.maps.get<MapKind::Volume>();
+      if (!volume.empty()) stats.gatherRadius[k] = g.maxRadius > 0.0f ? g.maxRadius : volume.radiusFor(g.k);
+      continue;
+    }
     stats.gatherRadius[k] = g.k == 0 ? g.maxRadius : typicalKnnRadius(*maps.maps.light(k), g.k, scratch);
   }
 }

@@ -3,6 +3,7 @@
 #include "plan/render_plan.h"
 #include "plan/gate_decision.h"
 #include "plan/lookup_decision.h"
+#include "plan/media_facts.h"
 #include "plan/transport_model.h"
 #include "core/bsdf.h"
 #include "core/error.h"
@@ -51,6 +52,22 @@ SceneFacts factsOf(const Scene& scene, const TransportModel& model) {
   return f;
 }
 
+// The volume map (the model has one): on only where a medium scatters light from a
+// light, so a scene without a medium runs none of it; the reason names the media.
+PassDecision volumeDecision(const Scene& scene, const TransportModel& model, const SceneFacts& f, Aov aov,
+                            const std::string& view) {
+  const uint64_t budget = scene.photons.volumePhotons;
+  const std::vector<std::string> media = scatteringMedia(scene);
+  if (!scene.hasMedia()) return off("no medium");
+  if (!readsLight(aov)) return off(view);
+  if (!model.readsMap(MapKind::Volume, aov)) return off("this view does not read it (single scattering is direct light)");
+  if (const char* cannot = model.cannotStore(MapKind::Volume, scene)) return off(cannot);
+  if (!f.anyLight) return off("no light");
+  if (budget == 0) return off("photons.volume is 0");
+  return on(fmt::format("{} scatter{}: {} photons per pass", mediaPhrase(media), media.size() == 1 ? "s" : "", budget),
+            budget);
+}
+
 void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
   const TransportModel& model = *plan.model;
   const SceneFacts f = factsOf(scene, model);
@@ -84,6 +101,8 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
     const auto& own = model.lightMaps();
     if (std::find(own.begin(), own.end(), k) == own.end()) {
       d = off(fmt::format("the {} model has no {} map", model.name(), mapName(k)));
+    } else if (k == MapKind::Volume) {
+      d = volumeDecision(scene, model, f, aov, view);
     } else if (!model.readsMap(k, aov)) {
       d = off(light ? "this view does not read it" : view);
     } else if (budgets[k] == 0) {
@@ -167,6 +186,7 @@ RenderPlan makePlan(const Scene& scene, Aov aov, const PlanOverrides& overrides)
     if (p == Pass::IndirectPhotons) { d.budget = ps.indirectPhotons; d.perLight = splitBudget(scene, d.budget); }
     if (p == Pass::GlobalPhotons) d.budget = ps.globalPhotons;
     if (p == Pass::CausticPhotons) d.budget = ps.causticPhotons;
+    if (p == Pass::VolumePhotons) d.budget = ps.volumePhotons;
     if (p == Pass::LightSamples) d.budget = static_cast<uint64_t>(scene.render.lightSamples);
   }
   for (Pass p : overrides.disable) {

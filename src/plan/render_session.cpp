@@ -279,6 +279,7 @@ RenderResult RenderSession::frame(const PlannedJob& job, PhotonStage& stage, std
   RenderResult result;
   result.estimate = job.admission.estimate;
   result.notes = job.notes;
+  result.media = scene.hasMedia();
   RenderStats& stats = result.stats;
   stats.time.load = job.loadSeconds;
   stats.gateMode = gateModeName(scene.photons.gateMode);

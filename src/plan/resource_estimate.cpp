@@ -149,6 +149,7 @@ StoreRates analyticStoreRates(const Scene& scene) {
   // photon is stored at most once per surface after the first: bounded by the cap.
   r.perPhoton[MapKind::Global] = bounces;
   r.perPhoton[MapKind::Caustic] = bounces;
+  r.perPhoton[MapKind::Volume] = mediaCost(scene, false, 1).storesPerPhoton;
   return r;
 }
 
@@ -244,8 +245,18 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // Past the caches the emission's stores and the build's gathers wait on memory, so
   // the per-photon costs grow with the log of the data past kCacheFriendlyBytes
   // (the constants are in plan/cost_model.h).
+  // Media: each flight through one samples a free path; in a medium filling the scene
+  // every map's flights do, elsewhere only the volume map's are priced.
+  e.media = mediaCost(scene, p.emitted[MapKind::Volume] > 0, p.passes);
+  const double volumeFlights = n[MapKind::Volume] + double(p.emitted[MapKind::Volume]);
+  const double flights = scene.sceneMedium != kNoMedium ? e.storedPhotons + emitted : volumeFlights;
+  const double mediaPhotonNs = e.media.any ? flights * e.media.photonEventNs : 0.0;
   const double spill = std::max(1.0, e.photonPeakBytes / kCacheFriendlyBytes);
-  e.photonSeconds = photonNs * (1.0 + kSpillSlowdown * std::log2(spill)) * p.photonPasses / e.threads * 1e-9;
+  const auto seconds = [&](double ns) {
+    return ns * (1.0 + kSpillSlowdown * std::log2(spill)) * p.photonPasses / e.threads * 1e-9;
+  };
+  e.photonSeconds = seconds(photonNs + mediaPhotonNs);
+  e.mediaPhotonSeconds = seconds(mediaPhotonNs + volumeFlights * kPhotonSegmentNs);
   const double samples = options.tracePixel ? 1.0 : pixels * scene.camera.spp;
   const bool lit = readsLight(options.aov);
   // Mirrors and glass repeat the shading at each level of the recursion, but few
@@ -291,8 +302,11 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.bvhSeconds = primitives * kBvhBuildNsPerPrimitive / e.threads * 1e-9;
   const double gathers = samples * p.passes * (piloted ? options.diffusePerSample : 1.0);
   const double shadeNs = piloted ? samplesPerPoint * kLightSampleShadeNs : 0.0;
+  // Every ray segment that crosses a medium (a camera ray, or a mirror's or glass's) does its medium work.
+  const double mediaNs = e.media.any ? (shadings + misses) * e.media.cameraShare * e.media.rayNs() : 0.0;
+  e.mediaCameraSeconds = mediaNs / e.threads * 1e-9;
   const double ns = shadings * (kRayNs + lookupNs + sampleNs + shadeNs) + (e.shadowRays + misses) * kRayNs +
-                    gathers * physicalNs;
+                    gathers * physicalNs + mediaNs;
   e.renderSeconds = kStartupSeconds + e.bvhSeconds + ns / e.threads * 1e-9;
   return e;
 }
@@ -324,6 +338,7 @@ std::string estimateToJson(const ResourceEstimate& e) {
                   {"bvh", e.bvhSeconds}, {"threads", e.threads}};
   j["counts"] = {{"light_samples", e.lightSamples}, {"shadow_rays", e.shadowRays},
                  {"primitives", e.primitives}};
+  if (e.media.any) j["media"] = mediaCostJson(e.media, e.mediaCameraSeconds, e.mediaPhotonSeconds);
   return j.dump();
 }
 

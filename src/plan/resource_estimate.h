@@ -6,6 +6,7 @@
 #include "core/map_kind.h"
 #include "core/scene.h"
 #include "core/view.h"
+#include "plan/media_estimate.h"
 #include <cstdint>
 #include <string>
 
@@ -45,6 +46,10 @@ struct ResourceEstimate {
   // Seconds of wall time on `threads` threads; renderSeconds includes bvhSeconds,
   // the acceleration structure's build.
   double photonSeconds = 0.0, renderSeconds = 0.0, bvhSeconds = 0.0;
+  // A scene with a medium: what its media cost, and the parts of photonSeconds and
+  // renderSeconds they take (photon flights in media; camera rays' medium work).
+  MediaCost media;
+  double mediaPhotonSeconds = 0.0, mediaCameraSeconds = 0.0;
   int threads = 1;
   double seconds() const { return photonSeconds + renderSeconds; }
 };

@@ -19,9 +19,9 @@ namespace fs = std::filesystem;
 const std::vector<std::string>& gatherOnlyPhotonKeys() {
   // The budgets go too: a smaller one is cut out of the larger emission.
   static const std::vector<std::string> keys = {
-      "shadow", "indirect", "global", "caustic",           // budgets (prefix reuse)
-      "k_shadow", "k_indirect", "k_global", "k_caustic",   // gathers
-      "max_radius", "radius", "alpha", "gate", "lookup", "lookup_cell"};
+      "shadow", "indirect", "global", "caustic", "volume",              // budgets (prefix reuse)
+      "k_shadow", "k_indirect", "k_global", "k_caustic", "k_volume",    // gathers
+      "max_radius", "radius", "volume_radius", "alpha", "gate", "lookup", "lookup_cell"};
   return keys;
 }
 
@@ -63,6 +63,10 @@ ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>
                              ? doc["render"]["model"]
                              : nlohmann::json(shadingModelName(kDefaultShadingModel));
   geometry["render"] = {{"model", model}};
+  // The medium filling the scene is part of the loaded scene that renders share.
+  if (doc.contains("render") && doc["render"].is_object() && doc["render"].contains("medium")) {
+    geometry["render"]["medium"] = doc["render"]["medium"];
+  }
   keys.geometry = scenePath + "\n" + geometry.dump();
 
   nlohmann::json photons = doc;

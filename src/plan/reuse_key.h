@@ -10,7 +10,7 @@
 namespace penumbra {
 
 struct ReuseKeys {
-  std::string geometry;  // objects, materials, lights, render.model
+  std::string geometry;  // objects, materials, lights, media, render.model and render.medium
   std::string photons;   // everything but the camera and the gather/render-only settings
   bool operator==(const ReuseKeys& o) const { return geometry == o.geometry && photons == o.photons; }
   bool operator<(const ReuseKeys& o) const { return std::tie(geometry, photons) < std::tie(o.geometry, o.photons); }

@@ -65,13 +65,15 @@ std::string overrideValue(const std::string& value) {
   return value;
 }
 
-SweepKnob namedKnob(const std::string& name, const std::string& list, const TransportModel& model) {
+SweepKnob namedKnob(const std::string& name, const std::string& list, const TransportModel& model, bool media) {
   SweepKnob knob;
   knob.name = name;
   knob.values = splitValues(list, "--" + name);
   if (name == "photons" || name == "k") {
     // Every map that carries the model's light: photons.global and photons.caustic, ...
+    // (and photons.volume where the scene has a medium: elsewhere no such map is built).
     for (MapKind k : model.lightMaps()) {
+      if (k == MapKind::Volume && !media) continue;
       knob.keys.push_back(fmt::format("photons.{}{}", name == "k" ? "k_" : "", mapName(k)));
     }
   } else if (name == "depth") {

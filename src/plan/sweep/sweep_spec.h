@@ -34,7 +34,9 @@ std::vector<std::string> splitValues(const std::string& list, const std::string&
 // A named knob for the scene's model: photons -> photons.indirect (classic) or
 // photons.global and photons.caustic (physical); k -> photons.k_indirect or
 // photons.k_global and photons.k_caustic; depth -> render.max_depth; spp -> camera.spp.
-SweepKnob namedKnob(const std::string& name, const std::string& list, const TransportModel& model);
+// A scene with `media` varies its volume map's photons.volume and photons.k_volume too.
+SweepKnob namedKnob(const std::string& name, const std::string& list, const TransportModel& model,
+                    bool media = false);
 // --vary KEY=v1,v2: any scene key.
 SweepKnob keyKnob(const std::string& arg);
 
