@@ -143,7 +143,8 @@ struct Material {
 struct Sphere {
   Sphere() = default;
   // The shape and material, as `{centre, radius, material}` read everywhere.
-  Sphere(const Vec3& c, float r, int m = 0) : center(c), radius(r), material(m) {}
+  Sphere(const Vec3& c, float r, int m = 0, const MediumInterface& mi = {})
+      : center(c), radius(r), material(m), media(mi) {}
   Vec3 center{0.0f};
   float radius = 1.0f;
   int material = 0;

@@ -28,7 +28,7 @@ FlightEnd flyToEvent(const Scene& scene, const TraceScene& tracer, Ray& ray, int
         const Color next = power * c.weight;
         tally.absorbed += glm::dvec3(power) - glm::dvec3(next);
         power = next;
-        if (!(maxComponent(power) > 0.0f) || !isFinite(power)) return {FlightEnd::Absorbed};
+        if (!(maxComponent(power) > 0.0f) || !isFinite(power)) return FlightEnd::of(FlightEnd::Absorbed);
       }
     }
     if (!crosses) {
@@ -38,7 +38,7 @@ FlightEnd flyToEvent(const Scene& scene, const TraceScene& tracer, Ray& ray, int
     ray = Ray{spawnOrigin(boundary.surface, ray.dir), ray.dir};
     medium = boundary.beyond;
   }
-  return {FlightEnd::Lost};
+  return FlightEnd::of(FlightEnd::Lost);
 }
 
 }  // namespace penumbra

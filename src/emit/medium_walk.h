@@ -13,6 +13,11 @@ struct FlightEnd {
   Hit hit;              // Surface: the hit
   Vec3 position{0.0f};  // Collision: where
   Color weight{1.0f};   // Collision: sigmaS T / pdf, the albedo roulette's weight
+  static FlightEnd of(Kind k) {
+    FlightEnd e;
+    e.kind = k;
+    return e;
+  }
 };
 
 // Flies `ray` in medium `medium` (kNoMedium: vacuum) to its next event by free-flight
