@@ -2,6 +2,10 @@
 // counters, no volume photons, no "media" in --stats); the fog room plans, counts and
 // renders the same on 1 and 2 threads; a medium in a small box is marched only by the
 // rays that cross it.
+#include "geometry/trace_scene.h"
+#include "io/closed_mesh.h"
+#include "io/media_binding.h"
+#include "io/shapes.h"
 #include "plan/cpu_report.h"
 #include "plan/pipeline.h"
 #include "trace/camera.h"
@@ -138,6 +142,36 @@ TEST(MediaPipeline, AMediumInASmallBoxIsMarchedOnlyByTheRaysThatCrossIt) {
   EXPECT_LE(c.transmittanceRays, shadowCrossings + c.mediumSamples);
   EXPECT_GT(c.mediumSamples, 0u);
   fs::remove(path);
+}
+
+// A closed mesh wound inwards (every triangle reversed) is still closed; its winding
+// normal points inside, so the binding says so and a crossing ray still enters its medium.
+TEST(MediaBoundaries, AMeshWoundInwardsKeepsItsInsideAndOutside) {
+  const TriangleMesh box = makeBox(Vec3(-1.0f), Vec3(1.0f));
+  TriangleMesh inward = box;
+  for (auto& t : inward.triangles) std::swap(t[1], t[2]);
+  EXPECT_EQ(openEdgeCount(inward), 0u);
+  EXPECT_NEAR(signedVolume(box), 8.0, 1e-9);
+  EXPECT_NEAR(signedVolume(inward), -8.0, 1e-9);
+  for (bool reversed : {false, true}) {
+    Scene scene;
+    scene.render.model = ShadingModel::Physical;
+    scene.materials.push_back(Material{});
+    scene.media.push_back(Medium{});
+    scene.media[0].name = "fog";
+    scene.boundaryMeshes.push_back(reversed ? inward : box);
+    scene.boundaryMeshes[0].media.inside = 0;
+    scene.camera.position = Vec3(0.0f, 0.0f, 5.0f);
+    bindMedia(scene);
+    EXPECT_EQ(scene.boundaryMeshes[0].media.inward, reversed);
+    EXPECT_EQ(scene.cameraMedium, kNoMedium);
+    const TraceScene tracer(scene);
+    TraceScene::BoundaryCrossing in, out;
+    ASSERT_TRUE(tracer.nextBoundary(Ray{Vec3(0.0f, 0.0f, 5.0f), Vec3(0.0f, 0.0f, -1.0f)}, kInf, in));
+    EXPECT_EQ(in.beyond, 0) << (reversed ? "inward" : "outward");
+    ASSERT_TRUE(tracer.nextBoundary(Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f)}, kInf, out));
+    EXPECT_EQ(out.beyond, kNoMedium) << (reversed ? "inward" : "outward");
+  }
 }
 
 }  // namespace

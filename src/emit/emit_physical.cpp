@@ -157,7 +157,8 @@ PhotonBatches<Photon> runPass(const Scene& scene, const TraceScene& tracer, MapK
         const Color share = lightPower(light, bounds) / static_cast<float>(counts[batch.light]);
         const bool aimed = kind == MapKind::Caustic && aimsCausticPhotons(light);
         const int medium = kMedia ? startMedium(scene, light) : kNoMedium;
-        return [&, &light = light, share, aimed, medium, aim = aims[batch.light], &t = tallies.local(),
+        const Color arriving = kMedia ? arrivingShare(scene, light, medium) : Color(1.0f);
+        return [&, &light = light, share, aimed, medium, arriving, aim = aims[batch.light], &t = tallies.local(),
                 rng = Rng(hashKey(hashKey(scene.render.seed, pass), stream, batchStreamKey(batch))),
                 scratch = std::vector<float>()](BatchAppender<Photon>& out) mutable {
           PhotonRay r;
@@ -172,6 +173,10 @@ PhotonBatches<Photon> runPass(const Scene& scene, const TraceScene& tracer, MapK
           }
           power *= r.weight;  // 1 but for an environment map's photons and a textured emitter's
           t.emitted += glm::dvec3(power);
+          if constexpr (kMedia) {
+            t.absorbed += glm::dvec3(power) - glm::dvec3(power * arriving);
+            power *= arriving;
+          }
           if (maxComponent(power) <= 0.0f) return;
           tracePhoton<kMedia>(scene, tracer, kind, Ray{r.origin, r.dir}, medium, power, rng, out, t);
         };

@@ -47,4 +47,17 @@ inline int startMedium(const Scene& scene, const Light& light) {
   return support == LightSupport::Direction || support == LightSupport::Infinite ? scene.sceneMedium : light.medium;
 }
 
+// The share of a light's photons that arrive from where they start: all of them, but
+// for a light at infinity in a scene-filling homogeneous medium, which is infinite (as
+// camera rays see it): only its clear channels cross. A grid's density ends at its box.
+inline Color arrivingShare(const Scene& scene, const Light& light, int medium) {
+  const LightSupport support = lightTraits(light.type).support;
+  if (medium == kNoMedium || !(support == LightSupport::Direction || support == LightSupport::Infinite)) {
+    return Color(1.0f);
+  }
+  const Medium& m = scene.media[static_cast<size_t>(medium)];
+  if (!m.homogeneous()) return Color(1.0f);
+  return glm::mix(Color(0.0f), Color(1.0f), glm::lessThanEqual(m.sigmaT(), Color(0.0f)));
+}
+
 }  // namespace penumbra

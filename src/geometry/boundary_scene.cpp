@@ -56,7 +56,7 @@ bool TraceScene::nextBoundary(const Ray& ray, float tMax, BoundaryCrossing& out)
   }
   // ng faces the arriving ray; frontFace says whether that side is the outside.
   out.t = hit.t;
-  out.beyond = s.frontFace ? media->inside : media->outside;
+  out.beyond = s.frontFace == media->entersFromFront() ? media->inside : media->outside;
   out.surface = s;
   return true;
 }

@@ -225,7 +225,7 @@ int TraceScene::mediumBeyond(const Hit& hit, const SurfaceRecord& s, const Vec3&
   const MediumInterface& mi = g.sphere ? scene_.spheres[hit.primId].media : scene_.meshes[g.index].media;
   if (!mi.separates) return current;
   // ng faces the arriving ray; frontFace says whether that side is the outside.
-  const Vec3 outward = s.frontFace ? s.ng : -s.ng;
+  const Vec3 outward = s.frontFace == mi.entersFromFront() ? s.ng : -s.ng;
   return glm::dot(dir, outward) < 0.0f ? mi.inside : mi.outside;
 }
 

@@ -91,13 +91,13 @@ bool meshContains(const TriangleMesh& mesh, const Vec3& p) {
   return inside >= 2;
 }
 
-double enclosedVolume(const TriangleMesh& mesh) {
+double signedVolume(const TriangleMesh& mesh) {
   double six = 0.0;
   for (const auto& tri : mesh.triangles) {
     const glm::dvec3 a(mesh.positions[tri[0]]), b(mesh.positions[tri[1]]), c(mesh.positions[tri[2]]);
     six += glm::dot(a, glm::cross(b, c));
   }
-  return std::abs(six) / 6.0;
+  return six / 6.0;
 }
 
 }  // namespace penumbra

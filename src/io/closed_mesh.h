@@ -1,6 +1,7 @@
 // Meshes as solids: whether a mesh bounds a volume (edge-manifold and consistently
 // wound), whether a point lies inside it, and the volume it encloses.
 #pragma once
+#include <cmath>
 #include "core/scene.h"
 #include <cstdint>
 
@@ -14,7 +15,9 @@ uint64_t openEdgeCount(const TriangleMesh& mesh);
 // three skew rays so one grazing an edge cannot decide alone.
 bool meshContains(const TriangleMesh& mesh, const Vec3& p);
 
-// The volume a closed mesh encloses (the divergence theorem over its triangles).
-double enclosedVolume(const TriangleMesh& mesh);
+// The volume a closed mesh encloses (the divergence theorem over its triangles):
+// negative when its triangles are wound inwards.
+double signedVolume(const TriangleMesh& mesh);
+inline double enclosedVolume(const TriangleMesh& mesh) { return std::abs(signedVolume(mesh)); }
 
 }  // namespace penumbra

@@ -139,7 +139,7 @@ void bindMedia(Scene& scene) {
       return;
     }
     const Solid own = meshSolid(m);
-    m.media = {m.media.inside, outsideOf(own), true};
+    m.media = {m.media.inside, outsideOf(own), true, signedVolume(m) < 0.0};
   };
   for (Sphere& s : scene.spheres) bindSphere(s);
   for (Sphere& s : scene.boundarySpheres) bindSphere(s);

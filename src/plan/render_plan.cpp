@@ -230,7 +230,10 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
   for (const Target& t : targets) {
     PassDecision& d = plan[t.pass];
     if (!d.on || d.overridden || d.budget == 0) continue;
-    d.reach = measureReach(scene, tracer, t.rule);
+    // The pilots follow first hits only: in a scattering medium a light's photons reach
+    // surfaces by scattering too (L V D is the global map's), so power alone splits it.
+    const bool scattered = t.pass == Pass::GlobalPhotons && !scatteringMedia(scene).empty();
+    d.reach = scattered ? std::vector<float>(scene.lights.size(), 1.0f) : measureReach(scene, tracer, t.rule);
     if (t.pass == Pass::IndirectPhotons) d.perLight = splitBudget(scene, d.budget, d.reach);
     else d.perLight = splitPhysicalBudget(scene, tracer, t.pass == Pass::CausticPhotons, d.budget, d.reach);
     int none = 0, emitting = 0;
@@ -248,7 +251,7 @@ void splitByReach(RenderPlan& plan, const Scene& scene, const TraceScene& tracer
     const std::string pilot = fmt::format("{} pilot photons per light", kReachPilots);
     if (given == 0) {
       d = off(fmt::format("no light's photons reach {} ({})", t.where, pilot));
-    } else if (t.pass == Pass::GlobalPhotons && measureRebound(scene, tracer) == 0.0f) {
+    } else if (t.pass == Pass::GlobalPhotons && !scattered && measureRebound(scene, tracer) == 0.0f) {
       d = off(fmt::format("no light's photons land on a second surface, where the global map stores them ({}): "
                           "every bounce leaves the scene",
                           pilot));

@@ -85,6 +85,11 @@ Color tracePhysicalHit(const ShadingContext& ctx, const Ray& ray, const Hit* fou
   if (!ctx.scene.hasMedia()) return shadeSurface(ctx, ray, found, depth, throughput, kind, terms, parentRecord, ts, kNoMedium);
   // What the media add on the way, and what they let through of what lies beyond.
   const MediumStretch st = traceMediumStretch(ctx, ray, found ? found->t : kInf, medium, terms, ts);
+  if (!(maxComponent(st.transmittance) > 0.0f)) {  // opaque fog: nothing beyond to shade (and no inf x 0)
+    countRay(kind, ts.counts);
+    --ts.raysLeft;
+    return st.radiance;
+  }
   const Color beyond = shadeSurface(ctx, ray, found, depth, throughput * st.transmittance, kind, terms,
                                     parentRecord, ts, st.medium);
   return st.radiance + st.transmittance * beyond;

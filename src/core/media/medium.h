@@ -31,6 +31,9 @@ struct MediumInterface {
   int inside = kNoMedium;
   int outside = kNoMedium;
   bool separates = false;  // false: the surface does not change a ray's medium
+  bool inward = false;     // a closed mesh wound inwards: its winding normal points inside
+  // Whether a ray arriving on the winding normal's side (frontFace) enters the inside.
+  bool entersFromFront() const { return !inward; }
 };
 
 }  // namespace penumbra
