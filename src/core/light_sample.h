@@ -18,6 +18,8 @@ class Kronecker4;  // core/sampling.h
 struct SceneSphere {
   Vec3 center{0.0f};
   float radius = 1.0f;
+  // Photons of lights at infinity start this far out (radii), just clear of the scene.
+  static constexpr float kSkyStart = 1.01f;
 };
 
 // Light arriving at a point from one light (one sample of it, for area lights).

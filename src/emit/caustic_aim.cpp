@@ -73,7 +73,7 @@ float sampleDelta(const Light& light, const SceneSphere& bounds, const CausticAi
     const float rad = t.radius * std::sqrt(u1), phi = 2.0f * kPi * u2;
     Vec3 tt, bb;
     orthonormalBasis(light.direction, tt, bb);
-    const float back = glm::dot(t.center - bounds.center, light.direction) + 1.01f * bounds.radius;
+    const float back = glm::dot(t.center - bounds.center, light.direction) + SceneSphere::kSkyStart * bounds.radius;
     r.origin = t.center - light.direction * back + rad * (std::cos(phi) * tt + std::sin(phi) * bb);
     r.dir = light.direction;
   }

@@ -3,14 +3,10 @@
 #include "core/media/tracking.h"
 
 namespace penumbra {
-namespace {
-// Nested boundaries a photon crosses between two events, at most.
-constexpr int kMaxCrossings = 256;
-}  // namespace
 
 FlightEnd flyToEvent(const Scene& scene, const TraceScene& tracer, Ray& ray, int& medium, Color& power, Rng& rng,
                      PhotonTally& tally) {
-  for (int crossing = 0; crossing < kMaxCrossings; ++crossing) {
+  for (int crossing = 0; crossing < TraceScene::kMaxBoundaryCrossings; ++crossing) {
     FlightEnd e;
     const bool surface = tracer.intersect(ray, e.hit);
     TraceScene::BoundaryCrossing boundary;

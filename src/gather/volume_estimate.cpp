@@ -50,7 +50,7 @@ VolumeEstimate volumeRadiance(const VolumePhotonMap& map, const VolumeQuery& q, 
   if (!(r > 0.0f) || !std::isfinite(r) || !(q.tMax > q.tMin) || !map.span(q.origin, q.dir, r, ta, tb)) return {};
   const BeamTransmittance tr(medium, q, tb);
   // Isotropic media skip decoding the photons' directions.
-  const bool isotropic = std::abs(medium.g) < 1e-6f;
+  const bool isotropic = std::abs(medium.g) < kIsotropicPhaseG;
   const float g = medium.g;
   Color sum(0.0f);
   uint32_t found = 0;

@@ -9,8 +9,7 @@ namespace penumbra {
 namespace {
 
 // The cell is the radius of a beam meeting this many photons, four times the default k:
-// fewer, longer rows beat tighter bounds (bench_volume: cells of the 64-, 150-, 400-,
-// 1000- and 2500-photon radius walked a k = 100 beam in 8.2, 6.8, 5.3, 5.6, 6.8 us).
+// fewer, longer rows beat tighter bounds (bench_volume measures the choice).
 constexpr int kCellPhotons = 400;
 // The radius rule's cells hold about this many photons where a typical photon lies.
 constexpr double kDensityCellPhotons = 8.0;

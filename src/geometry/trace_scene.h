@@ -106,6 +106,9 @@ class TraceScene {
   };
   // False (at once) in a scene without boundaries.
   bool nextBoundary(const Ray& ray, float tMax, BoundaryCrossing& out) const;
+  // Boundaries one walk (a ray's, a photon's flight) crosses at most: nested media are a
+  // handful deep; a degenerate mesh must not hold a ray forever.
+  static constexpr int kMaxBoundaryCrossings = 64;
   bool hasBoundaries() const;
 
   // A sphere around all geometry (Embree's bounds): directional lights emit from it.

@@ -17,15 +17,18 @@ namespace {
 // Henyey–Greenstein's phase diverges at |g| = 1 (a delta): open at both ends.
 const Range kAsymmetry{-1.0, 1.0, true, true};
 
-// A coefficient per scene unit: one number or [r, g, b], each a finite float >= 0.
-// Not a colour's 1e30 cap: an opaque 1e30 only makes transmittance 0.
+// A coefficient per scene unit: one number or [r, g, b], each in [0, 1e30]. 1e30 is
+// opaque for any scene; the cap keeps sigma_a + sigma_s, times a density, finite.
+constexpr double kMaxCoefficient = 1e30;
+const Range kCoefficient = Range::between(0.0, kMaxCoefficient);
+
 Color readCoefficient(const JsonNode& node) {
-  if (node.value().is_number()) return Color(node.asFloat(Range::atLeast(0.0)));
+  if (node.value().is_number()) return Color(node.asFloat(kCoefficient));
   if (!node.value().is_array() || node.value().size() != 3) {
     node.fail("must be a number or [r, g, b] (per scene unit), got " + describeJson(node.value()));
   }
-  return Color(node.element(0).asFloat(Range::atLeast(0.0)), node.element(1).asFloat(Range::atLeast(0.0)),
-               node.element(2).asFloat(Range::atLeast(0.0)));
+  return Color(node.element(0).asFloat(kCoefficient), node.element(1).asFloat(kCoefficient),
+               node.element(2).asFloat(kCoefficient));
 }
 
 Medium readMedium(const JsonNode& node, Scene& scene) {
@@ -38,7 +41,14 @@ Medium readMedium(const JsonNode& node, Scene& scene) {
   if (node.has("sigma_s")) m.sigmaS = readCoefficient(node.child("sigma_s"));
   m.g = node.floatOr("g", m.g, kAsymmetry);
   m.emission = node.colorOr("emission", m.emission);
-  if (node.has("density")) m.density = readDensity(node.child("density"), scene);
+  if (node.has("density")) {
+    m.density = readDensity(node.child("density"), scene);
+    const double densest = double(maxComponent(m.sigmaT())) * m.density->maxDensity;
+    if (densest > kMaxCoefficient) {
+      node.child("density").fail(fmt::format("makes sigma_t up to {:g} per scene unit; at most {:g} (an opaque "
+                                             "medium needs no more)", densest, kMaxCoefficient));
+    }
+  }
   return m;
 }
 

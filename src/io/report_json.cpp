@@ -53,6 +53,8 @@ std::string statsToJson(const RenderStats& s) {
   j["photons"] = {{"final_radius_caustic", s.gatherRadius[MapKind::Caustic]},
                   {"final_radius_global", s.gatherRadius[MapKind::Global]}};
   for (MapKind k : kAllMaps) {
+    // The volume map exists only in scenes with a medium: the others' stats stay as they were.
+    if (k == MapKind::Volume && s.emitted[k] == 0 && s.stored[k] == 0) continue;
     j["photons"][std::string("emitted_") + mapName(k)] = s.emitted[k];
     j["photons"][std::string("stored_") + mapName(k)] = s.stored[k];
   }

@@ -333,7 +333,10 @@ std::string estimateToJson(const ResourceEstimate& e) {
   if (e.mapFileBytes > 0.0) j["disk"] = {{"map_file", e.mapFileBytes}};
   j["stored_photons"] = e.storedPhotons;
   j["store_rates"] = {{"measured", e.rates.measured}};
-  for (MapKind k : kAllMaps) j["store_rates"][mapName(k)] = e.rates.perPhoton[k];
+  for (MapKind k : kAllMaps) {
+    if (k == MapKind::Volume && e.rates.perPhoton[k] == 0.0) continue;  // no medium: as before media
+    j["store_rates"][mapName(k)] = e.rates.perPhoton[k];
+  }
   j["seconds"] = {{"total", e.seconds()}, {"photons", e.photonSeconds}, {"render", e.renderSeconds},
                   {"bvh", e.bvhSeconds}, {"threads", e.threads}};
   j["counts"] = {{"light_samples", e.lightSamples}, {"shadow_rays", e.shadowRays},

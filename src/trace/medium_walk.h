@@ -6,10 +6,6 @@
 
 namespace penumbra {
 
-// Boundaries one walk crosses at most: nested media are a handful deep; a degenerate
-// mesh must not hold a ray forever.
-constexpr int kMaxBoundaryCrossings = 64;
-
 // Calls f(medium, from, to) for each stretch of [ray.tMin, tEnd] (ray.dir unit), in
 // order, starting in `medium`; stops early when f returns false. Returns the medium at
 // tEnd. After a boundary the next query starts past the boundary's rounding
@@ -23,10 +19,10 @@ int walkStretches(const TraceScene& tracer, const Ray& ray, float tEnd, int medi
     return medium;
   }
   Ray probe = ray;
-  for (int crossing = 0; crossing <= kMaxBoundaryCrossings; ++crossing) {
+  for (int crossing = 0; crossing <= TraceScene::kMaxBoundaryCrossings; ++crossing) {
     const float shift = glm::dot(probe.origin - ray.origin, ray.dir);
     TraceScene::BoundaryCrossing c;
-    const bool more = crossing < kMaxBoundaryCrossings && tracer.nextBoundary(probe, tEnd - shift, c);
+    const bool more = crossing < TraceScene::kMaxBoundaryCrossings && tracer.nextBoundary(probe, tEnd - shift, c);
     const float to = more ? std::min(tEnd, shift + c.t) : tEnd;
     if (to > from && !f(medium, from, to)) return medium;
     if (!more || to >= tEnd) return medium;

@@ -24,7 +24,7 @@ PhotonRay DirectionalLight::photon(const Light& light, const SceneSphere& bounds
   float rad = bounds.radius * std::sqrt(u3), phi = 2.0f * kPi * u4;
   Vec3 t, b;
   orthonormalBasis(light.direction, t, b);
-  r.origin = bounds.center - light.direction * (1.01f * bounds.radius) +
+  r.origin = bounds.center - light.direction * (SceneSphere::kSkyStart * bounds.radius) +
              rad * (std::cos(phi) * t + std::sin(phi) * b);
   r.dir = light.direction;
   return r;

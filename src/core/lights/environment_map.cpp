@@ -194,7 +194,7 @@ PhotonRay environmentPhoton(const Light& light, const SceneSphere& bounds, float
   const float rad = bounds.radius * std::sqrt(u3), phi = 2.0f * kPi * u4;
   Vec3 t, b;
   orthonormalBasis(e.wi, t, b);
-  r.origin = bounds.center + e.wi * (1.01f * bounds.radius) + rad * (std::cos(phi) * t + std::sin(phi) * b);
+  r.origin = bounds.center + e.wi * (SceneSphere::kSkyStart * bounds.radius) + rad * (std::cos(phi) * t + std::sin(phi) * b);
   if (map) {
     // L(w) / (pdf(w) x integral of L), per channel; a constant sky's is 1 exactly.
     for (int c = 0; c < 3; ++c) {

@@ -18,6 +18,10 @@ inline double henyeyGreensteinD(double g, double cosTheta) {
 }
 inline float henyeyGreenstein(float g, float cosTheta) { return float(henyeyGreensteinD(g, cosTheta)); }
 
+// Below this |g| the phase is isotropic to float precision: samplers and gathers treat
+// it as 1 / (4 pi).
+inline constexpr float kIsotropicPhaseG = 1e-6f;
+
 struct PhaseSample {
   Vec3 dir;   // the new propagation direction (unit)
   float pdf;  // equals henyeyGreenstein(g, dot(before, dir)): the weight p / pdf is 1
@@ -27,7 +31,7 @@ struct PhaseSample {
 // isotropic formula, whose inversion would divide by g.
 inline PhaseSample sampleHenyeyGreenstein(float g, const Vec3& before, float u1, float u2) {
   double cosTheta;
-  if (std::abs(g) < 1e-3f) {
+  if (std::abs(g) < kIsotropicPhaseG) {
     cosTheta = 1.0 - 2.0 * u1;
   } else {
     const double gd = g, s = (1.0 - gd * gd) / (1.0 + gd - 2.0 * gd * u1);
