@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "io/scene_loader.h"
 
+#include "support/parse_error.h"
 #include <gtest/gtest.h>
 
 using namespace penumbra;
@@ -19,14 +20,7 @@ std::string scene(const std::string& media, const std::string& objects = "", con
          (render.empty() ? "" : ", " + render) + "}}";
 }
 
-std::string errorOf(const std::string& json, const std::vector<std::string>& overrides = {}) {
-  try {
-    parseScene(json, "x.json", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using penumbra::testing::errorOf;
 
 const std::string kFog = R"([{"name": "fog", "sigma_a": 0.01, "sigma_s": [0.1, 0.2, 0.3], "g": 0.3,
                               "emission": [0.5, 0, 0]}])";

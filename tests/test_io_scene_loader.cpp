@@ -6,6 +6,7 @@
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 
+#include "support/parse_error.h"
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -21,15 +22,7 @@ namespace {
 
 const std::string kSourceDir = PENUMBRA_SOURCE_DIR;
 
-// The InputError message parseScene throws, or "" when it does not throw.
-std::string errorOf(const std::string& json, const std::vector<std::string>& overrides = {}) {
-  try {
-    parseScene(json, "x.json", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using penumbra::testing::errorOf;
 
 // A scratch folder with a scene next to its texture, to check relative paths.
 class TempDir {

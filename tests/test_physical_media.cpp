@@ -3,6 +3,7 @@
 // infinite medium (a quadrature of the 1D integral), a clear boundary that changes no
 // pixel, counters only for rays that enter a medium, one image for any thread count.
 #include "core/media/phase_function.h"
+#include "support/media_tracking.h"
 #include "support/physical_fixtures.h"
 #include "trace/medium_shadow.h"
 #include <tbb/global_control.h>
@@ -18,11 +19,8 @@ void addFogBox(Scene& scene, const Vec3& lo, const Vec3& hi, int medium) {
 }
 
 Medium fog(Color sigmaA, Color sigmaS, float g = 0.0f) {
-  Medium m;
+  Medium m = testing::makeMedium(sigmaA, sigmaS, g);
   m.name = "fog";
-  m.sigmaA = sigmaA;
-  m.sigmaS = sigmaS;
-  m.g = g;
   return m;
 }
 
