@@ -202,6 +202,7 @@ struct RenderSettings {
   bool shadows = true;      // false: lights reach every surface facing them
   std::string aov = "beauty";  // default view; the CLI's --aov overrides it
   int lightSamples = 16;       // samples per area light per shading point
+  int volumeSamples = 1;       // single-scattering samples per light per medium stretch
   bool packets = true;  // camera rays (and their shadow rays) as Embree packets; same image
   // Camera rays that leave the scene see nothing: colour premultiplied by coverage, and
   // the beauty carries A = coverage (docs/scene-format.md, "Alpha").

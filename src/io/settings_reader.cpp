@@ -65,7 +65,7 @@ void readCamera(const JsonNode& node, Camera& out, double modelAspect) {
 void readRender(const JsonNode& node, RenderSettings& out) {
   node.allowKeys({"model", "max_depth", "background", "ambient", "seed", "min_weight", "shadows",
                   "aov", "light_samples", "packets", "transparent_background", "adaptive", "adaptive_threshold",
-                  "adaptive_max_spp", "medium"});  // medium: io/media_reader.h
+                  "adaptive_max_spp", "volume_samples", "medium"});  // medium: io/media_reader.h
   std::vector<std::string> models;
   for (const ShadingModelInfo& m : kShadingModels) models.push_back(m.name);
   out.model = static_cast<ShadingModel>(node.enumOr("model", static_cast<size_t>(out.model), models));
@@ -80,6 +80,7 @@ void readRender(const JsonNode& node, RenderSettings& out) {
   views.insert(views.end(), kDerivedViewNames.begin(), kDerivedViewNames.end());
   if (node.has("aov")) out.aov = views[node.child("aov").asEnum(views)];
   out.lightSamples = node.intOr("light_samples", out.lightSamples, 1, 1024);
+  out.volumeSamples = node.intOr("volume_samples", out.volumeSamples, 1, 1024);
   out.packets = node.boolOr("packets", out.packets);
   out.transparentBackground = node.boolOr("transparent_background", out.transparentBackground);
   if (node.has("adaptive")) out.adaptive = node.boolOr("adaptive", false);

@@ -48,6 +48,7 @@ void addSettings(const Scene& scene, const RenderPlan& plan, const RenderStats& 
   add("reflection", onOff(choices.reflection));
   add("refraction", onOff(choices.refraction));
   add("light_samples", choices.lightSamples);
+  if (!scene.media.empty()) add("volume_samples", choices.volumeSamples);
   add("packets", onOff(choices.packets));
   auto rgb = [](const Color& c) { return fmt::format("{} {} {}", c.r, c.g, c.b); };
   add("background", rgb(rs.background));

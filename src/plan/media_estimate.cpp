@@ -93,11 +93,12 @@ MediaCost mediaCost(const Scene& scene, bool volumeMap, int passes) {
   // A photon crosses a medium once per flight and scatters at most once per bounce.
   m.storesPerPhoton = std::min<double>(ps.maxBounces, scatterDepth * (1.0 + ps.maxBounces));
   m.photonEventNs = kMediumEventNs + steps * kTrackingStepNs;
-  // Per light: an equiangular and a distance sample, each with a transmittance ray.
-  double lights = 0.0;
-  for (const Light& l : scene.lights) lights += maxComponent(l.radiance()) > 0.0f ? 1.0 : 0.0;
-  m.sampleNs = lights * 2.0 * (kMediumSampleNs + kRayNs);
-  m.trackingNs = steps * kTrackingStepNs * (1.0 + 2.0 * lights);
+  // Per light, volume_samples times: an equiangular and a distance sample, each with a
+  // transmittance ray.
+  double samples = 0.0;
+  for (const Light& l : scene.lights) samples += maxComponent(l.radiance()) > 0.0f ? scene.render.volumeSamples : 0.0;
+  m.sampleNs = samples * 2.0 * (kMediumSampleNs + kRayNs);
+  m.trackingNs = steps * kTrackingStepNs * (1.0 + 2.0 * samples);
   if (volumeMap) {
     double k = 0.0;
     for (int i = 0; i < std::max(passes, 1); ++i) k += passK(ps.kVolume, uint32_t(i), ps.alpha);

@@ -209,6 +209,7 @@ FrameChoices choicesOf(const RenderPlan& plan, const Scene& scene) {
   c.refraction = plan[Pass::Refraction].on;
   const bool oneSample = !plan[Pass::LightSamples].on && plan[Pass::LightSamples].overridden;
   c.lightSamples = oneSample ? 1 : scene.render.lightSamples;
+  c.volumeSamples = scene.render.volumeSamples;
   c.packets = plan[Pass::Packets].on;
   c.integrator = &(plan.model ? *plan.model : transportOf(scene)).integrator();
   return c;

@@ -75,8 +75,8 @@ ReuseKeys reuseKeys(const std::string& scenePath, const std::vector<std::string>
   if (photons.contains("render") && photons["render"].is_object()) {
     photons["render"].erase("max_depth");  // camera-side recursion; photons use max_bounces
     photons["render"].erase("aov");        // the view decides which maps are read, not emitted
-    // Camera samples: how many each pixel takes changes no photon.
-    for (const char* k : {"adaptive", "adaptive_threshold", "adaptive_max_spp"}) photons["render"].erase(k);
+    // Camera and single-scattering samples: how many each pixel takes changes no photon.
+    for (const char* k : {"adaptive", "adaptive_threshold", "adaptive_max_spp", "volume_samples"}) photons["render"].erase(k);
   }
   if (photons.contains("photons") && photons["photons"].is_object()) {
     for (const std::string& k : gatherOnlyPhotonKeys()) photons["photons"].erase(k);

@@ -25,6 +25,7 @@ struct FrameChoices {
   bool reflection = true;   // mirror and glass-reflected recursion
   bool refraction = true;   // glass-transmitted recursion
   int lightSamples = 16;    // per area light and shading point
+  int volumeSamples = 1;    // single scattering: per light and medium stretch
   bool packets = true;      // camera rays and their shadow rays as Embree packets
   const Integrator* integrator = nullptr;  // the transport model's shading
 };

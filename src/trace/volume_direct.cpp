@@ -6,6 +6,8 @@
 #include "core/media/homogeneous.h"
 #include "core/media/phase_function.h"
 #include "core/media/tracking.h"
+#include "core/permutation.h"
+#include "core/sampling.h"
 #include "trace/medium_shadow.h"
 
 namespace penumbra {
@@ -38,10 +40,10 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
   const Color st = m.sigmaT();
   const FreeFlight flight((st.r + st.g + st.b) / 3.0f * (m.density ? m.density->maxDensity : 1.0f), a, b);
   // sigma_s T(a, t) p(wi, ray) L_i T_shadow at distance t: the integrand, before its pdf.
-  auto scatterAt = [&](uint32_t li, float t) {
+  auto scatterAt = [&](uint32_t li, float t, Vec2 u) {
     ++ts.counts.mediumSamples;
     const Light& light = ctx.scene.lights[li];
-    const float u1 = rng.uniform(), u2 = rng.uniform();
+    const float u1 = u.x, u2 = u.y;
     const Vec3 x = ray.origin + t * ray.dir;
     const Color sigmaS = sigmaSAt(m, x);
     if (!(maxComponent(sigmaS) > 0.0f)) return Color(0.0f);
@@ -72,27 +74,50 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
     }
     return f * lightTransmittance(ctx, shadow, margin, li, medium, ts);
   };
+  // n samples of each technique per light, stratified in distance and in the light's
+  // (u1, u2), the strata of each dimension paired by a permutation of its own (a shared
+  // index would correlate them); one sample draws what the single-sample estimator did.
+  const int n = std::max(ctx.choices.volumeSamples, 1);
+  const Stratified2D strata(n);
   Color sum(0.0f);
+  uint32_t lightSeed = 0;
   // A far sample can underflow both its pdf and its integrand (T = 0): it adds nothing.
-  auto add = [&](uint32_t li, float t, float pdf) {
-    if (std::isfinite(t) && pdf > 0.0f) sum += scatterAt(li, t) / pdf;
+  auto add = [&](uint32_t li, float t, float pdf, int j) {
+    if (!(std::isfinite(t) && pdf > 0.0f)) return;
+    const Vec2 u = n > 1 ? strata(int(permutationElement(uint32_t(j), uint32_t(n), lightSeed)), rng)
+                         : Vec2{rng.uniform(), rng.uniform()};
+    sum += scatterAt(li, t, u) / pdf;
   };
   for (uint32_t li = 0; li < ctx.scene.lights.size(); ++li) {
     const Light& light = ctx.scene.lights[li];
     if (!(maxComponent(light.radiance()) > 0.0f)) continue;
-    Vec3 centre(0.0f);
-    const bool equiangular = equiangularCentre(light, ray, a, rng, centre);
-    const EquiangularFrame eq(ray.origin, ray.dir, centre, a, b);
-    const DistanceSample td = flight.sample(rng.uniform());
-    if (equiangular && eq.thetaB > eq.thetaA) {
-      // One sample of each technique, each weighted by the balance heuristic: f / (p_e + p_d).
-      const DistanceSample te = sampleEquiangular(ray.origin, ray.dir, centre, a, b, rng.uniform());
-      if (te.pdf > 0.0f) add(li, te.t, te.pdf + flight.pdf(te.t));
-      if (td.pdf > 0.0f) add(li, td.t, float(eq.pdf(td.t)) + td.pdf);
-    } else if (td.pdf > 0.0f) {
-      add(li, td.t, td.pdf);
+    uint32_t distanceSeed = 0, equiangularSeed = 0;
+    if (n > 1) {
+      lightSeed = rng.nextU32();
+      distanceSeed = rng.nextU32();
+      equiangularSeed = rng.nextU32();
+    }
+    auto stratum = [&](int j, uint32_t seed, float u) {
+      if (n == 1) return u;
+      return (static_cast<float>(permutationElement(uint32_t(j), uint32_t(n), seed)) + u) / static_cast<float>(n);
+    };
+    for (int j = 0; j < n; ++j) {
+      Vec3 centre(0.0f);
+      const bool equiangular = equiangularCentre(light, ray, a, rng, centre);
+      const EquiangularFrame eq(ray.origin, ray.dir, centre, a, b);
+      const DistanceSample td = flight.sample(stratum(j, distanceSeed, rng.uniform()));
+      if (equiangular && eq.thetaB > eq.thetaA) {
+        // One sample of each technique, each weighted by the balance heuristic: f / (p_e + p_d).
+        const DistanceSample te =
+            sampleEquiangular(ray.origin, ray.dir, centre, a, b, stratum(j, equiangularSeed, rng.uniform()));
+        if (te.pdf > 0.0f) add(li, te.t, te.pdf + flight.pdf(te.t), j);
+        if (td.pdf > 0.0f) add(li, td.t, float(eq.pdf(td.t)) + td.pdf, j);
+      } else if (td.pdf > 0.0f) {
+        add(li, td.t, td.pdf, j);
+      }
     }
   }
+  if (n > 1) sum /= static_cast<float>(n);
   return sum;
 }
 

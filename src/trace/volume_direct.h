@@ -22,11 +22,11 @@ struct FreeFlight {
 };
 
 // The radiance that medium `medium` scatters once from every light into `ray` over its
-// stretch [a, b] (b infinite on a miss), attenuated back to a but not before it. Point,
-// spot and area lights: one equiangular sample about the light's position (an area
-// light: a point drawn on it) and one distance sample, each lit by a light sample and a
-// shadow ray that carries the transmittance. Directional and environment lights: the
-// distance sample alone.
+// stretch [a, b] (b infinite on a miss), attenuated back to a but not before it. Per
+// light, render.volume_samples times (stratified): point, spot and area lights take an
+// equiangular sample about the light's position (an area light: a point drawn on it)
+// and a distance sample, each lit by a light sample and a shadow ray that carries the
+// transmittance; directional and environment lights the distance sample alone.
 Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, int medium, Rng& rng,
                    ThreadState& ts);
 

@@ -14,8 +14,14 @@ namespace penumbra {
 inline FrameChoices sceneChoices(const Scene& scene) {
   const Integrator& integrator =
       scene.render.model == ShadingModel::Physical ? physicalIntegrator() : whittedIntegrator();
-  return {scene.photons.gateMode != GateMode::Off, scene.render.shadows, true, true, scene.render.lightSamples,
-          scene.render.packets, &integrator};
+  FrameChoices c;
+  c.gate = scene.photons.gateMode != GateMode::Off;
+  c.shadows = scene.render.shadows;
+  c.lightSamples = scene.render.lightSamples;
+  c.volumeSamples = scene.render.volumeSamples;
+  c.packets = scene.render.packets;
+  c.integrator = &integrator;
+  return c;
 }
 
 // Each map's gather in a frame of one pass (both models' maps).
