@@ -1,9 +1,10 @@
 // libFuzzer target for density grids: bytes -> a .vdb file a medium's "density" names,
 // loaded through parseScene (OpenVDB reads files, not memory); then the lattice's
-// invariants. The voxel budget is small, so a file claiming a large box is refused by
-// the budget rule under test, before the lattice is allocated. Known third-party
-// finding: OpenVDB's io::bloscFromStream allocates a size read from the file unchecked
-// (fuzz/crashers/fuzz_vdb_reader/), which ASan reports; `make fuzz` leaves this target out.
+// invariants. OpenVDB runs in the reader process (core/density_codec.h): what is fuzzed
+// here is that whatever it does with the file (fuzz/crashers/fuzz_vdb_reader/: sizes of
+// exabytes, strings of gigabytes), this process gets a one-line refusal or a valid grid.
+// The voxel budget is small, so a file claiming a large box is refused by the budget
+// rule, before the lattice is allocated, and the reader's memory cap is small with it.
 #include "core/error.h"
 #include "io/scene_loader.h"
 #include "fuzz_media_checks.h"

@@ -1,6 +1,8 @@
 // The seam to OpenVDB: a shared module (src/volumes) reads .vdb files into density
-// grids; it is loaded on first use, so a run without a density grid never loads OpenVDB
-// and its libraries (Boost, Blosc, Imath).
+// grids, inside a reader process of its own (src/volumes/reader): OpenVDB trusts the
+// lengths a file states, so a damaged file may ask it for gigabytes, crash it or loop;
+// the process has a memory cap and a deadline, and whatever happens to it, the caller
+// gets a problem in words. A run without a density grid never starts it.
 #pragma once
 #include "core/media/density_grid.h"
 #include <glm/mat4x4.hpp>
@@ -33,8 +35,19 @@ class DensityCodec {
 
 inline constexpr const char* kDensityCodecEntry = "penumbra_density_codec";
 inline constexpr const char* kVolumeModuleName = "libpenumbra_volumes.so";
-// The reader, loading its module on first call (thread-safe); throws std::runtime_error
-// when the module cannot be loaded.
+inline constexpr const char* kVolumeReaderName = "penumbra-volumes";
+
+// What the reader process may allocate reading a request, in bytes: the tree, the dense
+// lattice and its copy on the way out, beside OpenVDB's own tables.
+uint64_t densityMemoryCap(const DensityRequest& request);
+// How long it may take for a file of `fileBytes`, in seconds.
+double densityDeadlineSeconds(uint64_t fileBytes);
+
+// The reader for everything that loads a scene: each call runs the reader process
+// (thread-safe); throws std::runtime_error when that process cannot be found or started.
 const DensityCodec& densityCodec();
+// The module itself, in this process: for the reader process only (thread-safe; throws
+// std::runtime_error when the module cannot be loaded).
+const DensityCodec& densityModule();
 
 }  // namespace penumbra

@@ -1,4 +1,4 @@
-// Finds a module beside the executable or where the build put it, and its entry.
+// Finds a module (and a helper executable) beside the executable or where the build put it.
 #include "core/module_loader.h"
 
 #include <dlfcn.h>
@@ -37,6 +37,13 @@ void* moduleSymbol(const char* name, const char* entry, const char* buildPath, c
     errors += std::string(errors.empty() ? "" : "; ") + path + " has no " + entry;
   }
   throw std::runtime_error(std::string("cannot load the ") + what + " module " + name + ": " + errors);
+}
+
+std::string helperExecutable(const char* name, const char* buildPath) {
+  for (const std::string& path : {executableDir() + "/" + name, std::string(buildPath ? buildPath : "")}) {
+    if (!path.empty() && ::access(path.c_str(), X_OK) == 0) return path;
+  }
+  return "";
 }
 
 }  // namespace penumbra

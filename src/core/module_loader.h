@@ -2,6 +2,7 @@
 // the executable has no link-time dependency on their libraries, so start-up never pays
 // for loading them.
 #pragma once
+#include <string>
 
 namespace penumbra {
 
@@ -11,6 +12,10 @@ namespace penumbra {
 // (calling through another type is undefined). Throws std::runtime_error "cannot load
 // the <what> module NAME: why".
 void* moduleSymbol(const char* name, const char* entry, const char* buildPath, const char* what);
+
+// A helper executable `name`: beside the executable, else `buildPath`; "" when neither
+// is an executable file.
+std::string helperExecutable(const char* name, const char* buildPath);
 
 // The object a module's entry `const T* entry()` returns.
 template <class T>

@@ -1,8 +1,10 @@
 // A medium's "density" key: the file, grid, scale and placement checked, then the grid
-// read by the OpenVDB module. Placement: the grid's own linear transform takes index
-// space to the file's world, then the optional "transform" moves that into the scene.
+// read by the OpenVDB reader process and its block majorants built. Placement: the
+// grid's own linear transform takes index space to the file's world, then the optional
+// "transform" moves that into the scene.
 #include "io/vdb_reader.h"
 
+#include "core/media/majorant_grid.h"
 #include "io/float_checks.h"
 #include "io/input_file.h"
 #include "io/scene_sections.h"
@@ -19,9 +21,10 @@ DensityGrid loadDensityGrid(const std::string& path, const DensityRequest& reque
   try {
     problem = densityCodec().load(path, request, grid);
   } catch (const std::runtime_error& e) {
-    problem = e.what();  // the module itself is missing
+    problem = e.what();  // the reader process cannot be found or started
   }
   if (!problem.empty()) throw VdbError(problem);
+  grid.majorants = buildMajorantGrid(grid);
   return grid;
 }
 
