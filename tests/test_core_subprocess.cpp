@@ -5,6 +5,7 @@
 #include "core/subprocess.h"
 
 #include <gtest/gtest.h>
+#include <limits>
 
 namespace penumbra {
 namespace {
@@ -96,6 +97,13 @@ TEST(DensityWire, AnAnswerThatDisagreesWithItselfOrTheLimitsIsRefused) {
   EXPECT_NE(decodeAnswer(encodeAnswer("", g), request, out), "");  // over maxVoxels
   g.nx = 4;  // 36 values named, 27 sent
   EXPECT_NE(decodeAnswer(encodeAnswer("", g), DensityRequest{}, out), "");
+  g.nx = g.ny = 1 << 30, g.nz = 16;  // 2^64 voxels: wraps to 0, and no values are sent
+  g.values.clear();
+  EXPECT_NE(decodeAnswer(encodeAnswer("", g), DensityRequest{}, out), "");
+  g.nx = g.ny = g.nz = 2;
+  g.values.assign(8, 1.0f);
+  g.worldHi = Vec3(std::numeric_limits<float>::infinity());
+  EXPECT_NE(decodeAnswer(encodeAnswer("", g), request, out), "");
 }
 
 }  // namespace

@@ -32,6 +32,14 @@ constexpr uint64_t kReaderBaseBytes = 128 * kMiB;
 constexpr double kReaderBaseSeconds = 30.0;
 constexpr double kReaderBytesPerSecond = 4e6;
 
+// The most bytes the lattice may take: the voxel limit's, within the load budget
+// (0: neither is set, no limit).
+uint64_t latticeBytes(const DensityRequest& request) {
+  const uint64_t voxels = request.maxVoxels * sizeof(float);
+  if (!voxels || !request.maxBytes) return voxels ? voxels : request.maxBytes;
+  return std::min(voxels, request.maxBytes);
+}
+
 // Values finite and >= 0, their maximum the majorant: checked again on this side, as
 // the answer came from another process.
 std::string checkValues(DensityGrid& grid) {
@@ -55,8 +63,10 @@ class ReaderProcess final : public DensityCodec {
     const double seconds = densityDeadlineSeconds(fileBytes);
     ProcessLimits limits;
     limits.seconds = seconds;
-    limits.maxOutputBytes = request.maxVoxels ? size_t(64 * 1024 + request.maxVoxels * sizeof(float)) : 0;
-    const ProcessResult r = runProcess(reader, {}, encodeJob({path, request, densityMemoryCap(request)}), limits);
+    const uint64_t lattice = latticeBytes(request);
+    limits.maxOutputBytes = lattice ? size_t(64 * 1024 + lattice) : 0;
+    const ProcessResult r =
+        runProcess(reader, {}, encodeJob({path, request, densityMemoryCap(request), seconds + 1.0}), limits);
     if (!r.started) throw std::runtime_error(fmt::format("cannot start the OpenVDB reader {}: {}", reader, r.error));
     if (r.timedOut) return fmt::format("cannot be read (OpenVDB did not finish within {:.0f} s)", seconds);
     if (r.outputCapped) return "cannot be read (OpenVDB's answer was larger than the lattice allowed)";
@@ -70,9 +80,8 @@ class ReaderProcess final : public DensityCodec {
 }  // namespace
 
 uint64_t densityMemoryCap(const DensityRequest& request) {
-  uint64_t lattice = request.maxVoxels * sizeof(float);
-  if (request.maxBytes) lattice = std::min(lattice, request.maxBytes);
-  return kReaderBaseBytes + 3 * lattice;
+  const uint64_t lattice = latticeBytes(request);
+  return lattice ? kReaderBaseBytes + 3 * lattice : 0;
 }
 
 double densityDeadlineSeconds(uint64_t fileBytes) { return kReaderBaseSeconds + double(fileBytes) / kReaderBytesPerSecond; }

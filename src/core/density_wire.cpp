@@ -1,6 +1,7 @@
 // The reader process's request and answer (core/density_wire.h).
 #include "core/density_wire.h"
 
+#include <cmath>
 #include <cstring>
 #include <type_traits>
 
@@ -66,6 +67,7 @@ std::string encodeJob(const DensityJob& job) {
   w.put(job.request.maxValue);
   w.put(job.request.maxCoordinate);
   w.put(job.memoryCap);
+  w.put(job.seconds);
   return w.bytes;
 }
 
@@ -75,7 +77,7 @@ bool decodeJob(const std::string& bytes, DensityJob& job) {
   return r.get(magic) && magic == kJobMagic && r.getString(job.path) && r.getString(job.request.grid) &&
          r.get(job.request.scale) && r.get(job.request.objectToWorld) && r.get(job.request.maxVoxels) &&
          r.get(job.request.maxBytes) && r.get(job.request.maxValue) && r.get(job.request.maxCoordinate) &&
-         r.get(job.memoryCap) && r.left() == 0;
+         r.get(job.memoryCap) && r.get(job.seconds) && r.left() == 0;
 }
 
 std::string encodeAnswer(const std::string& problem, const DensityGrid& grid) {
@@ -106,10 +108,22 @@ std::string decodeAnswer(const std::string& bytes, const DensityRequest& request
       !r.get(grid.worldHi) || !r.get(count)) {
     return "the reader's answer is cut short";
   }
-  const bool sized = nx > 0 && ny > 0 && nz > 0 && uint64_t(nx) * uint64_t(ny) * uint64_t(nz) == count;
-  if (!sized || (request.maxVoxels && count > request.maxVoxels) || r.left() != count * sizeof(float)) {
+  uint64_t voxels = 0, payload = 0;
+  const bool sized = nx > 0 && ny > 0 && nz > 0 && !__builtin_mul_overflow(uint64_t(nx), uint64_t(ny), &voxels) &&
+                     !__builtin_mul_overflow(voxels, uint64_t(nz), &voxels) && voxels == count &&
+                     !__builtin_mul_overflow(count, sizeof(float), &payload);
+  if (!sized || (request.maxVoxels && count > request.maxVoxels) || r.left() != payload) {
     return "the reader's answer does not hold the lattice it names";
   }
+  auto placed = [&](float v) { return std::isfinite(v) && std::fabs(double(v)) <= request.maxCoordinate; };
+  bool finite = true;
+  for (int c = 0; c < 4; ++c) {
+    for (int k = 0; k < 4; ++k) finite = finite && std::isfinite(grid.worldToGrid[c][k]);
+  }
+  for (int a = 0; a < 3; ++a) {
+    finite = finite && placed(grid.worldLo[a]) && placed(grid.worldHi[a]) && grid.worldLo[a] <= grid.worldHi[a];
+  }
+  if (!finite) return "the reader's answer places the lattice outside the scene's limits";
   grid.nx = nx, grid.ny = ny, grid.nz = nz;
   grid.values.resize(size_t(count));
   std::memcpy(grid.values.data(), r.here(), size_t(count) * sizeof(float));

@@ -10,7 +10,8 @@ namespace penumbra {
 struct DensityJob {
   std::string path;
   DensityRequest request;
-  uint64_t memoryCap = 0;  // the reader process's allocations, in bytes
+  uint64_t memoryCap = 0;  // the reader process's allocations, in bytes (0: no cap)
+  double seconds = 0.0;    // the reader's own deadline, a second past the caller's (0: none)
 };
 
 std::string encodeJob(const DensityJob& job);

@@ -36,7 +36,7 @@ inline uint32_t permutationElement(uint32_t i, uint32_t n, uint32_t seed) {
     i &= w;
     i ^= i >> 5;
   } while (i >= n);
-  return (i + seed) % n;
+  return (i + seed % n) % n;
 }
 
 }  // namespace penumbra

@@ -51,27 +51,30 @@ inline Vec3 toWorld(const Vec3& local, const Vec3& n) {
 
 // Point s of n in the unit square, jittered within its stratum. A perfect square n
 // uses a sqrt(n) x sqrt(n) grid; any other n a rank-1 lattice (x stratum s, y
-// stratum s * g mod n with g coprime to n), so every row and column gets one point.
-// The layout is worked out once per n, not once per point.
+// stratum s * g + shift mod n with g coprime to n), so every row and column gets one
+// point. The shift is drawn once per set: a fixed lattice covers only n of the n^2
+// cells, and each point must be uniform over the square for the set's mean to be
+// unbiased. The layout is worked out once per set, not once per point.
 class Stratified2D {
  public:
-  explicit Stratified2D(int n) : n_(n) {
+  Stratified2D(int n, Rng& rng) : n_(n) {
     if (n <= 1) return;
     side_ = static_cast<int>(std::lround(std::sqrt(static_cast<double>(n))));
     if (side_ * side_ == n) return;
     side_ = 0;
     g_ = std::max(1, static_cast<int>(std::lround(n * 0.618034)));
     while (std::gcd(g_, n) != 1) ++g_;
+    shift_ = static_cast<int>(rng.nextU32() % static_cast<uint32_t>(n));
   }
   Vec2 operator()(int s, Rng& rng) const {
     if (n_ <= 1) return {0.5f, 0.5f};
     if (side_ > 0) return {(s % side_ + rng.uniform()) / side_, (s / side_ + rng.uniform()) / side_};
-    const int row = static_cast<int>((static_cast<int64_t>(s) * g_) % n_);
+    const int row = static_cast<int>((static_cast<int64_t>(s) * g_ + shift_) % n_);
     return {(s + rng.uniform()) / n_, (row + rng.uniform()) / n_};
   }
 
  private:
-  int n_, side_ = 0, g_ = 1;
+  int n_, side_ = 0, g_ = 1, shift_ = 0;
 };
 
 // Point i of a (0,2)-sequence in base 2 (van der Corput, and Sobol's second

@@ -36,7 +36,7 @@ Color directFromEnvironment(const ShadingContext& ctx, const SurfaceRecord& s, u
   Rng rng(hashKey(ts.sampleKey, ts.shadingPoint, li));
   Color lightSum(0.0f), bsdfSum(0.0f);
   int cast = 0, blocked = 0;  // shadow rays, for --trace-pixel's note
-  const Stratified2D lightStrata(n), bsdfStrata(nb);
+  const Stratified2D lightStrata(n, rng), bsdfStrata(nb, rng);
   for (int j = 0; j < n; ++j) {
     const Vec2 u = n > 1 ? lightStrata(j, rng) : Vec2(rng.uniform(), rng.uniform());
     const EnvironmentSample e = sampleEnvironment(light, s.ns, u.x, u.y);

@@ -134,7 +134,7 @@ Color directFromLight(const ShadingContext& ctx, const SurfaceRecord& s, uint32_
   // transmittance, which varies over the light: the samples carry it instead.
   bool asked = !shadows, closedTried = !area || ctx.scene.hasMedia();
   Color closed(0.0f), sum(0.0f);
-  const Stratified2D stratified(n);
+  const Stratified2D stratified(n, rng);
   for (int j = 0; j < n; ++j) {
     // One sample of an area light is uniform, not its centre (Stratified2D's n = 1).
     const Vec2 u = !area ? deltaLightSample() : n > 1 ? stratified(j, rng) : Vec2(rng.uniform(), rng.uniform());

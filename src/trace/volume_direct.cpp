@@ -78,7 +78,7 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
   // (u1, u2), the strata of each dimension paired by a permutation of its own (a shared
   // index would correlate them); one sample draws what the single-sample estimator did.
   const int n = std::max(ctx.choices.volumeSamples, 1);
-  const Stratified2D strata(n);
+  const Stratified2D strata(n, rng);
   Color sum(0.0f);
   uint32_t lightSeed = 0;
   // A far sample can underflow both its pdf and its integrand (T = 0): it adds nothing.

@@ -5,6 +5,7 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -15,6 +16,9 @@ namespace {
 std::atomic<uint64_t> gCap{0}, gHeld{0};
 
 void* allocate(std::size_t n) noexcept {
+  // Refused before malloc when the request alone passes the cap (nothing is mapped).
+  const uint64_t limit = gCap.load(std::memory_order_relaxed);
+  if (limit != 0 && n > limit - std::min(limit, gHeld.load(std::memory_order_relaxed))) return nullptr;
   void* p = std::malloc(n != 0 ? n : 1);
   if (!p) return nullptr;
   const uint64_t size = ::malloc_usable_size(p);

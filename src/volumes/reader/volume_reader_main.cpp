@@ -5,9 +5,13 @@
 #include "core/density_wire.h"
 #include "volumes/reader/capped_allocator.h"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <signal.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -42,8 +46,18 @@ bool writeAll(int fd, const std::string& bytes) {
 }  // namespace
 
 int main() {
+  // Ends with penumbra, whatever ends penumbra.
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() == 1) return 5;
+  // The answer goes to a descriptor of its own: anything OpenVDB or its libraries print
+  // to stdout goes nowhere.
+  const int answerFd = ::dup(STDOUT_FILENO);
+  const int devNull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (answerFd < 0 || devNull < 0 || ::dup2(devNull, STDOUT_FILENO) < 0) return 6;
   penumbra::DensityJob job;
   if (!penumbra::decodeJob(readAll(STDIN_FILENO), job)) return 3;  // not run by penumbra
+  // Its own deadline too, should penumbra's wait not end it.
+  if (job.seconds > 0.0) ::alarm(static_cast<unsigned>(std::min(job.seconds, 1e6)) + 1);
   penumbra::DensityGrid grid;
   std::string problem;
   penumbra::volumes::setAllocationCap(job.memoryCap);
@@ -56,7 +70,7 @@ int main() {
   }
   // The lattice passed the voxel budget; its copy on the way out is not OpenVDB's.
   penumbra::volumes::setAllocationCap(0);
-  const bool written = writeAll(STDOUT_FILENO, penumbra::encodeAnswer(problem, grid));
+  const bool written = writeAll(answerFd, penumbra::encodeAnswer(problem, grid));
   // No exit handlers: nothing of OpenVDB's teardown can change the answer now.
   std::_Exit(written ? 0 : 4);
 }
