@@ -8,9 +8,8 @@
 namespace penumbra {
 namespace {
 
-// The cell is the radius of a beam meeting this many photons, four times the default k:
-// fewer, longer rows beat tighter bounds (bench_volume measures the choice).
-constexpr int kCellPhotons = 400;
+// The cell (VolumePhotonMap::kCellPhotons) is four times the default k's beam: fewer,
+// longer rows beat tighter bounds (bench_volume measures the choice).
 // The radius rule's cells hold about this many photons where a typical photon lies.
 constexpr double kDensityCellPhotons = 8.0;
 // Cells per axis at most, so a cell's key (z ny + y) nx + x fits 63 bits.

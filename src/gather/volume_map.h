@@ -13,10 +13,13 @@ namespace penumbra {
 
 class VolumePhotonMap {
  public:
+  // The grid's cell: the radius of a beam meeting this many photons (so a beam across
+  // the photons' region walks about sqrt(pi N / kCellPhotons) cells).
+  static constexpr int kCellPhotons = 400;
   // Takes ownership; sorts the photons by grid cell (ties in emission order). Only
   // occupied cells are kept, rows found by hash: a halo of photons far from the rest
   // (light leaving a room into fog that fills the scene) costs memory per photon, not
-  // per cell of its box. The cell is the radius of a 400-photon beam.
+  // per cell of its box.
   void build(PhotonBatches<VolumePhoton> photons, const MapBuildOptions& options = {});
   bool empty() const { return photons_.empty(); }
   size_t size() const { return photons_.size(); }

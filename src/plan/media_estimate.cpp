@@ -4,7 +4,7 @@
 #include "plan/media_estimate.h"
 #include "plan/cost_model.h"
 #include "core/media/density_grid.h"
-#include "gather/radiance_estimate.h"
+#include "gather/volume_map.h"
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
@@ -66,7 +66,7 @@ double viewShare(const Scene& scene, const Bound& b) {
 
 }  // namespace
 
-MediaCost mediaCost(const Scene& scene, bool volumeMap, int passes) {
+MediaCost mediaCost(const Scene& scene, double volumeStoredPerPass) {
   MediaCost m;
   if (!scene.hasMedia()) return m;
   m.any = true;
@@ -99,10 +99,11 @@ MediaCost mediaCost(const Scene& scene, bool volumeMap, int passes) {
   for (const Light& l : scene.lights) samples += maxComponent(l.radiance()) > 0.0f ? scene.render.volumeSamples : 0.0;
   m.sampleNs = samples * 2.0 * (kMediumSampleNs + kRayNs);
   m.trackingNs = steps * kTrackingStepNs * (1.0 + 2.0 * samples);
-  if (volumeMap) {
-    double k = 0.0;
-    for (int i = 0; i < std::max(passes, 1); ++i) k += passK(ps.kVolume, uint32_t(i), ps.alpha);
-    m.gatherNs = kVolumeGatherNs + k / std::max(passes, 1) * kVolumeGatherNsPerNeighbour;
+  // A beam walks about sqrt(pi N / kCellPhotons) cells of N photons' grid (its cell is
+  // the radius of a kCellPhotons beam) and finds about k photons each pass.
+  if (volumeStoredPerPass > 0.0) {
+    const double cells = std::sqrt(kPi * volumeStoredPerPass / VolumePhotonMap::kCellPhotons);
+    m.gatherNs = cells * kVolumeGatherNsPerCell + ps.kVolume * kVolumeGatherNsPerNeighbour;
   }
   return m;
 }

@@ -18,9 +18,8 @@ struct MediaCost {
   double rayNs() const { return sampleNs + trackingNs + gatherNs; }
 };
 
-// `volumeMap`: the plan builds a volume map (its gather is priced); over `passes`
-// its k shrinks as the surface maps' does (photons.alpha).
-MediaCost mediaCost(const Scene& scene, bool volumeMap, int passes);
+// `volumeStoredPerPass`: the volume map's photons a pass (0: no map, no gather priced).
+MediaCost mediaCost(const Scene& scene, double volumeStoredPerPass);
 
 // The estimate's "media" object (only a scene with a medium writes one).
 nlohmann::json mediaCostJson(const MediaCost& m, double cameraSeconds, double photonSeconds);

@@ -149,7 +149,7 @@ StoreRates analyticStoreRates(const Scene& scene) {
   // photon is stored at most once per surface after the first: bounded by the cap.
   r.perPhoton[MapKind::Global] = bounces;
   r.perPhoton[MapKind::Caustic] = bounces;
-  r.perPhoton[MapKind::Volume] = mediaCost(scene, false, 1).storesPerPhoton;
+  r.perPhoton[MapKind::Volume] = mediaCost(scene, 0.0).storesPerPhoton;
   return r;
 }
 
@@ -247,7 +247,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // (the constants are in plan/cost_model.h).
   // Media: each flight through one samples a free path; in a medium filling the scene
   // every map's flights do, elsewhere only the volume map's are priced.
-  e.media = mediaCost(scene, p.emitted[MapKind::Volume] > 0, p.passes);
+  e.media = mediaCost(scene, p.emitted[MapKind::Volume] > 0 ? n[MapKind::Volume] : 0.0);
   const double volumeFlights = n[MapKind::Volume] + double(p.emitted[MapKind::Volume]);
   const double flights = scene.sceneMedium != kNoMedium ? e.storedPhotons + emitted : volumeFlights;
   const double mediaPhotonNs = e.media.any ? flights * e.media.photonEventNs : 0.0;
@@ -302,8 +302,12 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.bvhSeconds = primitives * kBvhBuildNsPerPrimitive / e.threads * 1e-9;
   const double gathers = samples * p.passes * (piloted ? options.diffusePerSample : 1.0);
   const double shadeNs = piloted ? samplesPerPoint * kLightSampleShadeNs : 0.0;
-  // Every ray segment that crosses a medium (a camera ray, or a mirror's or glass's) does its medium work.
-  const double mediaNs = e.media.any ? (shadings + misses) * e.media.cameraShare * e.media.rayNs() : 0.0;
+  // Every ray segment that crosses a medium (a camera ray, or a mirror's or glass's) does
+  // its medium work: the pilot's rays, or each camera sample's and a share per level of
+  // the specular depth factor (a shading point is not a ray: glass splits, paths end).
+  const double segments = piloted ? shadings + misses
+                                  : samples * p.passes * (1.0 + kMediumSegmentsPerSpecularLevel * (depth - 1.0));
+  const double mediaNs = e.media.any ? segments * e.media.cameraShare * e.media.rayNs() : 0.0;
   e.mediaCameraSeconds = mediaNs / e.threads * 1e-9;
   const double ns = shadings * (kRayNs + lookupNs + sampleNs + shadeNs) + (e.shadowRays + misses) * kRayNs +
                     gathers * physicalNs + mediaNs;
