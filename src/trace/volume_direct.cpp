@@ -18,15 +18,17 @@ namespace {
 // on an area light as seen from the stretch's start (given the point, both techniques'
 // densities are known, so any point keeps the estimate unbiased). Lights at infinity
 // have none.
-bool equiangularCentre(const Light& light, const Ray& ray, float a, Rng& rng, Vec3& c) {
+// `draw` gives the area light's numbers (u1, u2); it is called only for an area light.
+template <class Draw>
+bool equiangularCentre(const Light& light, const Ray& ray, float a, Draw&& draw, Vec3& c) {
   const LightSupport support = lightTraits(light).support;
   if (support == LightSupport::Position) {
     c = light.position;
     return true;
   }
   if (support != LightSupport::Area) return false;
-  const float u1 = rng.uniform(), u2 = rng.uniform();
-  const LightIncidence in = sampleLight(prepareLight(light, ray.origin + a * ray.dir), u1, u2);
+  const Vec2 u = draw();
+  const LightIncidence in = sampleLight(prepareLight(light, ray.origin + a * ray.dir), u.x, u.y);
   c = in.point;
   return in.valid;
 }
@@ -91,19 +93,25 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
   for (uint32_t li = 0; li < ctx.scene.lights.size(); ++li) {
     const Light& light = ctx.scene.lights[li];
     if (!(maxComponent(light.radiance()) > 0.0f)) continue;
-    uint32_t distanceSeed = 0, equiangularSeed = 0;
+    uint32_t distanceSeed = 0, equiangularSeed = 0, centreSeed = 0;
     if (n > 1) {
       lightSeed = rng.nextU32();
       distanceSeed = rng.nextU32();
       equiangularSeed = rng.nextU32();
+      centreSeed = rng.nextU32();
     }
     auto stratum = [&](int j, uint32_t seed, float u) {
       if (n == 1) return u;
       return (static_cast<float>(permutationElement(uint32_t(j), uint32_t(n), seed)) + u) / static_cast<float>(n);
     };
     for (int j = 0; j < n; ++j) {
+      // An area light's centre point is stratified over the light as its samples are.
+      auto centreNumbers = [&] {
+        return n > 1 ? strata(int(permutationElement(uint32_t(j), uint32_t(n), centreSeed)), rng)
+                     : Vec2{rng.uniform(), rng.uniform()};
+      };
       Vec3 centre(0.0f);
-      const bool equiangular = equiangularCentre(light, ray, a, rng, centre);
+      const bool equiangular = equiangularCentre(light, ray, a, centreNumbers, centre);
       const EquiangularFrame eq(ray.origin, ray.dir, centre, a, b);
       const DistanceSample td = flight.sample(stratum(j, distanceSeed, rng.uniform()));
       if (equiangular && eq.thetaB > eq.thetaA) {
