@@ -37,15 +37,18 @@ constexpr double kMeshLightLevelNs = 12.0;    // ... plus per level of its searc
 constexpr double kLightSampleShadeNs = 30.0;
 
 // Participating media (plan/media_estimate.h): a photon's flight through a medium
-// (free-flight sample, albedo roulette, phase sample), one light sample on a camera
+// (free-flight sample, albedo roulette, phase sample, and the unstored ray a surface
+// map's photon starts after a scatter: the fog room's and an infinite fog's photon
+// phases set it between them), one light sample on a camera
 // ray's segment (equiangular or distance, with the phase function; its transmittance
 // ray is a kRayNs), a tracking step in a density grid, and the beam gather of the
 // volume map per grid cell its walk visits and per photon found (bench_volume's box,
 // 36 cells a beam, and bench_media's fog room, 73, measure them).
-constexpr double kMediumEventNs = 60.0;
+constexpr double kMediumEventNs = 200.0;
 constexpr double kMediumSampleNs = 40.0;
 constexpr double kTrackingStepNs = 15.0;
 constexpr double kVolumeGatherNsPerCell = 100.0;
+constexpr double kVolumeBuildNsPerPhoton = 450.0;  // the volume map's build, per stored photon
 constexpr double kVolumeGatherNsPerNeighbour = 40.0;
 // Medium segments a camera sample traces per level of the specular depth factor past
 // the first (the fog room: 1.18 segments a sample, its depth factor 2).

@@ -240,7 +240,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
 
   // Time: each stored photon is one traced segment, plus the one that escapes.
   const double emitted = double(p.emitted.total());
-  const double photonNs = (e.storedPhotons + emitted) * kPhotonSegmentNs + e.storedPhotons * kBuildNsPerPhoton +
+  // The volume map's grid sorts its records by cell and hashes its rows: its own build cost.
+  const double volumeStored = n[MapKind::Volume];
+  const double photonNs = (e.storedPhotons + emitted) * kPhotonSegmentNs +
+                          (e.storedPhotons - volumeStored) * kBuildNsPerPhoton + volumeStored * kVolumeBuildNsPerPhoton +
                           double(p.environmentPhotons) * environmentPhotonNs(scene);
   // Past the caches the emission's stores and the build's gathers wait on memory, so
   // the per-photon costs grow with the log of the data past kCacheFriendlyBytes
