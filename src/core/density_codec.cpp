@@ -40,6 +40,9 @@ uint64_t latticeBytes(const DensityRequest& request) {
   return std::min(voxels, request.maxBytes);
 }
 
+// How long the reader may take for a file of `fileBytes`, in seconds.
+double deadlineSeconds(uint64_t fileBytes) { return kReaderBaseSeconds + double(fileBytes) / kReaderBytesPerSecond; }
+
 // Values finite and >= 0, their maximum the majorant: checked again on this side, as
 // the answer came from another process.
 std::string checkValues(DensityGrid& grid) {
@@ -60,7 +63,7 @@ class ReaderProcess final : public DensityCodec {
     }
     struct stat st {};
     const uint64_t fileBytes = ::stat(path.c_str(), &st) == 0 ? uint64_t(st.st_size) : 0;
-    const double seconds = densityDeadlineSeconds(fileBytes);
+    const double seconds = deadlineSeconds(fileBytes);
     ProcessLimits limits;
     limits.seconds = seconds;
     const uint64_t lattice = latticeBytes(request);
@@ -83,8 +86,6 @@ uint64_t densityMemoryCap(const DensityRequest& request) {
   const uint64_t lattice = latticeBytes(request);
   return lattice ? kReaderBaseBytes + 3 * lattice : 0;
 }
-
-double densityDeadlineSeconds(uint64_t fileBytes) { return kReaderBaseSeconds + double(fileBytes) / kReaderBytesPerSecond; }
 
 const DensityCodec& densityCodec() {
   static const ReaderProcess codec;

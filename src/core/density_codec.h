@@ -40,8 +40,6 @@ inline constexpr const char* kVolumeReaderName = "penumbra-volumes";
 // What the reader process may allocate reading a request, in bytes: the tree, the dense
 // lattice and its copy on the way out, beside OpenVDB's own tables.
 uint64_t densityMemoryCap(const DensityRequest& request);
-// How long it may take for a file of `fileBytes`, in seconds.
-double densityDeadlineSeconds(uint64_t fileBytes);
 
 // The reader for everything that loads a scene: each call runs the reader process
 // (thread-safe); throws std::runtime_error when that process cannot be found or started.

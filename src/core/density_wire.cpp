@@ -46,7 +46,6 @@ class Reader {
   }
   size_t left() const { return bytes_.size() - at_; }
   const char* here() const { return bytes_.data() + at_; }
-  void skip(size_t n) { at_ += n; }
 
  private:
   const std::string& bytes_;

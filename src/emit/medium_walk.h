@@ -1,6 +1,7 @@
 // A photon's flight through participating media to its next event: a collision in
 // the medium it travels in, a surface, or escape, crossing invisible boundaries on the way.
 #pragma once
+#include "core/media/homogeneous.h"
 #include "core/rng.h"
 #include "core/scene.h"
 #include "emit/emit.h"
@@ -57,7 +58,7 @@ inline Color arrivingShare(const Scene& scene, const Light& light, int medium) {
   }
   const Medium& m = scene.media[static_cast<size_t>(medium)];
   if (!m.homogeneous()) return Color(1.0f);
-  return glm::mix(Color(0.0f), Color(1.0f), glm::lessThanEqual(m.sigmaT(), Color(0.0f)));
+  return transmittance(m.sigmaT(), kInf);
 }
 
 }  // namespace penumbra

@@ -69,16 +69,16 @@ class MediumLocator {
  public:
   MediumLocator(std::vector<Solid> solids, int sceneMedium) : solids_(std::move(solids)), scene_(sceneMedium) {}
 
-  // The inside of the smallest solid holding p and larger than `above` (skipping `self`).
-  int at(const Vec3& p, const Solid* self = nullptr, double above = -1.0) const {
+  // The inside of the smallest solid holding p and larger than `above` (an object's own
+  // volume, so it is never its own outside).
+  int at(const Vec3& p, double above = -1.0) const {
     const Solid* best = nullptr;
     for (const Solid& s : solids_) {
-      if (&s == self || s.volume <= above || (best && s.volume >= best->volume)) continue;
+      if (s.volume <= above || (best && s.volume >= best->volume)) continue;
       if (s.contains(p)) best = &s;
     }
     return best ? best->inside : scene_;
   }
-  const std::vector<Solid>& solids() const { return solids_; }
 
  private:
   std::vector<Solid> solids_;
@@ -127,7 +127,7 @@ void bindMedia(Scene& scene) {
   const MediumLocator locate(std::move(solids), scene.sceneMedium);
 
   // Each object's outside: the smallest larger solid holding its probe point.
-  auto outsideOf = [&](const Solid& own) { return locate.at(own.probe, &own, own.volume); };
+  auto outsideOf = [&](const Solid& own) { return locate.at(own.probe, own.volume); };
   auto bindSphere = [&](Sphere& s) {
     const Solid own = sphereSolid(s);
     s.media = {s.media.inside, outsideOf(own), true};

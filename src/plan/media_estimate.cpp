@@ -5,6 +5,7 @@
 #include "plan/cost_model.h"
 #include "core/media/density_grid.h"
 #include "gather/volume_map.h"
+#include "io/scene_defaults.h"
 #include <nlohmann/json.hpp>
 #include <algorithm>
 #include <cmath>
@@ -21,9 +22,9 @@ struct Bound {
 
 Bound boundOf(const std::vector<Vec3>& points) {
   if (points.empty()) return {};
-  Vec3 lo = points[0], hi = points[0];
-  for (const Vec3& p : points) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
-  return {0.5f * (lo + hi), 0.5f * glm::length(hi - lo)};
+  SceneBounds b;
+  for (const Vec3& p : points) b.add(p);
+  return {0.5f * (b.lo + b.hi), 0.5f * glm::length(b.hi - b.lo)};
 }
 
 // Every object's bounding sphere whose inside is medium `m` (spheres and meshes,
@@ -41,14 +42,10 @@ std::vector<Bound> boundsOf(const Scene& scene, int m) {
 
 // The whole scene's extent: a medium filling it is crossed over about this length.
 float sceneExtent(const Scene& scene) {
-  std::vector<Vec3> points = {scene.camera.position};
-  for (const Sphere& s : scene.spheres) {
-    points.push_back(s.center - Vec3(s.radius));
-    points.push_back(s.center + Vec3(s.radius));
-  }
-  for (const TriangleMesh& mesh : scene.meshes) points.insert(points.end(), mesh.positions.begin(), mesh.positions.end());
-  for (const Light& l : scene.lights) points.push_back(l.position);
-  return 2.0f * boundOf(points).radius;
+  SceneBounds b = sceneBounds(scene);  // every mesh vertex and sphere
+  b.add(scene.camera.position);
+  for (const Light& l : scene.lights) b.add(l.position);
+  return glm::length(b.hi - b.lo);
 }
 
 // The share of the view a sphere covers: its disc's solid angle over the frame's

@@ -250,7 +250,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // (the constants are in plan/cost_model.h).
   // Media: each flight through one samples a free path; in a medium filling the scene
   // every map's flights do, elsewhere only the volume map's are priced.
-  e.media = mediaCost(scene, p.emitted[MapKind::Volume] > 0 ? n[MapKind::Volume] : 0.0);
+  e.media = mediaCost(scene, n[MapKind::Volume]);
   const double volumeFlights = n[MapKind::Volume] + double(p.emitted[MapKind::Volume]);
   const double flights = scene.sceneMedium != kNoMedium ? e.storedPhotons + emitted : volumeFlights;
   const double mediaPhotonNs = e.media.any ? flights * e.media.photonEventNs : 0.0;

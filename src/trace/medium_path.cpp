@@ -22,7 +22,7 @@ Color emissionAlong(const Medium& m, const Ray& ray, float a, float b, Rng& rng,
     Color sum(0.0f);
     const Color source = m.sigmaA * m.emission;  // sigma_a > 0 where the source is, so sigma_t > 0
     for (int c = 0; c < 3; ++c) {
-      if (source[c] > 0.0f) sum[c] = source[c] * (std::isfinite(b) ? -std::expm1(-st[c] * (b - a)) : 1.0f) / st[c];
+      if (source[c] > 0.0f) sum[c] = source[c] * -std::expm1(-st[c] * (b - a)) / st[c];  // 1 - 0 over an infinite one
     }
     return sum;
   }

@@ -25,11 +25,7 @@ bool gridSpan(const Medium& m, const Ray& ray, float& a, float& b) {
 }
 
 Color stretchTransmittance(const Medium& m, const Ray& ray, float a, float b, ThreadState& ts) {
-  if (m.homogeneous()) {
-    if (std::isfinite(b)) return transmittance(m.sigmaT(), b - a);
-    // Beer–Lambert's limit, without the 0 x infinity of a clear channel.
-    return glm::mix(Color(0.0f), Color(1.0f), glm::lessThanEqual(m.sigmaT(), Color(0.0f)));
-  }
+  if (m.homogeneous()) return transmittance(m.sigmaT(), b - a);  // an infinite stretch too
   if (!gridSpan(m, ray, a, b)) return Color(1.0f);
   Rng rng(hashKey(ts.sampleKey ^ kTransmittanceStream, ts.mediumDraws++));
   return mediumTransmittance(m, ray.origin, ray.dir, a, b, rng);

@@ -10,6 +10,8 @@
 #include "core/sampling.h"
 #include "trace/medium_shadow.h"
 
+#include <optional>
+
 namespace penumbra {
 
 namespace {
@@ -76,52 +78,48 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
     }
     return f * lightTransmittance(ctx, shadow, margin, li, medium, ts);
   };
-  // n samples of each technique per light, stratified in distance and in the light's
-  // (u1, u2), the strata of each dimension paired by a permutation of its own (a shared
-  // index would correlate them); one sample draws what the single-sample estimator did.
+  // n samples of each technique per light, stratified in distance, in the equiangular
+  // centre's and in the light sample's numbers, each dimension's strata paired with the
+  // others' through a permutation of its own seed (a shared index would correlate them).
+  // One sample draws uniform numbers, in the single-sample estimator's order.
   const int n = std::max(ctx.choices.volumeSamples, 1);
   const Stratified2D strata(n, rng);
-  Color sum(0.0f);
-  uint32_t lightSeed = 0;
-  // A far sample can underflow both its pdf and its integrand (T = 0): it adds nothing.
-  auto add = [&](uint32_t li, float t, float pdf, int j) {
-    if (!(std::isfinite(t) && pdf > 0.0f)) return;
-    const Vec2 u = n > 1 ? strata(int(permutationElement(uint32_t(j), uint32_t(n), lightSeed)), rng)
-                         : Vec2{rng.uniform(), rng.uniform()};
-    sum += scatterAt(li, t, u) / pdf;
+  auto draw1 = [&](int j, uint32_t seed) {
+    const float u = rng.uniform();
+    return n > 1 ? (static_cast<float>(permutationElement(uint32_t(j), uint32_t(n), seed)) + u) / static_cast<float>(n)
+                 : u;
   };
+  auto draw2 = [&](int j, uint32_t seed) {
+    return n > 1 ? strata(int(permutationElement(uint32_t(j), uint32_t(n), seed)), rng)
+                 : Vec2{rng.uniform(), rng.uniform()};
+  };
+  enum Dimension { kLight, kDistance, kEquiangular, kCentre, kDimensions };
+  Color sum(0.0f);
   for (uint32_t li = 0; li < ctx.scene.lights.size(); ++li) {
     const Light& light = ctx.scene.lights[li];
     if (!(maxComponent(light.radiance()) > 0.0f)) continue;
-    uint32_t distanceSeed = 0, equiangularSeed = 0, centreSeed = 0;
+    uint32_t seeds[kDimensions] = {};
     if (n > 1) {
-      lightSeed = rng.nextU32();
-      distanceSeed = rng.nextU32();
-      equiangularSeed = rng.nextU32();
-      centreSeed = rng.nextU32();
+      for (uint32_t& seed : seeds) seed = rng.nextU32();
     }
-    auto stratum = [&](int j, uint32_t seed, float u) {
-      if (n == 1) return u;
-      return (static_cast<float>(permutationElement(uint32_t(j), uint32_t(n), seed)) + u) / static_cast<float>(n);
+    // A far sample can underflow both its pdf and its integrand (T = 0): it adds nothing.
+    auto add = [&](float t, float pdf, int j) {
+      if (std::isfinite(t) && pdf > 0.0f) sum += scatterAt(li, t, draw2(j, seeds[kLight])) / pdf;
     };
     for (int j = 0; j < n; ++j) {
-      // An area light's centre point is stratified over the light as its samples are.
-      auto centreNumbers = [&] {
-        return n > 1 ? strata(int(permutationElement(uint32_t(j), uint32_t(n), centreSeed)), rng)
-                     : Vec2{rng.uniform(), rng.uniform()};
-      };
       Vec3 centre(0.0f);
-      const bool equiangular = equiangularCentre(light, ray, a, centreNumbers, centre);
-      const EquiangularFrame eq(ray.origin, ray.dir, centre, a, b);
-      const DistanceSample td = flight.sample(stratum(j, distanceSeed, rng.uniform()));
-      if (equiangular && eq.thetaB > eq.thetaA) {
+      std::optional<EquiangularFrame> eq;
+      if (equiangularCentre(light, ray, a, [&] { return draw2(j, seeds[kCentre]); }, centre)) {
+        eq.emplace(ray.origin, ray.dir, centre, a, b);
+      }
+      const DistanceSample td = flight.sample(draw1(j, seeds[kDistance]));
+      if (eq && eq->thetaB > eq->thetaA) {
         // One sample of each technique, each weighted by the balance heuristic: f / (p_e + p_d).
-        const DistanceSample te =
-            sampleEquiangular(ray.origin, ray.dir, centre, a, b, stratum(j, equiangularSeed, rng.uniform()));
-        if (te.pdf > 0.0f) add(li, te.t, te.pdf + flight.pdf(te.t), j);
-        if (td.pdf > 0.0f) add(li, td.t, float(eq.pdf(td.t)) + td.pdf, j);
+        const DistanceSample te = eq->sample(draw1(j, seeds[kEquiangular]), a, b);
+        if (te.pdf > 0.0f) add(te.t, te.pdf + flight.pdf(te.t), j);
+        if (td.pdf > 0.0f) add(td.t, float(eq->pdf(td.t)) + td.pdf, j);
       } else if (td.pdf > 0.0f) {
-        add(li, td.t, td.pdf, j);
+        add(td.t, td.pdf, j);
       }
     }
   }

@@ -70,11 +70,15 @@ struct EquiangularFrame {
     thetaB = std::atan2(double(b) - delta, dist);
   }
   double pdf(double t) const { return dist / ((thetaB - thetaA) * (dist * dist + (t - delta) * (t - delta))); }
+  // A distance in [a, b] (the frame's own) drawn uniformly in angle; no sample when the
+  // segment subtends no angle.
+  EquiangularSample sample(float u, float a, float b) const {
+    if (!(thetaB > thetaA)) return {a, 0.0f};
+    const double theta = thetaA + double(u) * (thetaB - thetaA);
+    const float t = std::clamp(float(delta + dist * std::tan(theta)), a, b);
+    return {t, float(pdf(t))};
+  }
 };
-inline float equiangularPdf(float delta, float dist, float thetaA, float thetaB, float t) {
-  const float x = t - delta;
-  return dist / ((thetaB - thetaA) * (dist * dist + x * x));
-}
 // The density sampleEquiangular draws t with (0 outside [a, b]): for MIS against
 // distance sampling, which evaluates it at its own t.
 inline float equiangularPdfAt(const Vec3& o, const Vec3& d, const Vec3& p, float a, float b, float t) {
@@ -83,11 +87,7 @@ inline float equiangularPdfAt(const Vec3& o, const Vec3& d, const Vec3& p, float
   return f.thetaB > f.thetaA ? float(f.pdf(t)) : 0.0f;
 }
 inline EquiangularSample sampleEquiangular(const Vec3& o, const Vec3& d, const Vec3& p, float a, float b, float u) {
-  const EquiangularFrame f(o, d, p, a, b);
-  if (!(f.thetaB > f.thetaA)) return {a, 0.0f};
-  const double theta = f.thetaA + double(u) * (f.thetaB - f.thetaA);
-  const float t = std::clamp(float(f.delta + f.dist * std::tan(theta)), a, b);
-  return {t, float(f.pdf(t))};
+  return EquiangularFrame(o, d, p, a, b).sample(u, a, b);
 }
 
 // Veach's power heuristic (beta = 2) for a sample of the strategy with density pdfThis
