@@ -27,7 +27,7 @@ Color emissionAlong(const Medium& m, const Ray& ray, float a, float b, Rng& rng,
     return sum;
   }
   if (!gridSpan(m, ray, a, b)) return Color(0.0f);
-  const FreeFlight flight((st.r + st.g + st.b) / 3.0f * m.density->maxDensity, a, b);
+  const FreeFlight flight(m, a, b);
   const DistanceSample d = flight.sample(rng.uniform());
   if (!(d.pdf > 0.0f)) return Color(0.0f);
   ++ts.counts.mediumSamples;

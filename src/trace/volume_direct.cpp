@@ -14,6 +14,11 @@
 
 namespace penumbra {
 
+float FreeFlight::rateOf(const Medium& m) {
+  const Color st = m.sigmaT();
+  return (st.r + st.g + st.b) / 3.0f * (m.density ? m.density->maxDensity : 1.0f);
+}
+
 namespace {
 
 // The point equiangular samples centre on: a delta light's position, or a point drawn
@@ -41,8 +46,7 @@ Color volumeDirect(const ShadingContext& ctx, const Ray& ray, float a, float b, 
                    ThreadState& ts) {
   const Medium& m = ctx.scene.media[static_cast<size_t>(medium)];
   if (!(maxComponent(m.sigmaS) > 0.0f) || !gridSpan(m, ray, a, b)) return Color(0.0f);
-  const Color st = m.sigmaT();
-  const FreeFlight flight((st.r + st.g + st.b) / 3.0f * (m.density ? m.density->maxDensity : 1.0f), a, b);
+  const FreeFlight flight(m, a, b);
   // sigma_s T(a, t) p(wi, ray) L_i T_shadow at distance t: the integrand, before its pdf.
   auto scatterAt = [&](uint32_t li, float t, Vec2 u) {
     ++ts.counts.mediumSamples;

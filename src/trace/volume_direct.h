@@ -12,7 +12,8 @@ namespace penumbra {
 // (core/media/homogeneous.h), in the ray's own parameter.
 struct FreeFlight {
   float a = 0.0f, length = 0.0f, s = 0.0f;
-  FreeFlight(float rate, float from, float to) : a(from), length(to - from), s(rate) {}
+  FreeFlight(const Medium& m, float from, float to) : a(from), length(to - from), s(rateOf(m)) {}
+  static float rateOf(const Medium& m);
   DistanceSample sample(float u) const {
     DistanceSample d = sampleTruncatedFreeFlight(s, length, u);
     d.t += a;

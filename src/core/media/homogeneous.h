@@ -19,11 +19,15 @@ inline Color transmittance(const Color& sigmaT, float d) {
   return Color(float(opticalExp(sigmaT.r, d)), float(opticalExp(sigmaT.g, d)), float(opticalExp(sigmaT.b, d)));
 }
 
+// The free-flight distance -ln(1 - u) / s for s > 0, in double (an s near the
+// smallest float keeps a finite distance); u below 1 so the log stays finite.
+inline double freeFlightDistance(double s, float u) { return -std::log1p(-double(std::min(u, 0.99999994f))) / s; }
+
 // A free-flight distance drawn with density s exp(-s t); may exceed the segment.
 // s = 0 never collides: infinity (not 0 / 0 at u = 0).
 inline float sampleFreeFlight(float s, float u) {
   if (!(s > 0.0f)) return kInf;
-  return float(-std::log1p(-double(std::min(u, 0.99999994f))) / double(s));
+  return float(freeFlightDistance(double(s), u));
 }
 
 // A distance along a ray and its density per unit length.

@@ -43,8 +43,8 @@ MediumCollision homogeneousCollision(const Medium& m, float a, float b, Rng& rng
   const Rgb st = rgb(m.sigmaT()), ss = rgb(m.sigmaS);
   const int h = heroChannel(rng);
   const double d = double(b) - double(a);  // inf for an infinite medium
-  const double u = std::min(rng.uniform(), 0.99999994f);
-  const double x = st[h] > 0.0 ? -std::log1p(-u) / st[h] : kInf;  // double: sigma ~ 1e-45 stays finite
+  const float u = rng.uniform();
+  const double x = st[h] > 0.0 ? freeFlightDistance(st[h], u) : kInf;
   if (x >= d) {
     // The hero's P(none) >= exp(-16.6) here, so the mean never vanishes.
     Rgb p;
@@ -80,7 +80,7 @@ TrackEnd trackEvents(const Medium& m, const Vec3& o, const Vec3& d, float a, flo
     if (!(mu > 0.0)) continue;  // an empty block: nothing to meet
     for (t = t0;;) {
       if (++steps > kMaxTrackingSteps) return TrackEnd::Opaque;
-      t -= std::log1p(-double(std::min(rng.uniform(), 0.99999994f))) / mu;
+      t += freeFlightDistance(mu, rng.uniform());
       if (t >= t1) break;
       if (!event(t, double(m.density->at(o + float(t) * d)), mu)) return TrackEnd::Stopped;
     }
