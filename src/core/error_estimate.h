@@ -30,11 +30,17 @@ struct ErrorEstimate {
   // whole image. < 0: not measured (fewer than 4 passes).
   double biasRmse = -1.0;
   int biasHalf = 0;
+  // The bias was measured from the gathers' own smoothing probes (SmoothingSums), not
+  // the drift between halves: then biasHalf is 0.
+  bool biasFromGathers = false;
   // The lighting: the same figures over the pixels that do not see an emitter directly
   // or through mirrors and glass (whose edges alias under the camera's samples and
   // carry no photon-map light). The figures a target error aims at by default.
   double lightingNoiseRmse = -1.0;
   double lightingBiasRmse = -1.0;
+  // From the gathers' probes: the lighting's bias figure plus what the cells within
+  // noise may hold, at kBiasBoundSigmas of their noise: an upper bound. < 0: none.
+  double lightingBiasBound = -1.0;
   double emitterShare = 0.0;  // the share of the image's pixels that see an emitter
   // Where the bias sits: the box of the coarse cells (kBiasGrid) that hold most of it
   // (kBiasRegionShare), and its share inside that box. Empty: no bias beyond its own noise.
@@ -66,7 +72,8 @@ struct ErrorEstimate {
 // "~0.012 RMSE (noise, from 8 passes)", or why there is no figure.
 std::string describeError(const ErrorEstimate& e);
 
-// The fewest passes the bias check reads: two halves, each with an even and an odd pass.
+// The fewest passes the bias check reads: two halves, each with an even and an odd pass;
+// for the probes, a pass in each of their four groups.
 constexpr int kBiasMinPasses = 4;
 // The coarse grid (cells per side) the bias region is named in.
 constexpr int kBiasGrid = 8;
@@ -76,6 +83,9 @@ constexpr int kBiasGrid = 8;
 // holds about kBiasBlocks x kBiasBlocks blocks, enough for its spread to be known.
 constexpr double kBiasSignificance = 3.5;
 constexpr int kBiasBlocks = 8;
+// The bias bound counts the cells within noise at their sum plus this many of their
+// standard errors.
+constexpr double kBiasBoundSigmas = 2.0;
 // The bias region holds this share of the sum of the cells whose bias stands out of
 // their noise (the box of the fewest such cells that do).
 constexpr double kBiasRegionShare = 0.9;
@@ -85,6 +95,24 @@ constexpr int kBiasViewRadius = 2;
 // Per pixel, 1 where it sees an emitter directly or through mirrors and glass
 // (trace/emitter_mask.h); empty: none known, every pixel is lighting.
 using EmitterMask = std::vector<uint8_t>;
+
+// The photon gathers' smoothing probes (trace/render.h: RenderOptions::smoothing), each
+// pass's per-pixel estimate of its own photon-map bias, summed by pass modulo 4. The
+// even passes' mean times the odd passes' has the squared bias as its mean with each
+// pixel's noise taken out; the same product of the differences (passes 0 - 2 mod 4
+// times 1 - 3) has mean 0 and the same noise, photon sharing and heavy tails: the
+// reference a block's product is judged against. Empty: the model does not probe them.
+struct SmoothingSums {
+  static constexpr int kGroups = 4;
+  Image groups[kGroups];
+  bool empty() const { return groups[0].pixels.empty(); }
+  // The groups that hold a pass (every one from pass 4 on).
+  int filled() const {
+    int n = 0;
+    while (n < kGroups && !groups[n].pixels.empty()) ++n;
+    return n;
+  }
+};
 
 // The bias check's inputs at its last power of two, 2h passes: the sums of the even and
 // of the odd passes among the first h, and among all 2h. A tile keeps them so the merge
@@ -105,10 +133,16 @@ struct PassCheckpoint {
 // product's mean is the drift squared with each pixel's noise taken out, and neither
 // factor mixes strata of one sequence with another's (at a sharp edge the halves of one
 // sequence differ far more than independent draws would).
+//
+// Where the passes carry the gathers' smoothing probes, the bias figure is theirs: it
+// sees a bias that shrinks slowly with passes, which a drift between halves cannot
+// tell from its noise until passes are many; the drift check stays for models that do
+// not probe.
 class PassSpread {
  public:
-  // `image`: pass `pass` (0-based, in order).
-  void add(const Image& image, int pass);
+  // `image`: pass `pass` (0-based, in order); `smoothing`: its smoothing probe, given
+  // with every pass or with none.
+  void add(const Image& image, int pass, const Image* smoothing = nullptr);
   // The pixels that see an emitter: left out of the lighting figures and the bias.
   void setEmitterMask(EmitterMask mask) { mask_ = std::move(mask); }
 
@@ -129,6 +163,7 @@ class PassSpread {
     int snapshotPasses = 0, passes = 0, biasHalf = 0;
     bool keep = false;  // a tile's: the checkpoint too
     PassCheckpoint checkpoint;
+    SmoothingSums smoothing;
   };
   Moments moments() const;
   void restore(Moments m);
@@ -139,14 +174,25 @@ class PassSpread {
   const Image& oddSum() const { return odd_; }
   void keepCheckpoint() { keep_ = true; }
   const PassCheckpoint& checkpoint() const { return checkpoint_; }
+  const SmoothingSums& smoothingSums() const { return smoothing_; }
   // The estimate of `passes` passes whose even and odd sums are these, with the bias
-  // check of `checkpoint`, over the pixels `mask` leaves to the lighting.
+  // check of `checkpoint` or of `smoothing` where given, over the pixels `mask` leaves
+  // to the lighting.
   static ErrorEstimate fromHalves(const Image& even, const Image& odd, int passes, const PassCheckpoint& checkpoint,
-                                  const EmitterMask& mask);
+                                  const SmoothingSums& smoothing, const EmitterMask& mask);
 
  private:
   static ErrorEstimate estimateFrom(const Image& even, const Image& odd, int passes, const Image& drift, int biasHalf,
-                                    const EmitterMask& mask);
+                                    const SmoothingSums& smoothing, const EmitterMask& mask);
+  // Per pixel channel, the signed roots of the products of the even and the odd passes'
+  // mean smoothing probes, and of their noise reference (SmoothingSums).
+  struct Products {
+    Image signal, noise;
+  };
+  static Products smoothingProducts(const SmoothingSums& smoothing, int passes);
+  // The products the bias figure reads (the probes' where kept, else the drift), and
+  // whether there are any yet.
+  const Image* biasProducts(Products& storage) const;
   // Per pixel channel, the signed root of the drift product (float holds roots of
   // squares that would overflow it).
   static Image driftOf(const Image& firstEven, const Image& firstOdd, const Image& even, const Image& odd, int half);
@@ -159,6 +205,7 @@ class PassSpread {
   int biasHalf_ = 0;
   bool keep_ = false;
   PassCheckpoint checkpoint_;
+  SmoothingSums smoothing_;
   EmitterMask mask_;
 };
 

@@ -15,13 +15,18 @@ Color lambertFactor(const Bsdf& bsdf) { return (1.0f - bsdf.kr) * bsdf.diffuse *
 
 struct PhotonSum {
   Color sum{0.0f};
+  Color inner{0.0f};  // the same over the inner disc (r / sqrt 2), when asked
   int found = 0;
 };
+
+// The inner disc's kernel weight at squared distance d2 (invInnerR2 = 2 / r^2), <= 0 outside it.
+inline float innerWeight(float d2, float invInnerR2) { return 1.0f - d2 * invInnerR2; }
 
 // The kernel-weighted sum over the gathered photons on the query's surface: those
 // whose normal agrees with frame.ng and, when `keep` is given, that lie on the
 // query's side of its cuts. Photons at an angle to the surface go to `record`.
-PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, float invR2,
+// With invInnerR2 > 0, `inner` sums the inner disc's kernel too.
+PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, float invR2, float invInnerR2,
                      const Bsdf& bsdf, const BsdfFrame& frame, const NormalFilter& filter, const Vec3& wo,
                      SurfaceCuts* record, const SurfaceCuts* keep) {
   // A purely Lambertian BSDF is one constant: weigh the power first, multiply once.
@@ -41,16 +46,21 @@ PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_
     const float w = 1.0f - s.dist2[i] * invR2;
     if (w <= 0.0f || (keep && !keep->keeps(ph.position))) continue;
     ++a.found;
+    const float wInner = invInnerR2 > 0.0f ? innerWeight(s.dist2[i], invInnerR2) : 0.0f;
     if (lambertOnly) {
-      a.sum += w * ph.power.color();  // decoded once per photon on either path
+      const Color power = ph.power.color();  // decoded once per photon on either path
+      a.sum += w * power;
+      if (wInner > 0.0f) a.inner += wInner * power;
       continue;
     }
     const Vec3 wi = -decodeOctahedral(ph.direction);
     const float cosI = glm::dot(frame.ns, wi);
     if (cosI <= 1e-4f) continue;
-    a.sum += w * ph.power.color() * evaluateBsdf(bsdf, frame, wo, wi) / cosI;
+    const Color power = ph.power.color(), f = evaluateBsdf(bsdf, frame, wo, wi);
+    a.sum += w * power * f / cosI;
+    if (wInner > 0.0f) a.inner += wInner * power * f / cosI;
   }
-  if (lambertOnly) a.sum *= lambertFactor(bsdf);
+  if (lambertOnly) a.sum *= lambertFactor(bsdf), a.inner *= lambertFactor(bsdf);
   return a;
 }
 
@@ -60,11 +70,11 @@ PhotonSum sumPhotons(const IndirectPhotonMap& map, const GatherScratch& s, size_
 // 2^8 x 2^(e - 136) (e: the map's largest exponent byte), scaled below 2^36: 2^27
 // terms stay inside int64. Returns false, having summed nothing, when a photon fails
 // the filter: the caller then sorts, and photons at an angle mark the surface's edges.
-bool sumOnPlane(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, float invR2,
+bool sumOnPlane(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, float invR2, float invInnerR2,
                 const NormalFilter& filter, PhotonSum& a) {
   const PhotonArray<IndirectPhoton>& photons = map.photons();
   const double scale = std::ldexp(1.0, 136 + 28 - static_cast<int>(map.topPowerExponent()));
-  int64_t sum[3] = {0, 0, 0};
+  int64_t sum[3] = {0, 0, 0}, inner[3] = {0, 0, 0};
   int found = 0;
   for (size_t i = 0; i < n; ++i) {
     const IndirectPhoton& ph = photons[s.indices[i]];
@@ -72,11 +82,19 @@ bool sumOnPlane(const IndirectPhotonMap& map, const GatherScratch& s, size_t n, 
     const float w = 1.0f - s.dist2[i] * invR2;
     if (w <= 0.0f) continue;
     ++found;
-    const Color c = w * ph.power.color();
+    const Color power = ph.power.color();
+    const Color c = w * power;
     for (int ch = 0; ch < 3; ++ch) sum[ch] += static_cast<int64_t>(double(c[ch]) * scale + 0.5);
+    const float wInner = invInnerR2 > 0.0f ? innerWeight(s.dist2[i], invInnerR2) : 0.0f;
+    if (wInner <= 0.0f) continue;
+    const Color ci = wInner * power;
+    for (int ch = 0; ch < 3; ++ch) inner[ch] += static_cast<int64_t>(double(ci[ch]) * scale + 0.5);
   }
   a.found = found;
-  for (int ch = 0; ch < 3; ++ch) a.sum[ch] = static_cast<float>(double(sum[ch]) / scale);
+  for (int ch = 0; ch < 3; ++ch) {
+    a.sum[ch] = static_cast<float>(double(sum[ch]) / scale);
+    a.inner[ch] = static_cast<float>(double(inner[ch]) / scale);
+  }
   return true;
 }
 
@@ -104,24 +122,30 @@ RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, 
   if (n == 0 || !(r2 >= std::numeric_limits<float>::min())) return e;
   e.radius = std::sqrt(r2);
   const float invR2 = 1.0f / r2;
+  // The inner disc has half the area: its kernel 2 / (pi r^2 / 2) (1 - d^2 / (r^2 / 2)).
+  const float invInnerR2 = gather.probeSmoothing ? 2.0f * invR2 : 0.0f;
   const NormalFilter filter(frame.ng, kIndirectMinNormalCos);  // frame.ng's code, found once
   PhotonSum plane;
-  if (lambertian(bsdf) && sumOnPlane(map, s, n, invR2, filter, plane)) {
+  if (lambertian(bsdf) && sumOnPlane(map, s, n, invR2, invInnerR2, filter, plane)) {
     e.found = plane.found;
     e.value = plane.sum * lambertFactor(bsdf) * (2.0f / kPi * invR2);
+    if (gather.probeSmoothing) e.smoothing = 2.0f * (e.value - plane.inner * lambertFactor(bsdf) * (2.0f / kPi * invInnerR2));
     return e;
   }
   if (gather.k > 0) knn::sortGathered(s, n);
   SurfaceCuts cuts(p, frame.ng, e.radius);
-  PhotonSum a = sumPhotons(map, s, n, invR2, bsdf, frame, filter, wo, &cuts, nullptr);
+  PhotonSum a = sumPhotons(map, s, n, invR2, invInnerR2, bsdf, frame, filter, wo, &cuts, nullptr);
   cuts.finish();
+  float innerShare = 1.0f;
   if (cuts.count() > 0) {
     // Near an edge: only the photons on the query's side, over the kernel's mass there.
-    a = sumPhotons(map, s, n, invR2, bsdf, frame, filter, wo, nullptr, &cuts);
+    a = sumPhotons(map, s, n, invR2, invInnerR2, bsdf, frame, filter, wo, nullptr, &cuts);
     a.sum /= cuts.share();
+    innerShare = gather.probeSmoothing ? cuts.shareAt(e.radius * std::sqrt(0.5f)) : 1.0f;
   }
   e.found = a.found;
   e.value = a.sum * (2.0f / kPi * invR2);
+  if (gather.probeSmoothing && innerShare > 0.0f) e.smoothing = 2.0f * (e.value - a.inner / innerShare * (2.0f / kPi * invInnerR2));
   return e;
 }
 

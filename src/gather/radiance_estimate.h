@@ -11,6 +11,9 @@ struct RadianceEstimate {
   Color value{0.0f};
   int found = 0;        // photons that passed the normal filter
   float radius = 0.0f;  // the kernel's radius
+  // When the gather asks (PhotonGather::probeSmoothing): the estimate's smoothing bias,
+  // 2 (L_r - L_{r/sqrt2}) from the same photons (see photonRadiance); else 0.
+  Color smoothing{0.0f};
 };
 
 // Which photons an estimate reads: the k nearest closer than maxRadius (0: at any
@@ -19,6 +22,7 @@ struct RadianceEstimate {
 struct PhotonGather {
   int k = 0;
   float maxRadius = 0.0f;
+  bool probeSmoothing = false;  // also estimate the smoothing bias (RadianceEstimate::smoothing)
 };
 
 // L(x, wo) = sum_i K(d_i) f(wo, wi_i) Phi_i with K(d) = 2 / (pi r^2) (1 - d^2 / r^2),
@@ -30,6 +34,10 @@ struct PhotonGather {
 // the edge: surface_share.h), only photons on the query's side count, over the
 // kernel's mass on that side; the density-estimation bias left is that of a curved
 // density (-> 0 with r), and a caustic is blurred over about r.
+// That bias grows as r^2 (the kernel's second moment times the density's curvature),
+// and the same estimate over the inner disc of radius r/sqrt2 has half of it and the
+// same expected value on a uniform density (each disc's photons are uniform in it),
+// so 2 (L_r - L_{r/sqrt2}) estimates the bias of L_r, its noise left to the caller.
 RadianceEstimate photonRadiance(const IndirectPhotonMap& map, const Bsdf& bsdf, const BsdfFrame& frame,
                                 const Vec3& p, const Vec3& wo, const PhotonGather& gather,
                                 GatherScratch& scratch);

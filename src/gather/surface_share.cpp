@@ -96,9 +96,9 @@ bool SurfaceCuts::keeps(const Vec3& position) const {
   return true;
 }
 
-float SurfaceCuts::share() const {
+float SurfaceCuts::shareAt(float radius) const {
   double share = 1.0;
-  for (int c = 0; c < count_; ++c) share *= 1.0 - kernelMassBeyond(dist_[c] / radius_);
+  for (int c = 0; c < count_; ++c) share *= 1.0 - kernelMassBeyond(dist_[c] / radius);
   return static_cast<float>(share);
 }
 

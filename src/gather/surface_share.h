@@ -28,7 +28,9 @@ class SurfaceCuts {
   int count() const { return count_; }
   // Whether a point of the surface lies on the query's side of every cut.
   bool keeps(const Vec3& position) const;
-  float share() const;
+  float share() const { return shareAt(radius_); }
+  // The same for the kernel of another radius around the same point (the cuts stay).
+  float shareAt(float radius) const;
 
  private:
   struct Plane {

@@ -36,11 +36,12 @@ std::string statsToJson(const RenderStats& s) {
   j["error"] = {{"noise_rmse", e.known() ? nlohmann::json(e.noiseRmse) : nlohmann::json(nullptr)},
                 {"source", source}, {"count", e.count},
                 {"bias_rmse", e.biasRmse >= 0.0 ? nlohmann::json(e.biasRmse) : nlohmann::json(nullptr)},
-                {"bias_half", e.biasHalf}, {"lower_bound", e.lowerBound}, {"text", describeError(e)}};
+                {"bias_half", e.biasHalf}, {"bias_from_gathers", e.biasFromGathers}, {"lower_bound", e.lowerBound}, {"text", describeError(e)}};
   // The lighting: the pixels that see no emitter (core/error_estimate.h).
   auto known = [](double v) { return v >= 0.0 ? nlohmann::json(v) : nlohmann::json(nullptr); };
   j["error"]["lighting_noise_rmse"] = known(e.lightingNoiseRmse);
   j["error"]["lighting_bias_rmse"] = known(e.lightingBiasRmse);
+  j["error"]["lighting_bias_bound"] = known(e.lightingBiasBound);
   j["error"]["emitter_share"] = e.emitterShare;
   j["error"]["bias_within_noise"] = e.biasWithinNoise;
   const PixelBounds& box = e.biasRegion;

@@ -81,7 +81,10 @@ ErrorEstimate pooledError(const std::vector<PartHeader>& parts, const std::vecto
       c.even = layer("bias_even");
       c.odd = layer("bias_odd");
     }
-    e = PassSpread::fromHalves(layer("even"), layer("odd"), count, c, emitters);
+    // A model that probes its gathers' smoothing kept a group per pass, up to four.
+    SmoothingSums smoothing;
+    for (int g = 0; g < SmoothingSums::kGroups && find(kSmoothingLayers[g]); ++g) smoothing.groups[g] = layer(kSmoothingLayers[g]);
+    e = PassSpread::fromHalves(layer("even"), layer("odd"), count, c, smoothing, emitters);
   } else if (source == static_cast<int>(ErrorSource::Probes)) {
     double squares = 0.0;
     for (const PartHeader& p : parts) {

@@ -69,6 +69,7 @@ void writeFramePart(const std::string& path, const RenderResult& result, const P
                                         {"bias_even", &c.even}, {"bias_odd", &c.odd}})
         layers.push_back({name, layer});
     }
+    for (int g = 0; g < e.smoothing.filled(); ++g) layers.push_back({kSmoothingLayers[g], &e.smoothing.groups[g]});
   }
   Image emitters;
   if (!e.emitters.empty()) {

@@ -23,6 +23,9 @@ inline constexpr const char* kPartPngKeys = "penumbra:part.png_keys";     // the
 // The layer of the pixels that see an emitter (1, else 0): the lighting's figures leave them out.
 inline constexpr const char* kEmitterLayer = "emitters";
 Image emitterLayer(const EmitterMask& mask, int width, int height);
+// The layers of the gathers' smoothing probes, by pass modulo 4 (SmoothingSums).
+inline constexpr const char* kSmoothingLayers[SmoothingSums::kGroups] = {"smoothing_0", "smoothing_1", "smoothing_2",
+                                                                         "smoothing_3"};
 EmitterMask emitterMaskOf(const Image& layer);
 
 // Tile I of N's file for a job output: "out/frame.png" -> "out/frame.tile2of4.exr".

@@ -87,6 +87,9 @@ ImageMetadata errorMetadata(const ErrorEstimate& error) {
   if (error.lightingBiasRmse >= 0.0) {
     m.emplace_back("penumbra:error.lighting_bias_rmse", fmt::format("{}", error.lightingBiasRmse));
   }
+  if (error.lightingBiasBound >= 0.0) {
+    m.emplace_back("penumbra:error.lighting_bias_bound", fmt::format("{}", error.lightingBiasBound));
+  }
   const PixelBounds& r = error.biasRegion;
   if (!r.empty()) {
     m.emplace_back("penumbra:error.bias_region", fmt::format("{},{},{},{}", r.x0, r.x1, r.y0, r.y1));

@@ -41,6 +41,7 @@ struct TileError {
   Image standardError;   // Samples: each pixel's standard error
   Image even, odd;       // Passes: the sums of the even and of the odd passes
   PassCheckpoint checkpoint;  // Passes: the bias check's inputs
+  SmoothingSums smoothing;    // Passes: the gathers' smoothing probes, where the model probes them
   EmitterMask emitters;       // Passes, Samples: the pixels the lighting's figures leave out
   double probeSquareSum = 0.0;  // Probes: the tile's mean square error times its pixels
   int probed = 0;

@@ -87,6 +87,7 @@ struct FrameRun {
     adaptive = adaptiveSampling(scene.render) && needsLight && !options.tracePixel && !options.bounds &&
                passes > kAdaptiveFirstPass;
     rule = adaptiveRule(scene.render, scene.camera.spp);
+    probing = needsLight && !options.tracePixel && passes >= kBiasMinPasses && o.choices.integrator->probesSmoothing;
     if (options.derived == DerivedView::Spp) samples.assign(size_t(scene.camera.width) * scene.camera.height, 0);
     passStart = clock();
   }
@@ -112,6 +113,8 @@ struct FrameRun {
   RenderOptions render;
   PassSpread spread;
   Image sampleSpread;  // one pass: its samples' standard error per pixel
+  bool probing = false;  // the passes' gathers probe their smoothing bias (probesSmoothing)
+  Image smoothing;       // ... this pass's, per pixel
   EmitterMask emitters;  // the pixels that see an emitter (the lighting's figures leave them out)
   bool adaptive = false;
   AdaptiveRule rule;
@@ -203,17 +206,29 @@ void findEmitters(FrameRun& f) {
   (spread ? f.stats.time.render : f.result.emitterSeconds) += tracing.seconds();
 }
 
+// Whether this pass's gathers probe their smoothing bias for the bias figure: where
+// the model probes it and no cached irradiance answers the global gathers unprobed
+// (then the drift check measures it). The same for every pass of a frame.
+bool probesSmoothing(FrameRun& f) {
+  const bool cached = f.ctx.lookup && f.ctx.lookup->indirectKind() == CachedIndirect::Irradiance;
+  const bool probe = f.probing && !cached;
+  for (MapKind k : f.model.lightMaps()) f.ctx.gathers[k].probeSmoothing = probe;
+  f.render.smoothing = probe ? &f.smoothing : nullptr;
+  return probe;
+}
+
 // Renders pass `pass` and adds it to the frame's sum and spread.
 void renderPass(FrameRun& f, int pass) {
   Stopwatch phase;
   planSamples(f, pass);
+  const bool probe = probesSmoothing(f);
   f.render.tiles = beginPhase(f.options.progress, f.budgeted ? fmt::format("render {}", pass + 1)
                                                              : phaseName("render", pass, f.passes));
   Image image = renderImage(f.ctx, f.render, f.stats.rays);
   endPhase(f.options.progress);
   if (f.ctx.lookup) f.stats.cacheLazyCells = f.ctx.lookup->lazyCells();
   Image& sum = f.result.image;
-  if (f.passes > 1) f.spread.add(image, pass);
+  if (f.passes > 1) f.spread.add(image, pass, probe ? &f.smoothing : nullptr);
   if (pass == 0) sum = std::move(image);
   else for (size_t i = 0; i < image.pixels.size(); ++i) sum.pixels[i] += image.pixels[i];
   if (pass > 0) for (size_t i = 0; i < image.coverage.size(); ++i) sum.coverage[i] += image.coverage[i];
@@ -303,6 +318,7 @@ void keepTileError(FrameRun& f, const ErrorEstimate& e) {
     t.even = f.spread.evenSum();
     t.odd = f.spread.oddSum();
     t.checkpoint = f.spread.checkpoint();
+    t.smoothing = f.spread.smoothingSums();
   }
   t.emitters = f.emitters;
   if (e.source == ErrorSource::Probes) {

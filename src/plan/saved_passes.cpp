@@ -17,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr char kMagic[16] = {'p', 'e', 'n', 'u', 'm', 'b', 'r', 'a', ' ', 'p', 'a', 's', 's', 'e', 's', '\n'};
-constexpr uint32_t kVersion = 4;  // 4: the bias check's even and odd halves
+constexpr uint32_t kVersion = 5;  // 5: the gathers' smoothing probes
 // Native byte order and the sizes of the records copied whole: a file of another
 // machine or build reads as "another format", never as garbage.
 constexpr uint32_t kLayout = 0x01020304u;
@@ -110,8 +110,9 @@ uint64_t savePasses(const std::string& path, const SavedPasses& s) {
   w.put(s.seconds);
   const PassCheckpoint& c = s.spread.checkpoint;
   const bool checkpoint = s.spread.keep && c.half > 0;  // a tile's bias check, for its merge
+  const int smoothing = s.spread.smoothing.filled();
   for (int v : {s.spread.snapshotPasses, s.spread.passes, s.spread.biasHalf, int(s.spread.keep), int(checkpoint),
-                c.passes, c.half})
+                c.passes, c.half, smoothing})
     w.put<int32_t>(v);
   w.put(s.emitted.values);
   w.put(s.stored.values);
@@ -120,6 +121,7 @@ uint64_t savePasses(const std::string& path, const SavedPasses& s) {
   const PassSpread::Moments& m = s.spread;
   for (const Image* im : {&s.sum, &m.even, &m.odd, &m.snapshotEven, &m.snapshotOdd, &m.drift}) w.image(*im);
   if (checkpoint) for (const Image* im : {&c.firstEven, &c.firstOdd, &c.even, &c.odd}) w.image(*im);
+  for (int g = 0; g < smoothing; ++g) w.image(m.smoothing.groups[g]);
   w.put(fnv1a(reinterpret_cast<const unsigned char*>(w.bytes.data()), w.bytes.size()));
   writeFileAtomic(path, w.bytes.data(), w.bytes.size(), "saved passes");
   return w.bytes.size();
@@ -176,6 +178,7 @@ std::optional<SavedPasses> loadPasses(const std::string& path, const std::string
     const bool checkpoint = r.get<int32_t>() != 0;
     s.spread.checkpoint.passes = r.get<int32_t>();
     s.spread.checkpoint.half = r.get<int32_t>();
+    const int smoothing = r.get<int32_t>();
     s.emitted.values = r.get<decltype(s.emitted.values)>();
     s.stored.values = r.get<decltype(s.stored.values)>();
     s.rays = r.get<RayCounts>();
@@ -194,6 +197,8 @@ std::optional<SavedPasses> loadPasses(const std::string& path, const std::string
     if (checkpoint) {
       for (Image* im : {&c.firstEven, &c.firstOdd, &c.even, &c.odd}) sized = sized && r.image(*im, width, height);
     }
+    sized = sized && smoothing >= 0 && smoothing <= SmoothingSums::kGroups;
+    for (int g = 0; sized && g < smoothing; ++g) sized = r.image(m.smoothing.groups[g], width, height);
     if (!sized || r.at != content.size()) {
       why = "its images do not match its header";
       return std::nullopt;

@@ -26,6 +26,9 @@ struct Integrator {
   // path traces those rays ahead (light_visibility.h: tracePrimaryShadows).
   bool (*shadesDirect)(const Scene& scene, const Material& m);
   GlassShadows glass;
+  // Whether its photon gathers add their smoothing bias to ThreadState::smoothing when
+  // the context's gathers ask (PhotonGather::probeSmoothing).
+  bool probesSmoothing;
 };
 
 const Integrator& whittedIntegrator();   // trace/whitted.cpp

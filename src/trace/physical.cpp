@@ -43,10 +43,12 @@ Color directLight(const ShadingContext& ctx, const SurfaceRecord& s, const Bsdf&
   return sum;
 }
 
+// `throughput`: the camera path's weight at this point, which weighs the estimate's
+// smoothing bias into the sample's (ThreadState::smoothing) when the gather probes it.
 template <MapKind K>
 Color photonTerm(const ShadingContext& ctx, MapKindTag<K> kind, const SurfaceRecord& s, const Bsdf& bsdf,
-                 const BsdfFrame& frame, const Vec3& wo, const CachedAnswer* cached, ThreadState& ts,
-                 bool unlit = false) {
+                 const BsdfFrame& frame, const Vec3& wo, const CachedAnswer* cached, const Color& throughput,
+                 ThreadState& ts, bool unlit = false) {
   const IndirectPhotonMap* map = ctx.maps.get<K>();
   if (!map || map->empty() || !hasGatheredLobe(bsdf)) return Color(0.0f);
   // The cache holds irradiance / pi: it answers a Lambertian BSDF exactly; a glossy
@@ -61,6 +63,7 @@ Color photonTerm(const ShadingContext& ctx, MapKindTag<K> kind, const SurfaceRec
   const PhotonGather gather = unlit ? umbraGather(ctx.gathers[kind]) : ctx.gathers[kind];
   RadianceEstimate e = photonRadiance(*map, gatheredPart(bsdf), frame, s.position, wo, gather, *ts.scratch);
   ts.counts.gatherNeighbours += static_cast<uint64_t>(e.found);
+  if (gather.probeSmoothing) ts.smoothing += throughput * e.smoothing;
   return e.value;
 }
 
@@ -162,11 +165,11 @@ Color shadeSurface(const ShadingContext& ctx, const Ray& ray, const Hit* found, 
                              : Color(0.0f);
     if (withDirect) color += direct;
     if (terms & kTermCaustic)  // caustics are sharp: always the direct gather
-      color += photonTerm(ctx, MapKindTag<MapKind::Caustic>{}, s, bsdf, frame, wo, nullptr, ts);
+      color += photonTerm(ctx, MapKindTag<MapKind::Caustic>{}, s, bsdf, frame, wo, nullptr, throughput, ts);
     if (terms & kTermGlobal) {
       // No light arrives directly: the global estimate is all the pixel has (umbra_gather.h).
       const bool unlit = !(maxComponent(direct) > 0.0f);
-      color += photonTerm(ctx, MapKindTag<MapKind::Global>{}, s, bsdf, frame, wo, cached, ts, unlit);
+      color += photonTerm(ctx, MapKindTag<MapKind::Global>{}, s, bsdf, frame, wo, cached, throughput, ts, unlit);
     }
   }
 
@@ -237,7 +240,7 @@ bool physicalShadesDirect(const Scene& scene, const Material& m) {
 
 const Integrator& physicalIntegrator() {
   static const Integrator kPhysical{shadingModelName(ShadingModel::Physical), physicalSample, physicalTree, physicalShadesDirect,
-                                    GlassShadows::Block};
+                                    GlassShadows::Block, true};
   return kPhysical;
 }
 

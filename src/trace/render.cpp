@@ -54,7 +54,7 @@ Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov
 // one pass), in double: many finite samples near float's top cannot overflow; and
 // how many of the samples counted hit geometry.
 struct PixelSums {
-  glm::dvec3 sum{0.0}, oddSum{0.0};
+  glm::dvec3 sum{0.0}, oddSum{0.0}, smoothing{0.0};
   int counted = 0, oddCounted = 0, hits = 0;
 
   // One sample in. A NaN or Inf sample would poison the pixel (or be written as 0 and
@@ -68,6 +68,7 @@ struct PixelSums {
     }
     if (geometric(aov) && c.r == kNoHit) return;
     sum += glm::dvec3(c);
+    if (isFinite(ts.smoothing)) smoothing += glm::dvec3(ts.smoothing);
     ++counted;
     hits += hit ? 1 : 0;
     if (odd) {
@@ -92,13 +93,15 @@ struct PixelSums {
 // no sample counted is 0: black, or for a geometric view "no hit" (coverage 0). A view
 // of light's coverage is over the same samples as its colour, so the colour is
 // premultiplied by it exactly (a miss adds 0 to the colour and nothing to the hits).
-void storePixel(const PixelSums& p, Aov aov, int spp, size_t index, Image& image, Image* standardError) {
+void storePixel(const PixelSums& p, Aov aov, int spp, size_t index, Image& image, Image* standardError,
+                Image* smoothing) {
   const double top = std::numeric_limits<float>::max();
   image.pixels[index] = p.counted > 0 ? Color(glm::min(p.sum / double(p.counted), glm::dvec3(top))) : Color(0.0f);
   if (geometric(aov)) image.coverage[index] = static_cast<float>(p.counted) / static_cast<float>(spp);
   else if (!image.coverage.empty() && p.counted > 0)
     image.coverage[index] = static_cast<float>(double(p.hits) / double(p.counted));
   if (standardError) standardError->pixels[index] = p.standardError();
+  if (smoothing && p.counted > 0) smoothing->pixels[index] = Color(glm::clamp(p.smoothing / double(p.counted), -top, top));
 }
 
 // Camera sample `s` of this pass: its random stream and its offset in the pixel. One
@@ -174,7 +177,7 @@ struct TileBuffers {
 void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov aov,
                        uint32_t shadowLights, int x0, int y0, int x1, int y1, const PixelBounds& keep,
                        const std::vector<uint16_t>* extra, TileBuffers& b, ThreadState& ts, Image& image,
-                       Image* standardError) {
+                       Image* standardError, Image* smoothing) {
   const Camera& cam = ctx.scene.camera;
   const size_t cap = static_cast<size_t>(x1 - x0) * static_cast<size_t>(y1 - y0);
   if (b.pixels.size() < cap) {
@@ -216,7 +219,7 @@ void renderTilePackets(const ShadingContext& ctx, const CameraRays& camera, Aov 
     if (!whole && !keep.contains(b.pixels[i].x, b.pixels[i].y)) continue;
     const size_t index = static_cast<size_t>(b.pixels[i].y) * cam.width + b.pixels[i].x;
     if (extra && (*extra)[index] > 0) addExtraSamples(ctx, camera, aov, b.pixels[i].x, b.pixels[i].y, (*extra)[index], b.sums[i], ts);
-    storePixel(b.sums[i], aov, cam.spp, index, image, standardError);
+    storePixel(b.sums[i], aov, cam.spp, index, image, standardError, smoothing);
   }
 }
 
@@ -233,6 +236,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
   CameraRays camera(cam);
   Image image(cam.width, cam.height);
   if (options.standardError) *options.standardError = Image(cam.width, cam.height);
+  if (options.smoothing) *options.smoothing = Image(cam.width, cam.height);
   if (geometric(options.aov)) image.content = options.aov == Aov::Depth ? ImageContent::Depth : ImageContent::Normal;
   if (keepsCoverage(ctx, options.aov)) image.coverage.assign(image.pixels.size(), 0.0f);
   const int tile = options.tileSize;
@@ -260,7 +264,7 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
       int x1 = std::min(x0 + tile, cam.width), y1 = std::min(y0 + tile, cam.height);
       if (packets) {
         renderTilePackets(ctx, camera, options.aov, shadowLights, x0, y0, x1, y1, keep, options.extra,
-                          buffers.local(), ts, image, options.standardError);
+                          buffers.local(), ts, image, options.standardError, options.smoothing);
       } else {
         for (int y = y0; y < y1; ++y) {
           for (int x = x0; x < x1; ++x) {
@@ -273,7 +277,8 @@ Image renderImage(const ShadingContext& ctx, const RenderOptions& options, RayCo
             if (options.extra && (*options.extra)[pixel] > 0) {
               addExtraSamples(ctx, camera, options.aov, x, y, (*options.extra)[pixel], sums, ts);
             }
-            storePixel(sums, options.aov, cam.spp, static_cast<size_t>(pixel), image, options.standardError);
+            storePixel(sums, options.aov, cam.spp, static_cast<size_t>(pixel), image, options.standardError,
+                       options.smoothing);
           }
         }
       }

@@ -25,6 +25,9 @@ struct RenderOptions {
   // samples' means (0 below two samples); null: not kept. The root, not the variance:
   // a variance of finite pixels (1e20 squared) can overflow float, their error cannot.
   Image* standardError = nullptr;
+  // Filled per pixel with the mean over its samples of their gathers' smoothing bias
+  // (ThreadState::smoothing), when the context's gathers probe it; null: not kept.
+  Image* smoothing = nullptr;
   // Set: only these pixels are rendered (a tile of the frame); the others stay 0. Each
   // pixel's samples and packets are the whole frame's, so its value is too.
   std::optional<PixelBounds> bounds;

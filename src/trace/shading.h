@@ -86,6 +86,9 @@ struct ThreadState {
   // many medium streams this sample has drawn (each seeds one from sampleKey).
   int medium = kNoMedium;
   uint32_t mediumDraws = 0;
+  // The photon estimates' smoothing bias this sample's ray tree gathered, weighted as
+  // the estimates are (when the context's gathers probe it; 0 otherwise).
+  Color smoothing{0.0f};
 };
 
 // A camera sample starts: its key seeds every light sample of its ray tree.
@@ -94,6 +97,7 @@ inline void beginSample(ThreadState& ts, uint64_t key) {
   ts.shadingPoint = 0;
   ts.knownShadows = ts.blockedShadows = 0;
   ts.mediumDraws = 0;
+  ts.smoothing = Color(0.0f);
 }
 
 enum class RayKind { Camera, Reflection, Refraction };

@@ -184,7 +184,8 @@ bool whittedShadesDirect(const Scene&, const Material&) { return true; }
 }  // namespace
 
 const Integrator& whittedIntegrator() {
-  static const Integrator kWhitted{shadingModelName(ShadingModel::Classic), whittedSample, whittedTree, whittedShadesDirect, GlassShadows::Tint};
+  static const Integrator kWhitted{shadingModelName(ShadingModel::Classic), whittedSample, whittedTree, whittedShadesDirect, GlassShadows::Tint,
+                                   false};
   return kWhitted;
 }
 
