@@ -186,7 +186,10 @@ std::string describeError(const ErrorEstimate& e) {
 
 void PassSpread::add(const Image& image, int pass, const Image* smoothing) {
   addInto(pass % 2 == 0 ? even_ : odd_, image);
-  if (smoothing) addInto(smoothing_.groups[pass % SmoothingSums::kGroups], *smoothing);
+  // Probes count only when every pass brought one: a pass without one ends them.
+  if (smoothing && smoothing_.filled() == std::min(pass, SmoothingSums::kGroups))
+    addInto(smoothing_.groups[pass % SmoothingSums::kGroups], *smoothing);
+  else smoothing_ = SmoothingSums();
   passes_ = pass + 1;
   if (passes_ != std::max(2, 2 * snapshotPasses_)) return;
   // Passes 1..h against h+1..2h, once each sequence has a pass in each half.
@@ -235,7 +238,7 @@ PassSpread::Products PassSpread::smoothingProducts(const SmoothingSums& smoothin
 }
 
 const Image* PassSpread::biasProducts(Products& storage) const {
-  if (passes_ >= kBiasMinPasses && !smoothing_.empty()) {
+  if (passes_ >= kBiasMinPasses && smoothing_.filled() == SmoothingSums::kGroups) {
     storage = smoothingProducts(smoothing_, passes_);
     return &storage.signal;
   }
@@ -255,7 +258,7 @@ ErrorEstimate PassSpread::estimateFrom(const Image& even, const Image& odd, int 
   e.source = ErrorSource::Passes;
   e.count = passes;
   setNoise(e, even, mask, [&](size_t i, int c) { return varianceOfMean(even, odd, passes, i, c); });
-  if (passes >= kBiasMinPasses && !smoothing.empty()) {
+  if (passes >= kBiasMinPasses && smoothing.filled() == SmoothingSums::kGroups) {
     const Products p = smoothingProducts(smoothing, passes);
     setBias(e, p.signal, mask, &p.noise);
     e.biasFromGathers = true;

@@ -84,6 +84,11 @@ ErrorEstimate pooledError(const std::vector<PartHeader>& parts, const std::vecto
     // A model that probes its gathers' smoothing kept a group per pass, up to four.
     SmoothingSums smoothing;
     for (int g = 0; g < SmoothingSums::kGroups && find(kSmoothingLayers[g]); ++g) smoothing.groups[g] = layer(kSmoothingLayers[g]);
+    const int groups = smoothing.filled();
+    if (groups != 0 && groups != std::min(count, SmoothingSums::kGroups)) {
+      throw InputError(parts.front().path + ": part has " + std::to_string(groups) + " smoothing layers for " +
+                       std::to_string(count) + " passes");
+    }
     e = PassSpread::fromHalves(layer("even"), layer("odd"), count, c, smoothing, emitters);
   } else if (source == static_cast<int>(ErrorSource::Probes)) {
     double squares = 0.0;

@@ -87,7 +87,9 @@ struct FrameRun {
     adaptive = adaptiveSampling(scene.render) && needsLight && !options.tracePixel && !options.bounds &&
                passes > kAdaptiveFirstPass;
     rule = adaptiveRule(scene.render, scene.camera.spp);
-    probing = needsLight && !options.tracePixel && passes >= kBiasMinPasses && o.choices.integrator->probesSmoothing;
+    // The volume map's beam estimate has no probe: a scene with media keeps the drift check.
+    probing = needsLight && !options.tracePixel && passes >= kBiasMinPasses && o.choices.integrator->probesSmoothing &&
+              !scene.hasMedia();
     if (options.derived == DerivedView::Spp) samples.assign(size_t(scene.camera.width) * scene.camera.height, 0);
     passStart = clock();
   }
@@ -208,10 +210,10 @@ void findEmitters(FrameRun& f) {
 
 // Whether this pass's gathers probe their smoothing bias for the bias figure: where
 // the model probes it and no cached irradiance answers the global gathers unprobed
-// (then the drift check measures it). The same for every pass of a frame.
+// (then the drift check measures it). Decided at the run's first pass, for all of them.
 bool probesSmoothing(FrameRun& f) {
-  const bool cached = f.ctx.lookup && f.ctx.lookup->indirectKind() == CachedIndirect::Irradiance;
-  const bool probe = f.probing && !cached;
+  if (f.done == f.first) f.probing = f.probing && !(f.ctx.lookup && f.ctx.lookup->indirectKind() == CachedIndirect::Irradiance);
+  const bool probe = f.probing;
   for (MapKind k : f.model.lightMaps()) f.ctx.gathers[k].probeSmoothing = probe;
   f.render.smoothing = probe ? &f.smoothing : nullptr;
   return probe;

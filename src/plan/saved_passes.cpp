@@ -197,7 +197,8 @@ std::optional<SavedPasses> loadPasses(const std::string& path, const std::string
     if (checkpoint) {
       for (Image* im : {&c.firstEven, &c.firstOdd, &c.even, &c.odd}) sized = sized && r.image(*im, width, height);
     }
-    sized = sized && smoothing >= 0 && smoothing <= SmoothingSums::kGroups;
+    // None, or one group per pass up to four.
+    sized = sized && (smoothing == 0 || smoothing == std::min(s.done, SmoothingSums::kGroups));
     for (int g = 0; sized && g < smoothing; ++g) sized = r.image(m.smoothing.groups[g], width, height);
     if (!sized || r.at != content.size()) {
       why = "its images do not match its header";

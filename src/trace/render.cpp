@@ -55,7 +55,7 @@ Color shadeTraced(const ShadingContext& ctx, const Ray& ray, const Hit* hit, Aov
 // how many of the samples counted hit geometry.
 struct PixelSums {
   glm::dvec3 sum{0.0}, oddSum{0.0}, smoothing{0.0};
-  int counted = 0, oddCounted = 0, hits = 0;
+  int counted = 0, oddCounted = 0, hits = 0, smoothingCounted = 0;
 
   // One sample in. A NaN or Inf sample would poison the pixel (or be written as 0 and
   // hide): drop it, count it, and let the pixel's other samples stand. Geometric views
@@ -68,7 +68,7 @@ struct PixelSums {
     }
     if (geometric(aov) && c.r == kNoHit) return;
     sum += glm::dvec3(c);
-    if (isFinite(ts.smoothing)) smoothing += glm::dvec3(ts.smoothing);
+    if (isFinite(ts.smoothing)) smoothing += glm::dvec3(ts.smoothing), ++smoothingCounted;
     ++counted;
     hits += hit ? 1 : 0;
     if (odd) {
@@ -101,7 +101,8 @@ void storePixel(const PixelSums& p, Aov aov, int spp, size_t index, Image& image
   else if (!image.coverage.empty() && p.counted > 0)
     image.coverage[index] = static_cast<float>(double(p.hits) / double(p.counted));
   if (standardError) standardError->pixels[index] = p.standardError();
-  if (smoothing && p.counted > 0) smoothing->pixels[index] = Color(glm::clamp(p.smoothing / double(p.counted), -top, top));
+  if (smoothing && p.smoothingCounted > 0)
+    smoothing->pixels[index] = Color(glm::clamp(p.smoothing / double(p.smoothingCounted), -top, top));
 }
 
 // Camera sample `s` of this pass: its random stream and its offset in the pixel. One

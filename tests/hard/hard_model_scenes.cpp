@@ -172,8 +172,8 @@ TEST(HardModelScenes, AnyQualitySettingIsTheUsersAndATileRendersItsOwnPass) {
   EXPECT_EQ(frameBudget({}, model).seconds, kModelTimeLimit);
   EXPECT_EQ(frameBudget({5.0, 0.0}, model).seconds, 5.0);
   EXPECT_FALSE(frameBudget({5.0, 0.0}, model).modelDefault);
-  LoadReport json;
-  EXPECT_FALSE(frameBudget({}, json).any());
+  LoadReport sceneFile;
+  EXPECT_FALSE(frameBudget({}, sceneFile).any());
   model.qualityGiven = true;
   EXPECT_FALSE(frameBudget({}, model).any());
 }
