@@ -68,6 +68,17 @@ TEST(BatchShards, TheLargestJobsArePlacedFirst) {
   EXPECT_DOUBLE_EQ(maxOverMean(split), 1.0);
 }
 
+TEST(BatchShards, JobsThatReadTexturesShareAShardThatLoadsTheModuleOnce) {
+  // A 5 s job, and two 2 s textured jobs whose image module costs a shard 1 s: the
+  // pair on the other shard pays the module once (2 + 2 + 1), not once per job.
+  const std::vector<JobCost> jobs = {{0, 0.0, 5.0}, {1, 0.0, 2.0, 1.0}, {2, 0.0, 2.0, 1.0}};
+  const ShardSplit split = splitShards(jobs, 2);
+  EXPECT_EQ(split.shardOf[1], split.shardOf[2]);
+  EXPECT_NE(split.shardOf[0], split.shardOf[1]);
+  EXPECT_DOUBLE_EQ(split.shardSeconds[split.shardOf[0]], 5.0);
+  EXPECT_DOUBLE_EQ(split.shardSeconds[split.shardOf[1]], 5.0);
+}
+
 TEST(BatchShards, SlashShardsAreOneBased) {
   EXPECT_EQ(parseShard("2/4"), (std::pair<size_t, size_t>{1, 4}));
   EXPECT_EQ(shardFromSlash("2/4").label, "shard 2/4");

@@ -11,7 +11,7 @@ namespace penumbra {
 namespace {
 
 // Whether rendering decodes an image file or samples a texture: the image module's
-// load, paid once by the process, like the maps.
+// load, paid once by the process for all its jobs.
 bool readsImages(const Scene& scene) {
   const Light* sky = environmentOf(scene);
   return !scene.textures.empty() || !scene.alphaMasks.empty() || (sky && sky->environment);
@@ -44,7 +44,8 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
     const double stage = e.photonSeconds / std::max(1, o.photons.photonPasses);
     c.frameSeconds += std::max(0.0, e.renderSeconds - cost::kStartupSeconds - e.bvhSeconds) * share +
                       (e.photonSeconds - stage);
-    c.photonSeconds = std::max(c.photonSeconds, stage + e.bvhSeconds + (readsImages(v.scene) ? cost::kImageModuleSeconds : 0.0));
+    c.photonSeconds = std::max(c.photonSeconds, stage + e.bvhSeconds);
+    if (readsImages(v.scene)) c.moduleSeconds = cost::kImageModuleSeconds;
   }
   return c;
 }

@@ -35,17 +35,20 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
   // Groups in order of their first job; each pays its maps once.
   std::map<size_t, size_t> groupIndex;
   std::vector<std::vector<size_t>> groups;
-  std::vector<double> photons;
+  std::vector<double> photons, module;
   for (size_t j = 0; j < jobs.size(); ++j) {
     auto [it, added] = groupIndex.try_emplace(jobs[j].group, groups.size());
     if (added) {
       groups.emplace_back();
       photons.push_back(0.0);
+      module.push_back(0.0);
     }
     groups[it->second].push_back(j);
     photons[it->second] = std::max(photons[it->second], jobs[j].photonSeconds);
+    module[it->second] = std::max(module[it->second], jobs[j].moduleSeconds);
   }
-  double total = 0.0;
+  // The module counts once: the farm's least (one shard loads it).
+  double total = *std::max_element(module.begin(), module.end());
   for (size_t g = 0; g < groups.size(); ++g) {
     total += photons[g];
     for (size_t j : groups[g]) total += jobs[j].frameSeconds;
@@ -56,21 +59,27 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
     for (size_t j : groups[g]) frames += jobs[j].frameSeconds;
     return frames;
   };
-  const auto place = [&](const std::vector<size_t>& pieceJobs, double seconds, size_t shard) {
-    split.shardSeconds[shard] += seconds;
+  // The image module, loaded once by a shard for every job that reads textures.
+  std::vector<double> loaded(split.shardSeconds.size(), 0.0);
+  const auto moduleFor = [&](size_t g, size_t shard) { return std::max(0.0, module[g] - loaded[shard]); };
+  const auto place = [&](size_t g, const std::vector<size_t>& pieceJobs, double seconds, size_t shard) {
+    split.shardSeconds[shard] += seconds + moduleFor(g, shard);
+    loaded[shard] = std::max(loaded[shard], module[g]);
     for (size_t j : pieceJobs) split.shardOf[j] = shard;
   };
-  // Groups within a fair share stay whole: largest first, each onto the least-loaded
-  // shard (ties: the lower index).
+  // Groups within a fair share stay whole: largest first, each onto the shard it
+  // leaves least loaded (its module counted where that shard lacks it; ties: the
+  // lower index).
   std::vector<size_t> whole, cut;
   for (size_t g = 0; g < groups.size(); ++g) (photons[g] + frameSeconds(g) > fair ? cut : whole).push_back(g);
   const auto bySize = [&](size_t a, size_t b) { return photons[a] + frameSeconds(a) > photons[b] + frameSeconds(b); };
   std::stable_sort(whole.begin(), whole.end(), bySize);
   std::stable_sort(cut.begin(), cut.end(), bySize);
   for (size_t g : whole) {
-    const size_t s = static_cast<size_t>(std::min_element(split.shardSeconds.begin(), split.shardSeconds.end()) -
-                                         split.shardSeconds.begin());
-    place(groups[g], photons[g] + frameSeconds(g), s);
+    size_t s = 0;
+    for (size_t t = 1; t < split.shardSeconds.size(); ++t)
+      if (split.shardSeconds[t] + moduleFor(g, t) < split.shardSeconds[s] + moduleFor(g, s)) s = t;
+    place(g, groups[g], photons[g] + frameSeconds(g), s);
   }
   // A larger group is cut into runs of consecutive jobs that fill the least-loaded
   // shards up to one level, each run paying the maps: the level L where the m lowest
@@ -102,7 +111,7 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
         piece.seconds += jobs[groups[g][k]].frameSeconds;
         ++k;
       }
-      place(piece.jobs, piece.seconds + photons[g], shard);
+      place(g, piece.jobs, piece.seconds + photons[g], shard);
     }
   }
   return split;
