@@ -11,6 +11,7 @@
 #include "gather/lookup_cache/lookup_cache.h"
 #include "gather/lookup_cache/lookup_cache_cells.h"
 #include "core/photon.h"
+#include "core/error_estimate.h"
 #include "core/image_codec.h"
 #include "gather/radiance_estimate.h"
 #include <fmt/format.h>
@@ -207,8 +208,11 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // odd sums) and the bias check's (the first half's even and odd sums, the drift:
   // core/error_estimate.h); else the samples' spread, or at one sample the
   // probes' error view (trace/probe_error.h); the writer's copy, its conversion to half,
-  // and the encoded file, which is written from memory (io/image_io.cpp).
-  const int frames = p.passes > 1 ? 7 : 2;
+  // and the encoded file, which is written from memory (io/image_io.cpp). A model that
+  // probes its gathers' smoothing adds the pass's probe, its four sums and the two
+  // products the bias figure forms from them (core/error_estimate.h).
+  const bool probes = p.passes >= kBiasMinPasses && transportOf(scene).integrator().probesSmoothing && !scene.hasMedia();
+  const int frames = p.passes > 1 ? 7 + (probes ? 7 : 0) : 2;
   if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * frames + 12 + 6 + 6);
   double meshBytes = 0.0, tracerBytes = 0.0;
   size_t triangles = 0;
