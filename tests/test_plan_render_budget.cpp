@@ -57,6 +57,24 @@ TEST(RenderBudget, TheImagesFigureIsSelectable) {
   EXPECT_THROW(parseErrorFigure("noise"), InputError);
 }
 
+TEST(RenderBudget, TheBiasBoundIsSelectableAndSaidWhereItStops) {
+  ErrorEstimate e = estimate(0.003, 0.0);
+  e.lightingBiasBound = 0.006;
+  RenderBudget b{0.0, 0.005};
+  EXPECT_EQ(budgetStop(b, state(6, 1.0, 0.1, e)),
+            "target error reached: lighting noise 0.003 and bias 0, together 0.003 <= 0.005");
+  b.bias = parseBiasFigure("bound");
+  EXPECT_EQ(budgetStop(b, state(6, 1.0, 0.1, e)), "") << "noise and the bound together are 0.0067";
+  e.lightingBiasBound = 0.004;
+  EXPECT_EQ(budgetStop(b, state(6, 1.0, 0.1, e)),
+            "target error reached: lighting noise 0.003 and bias bound 0.004, together 0.005 <= 0.005");
+  // A frame without probes has no bound: the counted bias stands in.
+  e.lightingBiasBound = -1.0;
+  EXPECT_NE(budgetStop(b, state(6, 1.0, 0.1, e)), "");
+  EXPECT_NE(describeBudget(b).find("(lighting, bias bound)"), std::string::npos) << describeBudget(b);
+  EXPECT_THROW(parseBiasFigure("most"), InputError);
+}
+
 TEST(RenderBudget, TimeLimitRunsUntilMetUnlessTheNextPassWouldOverrunIt) {
   const RenderBudget b{10.0, 0.0};
   EXPECT_EQ(budgetStop(b, state(8, 9.5, 0.5)), "") << "ends at 10.0: within the limit";

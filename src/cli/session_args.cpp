@@ -71,6 +71,11 @@ void addBudgetOptions(CLI::App& command, RenderBudget& budget) {
              "--target-error-of", [&budget](const std::string& name) { budget.figure = parseErrorFigure(name); },
              "The figure --target-error aims at: lighting (default: pixels that see no emitter) or image")
       ->check(CLI::IsMember(std::vector<std::string>(kErrorFigureNames.begin(), kErrorFigureNames.end())));
+  command.add_option_function<std::string>(
+             "--target-bias", [&budget](const std::string& name) { budget.bias = parseBiasFigure(name); },
+             "The photon-map bias --target-error counts: counted (default: what stands out of its noise) or "
+             "bound (what noise may hide too, where the gathers probe their bias)")
+      ->check(CLI::IsMember(std::vector<std::string>(kBiasFigureNames.begin(), kBiasFigureNames.end())));
 }
 
 void addDisplayOptions(CLI::App& command, SessionArgs& args) {

@@ -16,13 +16,16 @@ std::string targetReached(const RenderBudget& b, const ErrorEstimate& e) {
   // A frame whose every pixel sees an emitter has no lighting figure: the image's stands in.
   const bool lighting = b.figure == ErrorFigure::Lighting && e.lightingKnown();
   const double noise = lighting ? e.lightingNoiseRmse : e.noiseRmse;
-  const double bias = lighting ? e.lightingBiasRmse : e.biasRmse;
+  double bias = lighting ? e.lightingBiasRmse : e.biasRmse;
   if (noise < 0.0 || bias < 0.0) return "";
-  const double total = lighting ? e.lightingTotalRmse() : e.totalRmse();
+  // The bound is the lighting's; over the whole image it spreads over more pixels.
+  const bool bound = b.bias == BiasFigure::Bound && e.lightingBiasBound >= 0.0;
+  if (bound) bias = lighting ? e.lightingBiasBound : e.lightingBiasBound * std::sqrt(1.0 - e.emitterShare);
+  const double total = bound ? std::sqrt(noise * noise + bias * bias) : lighting ? e.lightingTotalRmse() : e.totalRmse();
   if (!(total <= b.targetError)) return "";
-  return fmt::format("target error reached: {} noise {:.3g} and bias {:.3g}, together {:.3g} <= {:g}",
+  return fmt::format("target error reached: {} noise {:.3g} and bias {}{:.3g}, together {:.3g} <= {:g}",
                      kErrorFigureNames[static_cast<size_t>(lighting ? ErrorFigure::Lighting : ErrorFigure::Image)],
-                     noise, bias, total, b.targetError);
+                     noise, bound ? "bound " : "", bias, total, b.targetError);
 }
 
 }  // namespace
@@ -53,6 +56,12 @@ ErrorFigure parseErrorFigure(const std::string& name) {
                                fmt::join(kErrorFigureNames, " or ")));
 }
 
+BiasFigure parseBiasFigure(const std::string& name) {
+  for (size_t i = 0; i < kBiasFigureNames.size(); ++i)
+    if (name == kBiasFigureNames[i]) return static_cast<BiasFigure>(i);
+  throw InputError(fmt::format("--target-bias: '{}' is not a figure (use {})", name, fmt::join(kBiasFigureNames, " or ")));
+}
+
 RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load) {
   if (asked.any() || load.modelFile.empty() || load.qualityGiven) return asked;
   return kModelBudget;
@@ -69,8 +78,8 @@ std::string describeBudget(const RenderBudget& b) {
   std::string out;
   if (b.seconds > 0.0) out = fmt::format("--time-limit {:g} s", b.seconds);
   if (b.targetError > 0.0) {
-    out += fmt::format("{}--target-error {:g} ({})", out.empty() ? "" : ", ", b.targetError,
-                       kErrorFigureNames[static_cast<size_t>(b.figure)]);
+    out += fmt::format("{}--target-error {:g} ({}{})", out.empty() ? "" : ", ", b.targetError,
+                       kErrorFigureNames[static_cast<size_t>(b.figure)], b.bias == BiasFigure::Bound ? ", bias bound" : "");
   }
   return b.modelDefault ? "the model default (" + out + ")" : out;
 }

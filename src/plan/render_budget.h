@@ -22,6 +22,13 @@ enum class ErrorFigure { Lighting, Image };
 // In enum order (--target-error-of).
 inline constexpr std::array<const char*, 2> kErrorFigureNames = {"lighting", "image"};
 
+// Which bias a target error counts: the bias that stands out of its noise (the
+// default), or its bound, which adds what noise may hide (ErrorEstimate::
+// lightingBiasBound; where the frame has none, the bias that stands out).
+enum class BiasFigure { Counted, Bound };
+// In enum order (--target-bias).
+inline constexpr std::array<const char*, 2> kBiasFigureNames = {"counted", "bound"};
+
 struct RenderBudget {
   double seconds = 0.0;      // --time-limit: wall seconds of the job; 0 = none
   // --target-error: the RMSE of noise and photon-map bias together, sqrt(noise^2 +
@@ -29,6 +36,7 @@ struct RenderBudget {
   double targetError = 0.0;
   bool modelDefault = false;  // kModelBudget, which the user did not give
   ErrorFigure figure = ErrorFigure::Lighting;  // --target-error-of
+  BiasFigure bias = BiasFigure::Counted;       // --target-bias
   bool any() const { return seconds > 0.0 || targetError > 0.0; }
 };
 
@@ -72,5 +80,7 @@ void checkBudget(const RenderBudget& budget);
 
 // The figure named `name` (kErrorFigureNames); throws InputError naming them otherwise.
 ErrorFigure parseErrorFigure(const std::string& name);
+// The bias figure named `name` (kBiasFigureNames); throws InputError naming them otherwise.
+BiasFigure parseBiasFigure(const std::string& name);
 
 }  // namespace penumbra

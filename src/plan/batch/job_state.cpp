@@ -16,6 +16,7 @@ RenderBudget jobBudget(const BatchJob& job, const RenderBudget& command) {
   if (command.seconds > 0.0) b.seconds = command.seconds;
   if (command.targetError > 0.0) b.targetError = command.targetError;
   b.figure = command.figure;  // the command line's, for every job
+  b.bias = command.bias;
   return b;
 }
 
@@ -31,8 +32,10 @@ JobDefinition definitionOf(const BatchJob& job, const SessionOptions& s) {
   const RenderBudget b = jobBudget(job, s.budget);
   if (b.seconds > 0.0) d.choices.push_back(fmt::format("time_limit={}", b.seconds));
   if (b.targetError > 0.0) {
-    d.choices.push_back(fmt::format("target_error={} of {}", b.targetError,
-                                    kErrorFigureNames[static_cast<size_t>(b.figure)]));
+    // The default bias keeps the stamps made before the bound could be chosen.
+    d.choices.push_back(fmt::format("target_error={} of {}{}", b.targetError,
+                                    kErrorFigureNames[static_cast<size_t>(b.figure)],
+                                    b.bias == BiasFigure::Bound ? " with the bias bound" : ""));
   }
   return d;
 }
