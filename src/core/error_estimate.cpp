@@ -224,7 +224,9 @@ PassSpread::Products PassSpread::smoothingProducts(const SmoothingSums& smoothin
   double n[SmoothingSums::kGroups];
   for (int g = 0; g < SmoothingSums::kGroups; ++g) n[g] = (passes - g + SmoothingSums::kGroups - 1) / SmoothingSums::kGroups;
   const double ne = n[0] + n[2], no = n[1] + n[3];
-  // A difference of two groups' means, scaled to the noise of the mean of both.
+  // A difference of two groups' means, scaled to the noise of the mean of both. Radii
+  // shrink with passes, so groups 0 and 1 run slightly wider than 2 and 3: the
+  // reference then holds a little of that drift too, which only makes it stricter.
   const double se = std::sqrt((1.0 / ne) / (1.0 / n[0] + 1.0 / n[2])), so = std::sqrt((1.0 / no) / (1.0 / n[1] + 1.0 / n[3]));
   const Image* g = smoothing.groups;
   Products out{Image(g[0].width, g[0].height), Image(g[0].width, g[0].height)};
