@@ -79,6 +79,23 @@ TEST(BatchShards, JobsThatReadTexturesShareAShardThatLoadsTheModuleOnce) {
   EXPECT_DOUBLE_EQ(split.shardSeconds[split.shardOf[1]], 5.0);
 }
 
+TEST(BatchShards, OneShardTotalsEverythingItPays) {
+  const std::vector<JobCost> jobs = {{0, 2.0, 1.0}, {0, 2.0, 1.0, 0.5}, {1, 1.0, 3.0, 0.5}};
+  const ShardSplit split = splitShards(jobs, 1);
+  EXPECT_DOUBLE_EQ(split.shardSeconds[0], 2.0 + 1.0 + 1.0 + 1.0 + 3.0 + 0.5);
+}
+
+TEST(BatchShards, EachShardsJobsAddUpToItsTotal) {
+  std::vector<JobCost> jobs;
+  for (size_t j = 0; j < 40; ++j) jobs.push_back({0, 2.0, 1.0, 0.3});
+  for (size_t j = 1; j < 6; ++j) jobs.push_back({j, 0.5, 2.0 * double(j), j % 2 ? 0.3 : 0.0});
+  const ShardSplit split = splitShards(jobs, 4);
+  const std::vector<double> charged = chargedSeconds(jobs, split);
+  std::vector<double> sum(4, 0.0);
+  for (size_t j = 0; j < jobs.size(); ++j) sum[split.shardOf[j]] += charged[j];
+  for (size_t s = 0; s < 4; ++s) EXPECT_NEAR(sum[s], split.shardSeconds[s], 1e-9) << "shard " << s;
+}
+
 TEST(BatchShards, SlashShardsAreOneBased) {
   EXPECT_EQ(parseShard("2/4"), (std::pair<size_t, size_t>{1, 4}));
   EXPECT_EQ(shardFromSlash("2/4").label, "shard 2/4");

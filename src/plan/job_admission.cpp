@@ -50,6 +50,7 @@ Admission admitJob(const Scene& scene, const RenderPlan& plan, int threads, bool
   a.options.aov = plan.aov;
   a.options.threads = threads;
   a.options.tracePixel = tracePixel;
+  a.options.budgeted = a.budget.any();
   const FrameChoices choices = choicesOf(plan, scene);
   a.options.shadows = choices.shadows;
   a.options.lightSamples = choices.lightSamples;

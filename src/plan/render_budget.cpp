@@ -64,7 +64,11 @@ BiasFigure parseBiasFigure(const std::string& name) {
 
 RenderBudget frameBudget(const RenderBudget& asked, const LoadReport& load) {
   if (asked.any() || load.modelFile.empty() || load.qualityGiven) return asked;
-  return kModelBudget;
+  // The model's limits, with the figures the user chose.
+  RenderBudget b = kModelBudget;
+  b.figure = asked.figure;
+  b.bias = asked.bias;
+  return b;
 }
 
 std::string modelBudgetNote(const std::string& scene) {

@@ -3,6 +3,7 @@
 #include "plan/resource_estimate.h"
 #include "plan/transport_model.h"
 #include "plan/cost_model.h"
+#include "plan/render_budget.h"
 #include "plan/gate_decision.h"
 #include "geometry/trace_scene.h"
 #include "core/lights/environment_map.h"
@@ -211,8 +212,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   // and the encoded file, which is written from memory (io/image_io.cpp). A model that
   // probes its gathers' smoothing adds the pass's probe, its four sums and the two
   // products the bias figure forms from them (core/error_estimate.h).
-  const bool probes = p.passes >= kBiasMinPasses && transportOf(scene).integrator().probesSmoothing && !scene.hasMedia();
-  const int frames = p.passes > 1 ? 7 + (probes ? 7 : 0) : 2;
+  // A budget runs its passes as a progressive frame, whatever photons.passes says.
+  const int passes = options.budgeted ? kBudgetMaxPasses : p.passes;
+  const bool probes = passes >= kBiasMinPasses && transportOf(scene).integrator().probesSmoothing && !scene.hasMedia();
+  const int frames = passes > 1 ? 7 + (probes ? 7 : 0) : 2;
   if (!options.tracePixel) e.imageBytes = pixels * (sizeof(Color) * frames + 12 + 6 + 6);
   double meshBytes = 0.0, tracerBytes = 0.0;
   size_t triangles = 0;

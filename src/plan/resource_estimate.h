@@ -64,6 +64,7 @@ struct EstimateOptions {
   int threads = 1;
   bool tracePixel = false;  // one pixel's ray tree: no image, no passes
   bool mapFile = false;     // --map-dir: pass 0's photons are stored in a file too
+  bool budgeted = false;    // --time-limit or --target-error: passes run as a progressive frame's
   // Per camera sample, from a camera pilot (plan/camera_pilot.h) where the tracer
   // exists: surfaces shaded, those of them not mirror or glass, rays that miss.
   // All 0: the analytic depth factor, one gather point per sample.

@@ -32,8 +32,8 @@ std::vector<JobCost> BatchRun::costs(const std::vector<size_t>& which) {
     }
     const auto known = std::find(keys.begin(), keys.end(), key);
     c.group = static_cast<size_t>(known - keys.begin());
-    // A group's maps are charged to its first job, as the split charges them once.
-    p.estimate = c.frameSeconds + (known == keys.end() ? c.photonSeconds : 0.0);
+    // A group's maps are charged to its first job, as one process pays them once.
+    p.estimate = c.frameSeconds + (known == keys.end() ? c.photonSeconds + c.moduleSeconds : 0.0);
     if (known == keys.end()) keys.push_back(key);
     out.push_back(c);
   }
@@ -79,7 +79,10 @@ std::vector<size_t> BatchRun::chooseShard() {
     return mine;
   }
   planAll(all, false);
-  const ShardSplit split = splitShards(costs(all), req_.shard->count);
+  const std::vector<JobCost> c = costs(all);
+  const ShardSplit split = splitShards(c, req_.shard->count);
+  const std::vector<double> charged = chargedSeconds(c, split);
+  for (size_t k = 0; k < all.size(); ++k) jobs_[all[k]].estimate = charged[k];
   out_.split.seconds = split.shardSeconds;
   return split.jobsOf(req_.shard->index);
 }
@@ -88,7 +91,10 @@ void BatchRun::planShards() {
   const std::vector<size_t> all = allJobs();
   planAll(all, false);
   checkApart();
-  const ShardSplit split = splitShards(costs(all), req_.planShards);
+  const std::vector<JobCost> c = costs(all);
+  const ShardSplit split = splitShards(c, req_.planShards);
+  const std::vector<double> charged = chargedSeconds(c, split);
+  for (size_t k = 0; k < all.size(); ++k) jobs_[all[k]].estimate = charged[k];
   out_.split.seconds = split.shardSeconds;
   out_.split.shards.resize(split.shardSeconds.size());
   for (size_t j : all) {

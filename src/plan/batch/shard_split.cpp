@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <numeric>
 
 namespace penumbra {
@@ -28,10 +29,7 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
   ShardSplit split;
   split.shardOf.assign(jobs.size(), 0);
   split.shardSeconds.assign(std::max<size_t>(count, 1), 0.0);
-  if (jobs.empty() || count <= 1) {
-    for (const JobCost& j : jobs) split.shardSeconds[0] += j.frameSeconds;
-    return split;
-  }
+  if (jobs.empty()) return split;
   // Groups in order of their first job; each pays its maps once.
   std::map<size_t, size_t> groupIndex;
   std::vector<std::vector<size_t>> groups;
@@ -53,7 +51,7 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
     total += photons[g];
     for (size_t j : groups[g]) total += jobs[j].frameSeconds;
   }
-  const double fair = total / double(count);
+  const double fair = total / double(split.shardSeconds.size());
   const auto frameSeconds = [&](size_t g) {
     double frames = 0.0;
     for (size_t j : groups[g]) frames += jobs[j].frameSeconds;
@@ -86,23 +84,25 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
   // shards take the frames and m maps, L = (their load + frames + m x maps) / m,
   // with m the fewest shards whose level lies below the next one's load.
   for (size_t g : cut) {
-    std::vector<size_t> order(split.shardSeconds.size());
+    // A shard's load as this group sees it: the module counted where the shard lacks it.
+    std::vector<double> load(split.shardSeconds.size());
+    for (size_t s = 0; s < load.size(); ++s) load[s] = split.shardSeconds[s] + moduleFor(g, s);
+    std::vector<size_t> order(load.size());
     std::iota(order.begin(), order.end(), size_t(0));
-    std::stable_sort(order.begin(), order.end(),
-                     [&](size_t a, size_t b) { return split.shardSeconds[a] < split.shardSeconds[b]; });
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return load[a] < load[b]; });
     const double frames = frameSeconds(g);
     double below = 0.0, level = 0.0;
     size_t m = 0;
     while (m < order.size()) {
-      below += split.shardSeconds[order[m]];
+      below += load[order[m]];
       ++m;
       level = (below + frames + double(m) * photons[g]) / double(m);
-      if (m == order.size() || level <= split.shardSeconds[order[m]]) break;
+      if (m == order.size() || level <= load[order[m]]) break;
     }
     size_t k = 0;
     for (size_t r = 0; r < m && k < groups[g].size(); ++r) {
       const size_t shard = order[r];
-      const double room = level - split.shardSeconds[shard] - photons[g];
+      const double room = level - load[shard] - photons[g];
       Piece piece;
       // A job goes in while at least half of it fits; the last run takes the rest.
       while (k < groups[g].size() &&
@@ -115,6 +115,23 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
     }
   }
   return split;
+}
+
+std::vector<double> chargedSeconds(const std::vector<JobCost>& costs, const ShardSplit& split) {
+  std::map<size_t, double> maps, module;
+  for (const JobCost& c : costs) {
+    maps[c.group] = std::max(maps[c.group], c.photonSeconds);
+    module[c.group] = std::max(module[c.group], c.moduleSeconds);
+  }
+  std::set<std::pair<size_t, size_t>> built;
+  std::vector<double> loaded(split.shardSeconds.size(), 0.0), out(costs.size());
+  for (size_t j = 0; j < costs.size(); ++j) {
+    const size_t s = split.shardOf[j], g = costs[j].group;
+    out[j] = costs[j].frameSeconds + (built.insert({s, g}).second ? maps[g] : 0.0);
+    out[j] += std::max(0.0, module[g] - loaded[s]);
+    loaded[s] = std::max(loaded[s], module[g]);
+  }
+  return out;
 }
 
 }  // namespace penumbra

@@ -26,4 +26,9 @@ struct ShardSplit {
 // Deterministic: equal costs give an equal split on every machine.
 ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count);
 
+// Each job's seconds as `split` charges them, so a shard's jobs add up to its total:
+// its frames, its group's maps on the group's first job in each shard, and the image
+// module on each shard's first job that needs it.
+std::vector<double> chargedSeconds(const std::vector<JobCost>& jobs, const ShardSplit& split);
+
 }  // namespace penumbra
