@@ -1,6 +1,7 @@
 // One frame from built photon maps: the context the integrators read, the
 // precomputed lookups, and the physical model's progressive passes.
 #include "plan/render_frame.h"
+#include "plan/frame_run.h"
 #include "plan/frame_lookups.h"
 #include "plan/saved_passes.h"
 #include "plan/transport_model.h"
@@ -17,7 +18,6 @@
 #include "core/error_estimate.h"
 #include "io/temp_file.h"
 #include <fmt/format.h>
-#include <filesystem>
 #include <optional>
 
 namespace penumbra {
@@ -53,76 +53,6 @@ std::string phaseName(const char* phase, int pass, int passes) {
   return passes > 1 ? fmt::format("{} {}/{}", phase, pass + 1, passes) : std::string(phase);
 }
 
-// One frame's running state: the context every pass shades with, the maps of the pass
-// being rendered, the image sum and spread, and the budget's clock.
-struct FrameRun {
-  FrameRun(const Scene& s, const SceneAssets& a, PhotonStage& st, const FrameOptions& o, RenderResult& r)
-      : scene(s), assets(a), stage(st), options(o), result(r), stats(r.stats), model(transportOf(s)),
-        ctx(s, *a.tracer, o.choices), precomputed(o.precomputed) {
-    ctx.textures = assets.textures.get();
-    ctx.pixelSpread = CameraRays(scene.camera).pixelSpread();
-    ctx.hasGlass = sceneHasGlass(scene);
-    ctx.classicScale = stage.classicScale;
-    const ShadowPhotonMap& shadow = stage.maps.get<MapKind::Shadow>();
-    ctx.maps.get<MapKind::Shadow>() = shadow.size() > 0 ? &shadow : nullptr;  // pass 0's, for every pass
-    for (const std::string& n : stage.notes) result.notes.push_back(n);
-    if (stage.emitted[MapKind::Indirect] > 0 && stage.maps.get<MapKind::Indirect>().empty()) {
-      result.notes.push_back("indirect photons requested but none stored (every p_r and p_t is 0?): "
-                             "using the ambient term");
-    }
-    needsLight = readsLight(options.aov);
-    budgeted = options.budget.any() && needsLight && !options.tracePixel;
-    fresh = model.freshPhotonsEachPass();
-    // --trace-pixel traces the first sample of the render's own sequence, in one pass.
-    // A budget's passes sample as any progressive render does, so its image equals the
-    // render with photons.passes set to the passes it ran.
-    ctx.passes = static_cast<uint32_t>(budgeted ? kBudgetMaxPasses : model.passes(scene, options.aov));
-    passes = options.tracePixel ? 1 : static_cast<int>(ctx.passes);
-    clock = options.clock ? options.clock : [this] { return wall.seconds(); };
-    render.aov = options.aov;
-    render.bounds = options.bounds;
-    if (options.bounds) spread.keepCheckpoint();
-    if (needsLight && passes == 1 && scene.camera.spp > 1) render.standardError = &sampleSpread;
-    // A tile cannot know the whole frame's error, which the rule measures pixels against.
-    adaptive = adaptiveSampling(scene.render) && needsLight && !options.tracePixel && !options.bounds &&
-               passes > kAdaptiveFirstPass;
-    rule = adaptiveRule(scene.render, scene.camera.spp);
-    // The volume map's beam estimate has no probe: a scene with media keeps the drift check.
-    probing = needsLight && !options.tracePixel && passes >= kBiasMinPasses && o.choices.integrator->probesSmoothing &&
-              !scene.hasMedia();
-    if (options.derived == DerivedView::Spp) samples.assign(size_t(scene.camera.width) * scene.camera.height, 0);
-    passStart = clock();
-  }
-  FrameRun(const FrameRun&) = delete;
-  FrameRun& operator=(const FrameRun&) = delete;
-
-  const Scene& scene;
-  const SceneAssets& assets;
-  PhotonStage& stage;  // pass 0's maps (and the gate's, for every pass)
-  const FrameOptions& options;
-  RenderResult& result;
-  RenderStats& stats;
-  const TransportModel& model;
-  ShadingContext ctx;
-  bool precomputed = false, needsLight = false, budgeted = false, fresh = false;
-  int passes = 1, done = 0;
-  int first = 0;  // the first pass this run renders: after the saved ones
-  const Stopwatch wall;
-  std::function<double()> clock;
-  double passStart = 0.0;
-  LookupCache cache;   // a later pass's own lookups
-  PhotonStage later;   // the maps of physical passes >= 1 (fresh photons each)
-  RenderOptions render;
-  PassSpread spread;
-  Image sampleSpread;  // one pass: its samples' standard error per pixel
-  bool probing = false;  // the passes' gathers probe their smoothing bias (probesSmoothing)
-  Image smoothing;       // ... this pass's, per pixel
-  EmitterMask emitters;  // the pixels that see an emitter (the lighting's figures leave them out)
-  bool adaptive = false;
-  AdaptiveRule rule;
-  std::vector<uint16_t> extra;    // this pass's extra samples per pixel
-  std::vector<uint32_t> samples;  // the spp view: each pixel's camera samples so far
-};
 
 // Adaptive sampling: from the passes so far, the pixels whose error is high take more
 // samples in pass `pass`; the spp view counts every pixel's.
@@ -249,65 +179,6 @@ bool budgetStops(FrameRun& f) {
   if (stop.empty()) return false;
   f.stats.budgetStop = std::move(stop);
   return true;
-}
-
-// Continues the frame after its saved passes when they are this frame's (a note says
-// so, or why they are not used); --force removes them instead.
-void resumeFrame(FrameRun& f) {
-  const FrameOptions::Resume& r = f.options.resume;
-  std::vector<std::string>& notes = f.result.notes;
-  if (r.discard) {
-    std::error_code ec;
-    if (std::filesystem::exists(r.path, ec)) notes.push_back(r.path + ": saved passes discarded (--force)");
-    removeSavedPasses(r.path);
-    return;
-  }
-  std::string why;
-  const Stopwatch reading;
-  std::optional<SavedPasses> s = loadPasses(r.path, r.identity, f.passes, f.scene.camera.width,
-                                            f.scene.camera.height, why);
-  if (!s) {
-    if (!why.empty()) notes.push_back(fmt::format("{}: saved passes not used ({}): starting at pass 1", r.path, why));
-    return;
-  }
-  f.first = f.done = s->done;
-  f.result.image = std::move(s->sum);
-  f.spread.restore(std::move(s->spread));
-  f.stats.emitted = s->emitted;
-  f.stats.stored = s->stored;
-  f.stats.rays = s->rays;
-  f.stats.gatherRadius = s->gatherRadius;
-  // A time limit counts the job's seconds in every run.
-  f.clock = [clock = std::move(f.clock), before = s->seconds] { return before + clock(); };
-  f.passStart = f.clock();
-  notes.push_back(fmt::format("{}: resumed at pass {} of {} (read in {:.2f} s)", r.path, f.done + 1, f.passes,
-                              reading.seconds()));
-}
-
-// SIGTERM came: the finished passes are saved for a later run, and the frame stops.
-[[noreturn]] void saveAndStop(FrameRun& f) {
-  const FrameOptions::Resume& r = f.options.resume;
-  const std::string passes = f.budgeted ? fmt::format("{} passes", f.done) : fmt::format("{} of {} passes", f.done, f.passes);
-  SavedPasses s;
-  s.identity = r.identity;
-  s.done = f.done;
-  s.passes = f.passes;
-  s.seconds = f.clock();
-  s.sum = std::move(f.result.image);
-  s.spread = f.spread.moments();
-  s.emitted = f.stats.emitted;
-  s.stored = f.stats.stored;
-  s.rays = f.stats.rays;
-  s.gatherRadius = f.stats.gatherRadius;
-  const Stopwatch saving;
-  uint64_t bytes = 0;
-  try {
-    bytes = savePasses(r.path, s);
-  } catch (const InputError& e) {
-    throw Terminated{fmt::format("SIGTERM: {} not saved: {}", passes, e.what())};
-  }
-  throw Terminated{fmt::format("SIGTERM: saved {} to {} ({:.1f} MB, {:.2f} s); the same command resumes at pass {}",
-                               passes, r.path, bytes / 1e6, saving.seconds(), f.done + 1)};
 }
 
 // A tile's share of the error figure: what the merge needs to pool it (TileError).
