@@ -7,6 +7,7 @@
 #include "gather/lookup_cache/lookup_cache.h"
 #include "gather/photon_map.h"
 #include "gather/radiance_estimate.h"
+#include "support/cache_photons.h"
 #include <gtest/gtest.h>
 
 namespace penumbra {
@@ -20,21 +21,10 @@ PhotonArray<IndirectPhoton> poissonPlane(int n, uint64_t seed) {
   Rng rng(seed);
   const Vec3 up(0, 0, 1);
   for (int i = 0; i < n; ++i) {
-    IndirectPhoton p;
-    p.position = Vec3(rng.uniform(), rng.uniform(), 0.0f);
-    p.power = Color(1.0f / n);
-    p.direction = encodeOctahedral(-up);
-    p.normal = encodeOctahedral(up);
-    out.push_back(p);
+    const float x = rng.uniform(), y = rng.uniform();
+    out.push_back(testing::planePhoton(Vec3(x, y, 0.0f), up, Color(1.0f / n)));
   }
   return out;
-}
-
-Bsdf white() {
-  Bsdf b;
-  b.type = BsdfType::Opaque;
-  b.diffuse = Color(1.0f);
-  return b;
 }
 
 // The mean over a grid of points away from the square's edges, over `maps` maps, as a
@@ -68,7 +58,7 @@ Means meanEstimates(int k, int photons, int maps) {
     for (int y = 0; y < grid; ++y)
       for (int x = 0; x < grid; ++x) {
         const Vec3 p(lo + (hi - lo) * (x + 0.5f) / grid, lo + (hi - lo) * (y + 0.5f) / grid, 0.0f);
-        exact += photonRadiance(map, white(), frame, p, up, PhotonGather{k, 0.0f}, s).value.x;
+        exact += photonRadiance(map, testing::whiteLambertian(), frame, p, up, PhotonGather{k, 0.0f}, s).value.x;
         const LookupCache::Answer a = cache.find(p, up);
         cached += a.hasIndirect ? a.indirect.x : 0.0f;
       }

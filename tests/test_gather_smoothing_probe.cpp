@@ -5,6 +5,7 @@
 #include "core/rng.h"
 #include "gather/photon_map.h"
 #include "gather/radiance_estimate.h"
+#include "support/cache_photons.h"
 #include <gtest/gtest.h>
 #include <cmath>
 
@@ -12,13 +13,6 @@ namespace penumbra {
 namespace {
 
 const Vec3 kUp(0, 0, 1);
-
-Bsdf white() {
-  Bsdf b;
-  b.type = BsdfType::Opaque;
-  b.diffuse = Color(1.0f);
-  return b;
-}
 
 // n photons of power 1 / n over the unit square at z = 0: a share `bump` of them from a
 // Gaussian of deviation `sigma` at the centre, the rest uniform; `irradiance` is their
@@ -39,12 +33,7 @@ struct BumpPlane {
         const double r = sigma * std::sqrt(-2.0 * std::log(u));
         p = Vec3(float(0.5 + r * std::cos(2 * kPi * v)), float(0.5 + r * std::sin(2 * kPi * v)), 0.0f);
       }
-      IndirectPhoton ph;
-      ph.position = p;
-      ph.power = Color(1.0f / n);
-      ph.direction = encodeOctahedral(-kUp);
-      ph.normal = encodeOctahedral(kUp);
-      out.push_back(ph);
+      out.push_back(testing::planePhoton(p, kUp, Color(1.0f / n)));
     }
     IndirectPhotonMap m;
     m.build(std::move(out));
@@ -69,7 +58,7 @@ Means bumpMeans(const BumpPlane& plane, int photons, int k, int maps) {
       for (int i = -2; i <= 2; ++i) {
         const double x = 0.5 + i * plane.sigma / 6, y = 0.5 + j * plane.sigma / 6;
         const double truth = plane.irradiance(x, y) / kPi;
-        const RadianceEstimate e = photonRadiance(map, white(), frame, Vec3(float(x), float(y), 0.0f), kUp,
+        const RadianceEstimate e = photonRadiance(map, testing::whiteLambertian(), frame, Vec3(float(x), float(y), 0.0f), kUp,
                                                   PhotonGather{k, 0.0f, true}, s);
         m.bias += (e.value.x - truth) / truth;
         m.probe += e.smoothing.x / truth;
@@ -106,8 +95,8 @@ TEST(SmoothingProbe, LeavesTheEstimateUnchanged) {
   GatherScratch s;
   for (int i = 0; i < 50; ++i) {
     const Vec3 p(0.3f + 0.008f * i, 0.5f, 0.0f);
-    const RadianceEstimate plain = photonRadiance(map, white(), frame, p, kUp, PhotonGather{100, 0.0f}, s);
-    const RadianceEstimate probed = photonRadiance(map, white(), frame, p, kUp, PhotonGather{100, 0.0f, true}, s);
+    const RadianceEstimate plain = photonRadiance(map, testing::whiteLambertian(), frame, p, kUp, PhotonGather{100, 0.0f}, s);
+    const RadianceEstimate probed = photonRadiance(map, testing::whiteLambertian(), frame, p, kUp, PhotonGather{100, 0.0f, true}, s);
     EXPECT_EQ(plain.value, probed.value);
     EXPECT_EQ(plain.smoothing, Color(0.0f));
   }

@@ -240,7 +240,7 @@ PassSpread::Products PassSpread::smoothingProducts(const SmoothingSums& smoothin
 }
 
 const Image* PassSpread::biasProducts(Products& storage) const {
-  if (passes_ >= kBiasMinPasses && smoothing_.filled() == SmoothingSums::kGroups) {
+  if (smoothing_.complete()) {
     storage = smoothingProducts(smoothing_, passes_);
     return &storage.signal;
   }
@@ -260,7 +260,7 @@ ErrorEstimate PassSpread::estimateFrom(const Image& even, const Image& odd, int 
   e.source = ErrorSource::Passes;
   e.count = passes;
   setNoise(e, even, mask, [&](size_t i, int c) { return varianceOfMean(even, odd, passes, i, c); });
-  if (passes >= kBiasMinPasses && smoothing.filled() == SmoothingSums::kGroups) {
+  if (smoothing.complete()) {
     const Products p = smoothingProducts(smoothing, passes);
     setBias(e, p.signal, mask, &p.noise);
     e.biasFromGathers = true;

@@ -105,13 +105,14 @@ using EmitterMask = std::vector<uint8_t>;
 struct SmoothingSums {
   static constexpr int kGroups = 4;
   Image groups[kGroups];
-  bool empty() const { return groups[0].pixels.empty(); }
   // The groups that hold a pass (every one from pass 4 on).
   int filled() const {
     int n = 0;
     while (n < kGroups && !groups[n].pixels.empty()) ++n;
     return n;
   }
+  // Every group holds a pass: the bias figure can be formed.
+  bool complete() const { return filled() == kGroups; }
 };
 
 // The bias check's inputs at its last power of two, 2h passes: the sums of the even and

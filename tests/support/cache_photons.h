@@ -1,10 +1,30 @@
-// Photons for the lookup-cache tests: indirect photons jittered over the unit square
-// and shadow photons of light 0 over it, direct on one side of an edge.
+// Photons for the gather and lookup-cache tests: indirect photons on the plane z = 0
+// (jittered over the unit square, or one at a time) and the white Lambertian surface
+// that reads them, and shadow photons of light 0, direct on one side of an edge.
 #pragma once
+#include "core/bsdf.h"
 #include "core/photon.h"
 #include "core/rng.h"
 
 namespace penumbra::testing {
+
+// One indirect photon at `position` arriving along -normal on a surface facing `normal`.
+inline IndirectPhoton planePhoton(const Vec3& position, const Vec3& normal, const Color& power) {
+  IndirectPhoton p;
+  p.position = position;
+  p.power = power;
+  p.direction = encodeOctahedral(-normal);
+  p.normal = encodeOctahedral(normal);
+  return p;
+}
+
+// Albedo 1, Lambertian: a photon estimate reads irradiance / pi.
+inline Bsdf whiteLambertian() {
+  Bsdf b;
+  b.type = BsdfType::Opaque;
+  b.diffuse = Color(1.0f);
+  return b;
+}
 
 // n x n photons jittered over the unit square in the plane z = 0, facing `normal`.
 inline PhotonArray<IndirectPhoton> planePhotons(int n, const Vec3& normal, const Color& power, uint64_t seed) {
@@ -12,12 +32,8 @@ inline PhotonArray<IndirectPhoton> planePhotons(int n, const Vec3& normal, const
   Rng rng(seed);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
-      IndirectPhoton p;
-      p.position = Vec3((x + rng.uniform()) / n, (y + rng.uniform()) / n, 0.0f);
-      p.power = power;
-      p.direction = encodeOctahedral(-normal);
-      p.normal = encodeOctahedral(normal);
-      out.push_back(p);
+      const float px = (x + rng.uniform()) / n, py = (y + rng.uniform()) / n;
+      out.push_back(planePhoton(Vec3(px, py, 0.0f), normal, power));
     }
   return out;
 }

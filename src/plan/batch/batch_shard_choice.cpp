@@ -79,10 +79,8 @@ std::vector<size_t> BatchRun::chooseShard() {
     return mine;
   }
   planAll(all, false);
-  const std::vector<JobCost> c = costs(all);
-  const ShardSplit split = splitShards(c, req_.shard->count);
-  const std::vector<double> charged = chargedSeconds(c, split);
-  for (size_t k = 0; k < all.size(); ++k) jobs_[all[k]].estimate = charged[k];
+  const ShardSplit split = splitShards(costs(all), req_.shard->count);
+  for (size_t k = 0; k < all.size(); ++k) jobs_[all[k]].estimate = split.jobSeconds[k];
   out_.split.seconds = split.shardSeconds;
   return split.jobsOf(req_.shard->index);
 }
@@ -91,10 +89,8 @@ void BatchRun::planShards() {
   const std::vector<size_t> all = allJobs();
   planAll(all, false);
   checkApart();
-  const std::vector<JobCost> c = costs(all);
-  const ShardSplit split = splitShards(c, req_.planShards);
-  const std::vector<double> charged = chargedSeconds(c, split);
-  for (size_t k = 0; k < all.size(); ++k) jobs_[all[k]].estimate = charged[k];
+  const ShardSplit split = splitShards(costs(all), req_.planShards);
+  for (size_t k = 0; k < all.size(); ++k) jobs_[all[k]].estimate = split.jobSeconds[k];
   out_.split.seconds = split.shardSeconds;
   out_.split.shards.resize(split.shardSeconds.size());
   for (size_t j : all) {

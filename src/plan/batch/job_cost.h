@@ -9,8 +9,8 @@
 namespace penumbra {
 
 // Seconds on one thread: the views' frames (every pass, the gate and lookups as
-// planned), and the maps they share (with the BVH they need, and the image module
-// where they read images), charged once. With the views' BVH, the photons stored
+// planned), the maps they share (with the BVH they need), charged once, and the image
+// module where they read images, charged once per shard. With the views' BVH, the photons stored
 // per emitted one come from a pilot emission and the shading points per sample
 // from a camera pilot (deterministic, so every machine costs alike), else from the
 // analytic bounds.

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <set>
 #include <numeric>
 
 namespace penumbra {
@@ -28,6 +27,7 @@ struct Piece {
 ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
   ShardSplit split;
   split.shardOf.assign(jobs.size(), 0);
+  split.jobSeconds.assign(jobs.size(), 0.0);
   split.shardSeconds.assign(std::max<size_t>(count, 1), 0.0);
   if (jobs.empty()) return split;
   // Groups in order of their first job; each pays its maps once.
@@ -60,10 +60,13 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
   // The image module, loaded once by a shard for every job that reads textures.
   std::vector<double> loaded(split.shardSeconds.size(), 0.0);
   const auto moduleFor = [&](size_t g, size_t shard) { return std::max(0.0, module[g] - loaded[shard]); };
+  // A piece's first job carries its maps and the module where the shard lacks it.
   const auto place = [&](size_t g, const std::vector<size_t>& pieceJobs, double seconds, size_t shard) {
-    split.shardSeconds[shard] += seconds + moduleFor(g, shard);
+    const double loads = moduleFor(g, shard);
+    split.shardSeconds[shard] += seconds + loads;
     loaded[shard] = std::max(loaded[shard], module[g]);
-    for (size_t j : pieceJobs) split.shardOf[j] = shard;
+    for (size_t j : pieceJobs) split.shardOf[j] = shard, split.jobSeconds[j] = jobs[j].frameSeconds;
+    split.jobSeconds[pieceJobs.front()] += photons[g] + loads;
   };
   // Groups within a fair share stay whole: largest first, each onto the shard it
   // leaves least loaded (its module counted where that shard lacks it; ties: the
@@ -115,23 +118,6 @@ ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count) {
     }
   }
   return split;
-}
-
-std::vector<double> chargedSeconds(const std::vector<JobCost>& costs, const ShardSplit& split) {
-  std::map<size_t, double> maps, module;
-  for (const JobCost& c : costs) {
-    maps[c.group] = std::max(maps[c.group], c.photonSeconds);
-    module[c.group] = std::max(module[c.group], c.moduleSeconds);
-  }
-  std::set<std::pair<size_t, size_t>> built;
-  std::vector<double> loaded(split.shardSeconds.size(), 0.0), out(costs.size());
-  for (size_t j = 0; j < costs.size(); ++j) {
-    const size_t s = split.shardOf[j], g = costs[j].group;
-    out[j] = costs[j].frameSeconds + (built.insert({s, g}).second ? maps[g] : 0.0);
-    out[j] += std::max(0.0, module[g] - loaded[s]);
-    loaded[s] = std::max(loaded[s], module[g]);
-  }
-  return out;
 }
 
 }  // namespace penumbra

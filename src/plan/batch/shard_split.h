@@ -20,15 +20,13 @@ struct JobCost {
 struct ShardSplit {
   std::vector<size_t> shardOf;       // per job
   std::vector<double> shardSeconds;  // per shard: its frames, each photon stage it builds and its module
+  // Per job, as charged: its frames, and on a group's first job in each shard its maps
+  // and the module where that shard lacks it, so a shard's jobs add up to its total.
+  std::vector<double> jobSeconds;
   std::vector<size_t> jobsOf(size_t shard) const;  // in job order
 };
 
 // Deterministic: equal costs give an equal split on every machine.
 ShardSplit splitShards(const std::vector<JobCost>& jobs, size_t count);
-
-// Each job's seconds as `split` charges them, so a shard's jobs add up to its total:
-// its frames, its group's maps on the group's first job in each shard, and the image
-// module on each shard's first job that needs it.
-std::vector<double> chargedSeconds(const std::vector<JobCost>& jobs, const ShardSplit& split);
 
 }  // namespace penumbra
