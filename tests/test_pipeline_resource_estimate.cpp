@@ -173,3 +173,35 @@ TEST(ResourceEstimate, EnvironmentPhotonsArePricedAtTheirStart) {
   EXPECT_GE(r.estimate.photonSeconds * r.estimate.threads * 1e9,
             double(p.photonPasses) * double(p.environmentPhotons) * (cost::kPhotonSegmentNs + cost::kEnvironmentPhotonNs));
 }
+
+// A camera pilot's texture lookups are priced at kTextureLookupNs each, on every
+// sample of every pass; without a pilot none are.
+TEST(ResourceEstimate, TexturesAPilotCountsArePricedPerLookup) {
+  const Scene scene = loadScene(kScenes + "fig15_globe.json");
+  EstimateOptions o;
+  o.photons.passes = 3;
+  o.pointsPerSample = o.diffusePerSample = 0.5;
+  o.missesPerSample = 0.5;
+  const ResourceEstimate bare = estimateResources(scene, o, analyticStoreRates(scene));
+  o.texturesPerSample = 0.5;
+  const ResourceEstimate textured = estimateResources(scene, o, analyticStoreRates(scene));
+  const double lookups = double(scene.camera.width) * scene.camera.height * scene.camera.spp * 3 * 0.5;
+  EXPECT_NEAR(textured.renderSeconds - bare.renderSeconds, lookups * cost::kTextureLookupNs * 1e-9, 1e-9);
+}
+
+// An exact gather costs its base where the map fits the caches, and kGatherSlowdown
+// more for each doubling of the map past them: fig14's indirect map, as its photon
+// budget grows a hundredfold, costs more per shading point.
+TEST(ResourceEstimate, AnExactGatherSlowsAsItsMapOutgrowsTheCaches) {
+  using namespace cost;
+  EXPECT_DOUBLE_EQ(gatherNsPerNeighbour(20.0, kGatherCacheBytes / 2), 20.0);
+  EXPECT_DOUBLE_EQ(gatherNsPerNeighbour(20.0, kGatherCacheBytes * 8), 20.0 * (1.0 + 3.0 * kGatherSlowdown));
+  Scene scene = loadScene(kScenes + "fig14_cornell.json");
+  scene.camera.width = 64, scene.camera.height = 48;
+  EstimateOptions o;
+  o.photons.emitted[MapKind::Indirect] = 20000;
+  const double small = estimateResources(scene, o, analyticStoreRates(scene)).renderSeconds;
+  o.photons.emitted[MapKind::Indirect] = 2000000;
+  const double large = estimateResources(scene, o, analyticStoreRates(scene)).renderSeconds;
+  EXPECT_GT(large, small);
+}

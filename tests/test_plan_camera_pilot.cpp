@@ -1,5 +1,5 @@
 // The camera pilot against geometry whose answer is exact: an orthographic camera on
-// half-covered and mirrored views, and a tile that sees only the empty half.
+// half-covered, textured and mirrored views, and a tile that sees only the empty half.
 #include "plan/camera_pilot.h"
 #include "io/shapes.h"
 #include "support/scene_fixtures.h"
@@ -28,6 +28,7 @@ TEST(CameraPilot, CountsTheHalfOfTheViewThatMeetsASurface) {
   EXPECT_DOUBLE_EQ(p.pointsPerSample, 0.5);
   EXPECT_DOUBLE_EQ(p.diffusePerSample, 0.5);
   EXPECT_DOUBLE_EQ(p.missesPerSample, 0.5);
+  EXPECT_DOUBLE_EQ(p.texturesPerSample, 0.0);
   // A tile of the right half sees nothing.
   const CameraPilot right = measureCamera(scene, tracer, PixelBounds{320, 640, 0, 480});
   EXPECT_DOUBLE_EQ(right.pointsPerSample, 0.0);
@@ -54,6 +55,16 @@ TEST(CameraPilot, FollowsAMirrorToWhatItShows) {
   const CameraPilot shallow = measureCamera(scene, tracer, PixelBounds::frame(640, 480));
   EXPECT_DOUBLE_EQ(shallow.pointsPerSample, 1.0);
   EXPECT_DOUBLE_EQ(shallow.diffusePerSample, 0.0);
+}
+
+TEST(CameraPilot, CountsEveryTextureAShadedMaterialReads) {
+  // A base colour map and a normal map on the quad: two lookups at each of its points.
+  Scene scene = halfCoveredScene();
+  scene.materials[0].texture = 0;
+  scene.materials[0].normalTexture = 1;
+  const TraceScene tracer(scene);
+  const CameraPilot p = measureCamera(scene, tracer, PixelBounds::frame(640, 480));
+  EXPECT_DOUBLE_EQ(p.texturesPerSample, 1.0);
 }
 
 }  // namespace

@@ -30,6 +30,7 @@ struct Walker {
     const Material& m = scene.materials[size_t(s.material)];
     const bool mirror = !m.transparent && transportOf(scene).reflects(m, scene.photons);
     if (!m.transparent && maxComponent(m.diffuse) > 0.0f) tally.diffusePerSample += 1.0;
+    for (int t : {m.texture, m.emissionTexture, m.metalRoughTexture, m.normalTexture}) tally.texturesPerSample += t >= 0;
     if ((!m.transparent && !mirror) || depth + 1 >= scene.render.maxDepth) return;
     const float kr = m.transparent ? fresnelDielectric(std::abs(glm::dot(ray.dir, s.ns)), 1.0f, m.ior) : m.kr;
     const auto branch = [&](const Vec3& dir, float share) {
@@ -61,6 +62,7 @@ CameraPilot measureCamera(const Scene& scene, const TraceScene& tracer, const Pi
   p.pointsPerSample /= rays;
   p.diffusePerSample /= rays;
   p.missesPerSample /= rays;
+  p.texturesPerSample /= rays;
   return p;
 }
 

@@ -12,6 +12,7 @@ struct CameraPilot {
   double pointsPerSample = 0.0;   // surfaces shaded per camera sample, every recursion level
   double diffusePerSample = 0.0;  // ... of those, where a path ends on a surface that is not mirror or glass
   double missesPerSample = 0.0;   // rays that leave the scene
+  double texturesPerSample = 0.0; // texture lookups at those surfaces (a material may read several)
 };
 
 // Deterministic (a fixed grid over `bounds`), so every machine costs a job alike.

@@ -4,6 +4,7 @@
 // same on every run; the gate decision, the resource estimate and batch's shard
 // balance all read them from here.
 #pragma once
+#include <cmath>
 
 namespace penumbra::cost {
 
@@ -16,18 +17,27 @@ constexpr double kBuildNsPerPhoton = 200.0; // KD build per stored photon
 // search (a glTF box and environment_sky, 1 thread: CPU with and without the photons).
 constexpr double kEnvironmentPhotonNs = 120.0;
 constexpr double kEnvironmentMapLevelNs = 13.0;
-constexpr double kGatherNsPerNeighbour = 60.0;  // exact gathers, per neighbour
-// The physical model's exact global and caustic gathers, per neighbour found, with its
-// shading (cornell_physical, 12 passes, 1 thread: the search and shading share of the
-// CPU profile over the neighbours --stats counts).
-constexpr double kPhysicalGatherNsPerNeighbour = 56.0;
+// Exact gathers, per neighbour found, from a map that fits a core's caches
+// (kGatherCacheBytes); each doubling of the map past them adds kGatherSlowdown, as
+// the search waits on memory (gatherNsPerNeighbour). Classic: fig14_cornell's
+// indirect map from 20k to 5M photons, 1 thread, against the render without it.
+// Physical, with its shading: cornell_physical's global and caustic maps at 12
+// passes of 200k photons and at 3 of 5k, 1 thread, over the neighbours --stats counts.
+constexpr double kGatherNsPerNeighbour = 19.0;
+constexpr double kPhysicalGatherNsPerNeighbour = 42.0;
+constexpr double kGatherCacheBytes = 64.0 * 1024;
+constexpr double kGatherSlowdown = 0.05;
 constexpr double kLookupNs = 80.0;          // one precomputed query per shading point, all lights
 constexpr double kExactVoteNs = 3000.0;     // one exact k-nearest gate vote per light
 constexpr double kShadowPhotonNs = 520.0;   // emit + build + cache, per emitted shadow photon
 constexpr double kStartupSeconds = 0.2;     // load, BVH, set-up of a small scene (large BVHs: below)
 // Loading the image module (OpenImageIO), once per process that reads an image: a
-// texture, an environment map, an alpha mask (dlopen of an 8x8 render, 1 thread).
-constexpr double kImageModuleSeconds = 0.3;
+// texture, an environment map, an alpha mask (fig15_globe at 8x8 against fig01_depth,
+// 1 thread: the dlopen of its libraries and the texture's first tiles).
+constexpr double kImageModuleSeconds = 0.25;
+// One filtered texture lookup at a shading point, per texture its material reads
+// (fig15_globe at 640x480 and 16 spp, 1 thread, with and without --disable textures).
+constexpr double kTextureLookupNs = 600.0;
 constexpr double kBvhBuildNsPerPrimitive = 1200.0;  // Embree's build, per triangle or sphere
 constexpr double kMeshLightSampleNs = 40.0;   // one sample of a mesh light: a point on a triangle
 constexpr double kMeshLightLevelNs = 12.0;    // ... plus per level of its search by area
@@ -79,5 +89,11 @@ constexpr double kSplitsPerStratifiedLight = 0.75;
 constexpr double kBaseBytes = 140.0 * 1024 * 1024; // the process before any scene data
 constexpr double kTextureCacheBytes = 1024.0 * 1024 * 1024;  // OIIO's cache cap (texture_lookup.cpp)
 constexpr double kCacheFriendlyBytes = 256.0 * 1024 * 1024;  // photon data that still runs at full speed
+
+// An exact gather's time per neighbour from a map of `mapBytes` (records and index).
+inline double gatherNsPerNeighbour(double perNeighbourNs, double mapBytes) {
+  const double doublings = mapBytes > kGatherCacheBytes ? std::log2(mapBytes / kGatherCacheBytes) : 0.0;
+  return perNeighbourNs * (1.0 + kGatherSlowdown * doublings);
+}
 
 }  // namespace penumbra::cost

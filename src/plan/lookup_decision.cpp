@@ -2,6 +2,7 @@
 // one cache query per point plus the exact answers of the cells the queries fill.
 #include "plan/lookup_decision.h"
 #include "plan/cost_model.h"
+#include "core/photon.h"
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -22,7 +23,11 @@ LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, do
   const PhotonSettings& ps = scene.photons;
   // Camera hits bound the shading points from below (progressive passes repeat them).
   const double points = double(scene.camera.width) * scene.camera.height * scene.camera.spp * cameraPasses;
-  const double perPointNs = gatedLights * kExactVoteNs + (gatherPhotons > 0.0 ? gatherK * kGatherNsPerNeighbour : 0.0);
+  // The map's records with their index (kIndexBytes): an indirect photon's, the larger.
+  const double mapBytes = gatherPhotons * (sizeof(IndirectPhoton) + kIndexBytes);
+  const double perPointNs =
+      gatedLights * kExactVoteNs +
+      (gatherPhotons > 0.0 ? gatherK * gatherNsPerNeighbour(kGatherNsPerNeighbour, mapBytes) : 0.0);
   // A cell per k photons' neighbourhood, twice over for the surfaces' two sides (the
   // resource estimate's cache size), each answered once exactly.
   const int k = std::max(1, gatherPhotons > 0.0 ? gatherK : ps.kShadow);

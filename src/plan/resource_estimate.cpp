@@ -296,7 +296,15 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   }
   e.lightSamples = shadings * samplesPerPoint;
   e.shadowRays = shadings * raysPerPoint;
-  if (p.emitted[MapKind::Indirect] > 0) lookupNs += options.precomputed ? kLookupNs : ps.kIndirect * kGatherNsPerNeighbour;
+  // An exact gather's time per neighbour grows with its map's bytes (one pass's map).
+  const auto perNeighbourNs = [&](MapKind map, double ns) {
+    PerMap<double> one;
+    one[map] = n[map];
+    return gatherNsPerNeighbour(ns, photonBytes(one, kIndexBytes));
+  };
+  if (p.emitted[MapKind::Indirect] > 0) {
+    lookupNs += options.precomputed ? kLookupNs : ps.kIndirect * perNeighbourNs(MapKind::Indirect, kGatherNsPerNeighbour);
+  }
   // The physical model gathers where a camera path meets a diffuse surface, once per
   // sample, pass and map unpiloted (glass's split paths add a tenth in
   // cornell_physical), and a gather costs the neighbours it finds, fewer each pass.
@@ -304,7 +312,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   for (const auto& [map, k] : {std::pair{MapKind::Global, ps.kGlobal}, std::pair{MapKind::Caustic, ps.kCaustic}}) {
     if (p.emitted[map] == 0) continue;
     if (options.precomputed) lookupNs += kLookupNs;
-    else physicalNs += meanPassNeighbours(k, p.passes, ps.alpha) * kPhysicalGatherNsPerNeighbour;
+    else physicalNs += meanPassNeighbours(k, p.passes, ps.alpha) * perNeighbourNs(map, kPhysicalGatherNsPerNeighbour);
   }
   // Every triangle and sphere of every mesh object, instances of one file included:
   // Embree builds over all of them.
@@ -319,8 +327,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
                                   : samples * p.passes * (1.0 + kMediumSegmentsPerSpecularLevel * (depth - 1.0));
   const double mediaNs = e.media.any ? segments * e.media.cameraShare * e.media.rayNs() : 0.0;
   e.mediaCameraSeconds = mediaNs / e.threads * 1e-9;
+  // A pilot counts the textures its shading points read; without one, none are priced.
+  const double textureNs = piloted ? samples * p.passes * options.texturesPerSample * kTextureLookupNs : 0.0;
   const double ns = shadings * (kRayNs + lookupNs + sampleNs + shadeNs) + (e.shadowRays + misses) * kRayNs +
-                    gathers * physicalNs + mediaNs;
+                    gathers * physicalNs + mediaNs + textureNs;
   e.renderSeconds = kStartupSeconds + e.bvhSeconds + ns / e.threads * 1e-9;
   return e;
 }

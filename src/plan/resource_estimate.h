@@ -66,9 +66,9 @@ struct EstimateOptions {
   bool mapFile = false;     // --map-dir: pass 0's photons are stored in a file too
   bool budgeted = false;    // --time-limit or --target-error: passes run as a progressive frame's
   // Per camera sample, from a camera pilot (plan/camera_pilot.h) where the tracer
-  // exists: surfaces shaded, those of them not mirror or glass, rays that miss.
-  // All 0: the analytic depth factor, one gather point per sample.
-  double pointsPerSample = 0.0, diffusePerSample = 0.0, missesPerSample = 0.0;
+  // exists: surfaces shaded, those of them not mirror or glass, rays that miss, and
+  // texture lookups. All 0: the analytic depth factor, one gather point per sample.
+  double pointsPerSample = 0.0, diffusePerSample = 0.0, missesPerSample = 0.0, texturesPerSample = 0.0;
 };
 
 // Upper bounds on stores per emitted photon from geometry and materials only.
