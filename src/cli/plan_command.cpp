@@ -28,7 +28,7 @@ int PlanCommand::run() {
   // pass could be split (no textures, no photons, no render).
   const bool split = plan[Pass::IndirectPhotons].on || plan[Pass::GlobalPhotons].on || plan[Pass::CausticPhotons].on;
   if (split) {
-    const SceneAssets assets = prepareAssets(scene, false);
+    const SceneAssets assets = prepareAssets(scene);
     splitByReach(plan, scene, *assets.tracer);
   }
   std::cout << (json_ ? planJson(plan) + "\n" : planText(plan));

@@ -25,7 +25,7 @@ void RenderSession::photonsByBudget(const std::vector<const PlannedJob*>& jobs,
     for (uint64_t n : b.values) smaller.push_back(n);
     if (std::find(budgets.begin(), budgets.end(), b) == budgets.end()) budgets.push_back(b);
   }
-  const TraceScene& tracer = *assets(lead).tracer;
+  const TraceScene& tracer = *geometry(lead).tracer;
   const CpuSpan emitting;
   // Map files hold what a render of the largest budget emits: a group of one budget
   // loads or writes its file; a larger group emits (its prefixes need the emission)

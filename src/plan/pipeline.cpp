@@ -58,7 +58,7 @@ RenderResult runRender(const RenderRequest& request) {
   if (session.mapLoads() > 0) result.notes.push_back("photon maps: loaded from --map-dir " + request.session.mapDir);
   if (session.mapWrites() > 0) result.notes.push_back("photon maps: written to --map-dir " + request.session.mapDir);
   RenderStats& stats = result.stats;
-  stats.time.buildBvh = session.assets(planned).bvhSeconds;
+  stats.time.buildBvh = session.geometry(planned).bvhSeconds;
 
   if (image) {
     Stopwatch phase;

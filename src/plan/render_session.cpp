@@ -161,15 +161,20 @@ RenderSession::Geometry& RenderSession::geometryOf(const PlannedJob& job) {
   return *g->second;
 }
 
+const SceneAssets& RenderSession::geometry(const PlannedJob& job) {
+  Geometry& g = geometryOf(job);
+  if (!g.built) {
+    g.assets = prepareAssets(g.scene);
+    g.built = true;
+    ++sceneBuilds_;
+  }
+  return g.assets;
+}
+
 const SceneAssets& RenderSession::assets(const PlannedJob& job) {
   Geometry& g = geometryOf(job);
-  const bool textures = job.plan[Pass::Textures].on;
-  if (!g.built) {
-    g.assets = prepareAssets(g.scene, textures);
-    g.built = true;
-    g.textures = textures;
-    ++sceneBuilds_;
-  } else if (textures && !g.textures) {
+  geometry(job);
+  if (job.plan[Pass::Textures].on && !g.textures) {
     g.assets.textures = loadTextures(g.scene);
     g.textures = true;
   }
@@ -178,7 +183,7 @@ const SceneAssets& RenderSession::assets(const PlannedJob& job) {
 
 void RenderSession::prepare(PlannedJob& job) {
   if (job.prepared) return;
-  const SceneAssets& a = assets(job);
+  const SceneAssets& a = geometry(job);
   splitByReach(job.plan, job.scene, *a.tracer);  // needs rays: the BVH is the first work
   // The split may turn a map off (nothing its lights emit can be stored): estimate what is emitted.
   Admission& admission = job.admission;
@@ -221,7 +226,7 @@ PhotonStage& RenderSession::photons(const std::vector<const PlannedJob*>& jobs, 
     return *stages_.front().stage;
   }
   if (reused) *reused = false;
-  const SceneAssets& a = assets(job);
+  const SceneAssets& a = geometry(job);
   const Scene& scene = job.scene;
   auto stage = std::make_unique<PhotonStage>();
   const PhaseGuard phases(options_.progress);
@@ -265,7 +270,7 @@ MapFileOutcome RenderSession::storeMaps(const std::vector<const PlannedJob*>& jo
   stageEmission(job, key, needs, [&] {
     ++emissions_;
     ++photonBuilds_;
-    return emitPhotonsFor(job.scene, *assets(job).tracer, needs, key.budgets, 0, {},
+    return emitPhotonsFor(job.scene, *geometry(job).tracer, needs, key.budgets, 0, {},
                           beginPhase(options_.progress, "photons"));
   }, file, false);
   return file;

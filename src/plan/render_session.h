@@ -90,12 +90,16 @@ class RenderSession {
   // without loading the scene again (batch's views of one job).
   PlannedJob planView(const PlannedJob& job, const std::string& view);
 
-  // The job's geometry built (BVH, and textures when its plan reads them), its light
+  // The job's geometry built (its BVH), its light
   // split by reach, the pilot if the photons are large, and the whole estimate
   // against the memory limit: still before any photon. Needed by the steps below.
   void prepare(PlannedJob& job);
 
-  // The BVH and textures a prepared job renders with: its geometry's.
+  // The BVH a job's photons, pilots and plans trace: its geometry's, built once.
+  const SceneAssets& geometry(const PlannedJob& job);
+  // The BVH and, where its plan reads them, the textures a frame shades with: loaded
+  // at the first frame that needs them, so a maps-only prepass or a plan file never
+  // loads the image module for a texture.
   const SceneAssets& assets(const PlannedJob& job);
 
   // The photon maps of jobs that share them (views of one scene and settings): the

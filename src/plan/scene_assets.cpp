@@ -22,13 +22,12 @@ std::unique_ptr<TextureLookup> loadTextures(const Scene& scene) {
   return std::make_unique<TextureLookup>(paths, data, samplers);
 }
 
-SceneAssets prepareAssets(const Scene& scene, bool textures) {
+SceneAssets prepareAssets(const Scene& scene) {
   SceneAssets assets;
   const CpuSpan clock;
   assets.tracer = std::make_unique<TraceScene>(scene);
   assets.bvhSeconds = clock.wallSeconds();
   assets.bvhCpuSeconds = clock.cpuSeconds();
-  if (textures) assets.textures = loadTextures(scene);
   return assets;
 }
 

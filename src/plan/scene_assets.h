@@ -16,8 +16,9 @@ struct SceneAssets {
   double bvhSeconds = 0.0;
   double bvhCpuSeconds = 0.0;  // the build's CPU seconds (a sweep charges each run a lone render's)
 };
-// textures = false: the plan skips them (a view that reads no colour, or --disable textures).
-SceneAssets prepareAssets(const Scene& scene, bool textures = true);
+// The BVH alone: photons, pilots and plans trace it; textures wait for a frame that
+// reads them (loadTextures), so a run that shades nothing never loads the image module.
+SceneAssets prepareAssets(const Scene& scene);
 // The scene's textures (procedural ones generated once into the cache); null: none.
 std::unique_ptr<TextureLookup> loadTextures(const Scene& scene);
 

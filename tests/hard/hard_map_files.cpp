@@ -230,6 +230,24 @@ TEST_F(MapFiles, StoreMapsWritesOnceAndALaterSessionLoads) {
   EXPECT_EQ(stage.emitted[MapKind::Shadow], 100000u);
 }
 
+// The prepass traces the BVH alone: a textured scene's textures wait for a frame that
+// shades them, so --maps-only never loads the image module for them.
+TEST_F(MapFiles, StoringMapsLeavesATexturedScenesTexturesUnloaded) {
+  SessionOptions options;
+  options.threads = 2;
+  options.mapDir = mapDir().string();
+  JobRequest request;
+  request.scenePath = shipped("showcase.json");
+  request.overrides = {"camera.width=32", "camera.height=24", "photons.shadow=20000", "photons.indirect=20000"};
+  RenderSession session(options);
+  PlannedJob job = session.plan(request);
+  ASSERT_TRUE(job.plan[Pass::Textures].on);
+  session.prepare(job);
+  EXPECT_TRUE(session.storeMaps({&job}).written);
+  EXPECT_EQ(session.geometry(job).textures, nullptr);
+  EXPECT_NE(session.assets(job).textures, nullptr) << "a frame's assets load them";
+}
+
 // A map file that cannot be written (a full disk, through the write hook) fails the
 // render with one line, leaves no temp file and no image.
 TEST_F(MapFiles, AFullMapDiskFailsTheRenderWithOneLine) {

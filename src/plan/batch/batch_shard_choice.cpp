@@ -24,7 +24,7 @@ std::vector<JobCost> BatchRun::costs(const std::vector<size_t>& which) {
       const TraceScene* tracer = nullptr;
       try {
         for (PlannedJob& v : p.views) session_.prepare(v);
-        tracer = session_.assets(p.views.front()).tracer.get();
+        tracer = session_.geometry(p.views.front()).tracer.get();
       } catch (const std::exception&) {
         // Refused on this machine (its memory): costed from the bounds.
       }

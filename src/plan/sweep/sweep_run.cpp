@@ -235,7 +235,7 @@ class Sweep {
     std::stable_partition(group.begin(), group.end(), [&](size_t i) { return i == referenceRun_; });
     std::vector<const PlannedJob*> jobs;
     for (size_t i : group) jobs.push_back(&runs_[i].job);
-    const SceneAssets& assets = session_.assets(*jobs.front());
+    const SceneAssets& assets = session_.geometry(*jobs.front());
     status_ = "photons";
     showProgress();
     session_.photonsByBudget(jobs, [&](BudgetStage& b) {
