@@ -1,6 +1,7 @@
 // The classic model: the report's Whitted tracer, with the shadow map's gate and
 // the indirect map in place of the ambient term. Its passes take new camera samples
 // over the same maps (its estimates do not converge with more photons per pass).
+#include "plan/cost_model.h"
 #include "plan/photon_stage.h"
 #include "plan/transport_model.h"
 #include "core/bsdf.h"
@@ -53,7 +54,7 @@ class ClassicTransport final : public TransportModel {
   IndirectLookup indirectLookup(const PhotonSettings& ps) const override {
     const CachedIndirect kind = ps.estimator == IndirectEstimator::Density ? CachedIndirect::Density
                                                                            : CachedIndirect::Classic;
-    return {MapKind::Indirect, kind, ps.kIndirect, ps.maxRadius};
+    return {MapKind::Indirect, kind, ps.kIndirect, ps.maxRadius, cost::kGatherNsPerNeighbour};
   }
   PerMap<PhotonGather> gathers(const PhotonSettings& ps, uint32_t, uint32_t) const override {
     PerMap<PhotonGather> g;

@@ -23,6 +23,7 @@ constexpr double kEnvironmentMapLevelNs = 13.0;
 // indirect map from 20k to 5M photons, 1 thread, against the render without it.
 // Physical, with its shading: cornell_physical's global and caustic maps at 12
 // passes of 200k photons and at 3 of 5k, 1 thread, over the neighbours --stats counts.
+// Each model names its own (IndirectLookup::nsPerNeighbour) for the lookup decision.
 constexpr double kGatherNsPerNeighbour = 19.0;
 constexpr double kPhysicalGatherNsPerNeighbour = 42.0;
 constexpr double kGatherCacheBytes = 64.0 * 1024;

@@ -17,7 +17,7 @@ constexpr double kRequiredSaving = 2.0;
 }  // namespace
 
 LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, double gatherPhotons,
-                            int cameraPasses) {
+                            int cameraPasses, double nsPerNeighbour) {
   using namespace cost;
   LookupDecision d;
   const PhotonSettings& ps = scene.photons;
@@ -27,7 +27,7 @@ LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, do
   const double mapBytes = gatherPhotons * (sizeof(IndirectPhoton) + kIndexBytes);
   const double perPointNs =
       gatedLights * kExactVoteNs +
-      (gatherPhotons > 0.0 ? gatherK * gatherNsPerNeighbour(kGatherNsPerNeighbour, mapBytes) : 0.0);
+      (gatherPhotons > 0.0 ? gatherK * gatherNsPerNeighbour(nsPerNeighbour, mapBytes) : 0.0);
   // A cell per k photons' neighbourhood, twice over for the surfaces' two sides (the
   // resource estimate's cache size), each answered once exactly.
   const int k = std::max(1, gatherPhotons > 0.0 ? gatherK : ps.kShadow);

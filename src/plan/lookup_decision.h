@@ -16,7 +16,9 @@ struct LookupDecision {
 // `gatedLights` lights the gate answers (0: gate off); `gatherK` the neighbours of
 // the model's per-cell estimate and `gatherPhotons` the photons its map stores per
 // pass (0: no such map); `cameraPasses` the times camera hits repeat (the model's
-// progressive passes). Costs are plan/cost_model.h's.
-LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, double gatherPhotons, int cameraPasses);
+// progressive passes); `nsPerNeighbour` the model's exact gather per neighbour from a
+// cached map (IndirectLookup). Costs are plan/cost_model.h's.
+LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, double gatherPhotons, int cameraPasses,
+                            double nsPerNeighbour);
 
 }  // namespace penumbra

@@ -3,6 +3,7 @@
 // whose gather radii shrink so that the mean of the passes converges.
 #include "core/bsdf.h"
 #include "emit/emit_physical.h"
+#include "plan/cost_model.h"
 #include "plan/media_facts.h"
 #include "plan/photon_stage.h"
 #include "plan/transport_model.h"
@@ -65,7 +66,7 @@ class PhysicalTransport final : public TransportModel {
   bool freshPhotonsEachPass() const override { return true; }
   IndirectLookup indirectLookup(const PhotonSettings& ps) const override {
     // Irradiance answers the Lambertian part; a glossy lobe still gathers.
-    return {MapKind::Global, CachedIndirect::Irradiance, ps.kGlobal, 0.0f};
+    return {MapKind::Global, CachedIndirect::Irradiance, ps.kGlobal, 0.0f, cost::kPhysicalGatherNsPerNeighbour};
   }
   // Progressive pass `pass` (Knaus & Zwicker 2011): each map gathers k x passRadiusShare
   // nearest photons, so every point's radius shrinks from its own k-nearest one;

@@ -181,9 +181,9 @@ const SceneAssets& RenderSession::assets(const PlannedJob& job) {
   return g.assets;
 }
 
-void RenderSession::prepare(PlannedJob& job) {
+void RenderSession::prepare(PlannedJob& job, PrepareFor what) {
   if (job.prepared) return;
-  const SceneAssets& a = geometry(job);
+  const SceneAssets& a = what == PrepareFor::Frames ? assets(job) : geometry(job);
   splitByReach(job.plan, job.scene, *a.tracer);  // needs rays: the BVH is the first work
   // The split may turn a map off (nothing its lights emit can be stored): estimate what is emitted.
   Admission& admission = job.admission;

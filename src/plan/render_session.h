@@ -90,16 +90,19 @@ class RenderSession {
   // without loading the scene again (batch's views of one job).
   PlannedJob planView(const PlannedJob& job, const std::string& view);
 
-  // The job's geometry built (its BVH), its light
+  // What a prepared job goes on to do: render frames, whose textures load now (a
+  // builtin texture that cannot be made fails before any photon), or only emit its
+  // photons or cost a plan (a maps-only prepass, a plan file), which never loads them.
+  enum class PrepareFor { Frames, Photons };
+  // The job's geometry built (its BVH, and its textures for frames), its light
   // split by reach, the pilot if the photons are large, and the whole estimate
   // against the memory limit: still before any photon. Needed by the steps below.
-  void prepare(PlannedJob& job);
+  void prepare(PlannedJob& job, PrepareFor what = PrepareFor::Frames);
 
   // The BVH a job's photons, pilots and plans trace: its geometry's, built once.
   const SceneAssets& geometry(const PlannedJob& job);
-  // The BVH and, where its plan reads them, the textures a frame shades with: loaded
-  // at the first frame that needs them, so a maps-only prepass or a plan file never
-  // loads the image module for a texture.
+  // The BVH and, where its plan reads them, the textures a frame shades with (loaded
+  // here if prepare did not).
   const SceneAssets& assets(const PlannedJob& job);
 
   // The photon maps of jobs that share them (views of one scene and settings): the

@@ -24,6 +24,7 @@ struct IndirectLookup {
   CachedIndirect kind;  // the estimate stored per cell
   int k;                // neighbours per estimate
   float maxRadius;      // 0: none (a progressive pass gathers in its own fixed radius)
+  double nsPerNeighbour;  // an exact gather's cost per neighbour found, from a cached map (plan/cost_model.h)
 };
 
 class TransportModel {

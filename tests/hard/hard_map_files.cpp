@@ -230,8 +230,8 @@ TEST_F(MapFiles, StoreMapsWritesOnceAndALaterSessionLoads) {
   EXPECT_EQ(stage.emitted[MapKind::Shadow], 100000u);
 }
 
-// The prepass traces the BVH alone: a textured scene's textures wait for a frame that
-// shades them, so --maps-only never loads the image module for them.
+// The prepass traces the BVH alone: a builtin texture is never made or loaded, so
+// --maps-only does not load the image module for it; a frame's assets load it.
 TEST_F(MapFiles, StoringMapsLeavesATexturedScenesTexturesUnloaded) {
   SessionOptions options;
   options.threads = 2;
@@ -242,7 +242,7 @@ TEST_F(MapFiles, StoringMapsLeavesATexturedScenesTexturesUnloaded) {
   RenderSession session(options);
   PlannedJob job = session.plan(request);
   ASSERT_TRUE(job.plan[Pass::Textures].on);
-  session.prepare(job);
+  session.prepare(job, RenderSession::PrepareFor::Photons);
   EXPECT_TRUE(session.storeMaps({&job}).written);
   EXPECT_EQ(session.geometry(job).textures, nullptr);
   EXPECT_NE(session.assets(job).textures, nullptr) << "a frame's assets load them";

@@ -181,7 +181,9 @@ void BatchRun::prepareAll(const std::vector<size_t>& todo) {
     if (!p.error.empty()) continue;
     const size_t builds = session_.sceneBuilds();
     try {
-      for (PlannedJob& v : p.views) session_.prepare(v);
+      const auto what = req_.mode == BatchMode::MapsOnly ? RenderSession::PrepareFor::Photons
+                                                         : RenderSession::PrepareFor::Frames;
+      for (PlannedJob& v : p.views) session_.prepare(v, what);
     } catch (const InputError& e) {
       fail(p, e.what(), true);
     } catch (const std::exception& e) {

@@ -23,7 +23,7 @@ std::vector<JobCost> BatchRun::costs(const std::vector<size_t>& which) {
       key = photonKeyOf(p.views);
       const TraceScene* tracer = nullptr;
       try {
-        for (PlannedJob& v : p.views) session_.prepare(v);
+        for (PlannedJob& v : p.views) session_.prepare(v, RenderSession::PrepareFor::Photons);
         tracer = session_.geometry(p.views.front()).tracer.get();
       } catch (const std::exception&) {
         // Refused on this machine (its memory): costed from the bounds.

@@ -34,7 +34,7 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
       o.pointsPerSample = pilot.pointsPerSample;
       o.diffusePerSample = pilot.diffusePerSample;
       o.missesPerSample = pilot.missesPerSample;
-      o.texturesPerSample = pilot.texturesPerSample;
+      o.texturesPerSample = v.plan[Pass::Textures].on ? pilot.texturesPerSample : 0.0;
     }
     const ResourceEstimate e = estimateResources(v.scene, o, rates);
     // The BVH and the first pass's maps are paid once by the jobs that share them;
