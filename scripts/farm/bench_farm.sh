@@ -17,11 +17,13 @@ FARM_MAPS=${FARM_MAPS:-0}
 SHARDS=4
 JOBS_FILE=$REPO/scripts/farm/jobs_file.py
 # The test's jobs file, larger (at the test's 64x48 a process's start-up outweighs its renders),
-# at two sizes: a small one, where each process's fixed costs weigh, and a farm's; and a
-# mix: a 12-pass physical job, gate on/off/auto, a 64-frame orbit. Each: TEMPLATE [KEY=VALUE...].
+# and a mix: a 12-pass physical job, gate on/off/auto, a 64-frame orbit; each at a small
+# size, where a process's fixed costs weigh, and at a farm's. Each: TEMPLATE [ARGS...] of
+# jobs_file.py write.
 BENCH_FILES=("$REPO/tests/farm/jobs.json.in camera.width=320 camera.height=240 camera.spp=8"
              "$REPO/tests/farm/jobs.json.in camera.width=640 camera.height=480 camera.spp=16"
-             "$REPO/scripts/farm/bench_mix.json.in")
+             "$REPO/scripts/farm/bench_mix.json.in"
+             "$REPO/scripts/farm/bench_mix.json.in --scale 2")
 today() { [ "$FARM_TODAY" = 1 ]; }
 
 # The arguments that select shard I (0-based) of SHARDS: the one place the split is chosen.

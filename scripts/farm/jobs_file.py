@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Jobs files of the farm test and bench: written from a template, appended to, and read back.
 
-  jobs_file.py write TEMPLATE SCENES_DIR [--no-tiles] [KEY=VALUE...] > jobs.json
-      (@SCENES@ -> SCENES_DIR; each KEY=VALUE is added to the top-level set)
+  jobs_file.py write TEMPLATE SCENES_DIR [--no-tiles] [--scale N] [KEY=VALUE...] > jobs.json
+      (@SCENES@ -> SCENES_DIR; --scale multiplies every camera.width and camera.height the
+      file sets, its jobs' too; each KEY=VALUE is added to the top-level set)
   jobs_file.py append JOBS SCENE                                   (one job: out/{name}.png)
   jobs_file.py untile JOBS NAME > whole.json           (job NAME alone, without "tiles")
 """
@@ -10,10 +11,23 @@ import json
 import sys
 
 
+def scaled(sets, factor):
+    out = []
+    for s in sets:
+        key, _, value = s.partition("=")
+        out.append(f"{key}={int(value) * factor}" if key in ("camera.width", "camera.height") else s)
+    return out
+
+
 def write(template, scenes, *args):
     doc = json.loads(open(template).read().replace("@SCENES@", scenes))
     if "--no-tiles" in args:  # for a binary without the "tiles" key
         doc["jobs"] = [j for j in doc["jobs"] if "tiles" not in j]
+    if "--scale" in args:  # the same jobs at a farm's size
+        factor = int(args[args.index("--scale") + 1])
+        doc["set"] = scaled(doc.get("set", []), factor)
+        for job in doc["jobs"]:
+            job["set"] = scaled(job.get("set", []), factor)
     doc["set"] = doc.get("set", []) + [a for a in args if "=" in a]
     json.dump(doc, sys.stdout, indent=1)
     print()
