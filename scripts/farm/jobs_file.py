@@ -15,7 +15,7 @@ def scaled(sets, factor):
     out = []
     for s in sets:
         key, _, value = s.partition("=")
-        out.append(f"{key}={int(value) * factor}" if key in ("camera.width", "camera.height") else s)
+        out.append(f"{key}={int(float(value)) * factor}" if key in ("camera.width", "camera.height") else s)
     return out
 
 
@@ -24,10 +24,14 @@ def write(template, scenes, *args):
     if "--no-tiles" in args:  # for a binary without the "tiles" key
         doc["jobs"] = [j for j in doc["jobs"] if "tiles" not in j]
     if "--scale" in args:  # the same jobs at a farm's size
-        factor = int(args[args.index("--scale") + 1])
+        at = args.index("--scale") + 1
+        if at >= len(args) or not args[at].isdigit() or int(args[at]) < 1:
+            sys.exit("jobs_file.py write: --scale takes a whole number, at least 1")
+        factor = int(args[at])
         doc["set"] = scaled(doc.get("set", []), factor)
         for job in doc["jobs"]:
-            job["set"] = scaled(job.get("set", []), factor)
+            if "set" in job:
+                job["set"] = scaled(job["set"], factor)
     doc["set"] = doc.get("set", []) + [a for a in args if "=" in a]
     json.dump(doc, sys.stdout, indent=1)
     print()

@@ -182,7 +182,11 @@ const SceneAssets& RenderSession::assets(const PlannedJob& job) {
 }
 
 void RenderSession::prepare(PlannedJob& job, PrepareFor what) {
-  if (job.prepared) return;
+  if (job.prepared) {
+    // Costed for a shard first (photons only), now rendered: its textures load here.
+    if (what == PrepareFor::Frames) assets(job);
+    return;
+  }
   const SceneAssets& a = what == PrepareFor::Frames ? assets(job) : geometry(job);
   splitByReach(job.plan, job.scene, *a.tracer);  // needs rays: the BVH is the first work
   // The split may turn a map off (nothing its lights emit can be stored): estimate what is emitted.

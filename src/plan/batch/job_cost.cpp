@@ -11,10 +11,12 @@ namespace penumbra {
 namespace {
 
 // Whether rendering decodes an image file or samples a texture: the image module's
-// load, paid once by the process for all its jobs.
-bool readsImages(const Scene& scene) {
-  const Light* sky = environmentOf(scene);
-  return !scene.textures.empty() || !scene.alphaMasks.empty() || (sky && sky->environment);
+// load, paid once by the process for all its jobs (a view that shades no colour
+// samples no texture).
+bool readsImages(const PlannedJob& v) {
+  const Light* sky = environmentOf(v.scene);
+  return (!v.scene.textures.empty() && v.plan[Pass::Textures].on) || !v.scene.alphaMasks.empty() ||
+         (sky && sky->environment);
 }
 
 }  // namespace
@@ -46,7 +48,7 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
     c.frameSeconds += std::max(0.0, e.renderSeconds - cost::kStartupSeconds - e.bvhSeconds) * share +
                       (e.photonSeconds - stage);
     c.photonSeconds = std::max(c.photonSeconds, stage + e.bvhSeconds);
-    if (readsImages(v.scene)) c.moduleSeconds = cost::kImageModuleSeconds;
+    if (readsImages(v)) c.moduleSeconds = cost::kImageModuleSeconds;
   }
   return c;
 }
