@@ -303,7 +303,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
     return gatherNsPerNeighbour(ns, photonBytes(one, kIndexBytes));
   };
   if (p.emitted[MapKind::Indirect] > 0) {
-    lookupNs += options.precomputed ? kLookupNs : ps.kIndirect * perNeighbourNs(MapKind::Indirect, kGatherNsPerNeighbour);
+    lookupNs += options.precomputed ? kLookupNs : ps.kIndirect * perNeighbourNs(MapKind::Indirect, lookup.nsPerNeighbour);
   }
   // The physical model gathers where a camera path meets a diffuse surface, once per
   // sample, pass and map unpiloted (glass's split paths add a tenth in

@@ -10,13 +10,11 @@
 namespace penumbra {
 namespace {
 
-// Whether rendering decodes an image file or samples a texture: the image module's
-// load, paid once by the process for all its jobs (a view that shades no colour
-// samples no texture).
-bool readsImages(const PlannedJob& v) {
-  const Light* sky = environmentOf(v.scene);
-  return (!v.scene.textures.empty() && v.plan[Pass::Textures].on) || !v.scene.alphaMasks.empty() ||
-         (sky && sky->environment);
+// Whether rendering decodes an image file or samples a texture (`textures`: the
+// view shades them): the image module's load, paid once by the process for all its jobs.
+bool readsImages(const Scene& scene, bool textures) {
+  const Light* sky = environmentOf(scene);
+  return (textures && !scene.textures.empty()) || !scene.alphaMasks.empty() || (sky && sky->environment);
 }
 
 }  // namespace
@@ -26,6 +24,7 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
   for (const PlannedJob& v : views) {
     // One thread: CPU seconds, the same on every machine whatever its cores.
     EstimateOptions o = v.admission.options;
+    const bool textures = v.plan[Pass::Textures].on;
     o.threads = 1;
     // The analytic rates bound the stores per photon, loosely; a pilot measures them.
     const StoreRates rates = tracer ? measureStoreRates(v.scene, *tracer, o.photons, v.admission.bound) : v.admission.bound;
@@ -36,7 +35,7 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
       o.pointsPerSample = pilot.pointsPerSample;
       o.diffusePerSample = pilot.diffusePerSample;
       o.missesPerSample = pilot.missesPerSample;
-      o.texturesPerSample = v.plan[Pass::Textures].on ? pilot.texturesPerSample : 0.0;
+      o.texturesPerSample = textures ? pilot.texturesPerSample : 0.0;
     }
     const ResourceEstimate e = estimateResources(v.scene, o, rates);
     // The BVH and the first pass's maps are paid once by the jobs that share them;
@@ -48,7 +47,7 @@ JobCost jobCostOf(const std::vector<PlannedJob>& views, const TraceScene* tracer
     c.frameSeconds += std::max(0.0, e.renderSeconds - cost::kStartupSeconds - e.bvhSeconds) * share +
                       (e.photonSeconds - stage);
     c.photonSeconds = std::max(c.photonSeconds, stage + e.bvhSeconds);
-    if (readsImages(v)) c.moduleSeconds = cost::kImageModuleSeconds;
+    if (readsImages(v.scene, textures)) c.moduleSeconds = cost::kImageModuleSeconds;
   }
   return c;
 }
