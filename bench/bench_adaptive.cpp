@@ -6,13 +6,13 @@
 //   build/bench/bench_adaptive [--scene S] [--reference R.exr] [--full-reference A.exr,B.exr]
 //       [--threads 2] [--seeds 1,2] LABEL=KEY=VALUE,KEY=VALUE ...
 // e.g. uniform=render.adaptive=false adaptive=render.adaptive=true
-#include "plan/pipeline.h"
+#include "bench/comma_list.h"
 #include "io/image_io.h"
+#include "plan/pipeline.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -39,13 +39,6 @@ double rmse(const Image& a, const Image& b, double scale = 1.0) {
   return std::sqrt(squares / (3.0 * double(a.pixels.size())));
 }
 
-std::vector<std::string> split(const std::string& text, char by) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, by);) out.push_back(part);
-  return out;
-}
-
 int run(int argc, char** argv) {
   std::string scene = std::string(PENUMBRA_SOURCE_DIR) + "/scenes/cornell_physical.json";
   std::string reference = std::string(PENUMBRA_SOURCE_DIR) + "/tests/data/reference/cornell_physical_converged.exr";
@@ -56,10 +49,11 @@ int run(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--scene" && i + 1 < argc) scene = argv[++i];
     else if (a == "--reference" && i + 1 < argc) reference = argv[++i];
-    else if (a == "--full-reference" && i + 1 < argc) full = split(argv[++i], ',');
+    else if (a == "--full-reference" && i + 1 < argc) full = bench::commaList(argv[++i]);
     else if (a == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (a == "--seeds" && i + 1 < argc) seeds = split(argv[++i], ',');
-    else if (a.find('=') != std::string::npos) configs.push_back({a.substr(0, a.find('=')), split(a.substr(a.find('=') + 1), ',')});
+    else if (a == "--seeds" && i + 1 < argc) seeds = bench::commaList(argv[++i]);
+    else if (a.find('=') != std::string::npos)
+      configs.push_back({a.substr(0, a.find('=')), bench::commaList(a.substr(a.find('=') + 1))});
     else {
       std::fprintf(stderr, "bench_adaptive: unknown argument '%s'\n", a.c_str());
       return 2;
@@ -77,8 +71,8 @@ int run(int argc, char** argv) {
     fullNoise = rmse(a, b, 0.5);
     std::printf("full-resolution reference: its own noise %.5f\n", fullNoise);
   }
-  std::printf("%-16s %6s %11s %9s %9s %9s %9s %9s %9s %7s\n", "config", "CPU s", "camera rays", "RMSE ref",
-              "RMSE full", "less ref", "estimate", "noise", "noise ref", "est/noi");
+  std::printf("%-16s %6s %11s %9s %9s %9s %9s %9s %9s %7s\n", "config", "CPU s", "camera rays", "RMSE ref", "RMSE full",
+              "less ref", "estimate", "noise", "noise ref", "est/noi");
   for (const auto& [label, overrides] : configs) {
     double cpu = 0.0, error = 0.0, estimate = 0.0, fullError = 0.0;
     uint64_t rays = 0;
@@ -104,8 +98,9 @@ int run(int argc, char** argv) {
     // Two seeds' difference has twice one render's variance.
     const int scale = images[0].width / ref.width;
     const double noise = images.size() >= 2 ? rmse(images[0], images[1], std::sqrt(0.5)) : -1.0;
-    const double noiseRef =
-        images.size() >= 2 ? rmse(boxFilter(images[0], scale), boxFilter(images[1], scale), std::sqrt(0.5)) : -1.0;
+    const double noiseRef = images.size() >= 2
+                                ? rmse(boxFilter(images[0], scale), boxFilter(images[1], scale), std::sqrt(0.5))
+                                : -1.0;
     fullError /= n;
     std::printf("%-16s %6.1f %11llu %9.5f %9.5f %9.5f %9.5f %9.5f %9.5f %7.3f\n", label.c_str(), cpu / n,
                 static_cast<unsigned long long>(rays / seeds.size()), error / n, fullError,
