@@ -21,7 +21,7 @@ constexpr int kSize = 160;
 // The ceiling in front of the light, clear of the walls: x 30-129, y 0-17 of 160x160.
 constexpr int kX0 = 30, kX1 = 130, kY0 = 0, kY1 = 18;
 
-// The mean of the three channels over the ceiling patch of `image` divided by `passes`.
+// The mean of the three channels over the ceiling patch of `sum`, divided by `passes`.
 double patchMean(const Image& sum, int passes) {
   double total = 0.0;
   for (int y = kY0; y < kY1; ++y)
@@ -74,6 +74,11 @@ int run(int argc, char** argv) {
       std::fprintf(stderr, "bench_creep: unknown argument '%s'\n", a.c_str());
       return 2;
     }
+  }
+  if (fixedPasses < 2 || passes < 1) {
+    std::fprintf(stderr,
+                 "bench_creep: --fixed-passes needs 2 or more (their spread is the noise), --passes 1 or more\n");
+    return 2;
   }
   const std::vector<std::string> room = {
       R"(lights[0]={"type":"quad","corner":[-0.25,1.98,-0.25],"edge1":[0.5,0,0],"edge2":[0,0,0.5],"color":[1,1,1],"power":20})",

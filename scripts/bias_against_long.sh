@@ -1,21 +1,30 @@
 #!/bin/bash
 # The photon-map bias of a render against a longer one, measured over many seeds
-# (docs/accuracy.md, "Against longer renders"): the mean M of N renders and the mean L
-# of K longer renders of other seeds; per pixel (M - L)^2 less the variance of each
-# mean (from the spread of its own images) has the squared bias difference as its
-# mean. Prints that mean over the image's pixels and channels with its standard error,
-# and with --cell (WxH+X+Y, as oiiotool --cut takes it) the part of it in that box.
+# (docs/accuracy.md, "Against longer renders"): per pixel (M - L)^2 less each mean's
+# variance, where M is the mean of the renders and L of the longer ones (other seeds).
 #
-#   scripts/bias_against_long.sh [--cell 32x64+160+192] RENDERS... -- REFERENCES...
+#   scripts/bias_against_long.sh [--cell 32x64+160+192] [--groups 8] RENDERS... -- REFERENCES...
+#
+# Prints the mean of that over the image's pixels and channels (the squared bias
+# difference as an image's mean), and with --cell (WxH+X+Y, as oiiotool --cut takes
+# it) the part inside that box and the part outside, each with a jackknife standard
+# error: over groups of the renders and over the references one at a time, since
+# neighbouring pixels share photons and are not independent.
 set -euo pipefail
-cell=
-if [ "${1:-}" = --cell ]; then cell=$2; shift 2; fi
+cell='' groups=8
+while [ $# -gt 0 ]; do
+  case $1 in
+    --cell) cell=$2; shift 2 ;;
+    --groups) groups=$2; shift 2 ;;
+    *) break ;;
+  esac
+done
 renders=() refs=()
 while [ $# -gt 0 ] && [ "$1" != -- ]; do renders+=("$1"); shift; done
 [ $# -gt 0 ] && shift
 refs=("$@")
-if [ ${#renders[@]} -lt 2 ] || [ ${#refs[@]} -lt 2 ]; then
-  echo "bias_against_long.sh: needs at least two renders and two references" >&2
+if [ ${#renders[@]} -lt $((2 * groups)) ] || [ ${#refs[@]} -lt 3 ]; then
+  echo "bias_against_long.sh: needs at least $((2 * groups)) renders and three references" >&2
   exit 2
 fi
 
@@ -42,30 +51,55 @@ meanAndVariance() {
   printf '%s\n' "${args[@]}"
 }
 
-mapfile -t m < <(meanAndVariance M "${renders[@]}")
-mapfile -t l < <(meanAndVariance L "${refs[@]}")
-excess=(M L --sub --dup --mul M_var --sub L_var --sub)
-# Each pixel's excess has a variance of about 2 (M_var + L_var)^2 (a normal spread).
-spread=(M_var L_var --add --dup --mul --mulc 2)
-# average SCALE: the channels' mean that --printstats printed of an image scaled by
-# SCALE (it prints six decimals).
-average() { awk -v s="$1" '/Stats Avg/ {printf "%.6e", ($3 + $4 + $5) / (3 * s)}'; }
 pixels() { oiiotool --info "$1" | sed -E 's/^[^:]*: *([0-9]+) x +([0-9]+).*/\1 \2/' | awk '{print $1 * $2}'; }
+total=$(pixels "${renders[0]}")
+cellShare=0
+[ -z "$cell" ] || cellShare=$(awk -v c="$cell" -v t="$total" 'BEGIN {split(c, a, /[x+]/); print a[1] * a[2] / t}')
 
-# figure ROI: the squared bias difference over ROI (the whole image: no --cut) as a
-# share of the image's mean, and its standard error.
-figure() {
-  local cut=() n=$total
-  if [ -n "${1:-}" ]; then cut=(--cut "$1"); n=$(awk -v c="$1" 'BEGIN {split(c, a, /[x+]/); print a[1] * a[2]}'); fi
-  local e v
-  e=$(oiiotool "${m[@]}" "${l[@]}" "${excess[@]}" "${cut[@]}" --mulc 1e6 --printstats | average 1e6)
-  v=$(oiiotool "${m[@]}" "${l[@]}" "${spread[@]}" "${cut[@]}" --mulc 1e12 --printstats | average 1e12)
-  awk -v e="$e" -v v="$v" -v n="$n" -v t="$total" \
-    'BEGIN {printf "%.2e +- %.2e", e * n / t, sqrt(v * 3 * n) / (3 * t)}'
+# estimate RENDERS... -- REFERENCES...: "whole inside outside", each as a share of the
+# image's mean (--printstats prints six decimals, so the image is scaled by 1e6).
+estimate() {
+  local r=() l=()
+  while [ "$1" != -- ]; do r+=("$1"); shift; done
+  shift
+  l=("$@")
+  local mArgs lArgs cut=()
+  mapfile -t mArgs < <(meanAndVariance M "${r[@]}")
+  mapfile -t lArgs < <(meanAndVariance L "${l[@]}")
+  [ -z "$cell" ] || cut=(--cut "$cell" --printstats)
+  oiiotool "${mArgs[@]}" "${lArgs[@]}" M L --sub --dup --mul M_var --sub L_var --sub --mulc 1e6 --printstats "${cut[@]}" |
+    awk -v s="$cellShare" '/Stats Avg/ {v[n++] = ($3 + $4 + $5) / 3e6}
+      END {inside = n > 1 ? v[1] * s : 0; printf "%.6e %.6e %.6e\n", v[0], inside, v[0] - inside}'
 }
 
-total=$(pixels "${renders[0]}")
-whole=$(figure)
-echo "${#renders[@]} renders, ${#refs[@]} references: mean squared bias difference over the image $whole" \
-  "(RMSE $(awk -v v="${whole%% *}" 'BEGIN {printf "%.5f", (v > 0 ? sqrt(v) : 0)}'))"
-[ -z "$cell" ] || echo "of which in $cell: $(figure "$cell")"
+full=$(estimate "${renders[@]}" -- "${refs[@]}")
+replicates=()
+for ((g = 0; g < groups; ++g)); do
+  kept=()
+  for i in "${!renders[@]}"; do ((i % groups == g)) || kept+=("${renders[$i]}"); done
+  replicates+=("R $(estimate "${kept[@]}" -- "${refs[@]}")")
+done
+for i in "${!refs[@]}"; do
+  kept=("${refs[@]:0:i}" "${refs[@]:i+1}")
+  replicates+=("L $(estimate "${renders[@]}" -- "${kept[@]}")")
+done
+
+# Jackknife: (n - 1) / n times the sum of squared deviations from the replicates' mean,
+# for the renders' groups and the references' in turn, added.
+printf '%s\n' "${replicates[@]}" | awk -v full="$full" -v g="$groups" -v k="${#refs[@]}" \
+  -v nr="${#renders[@]}" -v hasCell="${cell:+1}" -v cell="$cell" '
+  { for (j = 2; j <= 4; ++j) { sum[$1, j] += $j; sq[$1, j] += $j * $j }; count[$1]++ }
+  END {
+    split(full, f, " ")
+    names[2] = "over the image"; names[3] = "inside " cell; names[4] = "outside it"
+    printf "%d renders, %d references: squared bias difference as the image'"'"'s mean\n", nr, k
+    for (j = 2; j <= (hasCell ? 4 : 2); ++j) {
+      var = 0
+      for (s in count) {
+        n = count[s]; m = sum[s, j] / n
+        var += (n - 1) / n * (sq[s, j] - n * m * m)
+      }
+      v = f[j - 1]
+      printf "  %-28s %10.2e +- %.2e  (RMSE %.5f)\n", names[j], v, sqrt(var > 0 ? var : 0), (v > 0 ? sqrt(v) : 0)
+    }
+  }'
