@@ -2,7 +2,8 @@
 // one cache query per point plus the exact answers of the cells the queries fill.
 #include "plan/lookup_decision.h"
 #include "plan/cost_model.h"
-#include "core/photon.h"
+#include "plan/resource_estimate.h"
+#include "plan/transport_model.h"
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -16,18 +17,16 @@ constexpr double kRequiredSaving = 2.0;
 
 }  // namespace
 
-LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, double gatherPhotons,
-                            int cameraPasses, double nsPerNeighbour) {
+LookupDecision decideLookup(const Scene& scene, int gatedLights, const IndirectLookup& gather, double gatherPhotons,
+                            int cameraPasses) {
   using namespace cost;
   LookupDecision d;
   const PhotonSettings& ps = scene.photons;
   // Camera hits bound the shading points from below (progressive passes repeat them).
   const double points = double(scene.camera.width) * scene.camera.height * scene.camera.spp * cameraPasses;
-  // The map's records with their index (kIndexBytes): an indirect photon's, the larger.
-  const double mapBytes = gatherPhotons * (sizeof(IndirectPhoton) + kIndexBytes);
-  const double perPointNs =
-      gatedLights * kExactVoteNs +
-      (gatherPhotons > 0.0 ? gatherK * gatherNsPerNeighbour(nsPerNeighbour, mapBytes) : 0.0);
+  const int gatherK = gather.k;
+  const double nsPerNeighbour = gatherNsPerNeighbour(gather.nsPerNeighbour, mapBytes(gather.map, gatherPhotons));
+  const double perPointNs = gatedLights * kExactVoteNs + (gatherPhotons > 0.0 ? gatherK * nsPerNeighbour : 0.0);
   // A cell per k photons' neighbourhood, twice over for the surfaces' two sides (the
   // resource estimate's cache size), each answered once exactly.
   const int k = std::max(1, gatherPhotons > 0.0 ? gatherK : ps.kShadow);

@@ -6,6 +6,8 @@
 
 namespace penumbra {
 
+struct IndirectLookup;
+
 struct LookupDecision {
   bool precomputed = false;
   double exactMs = 0.0;        // estimated exact votes and gathers (one core)
@@ -13,12 +15,11 @@ struct LookupDecision {
   std::string reason;          // one line for the plan and --stats
 };
 
-// `gatedLights` lights the gate answers (0: gate off); `gatherK` the neighbours of
-// the model's per-cell estimate and `gatherPhotons` the photons its map stores per
-// pass (0: no such map); `cameraPasses` the times camera hits repeat (the model's
-// progressive passes); `nsPerNeighbour` the model's exact gather per neighbour from a
-// cached map (IndirectLookup). Costs are plan/cost_model.h's.
-LookupDecision decideLookup(const Scene& scene, int gatedLights, int gatherK, double gatherPhotons, int cameraPasses,
-                            double nsPerNeighbour);
+// `gatedLights` lights the gate answers (0: gate off); `gather` the model's per-cell
+// estimate (its map, neighbours and exact price per neighbour) and `gatherPhotons` the
+// photons its map stores per pass (0: no such map); `cameraPasses` the times camera
+// hits repeat (the model's progressive passes). Costs are plan/cost_model.h's.
+LookupDecision decideLookup(const Scene& scene, int gatedLights, const IndirectLookup& gather, double gatherPhotons,
+                            int cameraPasses);
 
 }  // namespace penumbra

@@ -145,9 +145,8 @@ void decide(RenderPlan& plan, const Scene& scene, Aov aov) {
     // Camera hits repeat with every pass; a model whose passes reuse one emission
     // (classic) is priced at one, as its auto lookup always was.
     const int cameraPasses = model.freshPhotonsEachPass() ? ps.passes : 1;
-    const LookupDecision d = decideLookup(scene, gate.on ? gatedLightCount(scene) : 0, gather.k,
-                                          gathers ? double(budgets[gather.map]) : 0.0, cameraPasses,
-                                          gather.nsPerNeighbour);
+    const LookupDecision d = decideLookup(scene, gate.on ? gatedLightCount(scene) : 0, gather,
+                                          gathers ? double(budgets[gather.map]) : 0.0, cameraPasses);
     precompute = d.precomputed ? on(d.reason) : off(d.reason);
   }
 }

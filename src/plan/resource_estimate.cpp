@@ -135,6 +135,12 @@ double photonBytes(const PerMap<double>& n, double extra) {
 
 }  // namespace
 
+double mapBytes(MapKind map, double photons) {
+  PerMap<double> one;
+  one[map] = photons;
+  return photonBytes(one, cost::kIndexBytes);
+}
+
 StoreRates analyticStoreRates(const Scene& scene) {
   StoreRates r;
   const int bounces = scene.photons.maxBounces;
@@ -239,10 +245,10 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   for (const AlphaMask& mask : scene.alphaMasks) maskBytes += double(mask.bytes());
   // An environment map's texels and sampling tables, as the loader judged them.
   const Light* sky = environmentOf(scene);
-  const double mapBytes = sky && sky->environment
+  const double skyBytes = sky && sky->environment
                               ? environmentMapBytes(sky->environment->width, sky->environment->height)
                               : 0.0;
-  e.sceneBytes = meshBytes + textureBytes(scene) + maskBytes + mapBytes;
+  e.sceneBytes = meshBytes + textureBytes(scene) + maskBytes + skyBytes;
   e.baseBytes = kBaseBytes;
 
   // Time: each stored photon is one traced segment, plus the one that escapes.
@@ -297,11 +303,7 @@ ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& op
   e.lightSamples = shadings * samplesPerPoint;
   e.shadowRays = shadings * raysPerPoint;
   // An exact gather's time per neighbour grows with its map's bytes (one pass's map).
-  const auto perNeighbourNs = [&](MapKind map, double ns) {
-    PerMap<double> one;
-    one[map] = n[map];
-    return gatherNsPerNeighbour(ns, photonBytes(one, kIndexBytes));
-  };
+  const auto perNeighbourNs = [&](MapKind map, double ns) { return gatherNsPerNeighbour(ns, mapBytes(map, n[map])); };
   if (p.emitted[MapKind::Indirect] > 0) {
     lookupNs += options.precomputed ? kLookupNs : ps.kIndirect * perNeighbourNs(MapKind::Indirect, lookup.nsPerNeighbour);
   }

@@ -77,6 +77,9 @@ StoreRates analyticStoreRates(const Scene& scene);
 ResourceEstimate estimateResources(const Scene& scene, const EstimateOptions& options,
                                    const StoreRates& rates);
 
+// One map of `photons` records of its kind with their KD index: what a gather searches.
+double mapBytes(MapKind map, double photons);
+
 // "~64 h": for messages (bytes: core/byte_size.h).
 std::string formatDuration(double seconds);
 
